@@ -1,1 +1,47 @@
-fn main() {}
+//! Project automation for srt: `cargo xtask figures` (and, as they land, `validate` and `bench`).
+
+mod figures;
+mod plot;
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+/// Command line of `cargo xtask`.
+#[derive(Parser)]
+#[command(about = "srt project automation")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// What `cargo xtask` can do.
+#[derive(Subcommand)]
+enum Command {
+    /// Write the documentation figures (the paper's Fig. 4, 5, 6 and 8) as PNGs.
+    Figures {
+        /// Folder to write into (default: docs/figures in the workspace).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+/// The workspace root (xtask lives one level below it).
+fn workspace_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask sits inside the workspace")
+        .to_path_buf()
+}
+
+fn main() -> anyhow::Result<()> {
+    match Cli::parse().command {
+        Command::Figures { out } => {
+            let out = out.unwrap_or_else(|| workspace_root().join("docs/figures"));
+            for path in figures::write_all(&out)? {
+                println!("wrote {}", path.display());
+            }
+        }
+    }
+    Ok(())
+}
