@@ -1,0 +1,203 @@
+//! The footprint is conservative: every point of the curved apparent triangle projects inside
+//! the rectangle and inside the convex hull (property test over random triangles, velocities up
+//! to 0.99c, observers and cameras).
+
+use glam::dcamera::rh::proj::directx::perspective;
+use glam::dcamera::rh::view::look_at_mat4 as look_at;
+use glam::{DMat4, DVec2, DVec3};
+use proptest::prelude::*;
+use srt_physics::{Event, Frame};
+use srt_proxy::{Viewport, footprint, project};
+
+const VIEWPORT: Viewport = Viewport {
+    width: 640.0,
+    height: 480.0,
+};
+
+fn vec3(range: f64) -> impl Strategy<Value = DVec3> {
+    (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+}
+
+fn velocity() -> impl Strategy<Value = DVec3> {
+    (vec3(1.0), 0.0..0.99f64)
+        .prop_filter("direction", |(d, _)| d.length() > 0.1)
+        .prop_map(|(d, s)| d.normalize() * s)
+}
+
+/// A scene: frame, rest triangle, observer event, camera looking near the triangle.
+#[derive(Debug, Clone)]
+struct Setup {
+    frame: Frame,
+    triangle: [DVec3; 3],
+    observer: Event,
+    view_projection: DMat4,
+}
+
+fn setup() -> impl Strategy<Value = Setup> {
+    (
+        velocity(),
+        vec3(5.0),
+        [vec3(3.0), vec3(3.0), vec3(3.0)],
+        (-10.0..10.0f64, vec3(8.0)),
+        vec3(0.5),
+        vec3(1.0),
+        20.0..120.0f64,
+    )
+        .prop_filter_map(
+            "valid camera",
+            |(beta, offset, triangle, (ct, position), aim_jitter, up, fov)| {
+                let frame = Frame::new(beta, offset).ok()?;
+                let observer = Event::new(ct, position);
+                let centroid = (triangle[0] + triangle[1] + triangle[2]) / 3.0;
+                let target = frame.apparent_position(centroid, observer) + aim_jitter;
+                let forward = target - position;
+                if forward.length() < 1e-3
+                    || up.cross(forward).length() < 1e-3 * up.length() * forward.length()
+                {
+                    return None;
+                }
+                let view = look_at(position, target, up.normalize());
+                let projection = perspective(
+                    fov.to_radians(),
+                    VIEWPORT.width / VIEWPORT.height,
+                    0.01,
+                    1000.0,
+                );
+                Some(Setup {
+                    frame,
+                    triangle,
+                    observer,
+                    view_projection: projection * view,
+                })
+            },
+        )
+}
+
+/// Points of the rest triangle: a barycentric grid plus dense samples along the edges.
+fn rest_samples(t: [DVec3; 3]) -> Vec<DVec3> {
+    let mut out = Vec::new();
+    let n = 24;
+    for i in 0..=n {
+        for j in 0..=n - i {
+            let (u, v) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
+            out.push(t[0] + u * (t[1] - t[0]) + v * (t[2] - t[0]));
+        }
+    }
+    for k in 0..3 {
+        let (a, b) = (t[k], t[(k + 1) % 3]);
+        for s in 0..=400 {
+            out.push(a + f64::from(s) / 400.0 * (b - a));
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn apparent_triangle_lies_inside_rectangle_and_hull(s in setup()) {
+        let fp = footprint(&s.frame, s.triangle, s.observer, s.view_projection, VIEWPORT);
+        let extent = if fp.whole_screen { 1.0 } else { (fp.rect.max - fp.rect.min).length() };
+        let tolerance = 1e-7 * (1.0 + extent);
+        for p in rest_samples(s.triangle) {
+            let seen = s.frame.apparent_position(p, s.observer);
+            match project(s.view_projection, VIEWPORT, seen) {
+                None => prop_assert!(fp.whole_screen, "a point behind the camera needs the whole screen"),
+                Some(px) => {
+                    prop_assert!(fp.rect.contains(px, tolerance), "{px} outside rect {:?}", fp.rect);
+                    prop_assert!(fp.hull_contains(px, tolerance), "{px} outside hull {:?}", fp.hull_points());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn most_random_setups_are_not_whole_screen() {
+    // Guards the property test against passing vacuously through the whole-screen case.
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let mut runner = TestRunner::deterministic();
+    let strategy = setup();
+    let total = 300;
+    let whole = (0..total)
+        .filter(|_| {
+            let s = strategy.new_tree(&mut runner).unwrap().current();
+            footprint(
+                &s.frame,
+                s.triangle,
+                s.observer,
+                s.view_projection,
+                VIEWPORT,
+            )
+            .whole_screen
+        })
+        .count();
+    assert!(
+        whole * 4 < total,
+        "{whole} of {total} footprints were the whole screen"
+    );
+}
+
+#[test]
+fn hull_is_tighter_than_rectangle_and_has_three_to_six_points() {
+    let frame = Frame::new(DVec3::new(0.0, 0.9, 0.0), DVec3::ZERO).unwrap();
+    let observer = Event::new(0.0, DVec3::new(0.0, 0.0, 6.0));
+    let view = look_at(observer.position, DVec3::ZERO, DVec3::Y);
+    let vp = perspective(60f64.to_radians(), 4.0 / 3.0, 0.1, 100.0) * view;
+    let tri = [
+        DVec3::new(-1.0, -1.0, 0.0),
+        DVec3::new(1.5, -0.5, 0.0),
+        DVec3::new(0.0, 1.0, 0.5),
+    ];
+    let fp = footprint(&frame, tri, observer, vp, VIEWPORT);
+    assert!(!fp.whole_screen);
+    assert!((3..=6).contains(&fp.hull_len));
+    let hull_area: f64 = (0..fp.hull_len)
+        .map(|i| fp.hull[i].perp_dot(fp.hull[(i + 1) % fp.hull_len]))
+        .sum::<f64>()
+        / 2.0;
+    assert!(hull_area > 0.0 && hull_area < fp.rect.area());
+}
+
+#[test]
+fn triangle_around_the_observer_covers_the_whole_screen() {
+    let frame = Frame::new(DVec3::new(0.5, 0.0, 0.0), DVec3::ZERO).unwrap();
+    let observer = Event::new(0.0, DVec3::ZERO);
+    let view = look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y);
+    let vp = perspective(1.0, 4.0 / 3.0, 0.1, 100.0) * view;
+    // A big triangle in the plane z = −2 in S′ that reaches behind the observer.
+    let tri = [
+        DVec3::new(-5.0, -5.0, 5.0),
+        DVec3::new(5.0, -5.0, -5.0),
+        DVec3::new(0.0, 5.0, -5.0),
+    ];
+    let fp = footprint(&frame, tri, observer, vp, VIEWPORT);
+    assert!(fp.whole_screen);
+    assert_eq!(fp.rect.min, DVec2::ZERO);
+    assert_eq!(fp.rect.max, DVec2::new(640.0, 480.0));
+    // The observer on the triangle itself: also the whole screen, no NaN.
+    let touching = [
+        DVec3::ZERO,
+        DVec3::new(1.0, 0.0, -1.0),
+        DVec3::new(0.0, 1.0, -1.0),
+    ];
+    let frame_at_rest = Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+    let fp = footprint(&frame_at_rest, touching, observer, vp, VIEWPORT);
+    assert!(fp.whole_screen);
+    assert!(fp.rect.min.is_finite() && fp.rect.max.is_finite());
+}
+
+#[test]
+fn zero_area_triangle_has_a_zero_area_footprint() {
+    let frame = Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+    let observer = Event::new(0.0, DVec3::new(0.0, 0.0, 5.0));
+    let view = look_at(observer.position, DVec3::ZERO, DVec3::Y);
+    let vp = perspective(1.0, 4.0 / 3.0, 0.1, 100.0) * view;
+    let tri = [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X];
+    let fp = footprint(&frame, tri, observer, vp, VIEWPORT);
+    assert!(!fp.whole_screen);
+    assert!(fp.hull_len < 3);
+    assert!(fp.rect.area() < 1e-9);
+}
