@@ -31,7 +31,10 @@ impl Canvas {
     pub fn new(width: u32, height: u32, background: Rgb<u8>) -> Self {
         let font = FontRef::try_from_slice(dejavu::sans::regular())
             .expect("the DejaVu Sans font embedded by the dejavu crate parses");
-        Self { image: RgbImage::from_pixel(width, height, background), font }
+        Self {
+            image: RgbImage::from_pixel(width, height, background),
+            font,
+        }
     }
 
     /// The underlying image, for pixel-level drawing.
@@ -90,17 +93,33 @@ impl Canvas {
 
     /// A filled axis-aligned rectangle.
     pub fn fill_rect(&mut self, x: i32, y: i32, width: u32, height: u32, color: Rgb<u8>) {
-        draw_filled_rect_mut(&mut self.image, Rect::at(x, y).of_size(width, height), color);
+        draw_filled_rect_mut(
+            &mut self.image,
+            Rect::at(x, y).of_size(width, height),
+            color,
+        );
     }
 
     /// An axis-aligned rectangle outline.
     pub fn rect_outline(&mut self, x: i32, y: i32, width: u32, height: u32, color: Rgb<u8>) {
-        draw_hollow_rect_mut(&mut self.image, Rect::at(x, y).of_size(width, height), color);
+        draw_hollow_rect_mut(
+            &mut self.image,
+            Rect::at(x, y).of_size(width, height),
+            color,
+        );
     }
 
     /// Text with its top-left corner at (x, y), `size` pixels high.
     pub fn text(&mut self, x: f32, y: f32, size: f32, color: Rgb<u8>, text: &str) {
-        draw_text_mut(&mut self.image, color, x as i32, y as i32, size, &self.font, text);
+        draw_text_mut(
+            &mut self.image,
+            color,
+            x as i32,
+            y as i32,
+            size,
+            &self.font,
+            text,
+        );
     }
 
     /// Text centred horizontally on `x`.
@@ -121,7 +140,9 @@ impl Canvas {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("cannot create folder {}", parent.display()))?;
         }
-        self.image.save(path).with_context(|| format!("cannot write {}", path.display()))
+        self.image
+            .save(path)
+            .with_context(|| format!("cannot write {}", path.display()))
     }
 }
 
@@ -138,7 +159,7 @@ pub struct Axes {
 
 impl Axes {
     /// Pixel position of the data point (x, y).
-    pub fn to_px(&self, x: f64, y: f64) -> (f32, f32) {
+    pub fn to_px(self, x: f64, y: f64) -> (f32, f32) {
         let (l, t, r, b) = self.area;
         let u = (x - self.x_range.0) / (self.x_range.1 - self.x_range.0);
         let v = (y - self.y_range.0) / (self.y_range.1 - self.y_range.0);

@@ -41,7 +41,10 @@ fn cube_edges() -> Vec<(DVec3, DVec3)> {
 /// Writes `fig4_photo_objects.png`.
 pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let frame = Frame::new(DVec3::new(0.0, 0.95, 0.0), DVec3::ZERO)?;
-    let viewport = Viewport { width: f64::from(PANEL), height: f64::from(PANEL) };
+    let viewport = Viewport {
+        width: f64::from(PANEL),
+        height: f64::from(PANEL),
+    };
     let projection = perspective(35f64.to_radians(), 1.0, 0.01, 100.0);
     let title_height = 60;
     let mut canvas = Canvas::new(3 * PANEL + 40, PANEL + title_height + 50, WHITE);

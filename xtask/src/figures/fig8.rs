@@ -18,14 +18,24 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     // A triangle passing close in front of the observer at 0.9c, strongly curved by aberration.
     let frame = Frame::new(DVec3::new(0.9, 0.0, 0.0), DVec3::ZERO)?;
     let observer = Event::new(0.0, DVec3::ZERO);
-    let triangle = [DVec3::new(-1.5, -1.0, -2.0), DVec3::new(1.5, -0.6, -2.6), DVec3::new(-0.2, 1.4, -1.6)];
-    let viewport = Viewport { width: 1000.0, height: 1000.0 };
+    let triangle = [
+        DVec3::new(-1.5, -1.0, -2.0),
+        DVec3::new(1.5, -0.6, -2.6),
+        DVec3::new(-0.2, 1.4, -1.6),
+    ];
+    let viewport = Viewport {
+        width: 1000.0,
+        height: 1000.0,
+    };
     let centroid = (triangle[0] + triangle[1] + triangle[2]) / 3.0;
     let aim = frame.apparent_position(centroid, observer);
     let view_projection = perspective(100f64.to_radians(), 1.0, 0.01, 100.0)
         * look_at_mat4(observer.position, aim, DVec3::Y);
     let fp = footprint(&frame, triangle, observer, view_projection, viewport);
-    anyhow::ensure!(!fp.whole_screen, "the figure's triangle must be in front of the camera");
+    anyhow::ensure!(
+        !fp.whole_screen,
+        "the figure's triangle must be in front of the camera"
+    );
 
     // Fit the rectangle (plus a margin) into the canvas.
     let (width, height) = (900u32, 760u32);
@@ -38,7 +48,13 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         (q.x as f32, q.y as f32)
     };
     let mut canvas = Canvas::new(width, height, WHITE);
-    canvas.text(20.0, 12.0, 20.0, BLACK, "Fig. 8: footprint of an apparent triangle (β = 0.9c along x)");
+    canvas.text(
+        20.0,
+        12.0,
+        20.0,
+        BLACK,
+        "Fig. 8: footprint of an apparent triangle (β = 0.9c along x)",
+    );
 
     // The curved triangle, filled by dense samples of the rest triangle mapped through R.
     let fill = Rgb([200, 220, 250]);
@@ -46,8 +62,13 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     for i in 0..=n {
         for j in 0..=n - i {
             let (u, v) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
-            let rest = triangle[0] + u * (triangle[1] - triangle[0]) + v * (triangle[2] - triangle[0]);
-            if let Some(p) = project(view_projection, viewport, frame.apparent_position(rest, observer)) {
+            let rest =
+                triangle[0] + u * (triangle[1] - triangle[0]) + v * (triangle[2] - triangle[0]);
+            if let Some(p) = project(
+                view_projection,
+                viewport,
+                frame.apparent_position(rest, observer),
+            ) {
                 canvas.dot(to_canvas(p), 2, fill);
             }
         }
@@ -59,7 +80,11 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         let curve: Vec<(f32, f32)> = (0..=300)
             .filter_map(|s| {
                 let rest = a + (b - a) * (f64::from(s) / 300.0);
-                project(view_projection, viewport, frame.apparent_position(rest, observer))
+                project(
+                    view_projection,
+                    viewport,
+                    frame.apparent_position(rest, observer),
+                )
             })
             .map(to_canvas)
             .collect();
@@ -67,7 +92,12 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     }
 
     // Rectangle and hull.
-    let rect = [fp.rect.min, DVec2::new(fp.rect.max.x, fp.rect.min.y), fp.rect.max, DVec2::new(fp.rect.min.x, fp.rect.max.y)];
+    let rect = [
+        fp.rect.min,
+        DVec2::new(fp.rect.max.x, fp.rect.min.y),
+        fp.rect.max,
+        DVec2::new(fp.rect.min.x, fp.rect.max.y),
+    ];
     canvas.polygon_outline(&rect.map(to_canvas), 1.0, GREY);
     let hull: Vec<(f32, f32)> = fp.hull_points().iter().map(|&p| to_canvas(p)).collect();
     let hull_colour = Rgb([200, 40, 40]);
@@ -81,9 +111,21 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         canvas.line(to_canvas(fp.corners[i]), g, 1.0, tangent_colour);
         canvas.line(to_canvas(fp.corners[j]), g, 1.0, tangent_colour);
         canvas.dot(g, 5, tangent_colour);
-        canvas.text(g.0 + 8.0, g.1 - 20.0, 18.0, tangent_colour, &format!("G{}{}", i + 1, j + 1));
+        canvas.text(
+            g.0 + 8.0,
+            g.1 - 20.0,
+            18.0,
+            tangent_colour,
+            &format!("G{}{}", i + 1, j + 1),
+        );
         for (from, to) in [(i, j), (j, i)] {
-            let q = chord_point(&frame, triangle[from], triangle[to], PAPER_EPSILON, observer);
+            let q = chord_point(
+                &frame,
+                triangle[from],
+                triangle[to],
+                PAPER_EPSILON,
+                observer,
+            );
             if let Some(q) = project(view_projection, viewport, q) {
                 canvas.dot(to_canvas(q), 3, BLACK);
             }
@@ -92,11 +134,29 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     for (i, &p) in fp.corners.iter().enumerate() {
         let c = to_canvas(p);
         canvas.dot(c, 6, edge_colour);
-        canvas.text(c.0 + 8.0, c.1 + 4.0, 18.0, edge_colour, &format!("P{}", i + 1));
+        canvas.text(
+            c.0 + 8.0,
+            c.1 + 4.0,
+            18.0,
+            edge_colour,
+            &format!("P{}", i + 1),
+        );
     }
     let legend_y = height as f32 - 30.0;
-    canvas.text(20.0, legend_y, 16.0, edge_colour, "apparent triangle and corners P");
-    canvas.text(290.0, legend_y, 16.0, tangent_colour, "exact tangents, intersections G");
+    canvas.text(
+        20.0,
+        legend_y,
+        16.0,
+        edge_colour,
+        "apparent triangle and corners P",
+    );
+    canvas.text(
+        290.0,
+        legend_y,
+        16.0,
+        tangent_colour,
+        "exact tangents, intersections G",
+    );
     canvas.text(560.0, legend_y, 16.0, hull_colour, "convex hull");
     canvas.text(670.0, legend_y, 16.0, GREY, "rectangle");
     canvas.text(770.0, legend_y, 16.0, BLACK, "• Q (ε=0.01)");

@@ -1,0 +1,231 @@
+//! The CIE 1931 2° standard observer and the tristimulus values of a black body (Eq. 11).
+//!
+//! The colour-matching functions x̄, ȳ, z̄ are tabulated at 1 nm from 360 nm to 830 nm in
+//! `data/cie1931_2deg_1nm.csv` (CIE 018:2019 / CIE 15:2004, as distributed by CVRL and
+//! colour-science); the table is compiled into the crate and parsed once, on first use.
+
+use std::sync::LazyLock;
+
+use glam::{DVec2, DVec3};
+
+use crate::planck::ln_planck_radiance;
+
+/// The CSV text of the CIE 1931 2° colour-matching functions, 360–830 nm at 1 nm.
+const CIE_1931_CSV: &str = include_str!("../data/cie1931_2deg_1nm.csv");
+
+/// Shortest tabulated wavelength in nm.
+pub const CIE_1931_MIN_NM: f64 = 360.0;
+/// Longest tabulated wavelength in nm.
+pub const CIE_1931_MAX_NM: f64 = 830.0;
+/// Spacing of the table and of the integration in Eq. 11, in metres (1 nm).
+pub const CIE_1931_STEP_M: f64 = 1e-9;
+
+/// One row of the CIE 1931 2° colour-matching-function table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CmfSample {
+    /// Wavelength λ in nanometres.
+    pub wavelength_nm: f64,
+    /// x̄(λ).
+    pub xbar: f64,
+    /// ȳ(λ), the photopic luminous efficiency function V(λ).
+    pub ybar: f64,
+    /// z̄(λ).
+    pub zbar: f64,
+}
+
+impl CmfSample {
+    /// (x̄, ȳ, z̄) as a vector: the XYZ tristimulus values of unit monochromatic light at this
+    /// wavelength (the σⱼ(λ) of Eq. 11).
+    #[must_use]
+    pub fn tristimulus(&self) -> DVec3 {
+        DVec3::new(self.xbar, self.ybar, self.zbar)
+    }
+
+    /// The wavelength in metres.
+    #[must_use]
+    pub fn wavelength_m(&self) -> f64 {
+        self.wavelength_nm * 1e-9
+    }
+}
+
+static CIE_1931: LazyLock<Vec<CmfSample>> = LazyLock::new(|| parse_cmf_csv(CIE_1931_CSV));
+
+/// Parses the embedded table: `#` comment lines, one header line, then `λ,x̄,ȳ,z̄` rows.
+///
+/// The input is compiled in and checked by tests, so a malformed line is a build defect and
+/// panics with the offending line.
+fn parse_cmf_csv(text: &str) -> Vec<CmfSample> {
+    let mut rows = text
+        .lines()
+        .map(str::trim)
+        .filter(|line| !line.is_empty() && !line.starts_with('#'));
+    let header = rows.next();
+    assert_eq!(
+        header,
+        Some("wavelength_nm,xbar,ybar,zbar"),
+        "unexpected CIE table header"
+    );
+    rows.map(|line| {
+        let fields: Vec<f64> = line
+            .split(',')
+            .map(|field| {
+                field.trim().parse().unwrap_or_else(|e| {
+                    panic!("bad number {field:?} in CIE table line {line:?}: {e}")
+                })
+            })
+            .collect();
+        let [wavelength_nm, xbar, ybar, zbar] = fields[..] else {
+            panic!("CIE table line {line:?} does not have four fields");
+        };
+        CmfSample {
+            wavelength_nm,
+            xbar,
+            ybar,
+            zbar,
+        }
+    })
+    .collect()
+}
+
+/// The CIE 1931 2° colour-matching functions, 471 rows from 360 nm to 830 nm at 1 nm.
+///
+/// # Panics
+///
+/// Never in practice: the table is compiled into the crate and its parse is covered by tests.
+#[must_use]
+pub fn cie_1931() -> &'static [CmfSample] {
+    &CIE_1931
+}
+
+/// CIE 1931 XYZ tristimulus values of a black body of temperature `temperature_k`, Eq. 11.
+///
+/// Σⱼ(T) = Σ over λ of L(λ, T) · σⱼ(λ) · Δλ over the table's wavelengths (360–830 nm,
+/// Δλ = 1 nm), with L from Eq. 10 in W·sr⁻¹·m⁻³. The scale is therefore absolute: XYZ are
+/// radiance-weighted integrals in W·sr⁻¹·m⁻² (multiply Y by 683 lm/W for luminance in cd/m²).
+/// A non-positive or non-finite temperature gives zero; so does a temperature so low that the
+/// visible radiance underflows (below about 20 K).
+#[must_use]
+pub fn blackbody_xyz(temperature_k: f64) -> DVec3 {
+    let (relative, ln_scale) = blackbody_xyz_relative(temperature_k);
+    relative * ln_scale.exp()
+}
+
+/// [`blackbody_xyz`] split as `relative · exp(ln_scale)`, with the largest spectral term of
+/// `relative` equal to 1, so that ratios such as X/Y are available at any positive finite
+/// temperature (Eq. 11 without overflow or underflow). Returns `(ZERO, -inf)` for invalid input.
+pub(crate) fn blackbody_xyz_relative(temperature_k: f64) -> (DVec3, f64) {
+    if !(temperature_k.is_finite() && temperature_k > 0.0) {
+        return (DVec3::ZERO, f64::NEG_INFINITY);
+    }
+    let table = cie_1931();
+    let ln_radiance: Vec<f64> = table
+        .iter()
+        .map(|s| ln_planck_radiance(s.wavelength_m(), temperature_k))
+        .collect();
+    let ln_max = ln_radiance
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    if !ln_max.is_finite() {
+        return (DVec3::ZERO, f64::NEG_INFINITY);
+    }
+    let relative = table
+        .iter()
+        .zip(&ln_radiance)
+        .map(|(s, &ln_l)| (ln_l - ln_max).exp() * s.tristimulus())
+        .sum::<DVec3>();
+    (relative, ln_max + CIE_1931_STEP_M.ln())
+}
+
+/// Chromaticity coordinates (x, y) = (X, Y) / (X + Y + Z) of a tristimulus value.
+///
+/// Returns (NaN, NaN) when X + Y + Z is zero (black has no chromaticity).
+#[must_use]
+pub fn chromaticity(xyz: DVec3) -> DVec2 {
+    let sum = xyz.x + xyz.y + xyz.z;
+    DVec2::new(xyz.x / sum, xyz.y / sum)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_has_471_rows_from_360_to_830_nm_at_1_nm() {
+        let table = cie_1931();
+        assert_eq!(table.len(), 471);
+        for (i, row) in table.iter().enumerate() {
+            assert_eq!(row.wavelength_nm, CIE_1931_MIN_NM + i as f64);
+        }
+        assert_eq!(table.last().map(|r| r.wavelength_nm), Some(CIE_1931_MAX_NM));
+    }
+
+    #[test]
+    fn table_values_match_published_anchor_points() {
+        // CIE 15:2004 Table T.4 (1 nm 2° observer) at 555 nm, where ȳ peaks at 1.
+        let row = cie_1931()
+            .iter()
+            .find(|r| r.wavelength_nm == 555.0)
+            .copied();
+        let row = row.expect("555 nm is tabulated");
+        assert!((row.ybar - 1.0).abs() < 1e-6);
+        assert!((row.xbar - 0.512_05).abs() < 1e-4);
+        assert!((row.zbar - 0.005_749_999).abs() < 1e-5);
+        // ȳ is the largest at 555 nm.
+        let peak = cie_1931()
+            .iter()
+            .max_by(|a, b| a.ybar.total_cmp(&b.ybar))
+            .copied();
+        assert_eq!(peak.map(|r| r.wavelength_nm), Some(555.0));
+    }
+
+    #[test]
+    fn parser_rejects_malformed_tables() {
+        assert!(
+            std::panic::catch_unwind(|| parse_cmf_csv("# c\nwrong,header\n1,2,3,4\n")).is_err()
+        );
+        assert!(
+            std::panic::catch_unwind(|| parse_cmf_csv("wavelength_nm,xbar,ybar,zbar\n1,2,3\n"))
+                .is_err()
+        );
+        assert!(
+            std::panic::catch_unwind(|| parse_cmf_csv("wavelength_nm,xbar,ybar,zbar\n1,2,x,4\n"))
+                .is_err()
+        );
+        let ok = parse_cmf_csv("# c\nwavelength_nm,xbar,ybar,zbar\n360,1,2,3\n");
+        assert_eq!(
+            ok,
+            vec![CmfSample {
+                wavelength_nm: 360.0,
+                xbar: 1.0,
+                ybar: 2.0,
+                zbar: 3.0
+            }]
+        );
+    }
+
+    #[test]
+    fn relative_form_matches_the_absolute_one() {
+        for t in [800.0, 1500.0, 6500.0, 1e5] {
+            let (rel, ln_scale) = blackbody_xyz_relative(t);
+            let abs = blackbody_xyz(t);
+            let direct = cie_1931()
+                .iter()
+                .map(|s| crate::planck_radiance(s.wavelength_m(), t) * s.tristimulus() * 1e-9)
+                .sum::<DVec3>();
+            assert!((abs - direct).abs().max_element() <= 1e-12 * direct.max_element());
+            assert!(
+                (rel * ln_scale.exp() - direct).abs().max_element() <= 1e-12 * direct.max_element()
+            );
+        }
+    }
+
+    #[test]
+    fn relative_form_survives_where_the_absolute_one_underflows() {
+        assert_eq!(blackbody_xyz(5.0), DVec3::ZERO);
+        let (rel, _) = blackbody_xyz_relative(5.0);
+        assert!(rel.y > 0.0 && rel.is_finite());
+        assert_eq!(blackbody_xyz_relative(0.0).0, DVec3::ZERO);
+        assert_eq!(blackbody_xyz_relative(f64::NAN).0, DVec3::ZERO);
+    }
+}

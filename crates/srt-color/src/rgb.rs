@@ -1,0 +1,78 @@
+//! From CIE XYZ to display values: the BT.709 matrix (Eq. 12) and the sRGB transfer curve (Eq. 13).
+
+use glam::{DMat3, DVec3};
+
+/// The XYZ → linear BT.709 RGB matrix of Eq. 12, exactly as printed in the paper.
+///
+/// Rows (R, G, B): (3.2405, −1.5372, −0.4985), (−0.9693, 1.8760, 0.0416),
+/// (0.0556, −0.2040, 1.0573). glam matrices are column-major, so the constructor below lists the
+/// columns, i.e. the printed matrix transposed.
+pub const XYZ_TO_LINEAR_BT709: DMat3 = DMat3::from_cols(
+    DVec3::new(3.2405, -0.9693, 0.0556),
+    DVec3::new(-1.5372, 1.8760, -0.2040),
+    DVec3::new(-0.4985, 0.0416, 1.0573),
+);
+
+/// Linear BT.709 RGB of a CIE XYZ tristimulus value, Eq. 12.
+///
+/// The result is not clamped: colours outside the BT.709 gamut have negative components, and
+/// bright ones components above 1.
+#[must_use]
+pub fn xyz_to_linear_rgb(xyz: DVec3) -> DVec3 {
+    XYZ_TO_LINEAR_BT709 * xyz
+}
+
+/// The linear segment's upper end in Eq. 13.
+pub const SRGB_LINEAR_THRESHOLD: f64 = 0.003_130_8;
+/// The offset a = 0.055 of Eq. 13.
+pub const SRGB_OFFSET: f64 = 0.055;
+
+/// sRGB encoding of one linear component, Eq. 13.
+///
+/// `C_sRGB` = 12.92 C for C ≤ 0.0031308, (1 + a) C^(1/2.4) − a otherwise, with a = 0.055. Inputs
+/// above 1 follow the power segment unclamped (the searchlight tone map relies on that).
+/// Negative inputs fall on the linear segment and come out negative (12.92 C); the tone maps clamp
+/// negatives to 0 before encoding. NaN stays NaN.
+#[must_use]
+pub fn srgb_encode(linear: f64) -> f64 {
+    if linear <= SRGB_LINEAR_THRESHOLD {
+        12.92 * linear
+    } else {
+        (1.0 + SRGB_OFFSET) * linear.powf(1.0 / 2.4) - SRGB_OFFSET
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matrix_rows_are_the_printed_rows() {
+        assert_eq!(
+            XYZ_TO_LINEAR_BT709.row(0),
+            DVec3::new(3.2405, -1.5372, -0.4985)
+        );
+        assert_eq!(
+            XYZ_TO_LINEAR_BT709.row(1),
+            DVec3::new(-0.9693, 1.8760, 0.0416)
+        );
+        assert_eq!(
+            XYZ_TO_LINEAR_BT709.row(2),
+            DVec3::new(0.0556, -0.2040, 1.0573)
+        );
+    }
+
+    #[test]
+    fn pure_x_maps_to_the_first_column() {
+        assert_eq!(
+            xyz_to_linear_rgb(DVec3::X),
+            DVec3::new(3.2405, -0.9693, 0.0556)
+        );
+    }
+
+    #[test]
+    fn negative_inputs_stay_on_the_linear_segment() {
+        assert_eq!(srgb_encode(-0.5), -6.46);
+        assert!(srgb_encode(f64::NAN).is_nan());
+    }
+}

@@ -1,0 +1,147 @@
+//! The paper's two tone maps from black-body tristimulus values to display sRGB (Fig. 6), and the
+//! 2D colour tables of Fig. 6.
+//!
+//! Without tone mapping, Eq. 11–13 would send every temperature below about 1900 K to yellow and
+//! the rest to white (§3.3). The paper therefore scales XYZ before Eq. 12, in one of two ways:
+//!
+//! - [`ToneMap::Luminance`] (Fig. 6 left, the `doppler` effect mode): XYZ / Y, so that only the
+//!   chromaticity survives and the searchlight effect's brightness change is hidden;
+//! - [`ToneMap::Searchlight`] (Fig. 6 right): XYZ / Y(1500 K), followed by the global logarithmic
+//!   operator C → 0.6 · log₁₀(C + 1) on the encoded value, which keeps the brightness.
+
+use std::sync::LazyLock;
+
+use glam::DVec3;
+
+use crate::cie::blackbody_xyz_relative;
+use crate::rgb::{srgb_encode, xyz_to_linear_rgb};
+
+/// Reference temperature of the searchlight tone map, whose luminance Y scales all XYZ (§3.3).
+pub const SEARCHLIGHT_REFERENCE_K: f64 = 1500.0;
+
+/// ln Y(1500 K), the logarithm of the searchlight tone map's divisor.
+static LN_SEARCHLIGHT_REFERENCE_Y: LazyLock<f64> = LazyLock::new(|| {
+    let (relative, ln_scale) = blackbody_xyz_relative(SEARCHLIGHT_REFERENCE_K);
+    relative.y.ln() + ln_scale
+});
+
+/// Largest natural-log factor applied to XYZ / Y(1500 K). Far beyond it every channel saturates
+/// anyway; the cap keeps absurd temperatures from producing ∞ − ∞ in Eq. 12.
+const MAX_LN_SEARCHLIGHT_GAIN: f64 = 600.0;
+
+/// How black-body XYZ becomes display sRGB: the two colour tables of the paper's Fig. 6.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ToneMap {
+    /// Fig. 6 left (the `doppler` effect mode): XYZ / Y → Eq. 12 → clamp negatives to 0 → Eq. 13
+    /// → clamp to [0, 1]. Every temperature is fully bright; only its hue shows the Doppler shift.
+    #[default]
+    Luminance,
+    /// Fig. 6 right (the `searchlight` effect mode): XYZ / Y(1500 K) → Eq. 12 → clamp negatives to
+    /// 0 → Eq. 13 → C ↦ 0.6 · log₁₀(C + 1) → clamp to [0, 1]. About 1500 K is dark red, 3600 K and
+    /// above are white, colder bodies fade to black.
+    Searchlight,
+}
+
+impl ToneMap {
+    /// Both tone maps, in the order of Fig. 6 (left, right).
+    pub const ALL: [Self; 2] = [Self::Luminance, Self::Searchlight];
+
+    /// Display sRGB, each component in [0, 1], of a black body at `temperature_k` seen with
+    /// reflection factor f = 1 (the top row of Fig. 6), via Eq. 10–13 and this tone map.
+    ///
+    /// A non-finite or non-positive temperature gives black. [`ToneMap::Luminance`] is defined at
+    /// every positive temperature (it needs only ratios of radiances); as T → 0 it tends to the
+    /// colour of the 830 nm end of the table.
+    #[must_use]
+    pub fn display_rgb(self, temperature_k: f64) -> DVec3 {
+        let (relative, ln_scale) = blackbody_xyz_relative(temperature_k);
+        if relative.y <= 0.0 || !relative.is_finite() {
+            return DVec3::ZERO;
+        }
+        let xyz = match self {
+            Self::Luminance => relative / relative.y,
+            Self::Searchlight => {
+                let ln_gain = (ln_scale - *LN_SEARCHLIGHT_REFERENCE_Y).min(MAX_LN_SEARCHLIGHT_GAIN);
+                relative * ln_gain.exp()
+            }
+        };
+        let linear = xyz_to_linear_rgb(xyz).max(DVec3::ZERO);
+        let encoded = linear.map(srgb_encode);
+        let mapped = match self {
+            Self::Luminance => encoded,
+            Self::Searchlight => encoded.map(|c| 0.6 * (c + 1.0).log10()),
+        };
+        mapped.clamp(DVec3::ZERO, DVec3::ONE)
+    }
+
+    /// A short lower-case name: `"luminance"` or `"searchlight"`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Luminance => "luminance",
+            Self::Searchlight => "searchlight",
+        }
+    }
+}
+
+/// A 2D colour table as in Fig. 6: `width` × `height` display sRGB pixels,
+/// row-major, row 0 at the top.
+///
+/// Column `i` shows temperature T = `t_min` + (`t_max` − `t_min`) · i / (width − 1) (linear in
+/// T, as the paper's horizontal axis); row `j` scales by f = 1 − j / (height − 1), so the top row
+/// is f = 1 and the bottom row f = 0. Pixel = f · `tone_map.display_rgb(T)` (the
+/// `C_display` = `f_ar` · `C_sRGB` of §4.2). A single column shows `t_min`, a single row f = 1; a
+/// zero width or height gives an empty table; invalid temperatures give black columns.
+#[must_use]
+pub fn colour_table(
+    tone_map: ToneMap,
+    t_min_k: f64,
+    t_max_k: f64,
+    width: usize,
+    height: usize,
+) -> Vec<[f32; 3]> {
+    let fraction = |i: usize, n: usize| {
+        if n > 1 {
+            i as f64 / (n - 1) as f64
+        } else {
+            0.0
+        }
+    };
+    let columns: Vec<DVec3> = (0..width)
+        .map(|i| tone_map.display_rgb(t_min_k + (t_max_k - t_min_k) * fraction(i, width)))
+        .collect();
+    let mut table = Vec::with_capacity(width.saturating_mul(height));
+    for j in 0..height {
+        let f = 1.0 - fraction(j, height);
+        table.extend(columns.iter().map(|&c| (f * c).as_vec3().to_array()));
+    }
+    table
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn invalid_temperatures_are_black() {
+        for tone_map in ToneMap::ALL {
+            for t in [0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                assert_eq!(tone_map.display_rgb(t), DVec3::ZERO, "{tone_map:?} at {t}");
+            }
+        }
+    }
+
+    #[test]
+    fn absurd_temperatures_stay_in_range() {
+        for tone_map in ToneMap::ALL {
+            for t in [1e-3, 1.0, 1e9, 1e200, f64::MAX] {
+                let c = tone_map.display_rgb(t);
+                assert!(
+                    c.cmpge(DVec3::ZERO).all() && c.cmple(DVec3::ONE).all(),
+                    "{tone_map:?} {t}: {c}"
+                );
+            }
+        }
+        assert_eq!(ToneMap::Searchlight.display_rgb(1e200), DVec3::ONE);
+    }
+}
