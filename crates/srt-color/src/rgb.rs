@@ -42,9 +42,31 @@ pub fn srgb_encode(linear: f64) -> f64 {
     }
 }
 
+/// Inverse of [`srgb_encode`]: the linear component of an sRGB-encoded value (for writing
+/// linear-light images). Values at or below 12.92 × 0.0031308 take the linear segment.
+#[must_use]
+pub fn srgb_decode(encoded: f64) -> f64 {
+    if encoded <= 12.92 * SRGB_LINEAR_THRESHOLD {
+        encoded / 12.92
+    } else {
+        ((encoded + SRGB_OFFSET) / (1.0 + SRGB_OFFSET)).powf(2.4)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn decode_inverts_encode() {
+        for i in 0..=1000 {
+            let linear = f64::from(i) / 1000.0;
+            assert!(
+                (srgb_decode(srgb_encode(linear)) - linear).abs() < 1e-12,
+                "{linear}"
+            );
+        }
+    }
 
     #[test]
     fn matrix_rows_are_the_printed_rows() {
