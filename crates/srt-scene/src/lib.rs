@@ -2,6 +2,22 @@
 //! inertial frame; the observer and light at rest in S; TOML scene files; built-in scenes; and
 //! model import from glTF 2.0, Wavefront OBJ, PLY and STL.
 
+pub mod assets;
+pub mod builtin;
+pub mod description;
+pub mod import;
 pub mod mesh;
+pub mod placement;
+pub mod scene;
+pub mod shapes;
+pub mod textures;
 
+pub use builtin::{BuiltinScene, builtin, builtin_scenes};
+pub use description::{
+    LightDescription, ObjectDescription, ObserverDescription, RenderDescription, Scale,
+    SceneDescription, SceneError, SceneErrorKind, ShapeDescription, TextureDescription,
+    load_scene_file,
+};
+pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
+pub use scene::{Effects, Light, Object, Observer, Scene, Shading};

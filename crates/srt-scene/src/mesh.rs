@@ -66,7 +66,10 @@ impl Mesh {
             return Err(MeshError::Empty);
         }
         if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(MeshError::NonFinite { vertex, attribute: "position" });
+            return Err(MeshError::NonFinite {
+                vertex,
+                attribute: "position",
+            });
         }
         for (triangle, t) in triangles.iter().enumerate() {
             if let Some(&index) = t.iter().find(|&&i| i as usize >= positions.len()) {
@@ -78,7 +81,13 @@ impl Mesh {
             }
         }
         let uvs = vec![DVec2::ZERO; positions.len()];
-        let mut mesh = Self { positions, normals: Vec::new(), uvs, colors: None, triangles };
+        let mut mesh = Self {
+            positions,
+            normals: Vec::new(),
+            uvs,
+            colors: None,
+            triangles,
+        };
         mesh.normals = mesh.smooth_normals();
         Ok(mesh)
     }
@@ -91,7 +100,10 @@ impl Mesh {
     pub fn with_normals(mut self, normals: Vec<DVec3>) -> Result<Self, MeshError> {
         self.check_count("normal", normals.len())?;
         if let Some(vertex) = normals.iter().position(|n| !n.is_finite()) {
-            return Err(MeshError::NonFinite { vertex, attribute: "normal" });
+            return Err(MeshError::NonFinite {
+                vertex,
+                attribute: "normal",
+            });
         }
         let smooth = self.smooth_normals();
         self.normals = normals
@@ -109,7 +121,10 @@ impl Mesh {
     pub fn with_uvs(mut self, uvs: Vec<DVec2>) -> Result<Self, MeshError> {
         self.check_count("texture coordinate", uvs.len())?;
         if let Some(vertex) = uvs.iter().position(|uv| !uv.is_finite()) {
-            return Err(MeshError::NonFinite { vertex, attribute: "texture coordinate" });
+            return Err(MeshError::NonFinite {
+                vertex,
+                attribute: "texture coordinate",
+            });
         }
         self.uvs = uvs;
         Ok(self)
@@ -122,7 +137,10 @@ impl Mesh {
     pub fn with_colors(mut self, colors: Vec<[f32; 4]>) -> Result<Self, MeshError> {
         self.check_count("colour", colors.len())?;
         if let Some(vertex) = colors.iter().position(|c| c.iter().any(|v| !v.is_finite())) {
-            return Err(MeshError::NonFinite { vertex, attribute: "colour" });
+            return Err(MeshError::NonFinite {
+                vertex,
+                attribute: "colour",
+            });
         }
         self.colors = Some(colors);
         Ok(self)
@@ -132,7 +150,11 @@ impl Mesh {
         if count == self.positions.len() {
             Ok(())
         } else {
-            Err(MeshError::AttributeCount { attribute, count, vertices: self.positions.len() })
+            Err(MeshError::AttributeCount {
+                attribute,
+                count,
+                vertices: self.positions.len(),
+            })
         }
     }
 
@@ -146,7 +168,9 @@ impl Mesh {
                 sums[i as usize] += weighted;
             }
         }
-        sums.into_iter().map(|n| n.try_normalize().unwrap_or(DVec3::Z)).collect()
+        sums.into_iter()
+            .map(|n| n.try_normalize().unwrap_or(DVec3::Z))
+            .collect()
     }
 
     /// Vertex positions in S′.
@@ -207,11 +231,17 @@ impl Mesh {
             *p = transform.transform_point3(*p);
         }
         if let Some(vertex) = self.positions.iter().position(|p| !p.is_finite()) {
-            return Err(MeshError::NonFinite { vertex, attribute: "position" });
+            return Err(MeshError::NonFinite {
+                vertex,
+                attribute: "position",
+            });
         }
         let smooth = self.smooth_normals();
         for (n, fallback) in self.normals.iter_mut().zip(smooth) {
-            *n = normal_matrix.transform_vector3(*n).try_normalize().unwrap_or(fallback);
+            *n = normal_matrix
+                .transform_vector3(*n)
+                .try_normalize()
+                .unwrap_or(fallback);
         }
         if transform.determinant() < 0.0 {
             // A mirroring transform flips the winding; restore counter-clockwise fronts.
@@ -253,7 +283,11 @@ pub struct Material {
 
 impl Default for Material {
     fn default() -> Self {
-        Self { name: String::new(), base_color: [1.0; 4], texture: None }
+        Self {
+            name: String::new(),
+            base_color: [1.0; 4],
+            texture: None,
+        }
     }
 }
 
@@ -297,14 +331,20 @@ mod tests {
     fn smooth_normals_of_a_flat_quad_point_up() {
         let (p, t) = quad();
         let mesh = Mesh::new(p, t).unwrap();
-        assert!(mesh.normals().iter().all(|n| (*n - DVec3::Z).length() < 1e-12));
+        assert!(
+            mesh.normals()
+                .iter()
+                .all(|n| (*n - DVec3::Z).length() < 1e-12)
+        );
     }
 
     #[test]
     fn mirroring_keeps_fronts_facing_out() {
         let (p, t) = quad();
         let mesh = Mesh::new(p, t).unwrap();
-        let mirrored = mesh.transformed(DMat4::from_scale(DVec3::new(1.0, 1.0, -1.0))).unwrap();
+        let mirrored = mesh
+            .transformed(DMat4::from_scale(DVec3::new(1.0, 1.0, -1.0)))
+            .unwrap();
         let [a, b, c] = mirrored.triangle_positions(0);
         let face = (b - a).cross(c - a).normalize();
         assert!((face - mirrored.normals()[0]).length() < 1e-12);

@@ -1,0 +1,743 @@
+//! glTF 2.0 (`.gltf` with embedded or external buffers, `.glb`).
+//!
+//! The document is parsed and validated by the `gltf` crate; buffers, images and accessors are
+//! read here, so that a missing image is a warning naming its file (a missing buffer stays an
+//! error) and malformed data is an error rather than a panic.
+//!
+//! What is read: the default scene (or, without one, every root node), walking the node
+//! hierarchy and multiplying the transforms; triangle, triangle-strip and triangle-fan
+//! primitives (points and lines are skipped with a warning); `POSITION`, `NORMAL`, the
+//! `TEXCOORD_n` set the base-colour texture uses (else `TEXCOORD_0`) and `COLOR_0`; the
+//! material's `baseColorFactor` and base-colour texture. Skins, morph targets, animations,
+//! cameras and the other material properties are ignored; required extensions that only change
+//! materials or lights (`KHR_materials_*`, `KHR_texture_transform`, `KHR_lights_punctual`,
+//! `KHR_technique_webgl`) are
+//! ignored with a warning, as is `KHR_mesh_quantization` (its integer attributes are read like any
+//! others). Other required extensions (Draco or meshopt compression…) make the file an error.
+//! `POSITION` accessors without the `min`/`max` the specification requires get placeholders (with
+//! a warning) so that validation accepts them. Node cycles (invalid glTF) are cut with a warning.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{DMat4, DQuat, DVec2, DVec3};
+use gltf::mesh::Mode;
+use gltf::{Document, Gltf, Semantic};
+
+use super::gltf_accessor::{read, read_indices, view_bytes};
+use super::texture::{TextureCache, decode};
+use super::{ImportFailure, Model, RawMesh, encode_srgb, read_file};
+use crate::mesh::{Material, Mesh, Part, Texture};
+
+/// Node hierarchies deeper than this are cut (with a warning).
+const MAX_DEPTH: usize = 256;
+/// More triangles than this after instancing nodes is an error (a node graph that shares
+/// subtrees can multiply the geometry exponentially).
+const MAX_TRIANGLES: usize = 1 << 24;
+
+/// Loads a `.gltf` or `.glb` file.
+pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
+    let bytes = read_file(path)?;
+    let invalid = |message: String| ImportFailure::Invalid {
+        format: "glTF",
+        message,
+    };
+    check_glb_header(&bytes).map_err(invalid)?;
+    let Gltf { document, blob } =
+        Gltf::from_slice_without_validation(&bytes).map_err(|e| invalid(e.to_string()))?;
+    let mut warnings = Vec::new();
+    let mut root = document.into_json();
+    let (ignored, kept): (Vec<String>, Vec<String>) = root
+        .extensions_required
+        .drain(..)
+        .partition(|e| ignorable_extension(e));
+    if !ignored.is_empty() {
+        warnings.push(format!(
+            "required glTF extensions ignored: {} (their effect on materials is not imported)",
+            ignored.join(", ")
+        ));
+    }
+    if !kept.is_empty() {
+        return Err(invalid(format!(
+            "the file requires glTF extensions this importer does not support: {}",
+            kept.join(", ")
+        )));
+    }
+    fill_missing_position_bounds(&mut root, &mut warnings);
+    let document = Document::from_json(root).map_err(|e| invalid(shorten(e.to_string())))?;
+    let base = path.parent().unwrap_or_else(|| Path::new(""));
+    let buffers = load_buffers(&document, base, blob)?;
+    let mut loader = Loader {
+        document: &document,
+        buffers: &buffers,
+        base,
+        file_name: file_name(path),
+        images: HashMap::new(),
+        files: TextureCache::default(),
+        primitives: HashMap::new(),
+        triangles: 0,
+        warned_skin: false,
+    };
+    let mut parts = Vec::new();
+    let roots: Vec<gltf::Node<'_>> = match document.default_scene() {
+        Some(scene) => scene.nodes().collect(),
+        None => {
+            let mut is_child = vec![false; document.nodes().len()];
+            for node in document.nodes() {
+                for child in node.children() {
+                    if let Some(flag) = is_child.get_mut(child.index()) {
+                        *flag = true;
+                    }
+                }
+            }
+            document.nodes().filter(|n| !is_child[n.index()]).collect()
+        }
+    };
+    if document.nodes().len() == 0 && document.meshes().len() > 0 {
+        warnings
+            .push("the file has meshes but no nodes; the meshes are placed untransformed".into());
+        for mesh in document.meshes() {
+            loader.instance(&mesh, DMat4::IDENTITY, &mut parts, &mut warnings)?;
+        }
+    }
+    let mut ancestors = Vec::new();
+    for node in roots {
+        loader.visit(
+            &node,
+            DMat4::IDENTITY,
+            &mut ancestors,
+            &mut parts,
+            &mut warnings,
+        )?;
+    }
+    Ok(Model { parts, warnings })
+}
+
+/// The file name (without directories) for messages.
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// Rejects binary glTF headers the `gltf` crate would mis-handle (a declared length below the
+/// header's own size underflows there).
+fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.starts_with(b"glTF") {
+        return Ok(());
+    }
+    let length = bytes
+        .get(8..12)
+        .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+    match length {
+        None => Err("the binary glTF header is truncated".to_owned()),
+        Some(length) if length < 20 => Err(format!(
+            "the binary glTF header declares a length of {length} bytes"
+        )),
+        Some(_) => Ok(()),
+    }
+}
+
+/// Whether a required extension can be ignored while still importing the geometry correctly.
+fn ignorable_extension(name: &str) -> bool {
+    name.starts_with("KHR_materials_")
+        || matches!(
+            name,
+            "KHR_texture_transform"
+                | "KHR_mesh_quantization"
+                | "KHR_lights_punctual"
+                | "KHR_xmp_json_ld"
+                | "KHR_technique_webgl"
+        )
+}
+
+/// Gives `POSITION` accessors without `min`/`max` placeholder bounds, with a warning: the glTF
+/// specification requires them and the `gltf` crate's validation rejects files without them, but
+/// we compute bounds ourselves and many exporters leave them out.
+fn fill_missing_position_bounds(root: &mut gltf::json::Root, warnings: &mut Vec<String>) {
+    use gltf::json::validation::Checked;
+    let mut targets: Vec<usize> = root
+        .meshes
+        .iter()
+        .flat_map(|mesh| &mesh.primitives)
+        .filter_map(|primitive| {
+            primitive
+                .attributes
+                .get(&Checked::Valid(Semantic::Positions))
+        })
+        .map(|index| index.value())
+        .collect();
+    targets.sort_unstable();
+    targets.dedup();
+    let mut filled = Vec::new();
+    for index in targets {
+        let Some(accessor) = root.accessors.get_mut(index) else {
+            continue;
+        };
+        if accessor.min.is_some() && accessor.max.is_some() {
+            continue;
+        }
+        let components = match accessor.type_ {
+            Checked::Valid(kind) => kind.multiplicity(),
+            Checked::Invalid => 3,
+        };
+        let zeros = gltf::json::Value::Array(vec![gltf::json::Value::from(0.0); components]);
+        accessor.min.get_or_insert_with(|| zeros.clone());
+        accessor.max.get_or_insert(zeros);
+        filled.push(index.to_string());
+    }
+    if !filled.is_empty() {
+        warnings.push(format!(
+            "POSITION accessor(s) {} lack the min/max bounds glTF requires (not needed here)",
+            filled.join(", ")
+        ));
+    }
+}
+
+/// Cuts overly long validation reports.
+fn shorten(mut message: String) -> String {
+    const LIMIT: usize = 600;
+    if message.len() > LIMIT {
+        let mut end = LIMIT;
+        while !message.is_char_boundary(end) {
+            end -= 1;
+        }
+        message.truncate(end);
+        message.push_str(" …");
+    }
+    message
+}
+
+/// Reads every buffer: the GLB binary chunk, a data URI or an external file.
+fn load_buffers(
+    document: &Document,
+    base: &Path,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<Vec<u8>>, ImportFailure> {
+    let mut buffers = Vec::new();
+    for buffer in document.buffers() {
+        let index = buffer.index();
+        let (resource, data) = match buffer.source() {
+            gltf::buffer::Source::Bin => (
+                format!("buffer {index} (the binary chunk)"),
+                blob.take()
+                    .ok_or_else(|| "the file has no binary chunk".to_owned()),
+            ),
+            gltf::buffer::Source::Uri(uri) => {
+                let resource = if uri.starts_with("data:") {
+                    format!("buffer {index} (embedded data URI)")
+                } else {
+                    format!("buffer {index} (\"{uri}\")")
+                };
+                (resource, resolve_uri(uri, base))
+            }
+        };
+        let data = data.map_err(|message| ImportFailure::Resource {
+            resource: resource.clone(),
+            message,
+        })?;
+        if data.len() < buffer.length() {
+            return Err(ImportFailure::Resource {
+                resource,
+                message: format!(
+                    "it has {} bytes but the file declares {}",
+                    data.len(),
+                    buffer.length()
+                ),
+            });
+        }
+        buffers.push(data);
+    }
+    Ok(buffers)
+}
+
+/// The bytes a URI (a data URI or a file relative to `base`) refers to.
+fn resolve_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let Some((header, payload)) = rest.split_once(',') else {
+            return Err("malformed data URI (no comma)".to_owned());
+        };
+        let data = if header.ends_with(";base64") {
+            base64_decode(payload)?
+        } else {
+            percent_decode(payload)
+        };
+        return Ok(data);
+    }
+    let path = resolve_uri_path(uri, base)?;
+    match std::fs::read(&path) {
+        Ok(data) => Ok(data),
+        Err(e) => Err(format!("\"{}\": {e}", path.display())),
+    }
+}
+
+/// Decodes `%XX` escapes; malformed escapes are kept as they are.
+fn percent_decode(text: &str) -> Vec<u8> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = |b: u8| char::from(b).to_digit(16);
+        if bytes[i] == b'%'
+            && i + 2 < bytes.len()
+            && let (Some(h), Some(l)) = (hex(bytes[i + 1]), hex(bytes[i + 2]))
+        {
+            #[expect(clippy::cast_possible_truncation, reason = "two hex digits fit a byte")]
+            out.push((h * 16 + l) as u8);
+            i += 3;
+            continue;
+        }
+        out.push(bytes[i]);
+        i += 1;
+    }
+    out
+}
+
+/// Decodes standard or URL-safe base64, ignoring whitespace and stopping at padding.
+fn base64_decode(text: &str) -> Result<Vec<u8>, String> {
+    let mut out = Vec::with_capacity(text.len() / 4 * 3 + 3);
+    let mut acc = 0u32;
+    let mut bits = 0u32;
+    for (i, c) in text.bytes().enumerate() {
+        let value = match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            b'=' => break,
+            b' ' | b'\t' | b'\r' | b'\n' => continue,
+            _ => return Err(format!("invalid base64 character at position {i}")),
+        };
+        acc = (acc << 6) | u32::from(value);
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            #[expect(
+                clippy::cast_possible_truncation,
+                reason = "the top byte of the accumulator"
+            )]
+            out.push((acc >> bits) as u8);
+            acc &= (1 << bits) - 1;
+        }
+    }
+    Ok(out)
+}
+
+/// A node's local transform, composed in `f64`.
+fn local_transform(node: &gltf::Node<'_>) -> DMat4 {
+    match node.transform() {
+        gltf::scene::Transform::Matrix { matrix } => {
+            DMat4::from_cols_array_2d(&matrix.map(|column| column.map(f64::from)))
+        }
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => {
+            let [x, y, z, w] = rotation.map(f64::from);
+            let rotation = DQuat::from_xyzw(x, y, z, w);
+            let rotation = if rotation.length_squared() > 0.0 {
+                rotation.normalize()
+            } else {
+                DQuat::IDENTITY
+            };
+            DMat4::from_scale_rotation_translation(
+                DVec3::from_array(scale.map(f64::from)),
+                rotation,
+                DVec3::from_array(translation.map(f64::from)),
+            )
+        }
+    }
+}
+
+/// State while converting one document.
+struct Loader<'a> {
+    document: &'a Document,
+    buffers: &'a [Vec<u8>],
+    base: &'a Path,
+    file_name: String,
+    /// Decoded images by index (`None`: failed, already warned about).
+    images: HashMap<usize, Option<Arc<Texture>>>,
+    /// External image files.
+    files: TextureCache,
+    /// Converted primitives by (mesh, primitive) index, untransformed (`None`: skipped).
+    primitives: HashMap<(usize, usize), Option<(Mesh, Material)>>,
+    /// Triangles emitted so far.
+    triangles: usize,
+    warned_skin: bool,
+}
+
+impl Loader<'_> {
+    /// Emits the parts of `node` and its descendants.
+    fn visit(
+        &mut self,
+        node: &gltf::Node<'_>,
+        parent: DMat4,
+        ancestors: &mut Vec<usize>,
+        parts: &mut Vec<Part>,
+        warnings: &mut Vec<String>,
+    ) -> Result<(), ImportFailure> {
+        if ancestors.contains(&node.index()) {
+            warnings.push(format!(
+                "node {} is its own ancestor (the node graph has a cycle); the cycle is cut",
+                node.index()
+            ));
+            return Ok(());
+        }
+        if ancestors.len() >= MAX_DEPTH {
+            warnings.push(format!(
+                "the node hierarchy is deeper than {MAX_DEPTH} levels; node {} and below are skipped",
+                node.index()
+            ));
+            return Ok(());
+        }
+        let world = parent * local_transform(node);
+        if let Some(mesh) = node.mesh() {
+            if node.skin().is_some() && !self.warned_skin {
+                self.warned_skin = true;
+                warnings.push(
+                    "skins are ignored: skinned meshes are imported in their bind pose".into(),
+                );
+            }
+            self.instance(&mesh, world, parts, warnings)?;
+        }
+        ancestors.push(node.index());
+        for child in node.children() {
+            self.visit(&child, world, ancestors, parts, warnings)?;
+        }
+        ancestors.pop();
+        Ok(())
+    }
+
+    /// Emits the parts of `mesh` transformed by `world`.
+    fn instance(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        world: DMat4,
+        parts: &mut Vec<Part>,
+        warnings: &mut Vec<String>,
+    ) -> Result<(), ImportFailure> {
+        for primitive in mesh.primitives() {
+            let key = (mesh.index(), primitive.index());
+            if !self.primitives.contains_key(&key) {
+                let converted = self.convert(mesh, &primitive, warnings)?;
+                self.primitives.insert(key, converted);
+            }
+            let Some(Some((local, material))) = self.primitives.get(&key) else {
+                continue;
+            };
+            self.triangles += local.triangles().len();
+            if self.triangles > MAX_TRIANGLES {
+                return Err(ImportFailure::Invalid {
+                    format: "glTF",
+                    message: format!(
+                        "the node instances add up to more than {MAX_TRIANGLES} triangles"
+                    ),
+                });
+            }
+            let mesh = local
+                .clone()
+                .transformed(world)
+                .map_err(|error| ImportFailure::Mesh {
+                    part: format!("{} (transformed by its node)", label(mesh, &primitive)),
+                    error,
+                })?;
+            parts.push(Part {
+                mesh,
+                material: material.clone(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Converts one primitive, untransformed. `Ok(None)` if it is skipped (with a warning).
+    fn convert(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        primitive: &gltf::Primitive<'_>,
+        warnings: &mut Vec<String>,
+    ) -> Result<Option<(Mesh, Material)>, ImportFailure> {
+        let label = label(mesh, primitive);
+        let mode = primitive.mode();
+        if matches!(
+            mode,
+            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
+        ) {
+            warnings.push(format!(
+                "{label}: {mode:?} primitive skipped (only triangles are imported)"
+            ));
+            return Ok(None);
+        }
+        let Some(position_accessor) = primitive.get(&Semantic::Positions) else {
+            warnings.push(format!("{label}: no POSITION attribute; skipped"));
+            return Ok(None);
+        };
+        let invalid = |message: String| ImportFailure::Invalid {
+            format: "glTF",
+            message: format!("{label}: {message}"),
+        };
+        let positions: Vec<DVec3> = read::<3>(&position_accessor, self.buffers, true)
+            .map_err(invalid)?
+            .into_iter()
+            .map(DVec3::from_array)
+            .collect();
+        let indices = match primitive.indices() {
+            Some(accessor) => read_indices(&accessor, self.buffers).map_err(invalid)?,
+            None => (0..u32::try_from(positions.len())
+                .map_err(|_| invalid("too many vertices".into()))?)
+                .collect(),
+        };
+        let triangles = assemble(mode, &indices);
+        if mode == Mode::Triangles && indices.len() % 3 != 0 {
+            warnings.push(format!(
+                "{label}: {} indices is not a multiple of 3; the last {} are ignored",
+                indices.len(),
+                indices.len() % 3
+            ));
+        }
+        let material = primitive.material();
+        let pbr = material.pbr_metallic_roughness();
+        let texture_info = pbr.base_color_texture();
+        let uv_set = texture_info
+            .as_ref()
+            .map_or(0, gltf::texture::Info::tex_coord);
+        let optional = |semantic: Semantic, what: &str, warnings: &mut Vec<String>| {
+            primitive.get(&semantic).and_then(|accessor| {
+                let result = match accessor.dimensions().multiplicity() {
+                    2 => read::<2>(&accessor, self.buffers, true).map(|v| {
+                        v.into_iter()
+                            .map(|[a, b]| [a, b, 0.0, 1.0])
+                            .collect::<Vec<_>>()
+                    }),
+                    3 => read::<3>(&accessor, self.buffers, true)
+                        .map(|v| v.into_iter().map(|[a, b, c]| [a, b, c, 1.0]).collect()),
+                    _ => read::<4>(&accessor, self.buffers, true),
+                };
+                result
+                    .map_err(|e| warnings.push(format!("{label}: {what} ignored: {e}")))
+                    .ok()
+            })
+        };
+        let normals = optional(Semantic::Normals, "NORMAL", warnings).map(|v| {
+            v.into_iter()
+                .map(|[x, y, z, _]| DVec3::new(x, y, z))
+                .collect()
+        });
+        let uvs = optional(Semantic::TexCoords(uv_set), "texture coordinates", warnings)
+            .map(|v| v.into_iter().map(|[u, v, _, _]| DVec2::new(u, v)).collect());
+        #[expect(
+            clippy::cast_possible_truncation,
+            reason = "colour components in [0, 1]"
+        )]
+        let colors = optional(Semantic::Colors(0), "COLOR_0", warnings).map(|v| {
+            v.into_iter()
+                .map(|[r, g, b, a]| {
+                    [
+                        encode_srgb(r as f32),
+                        encode_srgb(g as f32),
+                        encode_srgb(b as f32),
+                        (a as f32).clamp(0.0, 1.0),
+                    ]
+                })
+                .collect()
+        });
+        let raw = RawMesh {
+            positions,
+            normals,
+            uvs,
+            colors,
+            triangles,
+        };
+        let Some(built) = raw.build(&label, warnings)? else {
+            warnings.push(format!("{label}: no triangles; skipped"));
+            return Ok(None);
+        };
+        let name = material.name().unwrap_or_default().to_owned();
+        let user = if name.is_empty() {
+            label.clone()
+        } else {
+            format!("material \"{name}\"")
+        };
+        let texture =
+            texture_info.and_then(|info| self.image(&info.texture().source(), &user, warnings));
+        let [r, g, b, a] = pbr.base_color_factor();
+        let base_color = [
+            encode_srgb(r),
+            encode_srgb(g),
+            encode_srgb(b),
+            a.clamp(0.0, 1.0),
+        ];
+        Ok(Some((
+            built,
+            Material {
+                name,
+                base_color,
+                texture,
+            },
+        )))
+    }
+
+    /// Decodes an image once; `None` (with a warning naming it) if it cannot be loaded.
+    fn image(
+        &mut self,
+        image: &gltf::Image<'_>,
+        user: &str,
+        warnings: &mut Vec<String>,
+    ) -> Option<Arc<Texture>> {
+        let index = image.index();
+        if let Some(texture) = self.images.get(&index) {
+            return texture.clone();
+        }
+        let json = self.document.as_json().images.get(index)?;
+        let hint = json
+            .mime_type
+            .as_ref()
+            .and_then(|m| m.0.strip_prefix("image/"))
+            .map(str::to_owned);
+        let source = format!("image {index} of \"{}\"", self.file_name);
+        let result = if let Some(view) = json
+            .buffer_view
+            .and_then(|v| self.document.views().nth(v.value()))
+        {
+            match view_bytes(&view, self.buffers) {
+                Some(bytes) => decode(bytes, hint.as_deref(), source.clone()).map(Arc::new),
+                None => Err(format!(
+                    "buffer view {} lies outside its buffer",
+                    view.index()
+                )),
+            }
+        } else if let Some(uri) = &json.uri {
+            if uri.starts_with("data:") {
+                resolve_uri(uri, self.base)
+                    .and_then(|bytes| decode(&bytes, hint.as_deref(), source.clone()))
+                    .map(Arc::new)
+            } else {
+                match resolve_uri_path(uri, self.base) {
+                    Ok(path) => {
+                        // The file cache warns itself, naming the file.
+                        let texture = self.files.file(&path, user, warnings);
+                        self.images.insert(index, texture.clone());
+                        return texture;
+                    }
+                    Err(e) => Err(e),
+                }
+            }
+        } else {
+            Err("it has neither a URI nor a buffer view".to_owned())
+        };
+        let texture = match result {
+            Ok(texture) => Some(texture),
+            Err(error) => {
+                warnings.push(format!(
+                    "{source} (used by {user}) cannot be loaded ({error}); using the base colour"
+                ));
+                None
+            }
+        };
+        self.images.insert(index, texture.clone());
+        texture
+    }
+}
+
+/// The file a non-data URI names.
+fn resolve_uri_path(uri: &str, base: &Path) -> Result<PathBuf, String> {
+    if let Some(rest) = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))
+    {
+        Ok(PathBuf::from(
+            String::from_utf8_lossy(&percent_decode(rest)).into_owned(),
+        ))
+    } else if uri
+        .split('/')
+        .next()
+        .is_some_and(|first| first.contains(':'))
+    {
+        Err(format!("unsupported URI scheme in \"{uri}\""))
+    } else {
+        Ok(base.join(String::from_utf8_lossy(&percent_decode(uri)).as_ref()))
+    }
+}
+
+/// `mesh 3 ("Wheel") primitive 0`, for messages.
+fn label(mesh: &gltf::Mesh<'_>, primitive: &gltf::Primitive<'_>) -> String {
+    match mesh.name() {
+        Some(name) => format!(
+            "mesh {} (\"{name}\") primitive {}",
+            mesh.index(),
+            primitive.index()
+        ),
+        None => format!("mesh {} primitive {}", mesh.index(), primitive.index()),
+    }
+}
+
+/// Triangles from an index list in a triangle mode (glTF 2.0 §3.7.2.1).
+fn assemble(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::TriangleStrip => (0..indices.len().saturating_sub(2))
+            .map(|i| {
+                if i % 2 == 0 {
+                    [indices[i], indices[i + 1], indices[i + 2]]
+                } else {
+                    [indices[i], indices[i + 2], indices[i + 1]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (1..indices.len().saturating_sub(1))
+            .map(|i| [indices[i], indices[i + 1], indices[0]])
+            .collect(),
+        _ => indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_round_trips_known_vectors() {
+        assert_eq!(base64_decode("").unwrap(), b"");
+        assert_eq!(base64_decode("Zg==").unwrap(), b"f");
+        assert_eq!(base64_decode("Zm8=").unwrap(), b"fo");
+        assert_eq!(base64_decode("Zm9v").unwrap(), b"foo");
+        assert_eq!(base64_decode("Zm9vYmFy").unwrap(), b"foobar");
+        assert_eq!(base64_decode("Zm9v\nYmFy").unwrap(), b"foobar");
+        assert!(base64_decode("Zm9v*").is_err());
+    }
+
+    #[test]
+    fn percent_decoding_keeps_malformed_escapes() {
+        assert_eq!(percent_decode("a%20b"), b"a b");
+        assert_eq!(percent_decode("100%"), b"100%");
+        assert_eq!(percent_decode("%zz%4"), b"%zz%4");
+        assert_eq!(percent_decode("%FF"), [0xff]);
+    }
+
+    #[test]
+    fn strips_and_fans_follow_the_spec() {
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &[0, 1, 2, 3]),
+            [[0, 1, 2], [1, 3, 2]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleFan, &[0, 1, 2, 3]),
+            [[1, 2, 0], [2, 3, 0]]
+        );
+        assert_eq!(assemble(Mode::Triangles, &[0, 1, 2, 3]), [[0, 1, 2]]);
+        assert!(assemble(Mode::TriangleStrip, &[0, 1]).is_empty());
+        assert!(assemble(Mode::TriangleFan, &[]).is_empty());
+    }
+
+    #[test]
+    fn short_glb_headers_are_rejected() {
+        assert!(check_glb_header(b"glTF\x02\0\0\0").is_err());
+        assert!(check_glb_header(b"glTF\x02\0\0\0\x04\0\0\0").is_err());
+        assert!(check_glb_header(b"{}").is_ok());
+    }
+}

@@ -1,0 +1,191 @@
+//! The scene model: moving objects, the observer and the light (both at rest in S), shading
+//! parameters and the effect mode.
+
+use glam::dcamera::rh::proj::directx::perspective;
+use glam::dcamera::rh::view::look_to_mat4;
+use glam::{DMat4, DVec2, DVec3};
+use srt_color::ToneMap;
+use srt_physics::{Event, Frame};
+
+use crate::mesh::Part;
+
+/// Which relativistic effects the colours show (the paper's toggles, §3.3 and Fig. 6–7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Effects {
+    /// Geometry only (aberration, light travel time): Doppler factor forced to 1.
+    Geometry,
+    /// Doppler colour shift with brightness normalised away (Fig. 6 left).
+    #[default]
+    Doppler,
+    /// Doppler shift and searchlight (intensity) effect (Fig. 6 right).
+    Searchlight,
+}
+
+impl Effects {
+    /// All modes, in the order of the paper's toggles.
+    pub const ALL: [Self; 3] = [Self::Geometry, Self::Doppler, Self::Searchlight];
+
+    /// The name used in scene files and on the command line.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Geometry => "geometry",
+            Self::Doppler => "doppler",
+            Self::Searchlight => "searchlight",
+        }
+    }
+
+    /// The mode called `name`, if any.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.name() == name)
+    }
+
+    /// The colour table this mode uses unless the scene overrides it.
+    #[must_use]
+    pub const fn default_tone_map(self) -> ToneMap {
+        match self {
+            Self::Geometry | Self::Doppler => ToneMap::Luminance,
+            Self::Searchlight => ToneMap::Searchlight,
+        }
+    }
+}
+
+/// The observer: a pinhole camera at rest in S, observing at time `ct`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observer {
+    /// Position in S.
+    pub position: DVec3,
+    /// Viewing direction (need not be normalised).
+    pub direction: DVec3,
+    /// Approximate up direction (made orthogonal to `direction`).
+    pub up: DVec3,
+    /// Vertical field of view in degrees, in (0, 180).
+    pub fov_y_deg: f64,
+    /// Observation time ct_obs (c = 1).
+    pub ct: f64,
+}
+
+impl Observer {
+    /// The observation event (ct_obs, x_obs) in S.
+    #[must_use]
+    pub const fn event(&self) -> Event {
+        Event::new(self.ct, self.position)
+    }
+
+    /// Orthonormal camera basis (forward, right, up).
+    #[must_use]
+    pub fn basis(&self) -> (DVec3, DVec3, DVec3) {
+        let forward = self.direction.normalize();
+        let right = forward.cross(self.up).normalize();
+        (forward, right, right.cross(forward))
+    }
+
+    /// The (unnormalised) viewing direction in S through the point `ndc` of normalised device
+    /// coordinates (x right, y up, both in [−1, 1]) for an image of `aspect` = width / height.
+    /// Agrees with [`Observer::view_projection`].
+    #[must_use]
+    pub fn view_direction(&self, ndc: DVec2, aspect: f64) -> DVec3 {
+        let (forward, right, up) = self.basis();
+        let tan_half = (0.5 * self.fov_y_deg.to_radians()).tan();
+        forward + (ndc.x * tan_half * aspect) * right + (ndc.y * tan_half) * up
+    }
+
+    /// View-projection matrix (S → clip space; NDC depth in [0, 1], y up) for an image of
+    /// `aspect` = width / height.
+    #[must_use]
+    pub fn view_projection(&self, aspect: f64, near: f64, far: f64) -> DMat4 {
+        let (forward, _, up) = self.basis();
+        perspective(self.fov_y_deg.to_radians(), aspect, near, far)
+            * look_to_mat4(self.position, forward, up)
+    }
+}
+
+/// A point light at rest in S radiating a Planck spectrum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// Position in S.
+    pub position: DVec3,
+    /// Black-body temperature in kelvin.
+    pub temperature_k: f64,
+}
+
+/// Phong reflection factors of Eq. 18: f_ar = ½(G + 1)(f_amb + f_diff + f_spec).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shading {
+    /// The ambient term f_amb.
+    pub ambient: f64,
+    /// Diffuse weight k_d: f_diff = k_d · max(0, n′·l′).
+    pub diffuse: f64,
+    /// Specular weight k_s: f_spec = k_s · max(0, r′·v′)^shininess.
+    pub specular: f64,
+    /// Phong exponent.
+    pub shininess: f64,
+}
+
+impl Default for Shading {
+    fn default() -> Self {
+        Self {
+            ambient: 0.2,
+            diffuse: 0.7,
+            specular: 0.25,
+            shininess: 32.0,
+        }
+    }
+}
+
+/// One rigid object: its parts, the inertial frame it rests in, and its surface style.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Object {
+    /// Name for messages and listings.
+    pub name: String,
+    /// Meshes with materials, already placed in the rest frame S′.
+    pub parts: Vec<Part>,
+    /// The rest frame S′ (velocity β and offset **a**).
+    pub frame: Frame,
+    /// Draw triangle edges of this width (in S′ units) instead of the texture (Fig. 10 bottom).
+    pub wireframe: Option<f64>,
+}
+
+impl Object {
+    /// Total number of triangles over all parts.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.parts.iter().map(|p| p.mesh.triangles().len()).sum()
+    }
+}
+
+/// Everything needed to render one picture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Name of the scene (built-in name or file stem).
+    pub name: String,
+    /// The moving objects.
+    pub objects: Vec<Object>,
+    /// The observer at rest in S.
+    pub observer: Observer,
+    /// The light at rest in S.
+    pub light: Light,
+    /// Phong parameters.
+    pub shading: Shading,
+    /// Effect mode.
+    pub effects: Effects,
+    /// Colour table (defaults to the effect mode's).
+    pub tone_map: ToneMap,
+    /// Display colour (sRGB-encoded, [0, 1]) where no object is hit.
+    pub background: DVec3,
+}
+
+impl Scene {
+    /// Total number of triangles.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.objects.iter().map(Object::triangle_count).sum()
+    }
+
+    /// Sets the effect mode and the colour table that goes with it.
+    pub fn set_effects(&mut self, effects: Effects) {
+        self.effects = effects;
+        self.tone_map = effects.default_tone_map();
+    }
+}

@@ -1,0 +1,52 @@
+//! Reference-renderer throughput (rays per second) at 1280×720, one sample per pixel, on the
+//! built-in `fig10-cube50` scene and on the 2CylinderEngine model of Debian's assimp-testmodels
+//! (skipped with a printed notice when that package is not installed).
+
+use std::path::Path;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::DVec3;
+use srt_scene::builtin::find_builtin;
+use srt_scene::{Scene, SceneDescription};
+use srt_trace::{RenderSettings, Tracer};
+
+const SETTINGS: RenderSettings = RenderSettings {
+    width: 1280,
+    height: 720,
+    samples: 1,
+};
+const ENGINE: &str =
+    "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+
+fn bench_scene(c: &mut Criterion, name: &str, scene: &Scene) {
+    let tracer = Tracer::new(scene);
+    let mut group = c.benchmark_group("trace");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(u64::from(
+        SETTINGS.width * SETTINGS.height,
+    )));
+    group.bench_function(format!("{name}_1280x720"), |b| {
+        b.iter(|| tracer.render(SETTINGS, &|_| {}));
+    });
+    group.finish();
+}
+
+fn bench_render(c: &mut Criterion) {
+    let (scene, _) = find_builtin("fig10-cube50")
+        .expect("built-in scene")
+        .build()
+        .expect("valid scene");
+    bench_scene(c, "fig10-cube50", &scene);
+    if Path::new(ENGINE).exists() {
+        let description = SceneDescription::for_model(Path::new(ENGINE), DVec3::new(0.0, 0.9, 0.0));
+        let (scene, _) = description
+            .build(Path::new("/"))
+            .expect("the engine model loads");
+        bench_scene(c, "2CylinderEngine", &scene);
+    } else {
+        println!("SKIPPED 2CylinderEngine: {ENGINE} not found (apt-get install assimp-testmodels)");
+    }
+}
+
+criterion_group!(benches, bench_render);
+criterion_main!(benches);

@@ -1,0 +1,104 @@
+//! Ray–triangle intersection in the rest frame S′ (Eq. 15–16).
+
+use glam::DVec3;
+
+/// Where a ray meets a triangle: x′ = x′₁ + ζ(x′₂ − x′₁) + ξ(x′₃ − x′₁) = origin + ψ·direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriangleHit {
+    /// Distance ψ along the (unit) ray direction.
+    pub distance: f64,
+    /// Barycentric weight ζ of the second corner.
+    pub zeta: f64,
+    /// Barycentric weight ξ of the third corner.
+    pub xi: f64,
+}
+
+impl TriangleHit {
+    /// The three barycentric weights (1 − ζ − ξ, ζ, ξ).
+    #[must_use]
+    pub fn weights(&self) -> [f64; 3] {
+        [1.0 - self.zeta - self.xi, self.zeta, self.xi]
+    }
+}
+
+/// Solves Eq. 16, A·(ζ, ξ, ψ)ᵀ = b with A = (σ τ −d′) and b = x′_obs − x′₁, by Cramer's rule.
+///
+/// Unlike the paper, the span vectors σ = x′₂ − x′₁ and τ = x′₃ − x′₁ are *not* normalised, so
+/// that ζ and ξ are barycentric coordinates, as its normal interpolation (§4.2) requires.
+/// Returns `None` for parallel rays, degenerate triangles, hits outside the triangle (edges
+/// included) or at ψ ≤ 0. Both faces count.
+#[must_use]
+pub fn intersect_triangle(
+    origin: DVec3,
+    direction: DVec3,
+    corners: [DVec3; 3],
+) -> Option<TriangleHit> {
+    let sigma = corners[1] - corners[0];
+    let tau = corners[2] - corners[0];
+    let b = origin - corners[0];
+    // det(σ, τ, −d) = −d · (σ × τ)
+    let p = direction.cross(tau);
+    let det = sigma.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let zeta = b.dot(p) * inv;
+    if !(0.0..=1.0).contains(&zeta) {
+        return None;
+    }
+    let q = b.cross(sigma);
+    let xi = direction.dot(q) * inv;
+    if xi < 0.0 || zeta + xi > 1.0 {
+        return None;
+    }
+    let distance = tau.dot(q) * inv;
+    (distance > 0.0).then_some(TriangleHit { distance, zeta, xi })
+}
+
+/// Barycentric coordinates (ζ, ξ) where the line `origin + t·direction` meets the *plane* of the
+/// triangle, inside or not (for texture-coordinate differentials); `None` if parallel.
+#[must_use]
+pub fn plane_coordinates(
+    origin: DVec3,
+    direction: DVec3,
+    corners: [DVec3; 3],
+) -> Option<(f64, f64)> {
+    let sigma = corners[1] - corners[0];
+    let tau = corners[2] - corners[0];
+    let b = origin - corners[0];
+    let p = direction.cross(tau);
+    let det = sigma.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let q = b.cross(sigma);
+    Some((b.dot(p) / det, direction.dot(q) / det))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    const TRI: [DVec3; 3] = [DVec3::ZERO, DVec3::X, DVec3::Y];
+
+    #[test]
+    fn hits_inside_and_reports_barycentrics() {
+        let hit = intersect_triangle(DVec3::new(0.25, 0.5, 2.0), -DVec3::Z, TRI).unwrap();
+        assert_relative_eq!(hit.distance, 2.0);
+        assert_relative_eq!(hit.zeta, 0.25);
+        assert_relative_eq!(hit.xi, 0.5);
+        // From behind, too.
+        assert!(intersect_triangle(DVec3::new(0.25, 0.5, -2.0), DVec3::Z, TRI).is_some());
+    }
+
+    #[test]
+    fn misses_outside_behind_and_parallel() {
+        assert!(intersect_triangle(DVec3::new(0.8, 0.8, 1.0), -DVec3::Z, TRI).is_none());
+        assert!(intersect_triangle(DVec3::new(0.2, 0.2, 1.0), DVec3::Z, TRI).is_none());
+        assert!(intersect_triangle(DVec3::new(0.2, 0.2, 1.0), DVec3::X, TRI).is_none());
+        let degenerate = [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X];
+        assert!(intersect_triangle(DVec3::new(0.5, 0.0, 1.0), -DVec3::Z, degenerate).is_none());
+    }
+}

@@ -1,0 +1,28 @@
+//! The exact CPU reference renderer of srt.
+//!
+//! For every pixel sample the backward viewing ray from the observation event is transformed into
+//! each object's rest frame S′, where the object is static: a plain ray–mesh intersection through
+//! a BVH finds the surface (Eq. 15–16). The hit is mapped back to S (Eq. 7–8) and the smallest
+//! apparent distance over all objects wins, so occlusion and intersections between differently
+//! moving objects are right. Shading follows §4.2 (Eq. 17–18) with the colour table of
+//! `srt-color`. Nothing here approximates the geometry: it is the reference every other method
+//! (the GPU local ray tracer, the polygon method) is measured against, and it never shares code
+//! with the footprint computation it checks (`srt-proxy`).
+//!
+//! ```no_run
+//! # fn scene() -> srt_scene::Scene { unimplemented!() }
+//! use srt_trace::{RenderSettings, Tracer};
+//! let scene = scene();
+//! let image = Tracer::new(&scene).render(RenderSettings { width: 640, height: 360, samples: 4 }, &|_| {});
+//! assert_eq!(image.pixels.len(), 640 * 360);
+//! ```
+
+mod intersect;
+mod render;
+mod shade;
+mod texture;
+
+pub use intersect::{TriangleHit, intersect_triangle, plane_coordinates};
+pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
+pub use shade::{Illumination, SurfacePoint, grey_value, shade};
+pub use texture::{MipChain, MipLevel};

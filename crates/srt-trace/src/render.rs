@@ -1,0 +1,397 @@
+//! The reference renderer: for every pixel sample, the backward viewing ray from the observation
+//! event is transformed into each object's rest frame S′ (Eq. 3, 5), intersected there with the
+//! static mesh through a BVH (Eq. 15–16), mapped back to S (Eq. 7–8), and the smallest apparent
+//! distance over all objects wins; the winner is shaded (Eq. 17–18).
+
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use bvh::aabb::{Aabb, Bounded};
+use bvh::bounding_hierarchy::BHShape;
+use bvh::bvh::Bvh;
+use bvh::ray::Ray;
+use glam::{DVec2, DVec3, DVec4};
+use nalgebra::{Point3, Vector3};
+use rayon::prelude::*;
+use srt_color::TemperatureLut;
+use srt_physics::{Event, Frame, RestRay};
+use srt_scene::{Part, Scene};
+
+use crate::intersect::{TriangleHit, intersect_triangle, plane_coordinates};
+use crate::shade::{Illumination, SurfacePoint, shade};
+use crate::texture::MipChain;
+
+/// Image size and sampling.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RenderSettings {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Samples per pixel (1 = the pixel centre only).
+    pub samples: u32,
+}
+
+/// A rendered picture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderedImage {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Display colours (sRGB-encoded, [0, 1]), row-major from the top.
+    pub pixels: Vec<DVec3>,
+    /// Per pixel, 1 + the index of the object hit by the first sample (the pixel centre), or 0
+    /// for the background: for silhouette masks in tests and validation.
+    pub coverage: Vec<u32>,
+}
+
+impl RenderedImage {
+    /// 8-bit sRGB pixels, rounded.
+    #[must_use]
+    pub fn to_rgb8(&self) -> Vec<[u8; 3]> {
+        self.pixels
+            .iter()
+            .map(|p| {
+                p.to_array()
+                    .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+            })
+            .collect()
+    }
+}
+
+/// A triangle as a BVH leaf.
+#[derive(Debug, Clone)]
+struct TriangleBox {
+    aabb: Aabb<f64, 3>,
+    index: u32,
+    node: usize,
+}
+
+impl Bounded<f64, 3> for TriangleBox {
+    fn aabb(&self) -> Aabb<f64, 3> {
+        self.aabb
+    }
+}
+
+impl BHShape<f64, 3> for TriangleBox {
+    fn set_bh_node_index(&mut self, index: usize) {
+        self.node = index;
+    }
+
+    fn bh_node_index(&self) -> usize {
+        self.node
+    }
+}
+
+/// One part with its acceleration structure and filtered texture.
+struct PreparedPart<'a> {
+    part: &'a Part,
+    boxes: Vec<TriangleBox>,
+    bvh: Bvh<f64, 3>,
+    texture: Option<MipChain>,
+    base_color: DVec4,
+}
+
+impl<'a> PreparedPart<'a> {
+    fn new(part: &'a Part) -> Self {
+        let mesh = &part.mesh;
+        let (lo, hi) = mesh.bounds();
+        // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
+        // boxes, which slab tests can miss.
+        let pad = 1e-9 * (hi - lo).length().max(1.0);
+        let mut boxes: Vec<TriangleBox> = (0..mesh.triangles().len())
+            .map(|i| {
+                let [a, b, c] = mesh.triangle_positions(i);
+                let min = a.min(b).min(c) - pad;
+                let max = a.max(b).max(c) + pad;
+                TriangleBox {
+                    aabb: Aabb::with_bounds(
+                        Point3::new(min.x, min.y, min.z),
+                        Point3::new(max.x, max.y, max.z),
+                    ),
+                    index: i as u32,
+                    node: 0,
+                }
+            })
+            .collect();
+        let bvh = Bvh::build(&mut boxes);
+        let [r, g, b, a] = part.material.base_color.map(f64::from);
+        Self {
+            part,
+            boxes,
+            bvh,
+            texture: part.material.texture.as_deref().map(MipChain::new),
+            base_color: DVec4::new(r, g, b, a),
+        }
+    }
+
+    /// Closest hit along a rest-frame ray.
+    fn closest_hit(&self, ray: &RestRay) -> Option<(u32, TriangleHit)> {
+        let query = Ray::new(
+            Point3::new(ray.origin.x, ray.origin.y, ray.origin.z),
+            Vector3::new(ray.direction.x, ray.direction.y, ray.direction.z),
+        );
+        let mut best: Option<(u32, TriangleHit)> = None;
+        // Leaves come in increasing order of their box's entry distance: stop once a box
+        // starts beyond the best hit.
+        for leaf in self.bvh.nearest_traverse_iterator(&query, &self.boxes) {
+            if let (Some((_, hit)), Some((entry, _))) =
+                (best, query.intersection_slice_for_aabb(&leaf.aabb))
+                && entry > hit.distance
+            {
+                break;
+            }
+            let corners = self.part.mesh.triangle_positions(leaf.index as usize);
+            if let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
+                && best.is_none_or(|(_, b)| hit.distance < b.distance)
+            {
+                best = Some((leaf.index, hit));
+            }
+        }
+        best
+    }
+}
+
+/// One object: its frame, the observation event in S′, and its parts.
+struct PreparedObject<'a> {
+    frame: Frame,
+    parts: Vec<PreparedPart<'a>>,
+    wireframe: Option<f64>,
+}
+
+/// The closest surface point along one viewing direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Index of the object in the scene.
+    pub object: usize,
+    /// Index of the part within the object.
+    pub part: usize,
+    /// Index of the triangle within the part's mesh.
+    pub triangle: usize,
+    /// Barycentric hit data in S′.
+    pub rest_hit: TriangleHit,
+    /// The backward ray in S′ that found it.
+    pub ray: RestRay,
+    /// Emission event in S′ (Eq. 7).
+    pub emission_rest: Event,
+    /// Emission event in S (Eq. 8): its position is the apparent position.
+    pub emission: Event,
+    /// Apparent distance from the observer (= light travel time, ct_obs − ct_emission).
+    pub apparent_distance: f64,
+}
+
+/// A scene prepared for tracing: BVHs built, textures mipmapped, colour table built.
+pub struct Tracer<'a> {
+    scene: &'a Scene,
+    objects: Vec<PreparedObject<'a>>,
+    lut: TemperatureLut,
+}
+
+impl<'a> Tracer<'a> {
+    /// Prepares `scene` (builds one BVH per part, the mip chains and the colour table).
+    #[must_use]
+    pub fn new(scene: &'a Scene) -> Self {
+        let objects = scene
+            .objects
+            .iter()
+            .map(|object| PreparedObject {
+                frame: object.frame,
+                parts: object.parts.iter().map(PreparedPart::new).collect(),
+                wireframe: object.wireframe,
+            })
+            .collect();
+        Self {
+            scene,
+            objects,
+            lut: TemperatureLut::with_defaults(scene.tone_map),
+        }
+    }
+
+    /// The scene being traced.
+    #[must_use]
+    pub fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    /// The colour table used for shading.
+    #[must_use]
+    pub fn lut(&self) -> &TemperatureLut {
+        &self.lut
+    }
+
+    /// The closest surface seen along `view_direction` (in S) from the observation event.
+    #[must_use]
+    pub fn trace(&self, view_direction: DVec3) -> Option<Hit> {
+        let observer = self.scene.observer.event();
+        let mut best: Option<Hit> = None;
+        for (object_index, object) in self.objects.iter().enumerate() {
+            let ray = object.frame.backward_ray(observer, view_direction);
+            for (part_index, part) in object.parts.iter().enumerate() {
+                let Some((triangle, rest_hit)) = part.closest_hit(&ray) else {
+                    continue;
+                };
+                let emission_rest = ray.event_at(rest_hit.distance);
+                let emission = object.frame.to_observer(emission_rest);
+                let apparent_distance = observer.ct - emission.ct;
+                if best.is_none_or(|b| apparent_distance < b.apparent_distance) {
+                    best = Some(Hit {
+                        object: object_index,
+                        part: part_index,
+                        triangle: triangle as usize,
+                        rest_hit,
+                        ray,
+                        emission_rest,
+                        emission,
+                        apparent_distance,
+                    });
+                }
+            }
+        }
+        best
+    }
+
+    /// Display colour of a hit. `neighbour_directions` are the viewing directions one pixel to
+    /// the right and one pixel down, for texture filtering (ray differentials).
+    #[must_use]
+    pub fn shade(&self, hit: &Hit, neighbour_directions: [DVec3; 2]) -> DVec3 {
+        let object = &self.objects[hit.object];
+        let part = &object.parts[hit.part];
+        let mesh = &part.part.mesh;
+        let indices = mesh.triangles()[hit.triangle].map(|i| i as usize);
+        let weights = hit.rest_hit.weights();
+        let interpolate3 =
+            |values: &[DVec3]| -> DVec3 { (0..3).map(|k| weights[k] * values[indices[k]]).sum() };
+        let normal_rest = interpolate3(mesh.normals()).normalize();
+        let mut albedo = part.base_color;
+        if let Some(colors) = mesh.colors() {
+            let c: DVec4 = (0..3)
+                .map(|k| weights[k] * DVec4::from_array(colors[indices[k]].map(f64::from)))
+                .sum();
+            albedo *= c;
+        }
+        let corners = mesh.triangle_positions(hit.triangle);
+        if let Some(width) = object.wireframe {
+            // Distance (in S′) to the nearest edge: weight × the height over that edge.
+            let twice_area = (corners[1] - corners[0])
+                .cross(corners[2] - corners[0])
+                .length();
+            let near_edge = (0..3).any(|k| {
+                let edge = (corners[(k + 2) % 3] - corners[(k + 1) % 3]).length();
+                weights[k] * twice_area / edge < width
+            });
+            albedo = if near_edge {
+                DVec4::new(0.0, 0.0, 0.0, 1.0)
+            } else {
+                DVec4::ONE
+            };
+        } else if let Some(texture) = &part.texture {
+            let uvs = mesh.uvs();
+            let uv_at = |(zeta, xi): (f64, f64)| {
+                (1.0 - zeta - xi) * uvs[indices[0]] + zeta * uvs[indices[1]] + xi * uvs[indices[2]]
+            };
+            let uv = uv_at((hit.rest_hit.zeta, hit.rest_hit.xi));
+            let observer = self.scene.observer.event();
+            let differential = |direction: DVec3| -> DVec2 {
+                let ray = object.frame.backward_ray(observer, direction);
+                plane_coordinates(ray.origin, ray.direction, corners)
+                    .map_or(DVec2::ZERO, |c| uv_at(c) - uv)
+            };
+            albedo *= texture.sample(
+                uv,
+                differential(neighbour_directions[0]),
+                differential(neighbour_directions[1]),
+            );
+        }
+        let illumination = Illumination {
+            observer: self.scene.observer.position,
+            light_position: self.scene.light.position,
+            light_temperature_k: self.scene.light.temperature_k,
+            shading: self.scene.shading,
+            effects: self.scene.effects,
+            lut: &self.lut,
+        };
+        let point = SurfacePoint {
+            beta: object.frame.beta(),
+            normal_rest,
+            apparent_position: hit.emission.position,
+            albedo,
+        };
+        shade(&point, &illumination)
+    }
+
+    /// Renders the image; `progress` is called with the number of finished rows (from worker
+    /// threads, in no particular order). Deterministic: the result does not depend on the
+    /// number of threads.
+    #[must_use]
+    pub fn render(
+        &self,
+        settings: RenderSettings,
+        progress: &(dyn Fn(u32) + Sync),
+    ) -> RenderedImage {
+        let RenderSettings {
+            width,
+            height,
+            samples,
+        } = settings;
+        let aspect = f64::from(width) / f64::from(height);
+        let observer = &self.scene.observer;
+        let direction_at = |x: f64, y: f64| {
+            let ndc = DVec2::new(
+                2.0 * x / f64::from(width) - 1.0,
+                1.0 - 2.0 * y / f64::from(height),
+            );
+            observer.view_direction(ndc, aspect)
+        };
+        let offsets = sample_offsets(samples.max(1));
+        let finished = AtomicU32::new(0);
+        let rows: Vec<(Vec<DVec3>, Vec<u32>)> = (0..height)
+            .into_par_iter()
+            .map(|y| {
+                let mut colours = Vec::with_capacity(width as usize);
+                let mut coverage = Vec::with_capacity(width as usize);
+                for x in 0..width {
+                    let mut sum = DVec3::ZERO;
+                    let mut first_object = 0;
+                    for (k, offset) in offsets.iter().enumerate() {
+                        let (sx, sy) = (f64::from(x) + offset.x, f64::from(y) + offset.y);
+                        let hit = self.trace(direction_at(sx, sy));
+                        if k == 0 {
+                            first_object = hit.map_or(0, |h| h.object as u32 + 1);
+                        }
+                        sum += hit.map_or(self.scene.background, |h| {
+                            self.shade(&h, [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)])
+                        });
+                    }
+                    colours.push(sum / offsets.len() as f64);
+                    coverage.push(first_object);
+                }
+                progress(finished.fetch_add(1, Ordering::Relaxed) + 1);
+                (colours, coverage)
+            })
+            .collect();
+        let (pixels, coverage) =
+            rows.into_iter()
+                .fold((Vec::new(), Vec::new()), |(mut p, mut c), (rp, rc)| {
+                    p.extend(rp);
+                    c.extend(rc);
+                    (p, c)
+                });
+        RenderedImage {
+            width,
+            height,
+            pixels,
+            coverage,
+        }
+    }
+}
+
+/// Sub-pixel sample positions in [0, 1)²: the pixel centre first, then the R2 low-discrepancy
+/// sequence (Roberts 2018), which is deterministic and well spread for any count.
+#[must_use]
+pub fn sample_offsets(count: u32) -> Vec<DVec2> {
+    // 1/φ₂ and 1/φ₂² with φ₂ the plastic number.
+    const A: DVec2 = DVec2::new(0.754_877_666_246_692_8, 0.569_840_290_998_053_2);
+    (0..count)
+        .map(|k| (DVec2::splat(0.5) + f64::from(k) * A).fract())
+        .collect()
+}
