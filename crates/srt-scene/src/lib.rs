@@ -7,6 +7,7 @@ pub mod builtin;
 pub mod description;
 pub mod import;
 pub mod mesh;
+pub mod mip;
 pub mod placement;
 pub mod scene;
 pub mod shapes;

@@ -25,4 +25,4 @@ mod texture;
 pub use intersect::{TriangleHit, intersect_triangle, plane_coordinates};
 pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
 pub use shade::{Illumination, SurfacePoint, grey_value, shade};
-pub use texture::{MipChain, MipLevel};
+pub use texture::sample_trilinear;

@@ -18,7 +18,8 @@ use srt_scene::{Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_coordinates};
 use crate::shade::{Illumination, SurfacePoint, shade};
-use crate::texture::MipChain;
+use crate::texture::sample_trilinear;
+use srt_scene::mip::MipChain;
 
 /// Image size and sampling.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -296,7 +297,8 @@ impl<'a> Tracer<'a> {
                 plane_coordinates(ray.origin, ray.direction, corners)
                     .map_or(DVec2::ZERO, |c| uv_at(c) - uv)
             };
-            albedo *= texture.sample(
+            albedo *= sample_trilinear(
+                texture,
                 uv,
                 differential(neighbour_directions[0]),
                 differential(neighbour_directions[1]),
