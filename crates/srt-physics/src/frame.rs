@@ -172,6 +172,16 @@ impl Frame {
         DVec3::new(d.y, d.z, d.w)
     }
 
+    /// The apparent distance (in S) of the point at parameter `s` along the backward ray `ray`
+    /// of this frame: the light travel time ct_obs − ct_emission = γ s (1 − β·d′), with d′ the
+    /// ray's direction. Follows from Eq. 8 applied to the emission event (ct′_obs − s,
+    /// x′_obs + s d′), because Λ_β maps the observer's rest-frame event back to ct_obs. Free of
+    /// the cancellation in ct_obs − ct_emission, which matters in `f32`.
+    #[must_use]
+    pub fn apparent_distance(&self, ray: &RestRay, s: f64) -> f64 {
+        self.gamma * s * (1.0 - self.beta.dot(ray.direction))
+    }
+
     /// The backward viewing ray in S′ for an observer at the observation event `observer` (in S)
     /// looking along `view_direction` (in S, need not be normalised): Eq. 3 applied to the
     /// incoming light and Eq. 5 to the observer (Algorithm 1, "Transform d and x_obs into S′").

@@ -230,6 +230,10 @@ proptest! {
         prop_assert!((closest - p).length() <= 1e-9 * (1.0 + s.abs()), "misses by {}", (closest - p).length());
         let emission = frame.emission_event(p, obs);
         prop_assert!(close(ray.event_at(s).ct, emission.ct, 1e-9));
+        // The closed-form apparent distance is the light travel time in S.
+        let travel = obs.ct - frame.to_observer(ray.event_at(s)).ct;
+        prop_assert!(close(frame.apparent_distance(&ray, s), travel, 1e-9));
+        prop_assert!(close(frame.apparent_distance(&ray, s), (seen - obs.position).length(), 1e-9));
     }
 }
 

@@ -233,7 +233,7 @@ impl<'a> Tracer<'a> {
                 };
                 let emission_rest = ray.event_at(rest_hit.distance);
                 let emission = object.frame.to_observer(emission_rest);
-                let apparent_distance = observer.ct - emission.ct;
+                let apparent_distance = object.frame.apparent_distance(&ray, rest_hit.distance);
                 if best.is_none_or(|b| apparent_distance < b.apparent_distance) {
                     best = Some(Hit {
                         object: object_index,
