@@ -1,0 +1,120 @@
+//! Comparing another renderer's image with the reference: the fraction of pixels that differ by
+//! more than a tolerance in any channel, not counting pixels near a silhouette edge of the
+//! reference (where a pixel-centre sample may legitimately fall on either side of an edge).
+
+use crate::render::RenderedImage;
+
+/// Result of [`compare`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mismatch {
+    /// Pixels compared (all minus those near silhouettes).
+    pub compared: usize,
+    /// Compared pixels differing by more than the tolerance.
+    pub differing: usize,
+    /// Largest channel difference seen among compared pixels (in 1/255 steps).
+    pub max_difference: u8,
+}
+
+impl Mismatch {
+    /// `differing / compared` (0 when nothing was compared).
+    #[must_use]
+    pub fn fraction(&self) -> f64 {
+        if self.compared == 0 {
+            0.0
+        } else {
+            self.differing as f64 / self.compared as f64
+        }
+    }
+}
+
+/// Whether pixel (x, y) lies within `margin` pixels (Chebyshev distance) of a pixel whose
+/// coverage differs from its own, i.e. near a silhouette edge of the reference.
+#[must_use]
+pub fn near_silhouette(reference: &RenderedImage, x: u32, y: u32, margin: u32) -> bool {
+    let (w, h) = (reference.width, reference.height);
+    let own = reference.coverage[(y * w + x) as usize];
+    let (x0, x1) = (x.saturating_sub(margin), (x + margin).min(w - 1));
+    let (y0, y1) = (y.saturating_sub(margin), (y + margin).min(h - 1));
+    (y0..=y1).any(|yy| (x0..=x1).any(|xx| reference.coverage[(yy * w + xx) as usize] != own))
+}
+
+/// Compares `candidate` (8-bit RGB, same size, row-major) with the reference image: a pixel
+/// differs when any channel is more than `tolerance` steps of 1/255 away; pixels within
+/// `edge_margin` pixels of a silhouette of the reference are skipped.
+///
+/// # Panics
+/// If the sizes differ.
+#[must_use]
+pub fn compare(
+    reference: &RenderedImage,
+    candidate: &[[u8; 3]],
+    tolerance: u8,
+    edge_margin: u32,
+) -> Mismatch {
+    assert_eq!(
+        candidate.len(),
+        reference.pixels.len(),
+        "images of different sizes"
+    );
+    let reference_rgb = reference.to_rgb8();
+    let mut result = Mismatch {
+        compared: 0,
+        differing: 0,
+        max_difference: 0,
+    };
+    for y in 0..reference.height {
+        for x in 0..reference.width {
+            if near_silhouette(reference, x, y, edge_margin) {
+                continue;
+            }
+            let i = (y * reference.width + x) as usize;
+            let difference = (0..3)
+                .map(|c| reference_rgb[i][c].abs_diff(candidate[i][c]))
+                .max()
+                .unwrap_or(0);
+            result.compared += 1;
+            result.max_difference = result.max_difference.max(difference);
+            if difference > tolerance {
+                result.differing += 1;
+            }
+        }
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn image(coverage: Vec<u32>, width: u32) -> RenderedImage {
+        let height = coverage.len() as u32 / width;
+        let pixels = coverage
+            .iter()
+            .map(|&c| DVec3::splat(f64::from(c) * 0.5))
+            .collect();
+        RenderedImage {
+            width,
+            height,
+            pixels,
+            coverage,
+        }
+    }
+
+    #[test]
+    fn skips_silhouette_pixels_and_counts_differences() {
+        // 4×1: background, background, object, object.
+        let reference = image(vec![0, 0, 1, 1], 4);
+        let mut candidate = reference.to_rgb8();
+        candidate[0] = [200, 0, 0];
+        let result = compare(&reference, &candidate, 2, 1);
+        // Pixels 1 and 2 touch the edge; 0 and 3 are compared; 0 differs.
+        assert_eq!(result.compared, 2);
+        assert_eq!(result.differing, 1);
+        assert_eq!(result.max_difference, 200);
+        assert!((result.fraction() - 0.5).abs() < 1e-12);
+        // Within tolerance is not a difference.
+        candidate[0] = [2, 0, 0];
+        assert_eq!(compare(&reference, &candidate, 2, 1).differing, 0);
+    }
+}
