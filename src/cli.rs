@@ -41,6 +41,16 @@ pub enum Backend {
     Auto,
 }
 
+/// Rendering method on the command line (mirrors `srt_gpu::Method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub enum MethodArg {
+    /// Local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes).
+    #[default]
+    Lrt,
+    /// Per-vertex polygon rendering (§3.2), the approximate baseline; GPU only.
+    Polygon,
+}
+
 /// Effect mode on the command line (mirrors `srt_scene::Effects`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum EffectsArg {
@@ -71,6 +81,9 @@ pub struct RenderArgs {
     /// Renderer.
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
+    /// Rendering method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Lrt)]
+    pub method: MethodArg,
     /// Effect mode (overrides the scene's).
     #[arg(long, value_enum)]
     pub effects: Option<EffectsArg>,
@@ -81,7 +94,7 @@ pub struct RenderArgs {
     /// without it approaches the observer at 0.9c).
     #[arg(long, value_parser = parse_vector, allow_negative_numbers = true)]
     pub beta: Option<DVec3>,
-    /// Samples per pixel (antialiasing).
+    /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub samples: u32,
     /// Render an animation of N frames, sweeping the observation time from --t0 to --t1.
@@ -103,6 +116,7 @@ impl Default for RenderArgs {
             width: 1280,
             height: 720,
             backend: Backend::Auto,
+            method: MethodArg::Lrt,
             effects: None,
             time: None,
             beta: None,

@@ -5,9 +5,9 @@ use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
+use glam::DVec3;
 use image::{ImageFormat, Rgb32FImage, RgbImage};
 use srt_color::srgb_decode;
-use srt_trace::RenderedImage;
 
 /// Image file formats `srt` writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,11 +78,12 @@ fn parent_folder(path: &Path) -> &Path {
     }
 }
 
-/// Writes `image` to `path` (format by extension) atomically.
+/// Writes a `width` × `height` image of display colours (sRGB-encoded, [0, 1], row-major from
+/// the top) to `path` (format by extension) atomically.
 ///
 /// # Errors
 /// If encoding or writing fails; the destination is then untouched.
-pub fn write_image(image: &RenderedImage, path: &Path) -> anyhow::Result<()> {
+pub fn write_image(width: u32, height: u32, pixels: &[DVec3], path: &Path) -> anyhow::Result<()> {
     let format = OutputFormat::for_path(path)?;
     let folder = parent_folder(path);
     let mut temp = tempfile::NamedTempFile::new_in(folder).with_context(|| {
@@ -96,19 +97,24 @@ pub fn write_image(image: &RenderedImage, path: &Path) -> anyhow::Result<()> {
         let mut writer = BufWriter::new(temp.as_file_mut());
         match format {
             OutputFormat::Png => {
-                let bytes: Vec<u8> = image.to_rgb8().into_iter().flatten().collect();
-                let buffer = RgbImage::from_raw(image.width, image.height, bytes)
-                    .context("image size mismatch")?;
+                let bytes: Vec<u8> = pixels
+                    .iter()
+                    .flat_map(|p| {
+                        p.to_array()
+                            .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+                    })
+                    .collect();
+                let buffer =
+                    RgbImage::from_raw(width, height, bytes).context("image size mismatch")?;
                 buffer.write_to(&mut writer, ImageFormat::Png)
             }
             OutputFormat::Exr => {
-                let linear: Vec<f32> = image
-                    .pixels
+                let linear: Vec<f32> = pixels
                     .iter()
-                    .flat_map(|p| p.to_array().map(|c| srgb_decode(c) as f32))
+                    .flat_map(|p| p.to_array().map(|c| srgb_decode(c.clamp(0.0, 1.0)) as f32))
                     .collect();
-                let buffer = Rgb32FImage::from_raw(image.width, image.height, linear)
-                    .context("image size mismatch")?;
+                let buffer =
+                    Rgb32FImage::from_raw(width, height, linear).context("image size mismatch")?;
                 buffer.write_to(&mut writer, ImageFormat::OpenExr)
             }
         }

@@ -8,7 +8,7 @@ use anyhow::bail;
 use glam::DVec3;
 use srt_scene::builtin::find_builtin;
 use srt_scene::import::SUPPORTED_EXTENSIONS;
-use srt_scene::placement::VIEW_FROM;
+use srt_scene::placement::approach_velocity;
 use srt_scene::{Scene, SceneDescription, builtin_scenes, load_scene_file};
 
 /// Speed of a bare model when `--beta` is not given (towards the observer).
@@ -34,8 +34,7 @@ pub fn load_scene(argument: &str, beta: Option<DVec3>) -> anyhow::Result<(Scene,
             Ok((scene, warnings))
         }
         Some(ext) if SUPPORTED_EXTENSIONS.contains(&ext) => {
-            let beta = beta
-                .unwrap_or_else(|| -DEFAULT_MODEL_SPEED * DVec3::from_array(VIEW_FROM).normalize());
+            let beta = beta.unwrap_or_else(|| approach_velocity(DEFAULT_MODEL_SPEED));
             Ok(SceneDescription::for_model(path, beta).build(Path::new("."))?)
         }
         _ if path.exists() => bail!(

@@ -1,7 +1,10 @@
-//! Project automation for srt: `cargo xtask figures` (and, as they land, `validate` and `bench`).
+//! Project automation for srt: `cargo xtask figures | validate | bench`.
 
+mod bench;
+mod cases;
 mod figures;
 mod plot;
+mod validate;
 
 use std::path::PathBuf;
 
@@ -24,6 +27,15 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Check every GPU pass against its CPU mirror on the current adapter (kernels, footprints,
+    /// images); exits non-zero on any disagreement.
+    Validate,
+    /// Measure the paper's Table 1 on the current adapter and update docs/performance.md.
+    Bench {
+        /// Frames measured per scene and method (after warm-up).
+        #[arg(long, default_value_t = 30)]
+        frames: u32,
+    },
 }
 
 /// The workspace root (xtask lives one level below it).
@@ -42,6 +54,8 @@ fn main() -> anyhow::Result<()> {
                 println!("wrote {}", path.display());
             }
         }
+        Command::Validate => validate::run(&workspace_root())?,
+        Command::Bench { frames } => bench::run(&workspace_root(), frames)?,
     }
     Ok(())
 }

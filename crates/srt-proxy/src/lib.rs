@@ -34,7 +34,7 @@ mod hull;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use srt_physics::{Event, Frame};
 
-pub use hull::convex_hull;
+pub use hull::{contains as hull_contains, convex_hull};
 
 /// The paper's ε for the chord points Q_ij of Eq. 14.
 pub const PAPER_EPSILON: f64 = 0.01;

@@ -212,6 +212,52 @@ impl Mesh {
         self.triangles[index].map(|i| self.positions[i as usize])
     }
 
+    /// Whether the mesh is the closed, consistently oriented boundary of a solid with outward
+    /// fronts: after welding vertices closer than 10⁻⁹ of the mesh size (rounding differences
+    /// between faces that share an edge), every directed edge occurs exactly once and its reverse
+    /// exactly once, and the enclosed signed volume is positive. A rare weld miss only makes a
+    /// closed mesh look open, which is the safe answer.
+    ///
+    /// For such a mesh a triangle facing away from a viewpoint is hidden by the others from
+    /// that viewpoint, so renderers may skip it (back-face culling in the rest frame, where all
+    /// viewing rays start at the observer's position).
+    #[must_use]
+    pub fn is_closed_outward(&self) -> bool {
+        use std::collections::HashMap;
+        let (lo, hi) = self.bounds();
+        let cell = ((hi - lo).length() * 1e-9).max(f64::MIN_POSITIVE);
+        let mut weld: HashMap<[i64; 3], u32> = HashMap::new();
+        let ids: Vec<u32> = self
+            .positions
+            .iter()
+            .map(|p| {
+                let next = weld.len() as u32;
+                let key = ((*p - lo) / cell).round().to_array().map(|c| c as i64);
+                *weld.entry(key).or_insert(next)
+            })
+            .collect();
+        let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|i| ids[i as usize]);
+            if a == b || b == c || c == a {
+                return false;
+            }
+            for edge in [(a, b), (b, c), (c, a)] {
+                *edges.entry(edge).or_insert(0) += 1;
+            }
+        }
+        let paired = edges
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1));
+        let volume: f64 = (0..self.triangles.len())
+            .map(|i| {
+                let [a, b, c] = self.triangle_positions(i);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        paired && volume > 0.0
+    }
+
     /// Axis-aligned bounds (min, max) of the vertices.
     #[must_use]
     pub fn bounds(&self) -> (DVec3, DVec3) {
@@ -336,6 +382,21 @@ mod tests {
                 .iter()
                 .all(|n| (*n - DVec3::Z).length() < 1e-12)
         );
+    }
+
+    #[test]
+    fn closedness_is_detected() {
+        let (p, t) = quad();
+        assert!(
+            !Mesh::new(p, t).unwrap().is_closed_outward(),
+            "an open quad"
+        );
+        // A tetrahedron with outward fronts, then inside out.
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        let t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        assert!(Mesh::new(p.clone(), t.clone()).unwrap().is_closed_outward());
+        let inverted = t.iter().map(|&[a, b, c]| [a, c, b]).collect();
+        assert!(!Mesh::new(p, inverted).unwrap().is_closed_outward());
     }
 
     #[test]

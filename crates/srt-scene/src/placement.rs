@@ -33,6 +33,13 @@ pub const VIEW_FROM: [f64; 3] = [2.0, -6.0, 3.0];
 /// Vertical field of view of the observer of a placed object, in degrees.
 pub const VIEW_FOV_Y_DEG: f64 = 45.0;
 
+/// Velocity of `speed` (units of c) straight towards the observer of a placed object: the
+/// default motion of a bare model.
+#[must_use]
+pub fn approach_velocity(speed: f64) -> DVec3 {
+    speed * DVec3::from_array(VIEW_FROM).normalize()
+}
+
 impl SceneDescription {
     /// A scene showing the model file `path` (stored as given: relative paths are resolved
     /// against the `base_dir` passed to [`SceneDescription::build`], usually the current

@@ -173,6 +173,14 @@ fn finish(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn procedural_shapes_are_closed_solids() {
+        assert!(cube(5.0, 5).is_closed_outward());
+        assert!(cube(1.0, 1).is_closed_outward());
+        assert!(uv_sphere(1.0, 24).is_closed_outward());
+    }
+
     use std::collections::HashMap;
 
     use super::*;

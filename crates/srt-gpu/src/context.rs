@@ -1,0 +1,219 @@
+//! Headless GPU access: instance, adapter and device, with wgpu validation errors turned into
+//! Rust errors instead of panics.
+
+use std::sync::{Arc, Mutex};
+
+/// Why the GPU could not be used.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter at all (no GPU driver, no software rasteriser).
+    #[error(
+        "no GPU adapter found (install Mesa's lavapipe with `apt-get install mesa-vulkan-drivers`, or use the CPU backend)"
+    )]
+    NoAdapter,
+    /// The adapter refused to create a device.
+    #[error("the GPU adapter {adapter} could not open a device: {reason}")]
+    Device {
+        /// Adapter name.
+        adapter: String,
+        /// wgpu's message.
+        reason: String,
+    },
+    /// wgpu reported a validation or out-of-memory error.
+    #[error("GPU error: {0}")]
+    Wgpu(String),
+    /// The device was lost.
+    #[error("the GPU device was lost: {0}")]
+    DeviceLost(String),
+    /// Waiting for the GPU or mapping a buffer failed.
+    #[error("GPU readback failed: {0}")]
+    Readback(String),
+    /// The scene does not fit the device's limits.
+    #[error("{0}")]
+    Limits(String),
+}
+
+/// A device and queue, plus facts about the adapter.
+pub struct GpuContext {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// Adapter name, driver and backend.
+    pub adapter_info: wgpu::AdapterInfo,
+    /// Whether GPU timestamp queries are available (for benchmarks).
+    pub timestamps: bool,
+    errors: Arc<Mutex<Vec<String>>>,
+}
+
+impl GpuContext {
+    /// Opens the first adapter wgpu finds (high performance preferred; software adapters such
+    /// as lavapipe and llvmpipe count). `WGPU_BACKEND`, `WGPU_ADAPTER_NAME` and the other
+    /// `WGPU_*` variables select backends and adapters as wgpu documents.
+    ///
+    /// # Errors
+    /// [`GpuError::NoAdapter`] when there is none, [`GpuError::Device`] when it fails.
+    pub fn new() -> Result<Self, GpuError> {
+        pollster::block_on(Self::new_async())
+    }
+
+    async fn new_async() -> Result<Self, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env());
+        let adapter = match wgpu::util::initialize_adapter_from_env(&instance, None).await {
+            Ok(adapter) => adapter,
+            Err(_) => instance
+                .request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::HighPerformance,
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    ..Default::default()
+                })
+                .await
+                .map_err(|_| GpuError::NoAdapter)?,
+        };
+        Self::from_adapter(&adapter).await
+    }
+
+    /// Opens a device on `adapter` with the features srt uses where available.
+    ///
+    /// # Errors
+    /// [`GpuError::Device`] when the adapter refuses.
+    pub async fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
+        let adapter_info = adapter.get_info();
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let required_features = if timestamps {
+            wgpu::Features::TIMESTAMP_QUERY
+        } else {
+            wgpu::Features::empty()
+        };
+        let limits = adapter.limits();
+        let required_limits = wgpu::Limits {
+            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
+            max_buffer_size: limits.max_buffer_size,
+            max_storage_buffers_per_shader_stage: limits
+                .max_storage_buffers_per_shader_stage
+                .min(8),
+            ..wgpu::Limits::downlevel_defaults().using_resolution(limits.clone())
+        };
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("srt"),
+                required_features,
+                required_limits,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| GpuError::Device {
+                adapter: adapter_info.name.clone(),
+                reason: e.to_string(),
+            })?;
+        Ok(Self::from_device(device, queue, adapter_info))
+    }
+
+    /// Wraps a device that someone else opened (e.g. the viewer's window system), so the
+    /// renderer can draw with it.
+    #[must_use]
+    pub fn from_device(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        adapter_info: wgpu::AdapterInfo,
+    ) -> Self {
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let errors = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&errors);
+        device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
+            sink.lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner)
+                .push(error.to_string());
+        }));
+        Self {
+            device,
+            queue,
+            adapter_info,
+            timestamps,
+            errors,
+        }
+    }
+
+    /// A one-line description of the adapter: name, backend and device type.
+    #[must_use]
+    pub fn adapter_summary(&self) -> String {
+        let info = &self.adapter_info;
+        format!(
+            "{} ({:?}, {:?}, driver {})",
+            info.name, info.backend, info.device_type, info.driver
+        )
+    }
+
+    /// Takes the wgpu errors reported since the last call.
+    ///
+    /// # Errors
+    /// [`GpuError::Wgpu`] listing them, if there were any.
+    pub fn take_errors(&self) -> Result<(), GpuError> {
+        let mut errors = self
+            .errors
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if errors.is_empty() {
+            Ok(())
+        } else {
+            Err(GpuError::Wgpu(std::mem::take(&mut *errors).join("; ")))
+        }
+    }
+
+    /// Waits until the queue is idle.
+    ///
+    /// # Errors
+    /// [`GpuError::Readback`] if polling fails (device lost).
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| GpuError::Readback(e.to_string()))
+    }
+
+    /// Reads a buffer created with `MAP_READ` back to memory.
+    ///
+    /// # Errors
+    /// [`GpuError::Readback`] when mapping fails.
+    pub fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+        let slice = buffer.slice(..);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+        self.wait()?;
+        receiver
+            .recv()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let bytes = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .to_vec();
+        buffer.unmap();
+        Ok(bytes)
+    }
+}
+
+/// For tests: the GPU context, or `None` after printing a visible skip line — unless
+/// `SRT_REQUIRE_GPU=1`, in which case a missing adapter is a panic (a failed test).
+///
+/// # Panics
+/// When no adapter exists and `SRT_REQUIRE_GPU=1`.
+#[must_use]
+pub fn context_or_skip(test: &str) -> Option<GpuContext> {
+    match GpuContext::new() {
+        Ok(context) => Some(context),
+        Err(error) => {
+            if std::env::var("SRT_REQUIRE_GPU").is_ok_and(|v| v == "1") {
+                panic!("{test}: SRT_REQUIRE_GPU=1 but the GPU is unavailable: {error}");
+            }
+            eprintln!(
+                "SKIPPED {test}: no GPU adapter ({error}); set SRT_REQUIRE_GPU=1 to make this a failure"
+            );
+            None
+        }
+    }
+}

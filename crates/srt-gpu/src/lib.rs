@@ -1,0 +1,22 @@
+//! GPU local ray tracing of relativistic scenes with wgpu and WGSL (§4 of Müller, Grottel and
+//! Weiskopf 2010), headless, with readback.
+//!
+//! Passes (WGSL in `shaders/`, each with a CPU mirror of the same name):
+//! - `proxy` — compute pass, one invocation per triangle: the conservative footprint of the
+//!   apparent triangle (mirror: `srt-proxy`);
+//! - `lrt` — draws the footprints instanced; each fragment traces its viewing ray in the
+//!   triangle's rest frame, writes the apparent distance as depth and shades (mirror:
+//!   `srt-trace`);
+//! - `polygon` — the per-vertex photo-object method of §3.2, for comparison.
+//!
+//! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass.
+
+pub mod context;
+pub mod pipelines;
+pub mod probe;
+pub mod renderer;
+pub mod shaders;
+pub mod types;
+
+pub use context::{GpuContext, GpuError, context_or_skip};
+pub use renderer::{FootprintShape, FrameStats, GpuImage, GpuRenderer, Method};

@@ -1,0 +1,1013 @@
+//! Kernel probes: run the shared WGSL functions (`physics.wgsl`, `colour.wgsl`) on arrays of
+//! inputs and compare every result with its `f64` CPU original (`srt-physics`, `srt-color`).
+//!
+//! The WGSL side is `shaders/probe.wgsl` (entry points `physics_probe` and `lut_probe`). Tests
+//! and `cargo xtask validate` use [`run_physics_probe`] with [`seeded_cases`] and
+//! [`compare_physics`] to report the worst relative error of each physics kernel against its
+//! tolerance, and [`run_lut_probe`] with [`lut_tolerance`] for the colour table.
+//!
+//! # How errors are measured
+//!
+//! The primary inputs of a case (β, offset, observation event, points, directions, s) are
+//! rounded to `f32` when the case is built ([`PhysicsProbeCase::new`]), so both sides start from
+//! the same numbers; what the GPU gets beyond them (Λ_±β, γ, the observer in S′) is computed in
+//! `f64` and rounded once ([`GpuFrame::new`]), exactly as the render passes do. The CPU reference
+//! ([`reference`]) is `srt-physics` in `f64` on the unrounded frame.
+//!
+//! Per kernel the error of one case is ‖gpu − cpu‖ / max(‖cpu‖, floor) (Euclidean norm over the
+//! kernel's components) and [`compare_physics`] reports the worst case. Results that are events
+//! or positions have the floor L = [`case_scale`], the size of the case's input coordinates: an
+//! event that happens to lie near the origin is judged by its error relative to the scene's
+//! extent, which is what decides where it lands in an image. Directions, ratios and the
+//! apparent distance (a product) have no floor; `apparent_tangent` has the length of its input
+//! direction.
+//!
+//! # Tolerances
+//!
+//! Each tolerance is 8 u A, with u = 2⁻²⁴ the `f32` unit roundoff and A the kernel's
+//! amplification of rounding errors (a condition number) at |β| ≤ 0.99, the extreme of
+//! [`seeded_cases`]: D = γ(1 + |β|) ≈ 14.1 for one Lorentz transformation, D² = 199 for two or
+//! for a 1 − β·n cancellation. [`PHYSICS_KERNELS`] gives the reasoning per kernel. The bounds are
+//! derived, not fitted: measured worst errors are 0.5 to 3 u A.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{DVec3, DVec4};
+use srt_color::TemperatureLut;
+use srt_physics::{Event, Frame, RestRay};
+use wgpu::util::DeviceExt;
+
+use crate::context::{GpuContext, GpuError};
+use crate::shaders;
+use crate::types::{GpuFrame, vec4};
+
+/// The `f32` unit roundoff u = 2⁻²⁴.
+pub const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+/// Invocations per workgroup of both probe entry points (`@workgroup_size` in `probe.wgsl`).
+const WORKGROUP_SIZE: u32 = 64;
+
+/// Twin of WGSL `PhysicsProbeInput` (`probe.wgsl`): one set of arguments for every kernel.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuPhysicsProbeInput {
+    /// The object's rest frame and the observation event.
+    pub frame: GpuFrame,
+    /// An event in S for `to_rest`.
+    pub event: [f32; 4],
+    /// An event in S′ for `to_observer`.
+    pub rest_event: [f32; 4],
+    /// A point at rest in S′ (xyz) and the ray parameter s (w).
+    pub point: [f32; 4],
+    /// A direction in S′ for `apparent_tangent`.
+    pub direction: [f32; 4],
+    /// A viewing direction in S for `backward_ray`.
+    pub view: [f32; 4],
+    /// A propagation direction in S for `doppler_factor`.
+    pub propagation: [f32; 4],
+    /// A propagation direction in S′ for `aberrate`.
+    pub direction_rest: [f32; 4],
+    /// Incident propagation direction for `reflection_doppler`.
+    pub incident: [f32; 4],
+    /// Outgoing propagation direction for `reflection_doppler`.
+    pub outgoing: [f32; 4],
+}
+
+/// Twin of WGSL `PhysicsProbeOutput` (`probe.wgsl`): every kernel's result for one input.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuPhysicsProbeOutput {
+    /// `to_observer(frame, rest_event)`.
+    pub to_observer: [f32; 4],
+    /// `to_rest(frame, event)`.
+    pub to_rest: [f32; 4],
+    /// `emission_event(frame, point)`.
+    pub emission_event: [f32; 4],
+    /// `apparent_position(frame, point)` (xyz).
+    pub apparent_position: [f32; 4],
+    /// `apparent_tangent(frame, point, direction)` (xyz).
+    pub apparent_tangent: [f32; 4],
+    /// `aberrate(β, direction_rest)` (xyz).
+    pub aberrate: [f32; 4],
+    /// `backward_ray(frame, view)`: origin (xyz) and `ct_origin` (w).
+    pub ray_origin: [f32; 4],
+    /// `backward_ray(frame, view)`: direction (xyz).
+    pub ray_direction: [f32; 4],
+    /// `doppler_factor`, `reflection_doppler`, `apparent_distance`, `lorentz_factor`.
+    pub scalars: [f32; 4],
+}
+
+/// The arguments of every physics kernel for one probe case, in `f64` (rounded to `f32` values).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicsProbeCase {
+    /// The object's rest frame S′.
+    pub frame: Frame,
+    /// The observation event in S.
+    pub observer: Event,
+    /// An event in S for `to_rest`.
+    pub event: Event,
+    /// An event in S′ for `to_observer`.
+    pub rest_event: Event,
+    /// A point at rest in S′.
+    pub point: DVec3,
+    /// A direction in S′ for `apparent_tangent` at `point`.
+    pub direction: DVec3,
+    /// A viewing direction in S for `backward_ray` (any length).
+    pub view_direction: DVec3,
+    /// The ray parameter s for `apparent_distance` along the backward ray.
+    pub ray_parameter: f64,
+    /// A propagation direction in S for `doppler_factor`.
+    pub propagation: DVec3,
+    /// A propagation direction in S′ for `aberrate` with the frame's β.
+    pub direction_rest: DVec3,
+    /// Incident propagation direction for `reflection_doppler`.
+    pub incident: DVec3,
+    /// Outgoing propagation direction for `reflection_doppler`.
+    pub outgoing: DVec3,
+}
+
+/// The primary inputs of a [`PhysicsProbeCase`], before rounding to `f32`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicsProbeInputs {
+    /// Velocity of S′ relative to S (|β| < 1).
+    pub beta: DVec3,
+    /// Origin of S′ in S at t = 0.
+    pub offset: DVec3,
+    /// The observation event in S.
+    pub observer: Event,
+    /// An event in S for `to_rest`.
+    pub event: Event,
+    /// An event in S′ for `to_observer`.
+    pub rest_event: Event,
+    /// A point at rest in S′.
+    pub point: DVec3,
+    /// A direction in S′ for `apparent_tangent`.
+    pub direction: DVec3,
+    /// A viewing direction in S.
+    pub view_direction: DVec3,
+    /// The ray parameter s.
+    pub ray_parameter: f64,
+    /// A propagation direction in S for `doppler_factor`.
+    pub propagation: DVec3,
+    /// A propagation direction in S′ for `aberrate`.
+    pub direction_rest: DVec3,
+    /// Incident propagation direction.
+    pub incident: DVec3,
+    /// Outgoing propagation direction.
+    pub outgoing: DVec3,
+}
+
+fn round_f32(x: f64) -> f64 {
+    f64::from(x as f32)
+}
+
+fn round_vec(v: DVec3) -> DVec3 {
+    DVec3::new(round_f32(v.x), round_f32(v.y), round_f32(v.z))
+}
+
+fn round_event(e: Event) -> Event {
+    Event::new(round_f32(e.ct), round_vec(e.position))
+}
+
+fn event4(e: Event) -> [f32; 4] {
+    [
+        e.ct as f32,
+        e.position.x as f32,
+        e.position.y as f32,
+        e.position.z as f32,
+    ]
+}
+
+impl PhysicsProbeCase {
+    /// The case for `inputs`, every primary input rounded to the nearest `f32` first, so that the
+    /// GPU and the CPU reference see the same numbers.
+    ///
+    /// # Errors
+    /// [`srt_physics::FrameError`] when β or the offset is invalid (after rounding).
+    pub fn new(inputs: &PhysicsProbeInputs) -> Result<Self, srt_physics::FrameError> {
+        Ok(Self {
+            frame: Frame::new(round_vec(inputs.beta), round_vec(inputs.offset))?,
+            observer: round_event(inputs.observer),
+            event: round_event(inputs.event),
+            rest_event: round_event(inputs.rest_event),
+            point: round_vec(inputs.point),
+            direction: round_vec(inputs.direction),
+            view_direction: round_vec(inputs.view_direction),
+            ray_parameter: round_f32(inputs.ray_parameter),
+            propagation: round_vec(inputs.propagation),
+            direction_rest: round_vec(inputs.direction_rest),
+            incident: round_vec(inputs.incident),
+            outgoing: round_vec(inputs.outgoing),
+        })
+    }
+
+    /// The GPU record of this case.
+    #[must_use]
+    pub fn to_gpu(&self) -> GpuPhysicsProbeInput {
+        GpuPhysicsProbeInput {
+            frame: GpuFrame::new(&self.frame, self.observer),
+            event: event4(self.event),
+            rest_event: event4(self.rest_event),
+            point: vec4(self.point, self.ray_parameter),
+            direction: vec4(self.direction, 0.0),
+            view: vec4(self.view_direction, 0.0),
+            propagation: vec4(self.propagation, 0.0),
+            direction_rest: vec4(self.direction_rest, 0.0),
+            incident: vec4(self.incident, 0.0),
+            outgoing: vec4(self.outgoing, 0.0),
+        }
+    }
+}
+
+/// Every physics kernel's result for one [`PhysicsProbeCase`], from the GPU ([`run_physics_probe`])
+/// or the CPU ([`reference`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicsProbeResult {
+    /// `to_observer(rest_event)`.
+    pub to_observer: Event,
+    /// `to_rest(event)`.
+    pub to_rest: Event,
+    /// `emission_event(point, observer)`.
+    pub emission_event: Event,
+    /// `apparent_position(point, observer)`.
+    pub apparent_position: DVec3,
+    /// `apparent_tangent(point, direction, observer)`.
+    pub apparent_tangent: DVec3,
+    /// `aberrate(β, direction_rest)`.
+    pub aberrate: DVec3,
+    /// `backward_ray(observer, view_direction)`.
+    pub backward_ray: RestRay,
+    /// `doppler_factor(β, propagation)`.
+    pub doppler_factor: f64,
+    /// `reflection_doppler(β, incident, outgoing)`.
+    pub reflection_doppler: f64,
+    /// `apparent_distance(backward_ray, ray_parameter)`.
+    pub apparent_distance: f64,
+    /// `lorentz_factor(β)`.
+    pub lorentz_factor: f64,
+}
+
+fn dvec3(v: [f32; 4]) -> DVec3 {
+    DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))
+}
+
+fn event_of(v: [f32; 4]) -> Event {
+    Event::new(
+        f64::from(v[0]),
+        DVec3::new(f64::from(v[1]), f64::from(v[2]), f64::from(v[3])),
+    )
+}
+
+impl From<GpuPhysicsProbeOutput> for PhysicsProbeResult {
+    fn from(out: GpuPhysicsProbeOutput) -> Self {
+        Self {
+            to_observer: event_of(out.to_observer),
+            to_rest: event_of(out.to_rest),
+            emission_event: event_of(out.emission_event),
+            apparent_position: dvec3(out.apparent_position),
+            apparent_tangent: dvec3(out.apparent_tangent),
+            aberrate: dvec3(out.aberrate),
+            backward_ray: RestRay {
+                origin: dvec3(out.ray_origin),
+                direction: dvec3(out.ray_direction),
+                ct_origin: f64::from(out.ray_origin[3]),
+            },
+            doppler_factor: f64::from(out.scalars[0]),
+            reflection_doppler: f64::from(out.scalars[1]),
+            apparent_distance: f64::from(out.scalars[2]),
+            lorentz_factor: f64::from(out.scalars[3]),
+        }
+    }
+}
+
+/// The `f64` CPU results (`srt-physics`) for `case`: what the GPU kernels approximate.
+#[must_use]
+pub fn reference(case: &PhysicsProbeCase) -> PhysicsProbeResult {
+    let frame = &case.frame;
+    let beta = frame.beta();
+    let ray = frame.backward_ray(case.observer, case.view_direction);
+    PhysicsProbeResult {
+        to_observer: frame.to_observer(case.rest_event),
+        to_rest: frame.to_rest(case.event),
+        emission_event: frame.emission_event(case.point, case.observer),
+        apparent_position: frame.apparent_position(case.point, case.observer),
+        apparent_tangent: frame.apparent_tangent(case.point, case.direction, case.observer),
+        aberrate: srt_physics::aberrate(beta, case.direction_rest),
+        backward_ray: ray,
+        doppler_factor: srt_physics::doppler_factor(beta, case.propagation),
+        reflection_doppler: srt_physics::reflection_doppler(beta, case.incident, case.outgoing),
+        apparent_distance: frame.apparent_distance(&ray, case.ray_parameter),
+        lorentz_factor: frame.gamma(),
+    }
+}
+
+/// SplitMix64 (Steele, Lea and Flood 2014): a tiny, fixed generator, so that seeded cases stay
+/// the same across dependency upgrades.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [−half_width, half_width).
+    fn symmetric(&mut self, half_width: f64) -> f64 {
+        (2.0 * self.unit() - 1.0) * half_width
+    }
+
+    fn cube(&mut self, half_width: f64) -> DVec3 {
+        DVec3::new(
+            self.symmetric(half_width),
+            self.symmetric(half_width),
+            self.symmetric(half_width),
+        )
+    }
+
+    /// Uniform on the unit sphere (Marsaglia's rejection in the cube).
+    fn direction(&mut self) -> DVec3 {
+        loop {
+            let v = self.cube(1.0);
+            let l2 = v.length_squared();
+            if l2 > 1e-6 && l2 <= 1.0 {
+                return v / l2.sqrt();
+            }
+        }
+    }
+}
+
+/// Largest speed |β| of [`seeded_cases`].
+pub const SEEDED_MAX_SPEED: f64 = 0.99;
+
+/// `count` reproducible probe cases from `seed`.
+///
+/// β points in a uniformly random direction with |β| uniform in [0, 0.99], except that every
+/// fourth case has |β| = 0.99 exactly (the worst conditioning); offsets, points in S′ and the
+/// spatial part of the S′ event lie within ±10 per coordinate; the observer, the S event and
+/// every time coordinate within ±20; the ray parameter s in [0, 40]; directions are uniform on
+/// the unit sphere (the viewing direction scaled by a length in [0.5, 2]). A point closer to
+/// the observer's S′ position x′_obs than ‖x′_obs‖ / D (D = [`SEEDED_MAX_DOPPLER`]) is drawn
+/// again, which bounds the conditioning of `apparent_tangent` (see [`PHYSICS_KERNELS`]).
+///
+/// # Panics
+/// Never: every generated β is below 1.
+#[must_use]
+pub fn seeded_cases(seed: u64, count: usize) -> Vec<PhysicsProbeCase> {
+    let mut rng = SplitMix64(seed);
+    (0..count)
+        .map(|i| {
+            let speed = if i % 4 == 0 {
+                SEEDED_MAX_SPEED
+            } else {
+                SEEDED_MAX_SPEED * rng.unit()
+            };
+            let beta = speed * rng.direction();
+            let mut inputs = PhysicsProbeInputs {
+                beta,
+                offset: rng.cube(10.0),
+                observer: Event::new(rng.symmetric(20.0), rng.cube(20.0)),
+                event: Event::new(rng.symmetric(20.0), rng.cube(20.0)),
+                rest_event: Event::new(rng.symmetric(20.0), rng.cube(10.0)),
+                point: rng.cube(10.0),
+                direction: rng.direction(),
+                view_direction: (0.5 + 1.5 * rng.unit()) * rng.direction(),
+                ray_parameter: 40.0 * rng.unit(),
+                propagation: rng.direction(),
+                direction_rest: rng.direction(),
+                incident: rng.direction(),
+                outgoing: rng.direction(),
+            };
+            loop {
+                let case = match PhysicsProbeCase::new(&inputs) {
+                    Ok(case) => case,
+                    Err(e) => unreachable!("seeded speeds are at most 0.99: {e}"),
+                };
+                let observer_rest = case.frame.to_rest(case.observer).position;
+                if (case.point - observer_rest).length() * SEEDED_MAX_DOPPLER
+                    >= observer_rest.length()
+                {
+                    return case;
+                }
+                inputs.point = rng.cube(10.0);
+            }
+        })
+        .collect()
+}
+
+/// √((1 + β)/(1 − β)) at |β| = [`SEEDED_MAX_SPEED`]: the largest Doppler factor D = γ(1 + |β|),
+/// which is also ‖Λ_±β‖₂, the largest stretch of a Lorentz matrix (√199).
+pub const SEEDED_MAX_DOPPLER: f64 = 14.106_735_979_665_885;
+
+/// D² = (1 + β)/(1 − β) = 199 at |β| = [`SEEDED_MAX_SPEED`]: the condition number ‖Λ‖‖Λ⁻¹‖ of a
+/// Lorentz matrix, and the amplification of rounding in 1 − β·n (≤ 1/(1 − |β|) = 100 ≤ D²).
+pub const SEEDED_MAX_DOPPLER_SQUARED: f64 = 199.0;
+
+/// γ² = 1/(1 − β²) at |β| = [`SEEDED_MAX_SPEED`] (γ ≈ 7.09).
+pub const SEEDED_MAX_GAMMA_SQUARED: f64 = 1.0 / (1.0 - SEEDED_MAX_SPEED * SEEDED_MAX_SPEED);
+
+/// One physics kernel as [`compare_physics`] measures it.
+#[derive(Debug, Clone, Copy)]
+pub struct PhysicsKernel {
+    /// The WGSL function's name.
+    pub name: &'static str,
+    /// Largest accepted relative error (see [`PHYSICS_KERNELS`] for each bound).
+    pub tolerance: f64,
+    /// The norm floor of the relative error for a case (see the module documentation).
+    pub floor: fn(&PhysicsProbeCase) -> f64,
+    /// The kernel's components in a result (unused ones 0).
+    pub components: fn(&PhysicsProbeResult) -> DVec4,
+}
+
+/// The coordinate scale L of a case: the largest Euclidean norm among its events (observer,
+/// `event`, `rest_event`, as four-vectors) and positions (offset, point). For
+/// [`seeded_cases`] L ≤ 40.
+#[must_use]
+pub fn case_scale(case: &PhysicsProbeCase) -> f64 {
+    [
+        case.observer.to_four_vector().length(),
+        case.event.to_four_vector().length(),
+        case.rest_event.to_four_vector().length(),
+        case.frame.offset().length(),
+        case.point.length(),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max)
+}
+
+fn no_floor(_: &PhysicsProbeCase) -> f64 {
+    0.0
+}
+
+fn direction_length(case: &PhysicsProbeCase) -> f64 {
+    case.direction.length()
+}
+
+fn event4d(e: Event) -> DVec4 {
+    e.to_four_vector()
+}
+
+fn vec3d(v: DVec3) -> DVec4 {
+    v.extend(0.0)
+}
+
+fn scalar(x: f64) -> DVec4 {
+    DVec4::new(x, 0.0, 0.0, 0.0)
+}
+
+const U: f64 = F32_UNIT_ROUNDOFF;
+const D: f64 = SEEDED_MAX_DOPPLER;
+const D2: f64 = SEEDED_MAX_DOPPLER_SQUARED;
+
+/// Every physics kernel with its floor and tolerance.
+///
+/// Each tolerance is 8 · u · A: u = 2⁻²⁴, and A the kernel's amplification of relative rounding
+/// errors (its condition number with respect to the `f32` roundings it suffers) at
+/// |β| ≤ 0.99, where D = γ(1 + |β|) = ‖Λ_±β‖₂ ≈ 14.1, D² = 199 and γ² ≈ 50.3. The factor 8 counts
+/// the roundings on each kernel's critical path (3 to 8) with margin for their partial
+/// alignment; measured errors are 0.5 to 3 u · A (the figures are in the crate's tests).
+///
+/// - `to_observer`, `to_rest` (floor L): one 4×4 product with `f32`-rounded Λ entries, plus or
+///   minus the offset; the rounding of the input and of Λ is stretched by ‖Λ‖ = D. A = D.
+/// - `emission_event` (floor L): ct′_obs − ‖p − x′_obs‖ where ct′_obs and x′_obs are S′
+///   coordinates (up to 2DL) rounded to `f32`. A = D.
+/// - `apparent_position` (floor L): Λ_β applied to the emission event, whose error (above) is
+///   stretched by D once more. A = D² (8 u D² ≈ 9.5e-5: 1e-4 of the scene scale).
+/// - `apparent_tangent` (floor ‖direction‖): dct = −direction·(p − x′_obs)/‖p − x′_obs‖ is a
+///   cosine, but x′_obs is rounded at size ‖x′_obs‖, which tilts the unit vector by
+///   u ‖x′_obs‖/‖p − x′_obs‖ ≤ u D ([`seeded_cases`] keeps points that far from the observer),
+///   then Λ_β stretches by D. A = D².
+/// - `aberrate`, `backward_ray` (unit results, no floor): the numerator
+///   γβ + n′ + γ²/(γ + 1)(β·n′)β has terms of size γ but length only γ(1 + β·n′) ≥ γ(1 − |β|) =
+///   1/D, and 1 + β·n′ ≥ 1 − |β| loses as many digits. A = γ D ≤ D².
+/// - `doppler_factor`, `reflection_doppler` (no floor): 1 − β·n ≥ 1 − |β| loses digits
+///   (1/(1 − |β|) = 100 ≤ D²), and γ (computed from β in `f32`) adds γ² u. A = D².
+/// - `apparent_distance` (no floor; a product, exactly 0 at s = 0): γ s (1 − β·d′) with d′ the
+///   GPU's ray direction (error ≲ u D², above), of which only the part across β enters
+///   (|β_⊥| ≤ √(2(1 − β·d′))), and 1 − β·d′ ≥ 0.01 as above. A = D².
+/// - `lorentz_factor` (no floor): 1 − β·β ≥ 1/γ² loses digits; relative error ≈ (1.5 β²γ² + 2) u.
+///   A = γ², with c = 4 instead of 8 (the estimate is already a sum over the roundings).
+pub const PHYSICS_KERNELS: &[PhysicsKernel] = &[
+    PhysicsKernel {
+        name: "to_observer",
+        tolerance: 8.0 * U * D,
+        floor: case_scale,
+        components: |r| event4d(r.to_observer),
+    },
+    PhysicsKernel {
+        name: "to_rest",
+        tolerance: 8.0 * U * D,
+        floor: case_scale,
+        components: |r| event4d(r.to_rest),
+    },
+    PhysicsKernel {
+        name: "emission_event",
+        tolerance: 8.0 * U * D,
+        floor: case_scale,
+        components: |r| event4d(r.emission_event),
+    },
+    PhysicsKernel {
+        name: "apparent_position",
+        tolerance: 8.0 * U * D2,
+        floor: case_scale,
+        components: |r| vec3d(r.apparent_position),
+    },
+    PhysicsKernel {
+        name: "apparent_tangent",
+        tolerance: 8.0 * U * D2,
+        floor: direction_length,
+        components: |r| vec3d(r.apparent_tangent),
+    },
+    PhysicsKernel {
+        name: "aberrate",
+        tolerance: 8.0 * U * D2,
+        floor: no_floor,
+        components: |r| vec3d(r.aberrate),
+    },
+    PhysicsKernel {
+        name: "backward_ray",
+        tolerance: 8.0 * U * D2,
+        floor: no_floor,
+        components: |r| vec3d(r.backward_ray.direction),
+    },
+    PhysicsKernel {
+        name: "doppler_factor",
+        tolerance: 8.0 * U * D2,
+        floor: no_floor,
+        components: |r| scalar(r.doppler_factor),
+    },
+    PhysicsKernel {
+        name: "reflection_doppler",
+        tolerance: 8.0 * U * D2,
+        floor: no_floor,
+        components: |r| scalar(r.reflection_doppler),
+    },
+    PhysicsKernel {
+        name: "apparent_distance",
+        tolerance: 8.0 * U * D2,
+        floor: no_floor,
+        components: |r| scalar(r.apparent_distance),
+    },
+    PhysicsKernel {
+        name: "lorentz_factor",
+        tolerance: 4.0 * U * SEEDED_MAX_GAMMA_SQUARED,
+        floor: no_floor,
+        components: |r| scalar(r.lorentz_factor),
+    },
+];
+
+/// The worst error of one kernel over a set of cases.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KernelError {
+    /// The WGSL function's name.
+    pub kernel: &'static str,
+    /// Worst ‖gpu − cpu‖ / max(‖cpu‖, floor) over the cases (NaN when a result was not finite).
+    pub worst_relative: f64,
+    /// Index of the case with the worst error.
+    pub worst_case: usize,
+    /// The kernel's tolerance.
+    pub tolerance: f64,
+}
+
+impl KernelError {
+    /// Whether the worst error is within the tolerance (false for NaN).
+    #[must_use]
+    pub fn passes(&self) -> bool {
+        self.worst_relative <= self.tolerance
+    }
+}
+
+impl std::fmt::Display for KernelError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:<20} worst {:.2e} = {:>5.0} u (case {:>5}), tolerance {:.2e} = {:>5.0} u: {}",
+            self.kernel,
+            self.worst_relative,
+            self.worst_relative / F32_UNIT_ROUNDOFF,
+            self.worst_case,
+            self.tolerance,
+            self.tolerance / F32_UNIT_ROUNDOFF,
+            if self.passes() { "ok" } else { "FAILED" }
+        )
+    }
+}
+
+/// ‖gpu − cpu‖ / max(‖cpu‖, floor): 0 when both are equal (0/0 included), NaN when either is not
+/// finite.
+#[must_use]
+pub fn relative_error(gpu: DVec4, cpu: DVec4, floor: f64) -> f64 {
+    if !(gpu.is_finite() && cpu.is_finite()) {
+        return f64::NAN;
+    }
+    let difference = (gpu - cpu).length();
+    if difference == 0.0 {
+        0.0
+    } else {
+        difference / cpu.length().max(floor)
+    }
+}
+
+/// The worst error of each kernel in [`PHYSICS_KERNELS`] of the GPU `results` against the `f64`
+/// [`reference`] of `cases` (see the module documentation for the measure).
+///
+/// # Panics
+/// If `cases` and `results` differ in length.
+#[must_use]
+pub fn compare_physics(
+    cases: &[PhysicsProbeCase],
+    results: &[PhysicsProbeResult],
+) -> Vec<KernelError> {
+    assert_eq!(cases.len(), results.len(), "one result per case");
+    let references: Vec<PhysicsProbeResult> = cases.iter().map(reference).collect();
+    PHYSICS_KERNELS
+        .iter()
+        .map(|kernel| {
+            let mut worst = KernelError {
+                kernel: kernel.name,
+                worst_relative: 0.0,
+                worst_case: 0,
+                tolerance: kernel.tolerance,
+            };
+            for (index, ((case, cpu), gpu)) in
+                cases.iter().zip(&references).zip(results).enumerate()
+            {
+                let error = relative_error(
+                    (kernel.components)(gpu),
+                    (kernel.components)(cpu),
+                    (kernel.floor)(case),
+                );
+                if error.is_nan() || error > worst.worst_relative {
+                    worst.worst_relative = error;
+                    worst.worst_case = index;
+                    if error.is_nan() {
+                        break;
+                    }
+                }
+            }
+            worst
+        })
+        .collect()
+}
+
+fn workgroups(ctx: &GpuContext, count: usize) -> Result<u32, GpuError> {
+    let groups = count.div_ceil(WORKGROUP_SIZE as usize);
+    let max = ctx.device.limits().max_compute_workgroups_per_dimension;
+    u32::try_from(groups)
+        .ok()
+        .filter(|&g| g <= max)
+        .ok_or_else(|| {
+            GpuError::Limits(format!(
+                "{count} probe inputs need {groups} workgroups, more than the device's {max}"
+            ))
+        })
+}
+
+fn check_binding_size(ctx: &GpuContext, bytes: usize) -> Result<(), GpuError> {
+    let max = ctx.device.limits().max_storage_buffer_binding_size;
+    if bytes as u64 > max {
+        return Err(GpuError::Limits(format!(
+            "a probe buffer of {bytes} bytes exceeds the device's storage binding limit of {max}"
+        )));
+    }
+    Ok(())
+}
+
+fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The probe shader: `physics.wgsl`, `colour.wgsl` and `probe.wgsl` composed.
+#[must_use]
+pub fn source() -> String {
+    shaders::compose(&[
+        ("physics.wgsl", shaders::PHYSICS),
+        ("colour.wgsl", shaders::COLOUR),
+        ("probe.wgsl", shaders::PROBE),
+    ])
+}
+
+fn probe_module(ctx: &GpuContext) -> wgpu::ShaderModule {
+    ctx.device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("srt probe"),
+            source: wgpu::ShaderSource::Wgsl(source().into()),
+        })
+}
+
+/// Builds the compute pipeline for `entry_point` with one bind group of `entries`, binds
+/// `resources` to them, dispatches `count` invocations and copies `output` (of `output_size`
+/// bytes) back.
+fn dispatch(
+    ctx: &GpuContext,
+    entry_point: &str,
+    entries: &[wgpu::BindGroupLayoutEntry],
+    resources: Vec<wgpu::BindGroupEntry<'_>>,
+    count: usize,
+    output: &wgpu::Buffer,
+) -> Result<Vec<u8>, GpuError> {
+    let groups = workgroups(ctx, count)?;
+    let device = &ctx.device;
+    let module = probe_module(ctx);
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(entry_point),
+        entries,
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(entry_point),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry_point),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some(entry_point),
+        compilation_options: wgpu::PipelineCompilationOptions::default(),
+        cache: None,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(entry_point),
+        layout: &layout,
+        entries: &resources,
+    });
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("probe readback"),
+        size: output.size(),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some(entry_point),
+    });
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(entry_point),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups(groups, 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(output, 0, &readback, 0, output.size());
+    ctx.queue.submit([encoder.finish()]);
+    let bytes = ctx.read_buffer(&readback)?;
+    ctx.take_errors()?;
+    Ok(bytes)
+}
+
+/// Evaluates every physics kernel of `physics.wgsl` on the GPU for each case.
+///
+/// # Errors
+/// [`GpuError::Limits`] when the cases exceed the device's buffer or dispatch limits,
+/// [`GpuError::Wgpu`] for wgpu validation errors, [`GpuError::Readback`] when reading fails.
+pub fn run_physics_probe(
+    ctx: &GpuContext,
+    cases: &[PhysicsProbeCase],
+) -> Result<Vec<PhysicsProbeResult>, GpuError> {
+    if cases.is_empty() {
+        return Ok(Vec::new());
+    }
+    let inputs: Vec<GpuPhysicsProbeInput> = cases.iter().map(PhysicsProbeCase::to_gpu).collect();
+    let output_size = std::mem::size_of_val(inputs.as_slice()) / size_of::<GpuPhysicsProbeInput>()
+        * size_of::<GpuPhysicsProbeOutput>();
+    check_binding_size(ctx, std::mem::size_of_val(inputs.as_slice()))?;
+    check_binding_size(ctx, output_size)?;
+    let input = ctx
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("physics probe inputs"),
+            contents: bytemuck::cast_slice(&inputs),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+    let output = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("physics probe outputs"),
+        size: output_size as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let bytes = dispatch(
+        ctx,
+        "physics_probe",
+        &[storage_entry(0, true), storage_entry(1, false)],
+        vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+        ],
+        cases.len(),
+        &output,
+    )?;
+    let outputs: Vec<GpuPhysicsProbeOutput> = bytemuck::pod_collect_to_vec(&bytes);
+    Ok(outputs.into_iter().map(PhysicsProbeResult::from).collect())
+}
+
+/// The `lut_sample` parameters of `lut`: (ln T_min, ln T_max, N, 0) in `f32`, as
+/// `FrameUniforms::lut` holds them.
+#[must_use]
+pub fn lut_params(lut: &TemperatureLut) -> [f32; 4] {
+    [
+        lut.t_min().ln() as f32,
+        lut.t_max().ln() as f32,
+        lut.size() as f32,
+        0.0,
+    ]
+}
+
+/// Uploads `lut` as the 1D `rgba32float` texture `lut_sample` reads (usage `TEXTURE_BINDING`,
+/// bound with sample type `Float { filterable: false }`, view dimension `D1`).
+///
+/// # Errors
+/// [`GpuError::Limits`] when the table is wider than the device's 1D texture limit.
+pub fn lut_texture(ctx: &GpuContext, lut: &TemperatureLut) -> Result<wgpu::Texture, GpuError> {
+    let max = ctx.device.limits().max_texture_dimension_1d;
+    let width = u32::try_from(lut.size())
+        .ok()
+        .filter(|&w| w <= max)
+        .ok_or_else(|| {
+            GpuError::Limits(format!(
+                "a colour table of {} texels exceeds the device's 1D texture limit of {max}",
+                lut.size()
+            ))
+        })?;
+    let size = wgpu::Extent3d {
+        width,
+        height: 1,
+        depth_or_array_layers: 1,
+    };
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("temperature LUT"),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D1,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    ctx.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: &texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytemuck::cast_slice(lut.texels()),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(width * 16),
+            rows_per_image: None,
+        },
+        size,
+    );
+    Ok(texture)
+}
+
+/// Samples `lut` on the GPU (`lut_sample` of `colour.wgsl`) at each temperature in kelvin.
+///
+/// # Errors
+/// [`GpuError::Limits`] when the table or the inputs exceed the device's limits,
+/// [`GpuError::Wgpu`] for wgpu validation errors, [`GpuError::Readback`] when reading fails.
+pub fn run_lut_probe(
+    ctx: &GpuContext,
+    lut: &TemperatureLut,
+    temperatures: &[f32],
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    if temperatures.is_empty() {
+        return Ok(Vec::new());
+    }
+    let output_size = temperatures.len() * size_of::<[f32; 4]>();
+    check_binding_size(ctx, output_size)?;
+    let texture = lut_texture(ctx, lut)?;
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D1),
+        ..Default::default()
+    });
+    let device = &ctx.device;
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("LUT probe temperatures"),
+        contents: bytemuck::cast_slice(temperatures),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("LUT probe parameters"),
+        contents: bytemuck::cast_slice(&lut_params(lut)),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("LUT probe colours"),
+        size: output_size as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let entries = [
+        storage_entry(2, true),
+        storage_entry(3, false),
+        wgpu::BindGroupLayoutEntry {
+            binding: 4,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D1,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 5,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+    ];
+    let bytes = dispatch(
+        ctx,
+        "lut_probe",
+        &entries,
+        vec![
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: output.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: params.as_entire_binding(),
+            },
+        ],
+        temperatures.len(),
+        &output,
+    )?;
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}
+
+/// How far (in texels) the GPU's table position x = u (N − 1) may stray from the CPU's for
+/// `lut`: (N − 1) E / ln(T_max / T_min) + 2 u (N − 1).
+///
+/// E bounds the GPU's error in ln T − ln T_min, in the range where u is not clamped
+/// (|ln T| ≤ M = max(|ln T_min|, |ln T_max|)): WGSL's `log` is accurate to 3 ulp ≤ 6 u M (plus
+/// 2⁻²¹ absolute for T in [0.5, 2]), ln T_min and ln T_max are stored rounded (u M each), and the
+/// subtraction and the division by ln T_max − ln T_min round at 2 M: E = 12 u M (+ 2⁻²¹). The
+/// last term covers the rounding of the quotient and of x itself. For the default table
+/// (100 K to 10⁶ K, 4096 texels) this is 0.005 texels.
+#[must_use]
+pub fn lut_position_tolerance(lut: &TemperatureLut) -> f64 {
+    let (ln_min, ln_max) = (lut.t_min().ln(), lut.t_max().ln());
+    let m = ln_min.abs().max(ln_max.abs());
+    let near_one = if lut.t_min() < 2.0 && lut.t_max() > 0.5 {
+        2f64.powi(-21)
+    } else {
+        0.0
+    };
+    let e = 12.0 * F32_UNIT_ROUNDOFF * m + near_one;
+    let last = (lut.size() - 1) as f64;
+    last * e / (ln_max - ln_min) + 2.0 * F32_UNIT_ROUNDOFF * last
+}
+
+/// The largest change of any channel between neighbouring texels of `lut`.
+#[must_use]
+pub fn lut_max_step(lut: &TemperatureLut) -> f32 {
+    lut.texels()
+        .windows(2)
+        .flat_map(|w| (0..4).map(move |k| (w[1][k] - w[0][k]).abs()))
+        .fold(0.0, f32::max)
+}
+
+/// Per-channel tolerance of [`run_lut_probe`] against [`TemperatureLut::sample`]: the colour
+/// change over [`lut_position_tolerance`] texels at the steepest step of the table
+/// ([`lut_max_step`]), plus the rounding of the lerp itself (2 u, on values ≤ 1).
+#[must_use]
+pub fn lut_tolerance(lut: &TemperatureLut) -> f32 {
+    (lut_position_tolerance(lut) * f64::from(lut_max_step(lut)) + 2.0 * F32_UNIT_ROUNDOFF) as f32
+}

@@ -1,0 +1,256 @@
+//! The `#[repr(C)]` twins in `srt_gpu::types` and `srt_gpu::probe` have exactly the memory layout
+//! naga computes for their WGSL structs: size, and every member's name, offset, size and scalar
+//! type, in every composed shader that defines the struct.
+//!
+//! Adding a struct is one line in [`table`].
+
+use std::mem::{offset_of, size_of};
+
+use naga::proc::Layouter;
+use naga::{Module, ScalarKind, TypeInner};
+use srt_gpu::probe::{GpuPhysicsProbeInput, GpuPhysicsProbeOutput};
+use srt_gpu::types::{
+    FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PartUniforms,
+};
+
+/// What a member's components are, as both sides can tell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Leaf {
+    F32,
+    U32,
+    I32,
+    /// A nested struct, by its WGSL name.
+    Struct(&'static str),
+}
+
+/// The leaf type of a Rust field.
+trait HasLeaf {
+    const LEAF: Leaf;
+}
+
+impl HasLeaf for f32 {
+    const LEAF: Leaf = Leaf::F32;
+}
+impl HasLeaf for u32 {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for i32 {
+    const LEAF: Leaf = Leaf::I32;
+}
+impl<T: HasLeaf, const N: usize> HasLeaf for [T; N] {
+    const LEAF: Leaf = T::LEAF;
+}
+impl HasLeaf for GpuFrame {
+    const LEAF: Leaf = Leaf::Struct("Frame");
+}
+
+/// One member as the Rust side lays it out.
+#[derive(Debug, PartialEq, Eq)]
+struct Member {
+    name: &'static str,
+    offset: usize,
+    size: usize,
+    leaf: Leaf,
+}
+
+/// A Rust struct's layout, to compare with the WGSL struct `wgsl`.
+struct Twin {
+    rust: &'static str,
+    wgsl: &'static str,
+    size: usize,
+    members: Vec<Member>,
+}
+
+fn field<T, F: HasLeaf>(_: fn(&T) -> &F) -> (usize, Leaf) {
+    (size_of::<F>(), F::LEAF)
+}
+
+/// `twin!(RustType => "WgslName" { field, … })`: the Rust layout of the listed fields, which
+/// must be all of them, in WGSL member order, with the WGSL member names.
+macro_rules! twin {
+    ($ty:ty => $wgsl:literal { $($field:ident),+ $(,)? }) => {
+        Twin {
+            rust: stringify!($ty),
+            wgsl: $wgsl,
+            size: size_of::<$ty>(),
+            members: vec![$({
+                let (size, leaf) = field(|v: &$ty| &v.$field);
+                Member { name: stringify!($field), offset: offset_of!($ty, $field), size, leaf }
+            }),+],
+        }
+    };
+}
+
+/// Every GPU struct and its WGSL twin.
+fn table() -> Vec<Twin> {
+    vec![
+        twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
+        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, modes, depth_scale }),
+        twin!(ObjectUniforms => "ObjectUniforms" { frame, style }),
+        twin!(PartUniforms => "PartUniforms" { base_color, flags }),
+        twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
+        twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, padding }),
+        twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
+        twin!(GpuPhysicsProbeOutput => "PhysicsProbeOutput" { to_observer, to_rest, emission_event, apparent_position, apparent_tangent, aberrate, ray_origin, ray_direction, scalars }),
+    ]
+}
+
+/// The leaf type of a WGSL type, or a description of why it has none we can compare.
+fn wgsl_leaf(module: &Module, ty: naga::Handle<naga::Type>) -> Result<Leaf, String> {
+    let inner = &module.types[ty].inner;
+    let scalar = match inner {
+        TypeInner::Scalar(s)
+        | TypeInner::Vector { scalar: s, .. }
+        | TypeInner::Matrix { scalar: s, .. } => *s,
+        TypeInner::Array { base, .. } => return wgsl_leaf(module, *base),
+        TypeInner::Struct { .. } => {
+            let name = module.types[ty].name.clone().unwrap_or_default();
+            return Ok(Leaf::Struct(name.leak()));
+        }
+        other => return Err(format!("{other:?}")),
+    };
+    match (scalar.kind, scalar.width) {
+        (ScalarKind::Float, 4) => Ok(Leaf::F32),
+        (ScalarKind::Uint, 4) => Ok(Leaf::U32),
+        (ScalarKind::Sint, 4) => Ok(Leaf::I32),
+        other => Err(format!("{other:?}")),
+    }
+}
+
+/// The WGSL layout of struct `name` in `module`, if it defines one, as (size, members).
+fn wgsl_layout(module: &Module, layouter: &Layouter, name: &str) -> Option<(usize, Vec<Member>)> {
+    let (handle, ty) = module
+        .types
+        .iter()
+        .find(|(_, ty)| ty.name.as_deref() == Some(name))?;
+    let TypeInner::Struct { members, span } = &ty.inner else {
+        panic!("WGSL type {name} is not a struct: {:?}", ty.inner);
+    };
+    let size = layouter[handle].size as usize;
+    assert_eq!(
+        size, *span as usize,
+        "naga's layouter and struct span disagree for {name}"
+    );
+    let members = members
+        .iter()
+        .map(|m| Member {
+            name: m.name.clone().unwrap_or_default().leak(),
+            offset: m.offset as usize,
+            size: layouter[m.ty].size as usize,
+            leaf: wgsl_leaf(module, m.ty)
+                .unwrap_or_else(|e| panic!("{name}.{:?}: unsupported type {e}", m.name)),
+        })
+        .collect();
+    Some((size, members))
+}
+
+#[test]
+fn rust_twins_match_naga_layouts() {
+    let shaders: Vec<(&str, Module, Layouter)> = srt_gpu::shaders::all()
+        .into_iter()
+        .map(|(name, source)| {
+            let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
+                panic!(
+                    "{name} does not parse (see tests/shaders.rs):\n{}",
+                    e.emit_to_string(&source)
+                )
+            });
+            let mut layouter = Layouter::default();
+            layouter
+                .update(module.to_ctx())
+                .unwrap_or_else(|e| panic!("{name}: layout failed: {e:?}"));
+            (name, module, layouter)
+        })
+        .collect();
+    let mut failures = Vec::new();
+    for twin in table() {
+        let mut found_in = Vec::new();
+        for (shader, module, layouter) in &shaders {
+            let Some((size, members)) = wgsl_layout(module, layouter, twin.wgsl) else {
+                continue;
+            };
+            found_in.push(*shader);
+            if size != twin.size {
+                failures.push(format!(
+                    "{} is {} bytes but WGSL {} in shader {shader} is {size}",
+                    twin.rust, twin.size, twin.wgsl
+                ));
+            }
+            if members != twin.members {
+                let rows = |ms: &[Member]| {
+                    ms.iter()
+                        .map(|m| {
+                            format!(
+                                "    {:<20} offset {:>4} size {:>4} {:?}",
+                                m.name, m.offset, m.size, m.leaf
+                            )
+                        })
+                        .collect::<Vec<_>>()
+                        .join("\n")
+                };
+                failures.push(format!(
+                    "{} and WGSL {} (shader {shader}) differ.\n  Rust:\n{}\n  WGSL:\n{}",
+                    twin.rust,
+                    twin.wgsl,
+                    rows(&twin.members),
+                    rows(&members)
+                ));
+            }
+        }
+        if found_in.is_empty() {
+            failures.push(format!(
+                "no shader in shaders::all() defines WGSL struct {} (twin of {})",
+                twin.wgsl, twin.rust
+            ));
+        } else {
+            println!(
+                "{} ↔ {}: {} bytes, {} members, checked in {}",
+                twin.rust,
+                twin.wgsl,
+                twin.size,
+                twin.members.len(),
+                found_in.join(", ")
+            );
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+#[test]
+fn a_layout_mismatch_is_detected() {
+    // Guards the comparison against passing vacuously: vec3 + f32 packs into 16 bytes in WGSL,
+    // and a Rust struct that puts the f32 at 16 must be reported.
+    let module =
+        naga::front::wgsl::parse_str("struct S { a: vec3<f32>, b: f32, c: vec2<u32> }").unwrap();
+    let mut layouter = Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let (size, members) = wgsl_layout(&module, &layouter, "S").unwrap();
+    assert_eq!(size, 32, "rounded up to the 16-byte alignment of vec3");
+    assert_eq!(
+        members[1],
+        Member {
+            name: "b",
+            offset: 12,
+            size: 4,
+            leaf: Leaf::F32
+        }
+    );
+    assert_eq!(
+        members[2],
+        Member {
+            name: "c",
+            offset: 16,
+            size: 8,
+            leaf: Leaf::U32
+        }
+    );
+    assert_ne!(
+        members[1],
+        Member {
+            name: "b",
+            offset: 16,
+            size: 4,
+            leaf: Leaf::F32
+        }
+    );
+}

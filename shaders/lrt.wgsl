@@ -1,0 +1,74 @@
+// lrt.wgsl — local ray tracing (§4.2, Algorithm 1): the footprints of the proxy pass are drawn
+// instanced (WebGPU has no geometry shader); every fragment traces its own viewing ray in the
+// triangle's rest frame S′ (Eq. 3, 5, 15–16), maps the hit back to S (Eq. 7–8), writes the
+// apparent distance as depth and shades (Eq. 17–18). Mirror: crates/srt-trace (Tracer::trace
+// and Tracer::shade for a single triangle).
+
+@group(3) @binding(0) var<storage, read> footprints: array<Footprint>;
+// Fragments shaded, for the overdraw figure of `cargo xtask bench`.
+@group(3) @binding(1) var<storage, read_write> fragment_count: atomic<u32>;
+
+struct LrtVarying {
+    @builtin(position) position: vec4<f32>,
+    @location(0) @interpolate(flat) triangle: u32,
+}
+
+struct LrtOutput {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// Footprint corner `v` (0–11: four fan triangles of the hull, or two of the rectangle) in pixels.
+fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
+    let use_rect = frame_uniforms.modes.y == 1u || f.whole_screen == 1u || f.hull_len < 3u;
+    let triangle = v / 3u;
+    let corner = v % 3u;
+    if (use_rect) {
+        let r = f.rect;
+        let quad = array<vec2<f32>, 6>(r.xy, vec2<f32>(r.z, r.y), r.zw, r.xy, r.zw, vec2<f32>(r.x, r.w));
+        return select(r.xy, quad[min(v, 5u)], v < 6u);
+    }
+    if (triangle + 2u >= f.hull_len) {
+        return f.hull[0];
+    }
+    return f.hull[select(0u, triangle + corner, corner > 0u)];
+}
+
+@vertex
+fn lrt_vertex(@builtin(vertex_index) v: u32, @builtin(instance_index) t: u32) -> LrtVarying {
+    let pixel = footprint_corner(footprints[t], v);
+    let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
+    return LrtVarying(vec4<f32>(ndc, 0.5, 1.0), t);
+}
+
+@fragment
+fn lrt_fragment(in: LrtVarying) -> LrtOutput {
+    atomicAdd(&fragment_count, 1u);
+    let t = in.triangle;
+    let pixel = in.position.xy;
+    let ray = backward_ray(object.frame, view_direction(pixel));
+    let corners = triangle_corners(t);
+    let hit = intersect_triangle(ray.origin, ray.direction, corners);
+    if (!hit.found) {
+        discard;
+    }
+    // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
+    var uv_ddx = vec2<f32>(0.0);
+    var uv_ddy = vec2<f32>(0.0);
+    if (part.flags.x == 1u && object.style.x <= 0.0) {
+        let uv = triangle_uv(t, hit.zeta, hit.xi);
+        let rx = backward_ray(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0)));
+        let ry = backward_ray(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0)));
+        let cx = plane_coordinates(rx.origin, rx.direction, corners);
+        let cy = plane_coordinates(ry.origin, ry.direction, corners);
+        uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, cx.x, cx.y) - uv, cx.z == 1.0);
+        uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, cy.x, cy.y) - uv, cy.z == 1.0);
+    }
+    let emission = vec4<f32>(ray.ct_origin - hit.distance, ray.origin + hit.distance * ray.direction);
+    let apparent = to_observer(object.frame, emission).yzw;
+    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy);
+    var out: LrtOutput;
+    out.color = vec4<f32>(shade(t, hit.zeta, hit.xi, apparent, albedo), 1.0);
+    out.depth = clamp(apparent_distance(object.frame, ray, hit.distance) * frame_uniforms.depth_scale.x, 0.0, 1.0);
+    return out;
+}

@@ -1,0 +1,32 @@
+// polygon.wgsl — special relativistic polygon rendering (§3.2), the baseline the paper compares
+// against: every vertex is mapped through the photo-object map R (Eq. 8) and the apparent
+// triangles are rasterised as straight triangles, with attributes interpolated linearly. Only as
+// exact as the mesh is fine. Shading is the same as in lrt.wgsl.
+
+struct PolygonVarying {
+    @builtin(position) position: vec4<f32>,
+    @location(0) @interpolate(flat) triangle: u32,
+    // Barycentric (ζ, ξ) in the rest triangle.
+    @location(1) barycentric: vec2<f32>,
+    // Apparent position in S.
+    @location(2) apparent: vec3<f32>,
+}
+
+@vertex
+fn polygon_vertex(@builtin(vertex_index) v: u32) -> PolygonVarying {
+    let t = v / 3u;
+    let k = v % 3u;
+    let rest = vertices[indices[v]].position.xyz;
+    let apparent = apparent_position(object.frame, rest);
+    let barycentric = array<vec2<f32>, 3>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 1.0));
+    return PolygonVarying(frame_uniforms.view_projection * vec4<f32>(apparent, 1.0), t, barycentric[k], apparent);
+}
+
+@fragment
+fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
+    let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
+    let uv_ddx = dpdx(uv);
+    let uv_ddy = dpdy(uv);
+    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, uv_ddx, uv_ddy);
+    return vec4<f32>(shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo), 1.0);
+}

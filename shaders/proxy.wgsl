@@ -1,0 +1,160 @@
+// proxy.wgsl — §4.1: the conservative image-space footprint of every apparent triangle of one
+// mesh part, one invocation per triangle. The f32 mirror of crates/srt-proxy (f64), with one
+// addition: the result is dilated by FOOTPRINT_MARGIN pixels to absorb f32 rounding, so that it
+// stays conservative (the validation checks it against the f64 footprint).
+
+@group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
+
+// Clip-space w at or below which a point counts as at or behind the camera.
+const MIN_CLIP_W: f32 = 1e-6;
+// Outward dilation of rectangle and hull, in pixels.
+const FOOTPRINT_MARGIN: f32 = 0.25;
+
+// Pixel position of a point in S (xy) and whether it is in front of the camera (z = 1).
+fn project_point(p: vec3<f32>) -> vec3<f32> {
+    let clip = frame_uniforms.view_projection * vec4<f32>(p, 1.0);
+    if (!(clip.w > MIN_CLIP_W)) {
+        return vec3<f32>(0.0);
+    }
+    let ndc = clip.xy / clip.w;
+    let pixel = vec2<f32>((ndc.x + 1.0) * 0.5 * frame_uniforms.viewport.x, (1.0 - ndc.y) * 0.5 * frame_uniforms.viewport.y);
+    if (!(abs(pixel.x) < 1e30 && abs(pixel.y) < 1e30)) {
+        return vec3<f32>(0.0);
+    }
+    return vec3<f32>(pixel, 1.0);
+}
+
+// Intersection of the coplanar lines a + s·ta and b + t·tb; the midpoint when parallel.
+fn tangent_intersection(a: vec3<f32>, ta: vec3<f32>, b: vec3<f32>, tb: vec3<f32>) -> vec3<f32> {
+    let n = cross(ta, tb);
+    let n2 = dot(n, n);
+    if (n2 <= 1e-12 * dot(ta, ta) * dot(tb, tb)) {
+        return 0.5 * (a + b);
+    }
+    let s = dot(cross(b - a, tb), n) / n2;
+    return a + s * ta;
+}
+
+fn turn(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
+    let u = b - a;
+    let v = c - a;
+    return u.x * v.y - u.y * v.x;
+}
+
+fn whole_screen_footprint() -> Footprint {
+    var f: Footprint;
+    let w = frame_uniforms.viewport.x;
+    let h = frame_uniforms.viewport.y;
+    f.hull[0] = vec2<f32>(0.0, 0.0);
+    f.hull[1] = vec2<f32>(w, 0.0);
+    f.hull[2] = vec2<f32>(w, h);
+    f.hull[3] = vec2<f32>(0.0, h);
+    f.hull_len = 4u;
+    f.rect = vec4<f32>(0.0, 0.0, w, h);
+    f.whole_screen = 1u;
+    return f;
+}
+
+@compute @workgroup_size(64)
+fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    // Large parts are dispatched as a 2D grid of workgroups.
+    let t = id.x + id.y * groups.x * 64u;
+    if (t >= part.flags.z) {
+        return;
+    }
+    let rest = triangle_corners(t);
+    // Back-face culling in S′, exact for closed meshes: every viewing ray starts at the
+    // observer's rest-frame position, so a triangle facing away from it is hidden behind the
+    // rest of the solid. An empty footprint draws nothing.
+    if (part.flags.w == 1u && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
+        var culled: Footprint;
+        culled.hull_len = 0u;
+        culled.whole_screen = 0u;
+        culled.rect = vec4<f32>(0.0);
+        footprints[t] = culled;
+        return;
+    }
+    var corners: array<vec3<f32>, 3>;
+    for (var i = 0u; i < 3u; i++) {
+        corners[i] = apparent_position(object.frame, rest[i]);
+    }
+    // Six points P1, G12, P2, G23, P3, G31, projected.
+    var points: array<vec2<f32>, 6>;
+    for (var i = 0u; i < 3u; i++) {
+        let j = (i + 1u) % 3u;
+        let edge = rest[j] - rest[i];
+        let ti = apparent_tangent(object.frame, rest[i], edge);
+        let tj = apparent_tangent(object.frame, rest[j], -edge);
+        let g = tangent_intersection(corners[i], ti, corners[j], tj);
+        let pp = project_point(corners[i]);
+        let pg = project_point(g);
+        if (pp.z == 0.0 || pg.z == 0.0) {
+            footprints[t] = whole_screen_footprint();
+            return;
+        }
+        points[2u * i] = pp.xy;
+        points[2u * i + 1u] = pg.xy;
+    }
+    var f: Footprint;
+    var lo = points[0];
+    var hi = points[0];
+    for (var i = 1u; i < 6u; i++) {
+        lo = min(lo, points[i]);
+        hi = max(hi, points[i]);
+    }
+    f.rect = vec4<f32>(lo - FOOTPRINT_MARGIN, hi + FOOTPRINT_MARGIN);
+    // Andrew's monotone chain on six points: insertion sort by (x, y), then both chains.
+    for (var i = 1u; i < 6u; i++) {
+        let p = points[i];
+        var j = i;
+        while (j > 0u && (points[j - 1u].x > p.x || (points[j - 1u].x == p.x && points[j - 1u].y > p.y))) {
+            points[j] = points[j - 1u];
+            j--;
+        }
+        points[j] = p;
+    }
+    var chain: array<vec2<f32>, 12>;
+    var k = 0u;
+    for (var i = 0u; i < 6u; i++) {
+        while (k >= 2u && turn(chain[k - 2u], chain[k - 1u], points[i]) <= 0.0) {
+            k--;
+        }
+        chain[k] = points[i];
+        k++;
+    }
+    let lower = k + 1u;
+    for (var n = 0u; n < 5u; n++) {
+        let i = 4u - n;
+        while (k >= lower && turn(chain[k - 2u], chain[k - 1u], points[i]) <= 0.0) {
+            k--;
+        }
+        chain[k] = points[i];
+        k++;
+    }
+    let len = min(k - 1u, 6u);
+    if (len < 3u) {
+        // Degenerate in f32: fall back to the (dilated, hence non-empty) rectangle.
+        f.hull[0] = f.rect.xy;
+        f.hull[1] = vec2<f32>(f.rect.z, f.rect.y);
+        f.hull[2] = f.rect.zw;
+        f.hull[3] = vec2<f32>(f.rect.x, f.rect.w);
+        f.hull_len = 4u;
+    } else {
+        // Dilate: move each vertex along its miter so both adjacent edges shift outward.
+        for (var i = 0u; i < len; i++) {
+            let prev = chain[(i + len - 1u) % len];
+            let here = chain[i];
+            let next = chain[(i + 1u) % len];
+            let e1 = normalize(here - prev);
+            let e2 = normalize(next - here);
+            // Outward normals of a counter-clockwise polygon (y-up reading): (e.y, −e.x).
+            let n1 = vec2<f32>(e1.y, -e1.x);
+            let n2 = vec2<f32>(e2.y, -e2.x);
+            let miter = (n1 + n2) / max(1.0 + dot(n1, n2), 1e-3);
+            f.hull[i] = here + FOOTPRINT_MARGIN * miter;
+        }
+        f.hull_len = len;
+    }
+    f.whole_screen = 0u;
+    footprints[t] = f;
+}

@@ -1,0 +1,34 @@
+// render_bindings.wgsl — resources shared by the proxy, LRT and polygon passes (groups 0–2;
+// each pass declares its own group 3). The bind group layouts are built in
+// crates/srt-gpu/src/pipelines.rs and must match.
+
+@group(0) @binding(0) var<uniform> frame_uniforms: FrameUniforms;
+@group(0) @binding(1) var lut_table: texture_1d<f32>;
+
+@group(1) @binding(0) var<uniform> object: ObjectUniforms;
+
+@group(2) @binding(0) var<uniform> part: PartUniforms;
+@group(2) @binding(1) var<storage, read> vertices: array<Vertex>;
+@group(2) @binding(2) var<storage, read> indices: array<u32>;
+@group(2) @binding(3) var part_texture: texture_2d<f32>;
+@group(2) @binding(4) var part_sampler: sampler;
+
+// Rest-frame corners of triangle `t` of the current part.
+fn triangle_corners(t: u32) -> array<vec3<f32>, 3> {
+    return array<vec3<f32>, 3>(
+        vertices[indices[3u * t]].position.xyz,
+        vertices[indices[3u * t + 1u]].position.xyz,
+        vertices[indices[3u * t + 2u]].position.xyz,
+    );
+}
+
+// Viewing direction in S through the framebuffer position `pixel` (x right, y down, pixel
+// centres at half-integers); mirrors srt_scene::Observer::view_direction.
+fn view_direction(pixel: vec2<f32>) -> vec3<f32> {
+    let ndc = vec2<f32>(
+        2.0 * pixel.x * frame_uniforms.viewport.z - 1.0,
+        1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w,
+    );
+    return frame_uniforms.camera_forward.xyz + ndc.x * frame_uniforms.camera_right.xyz
+        + ndc.y * frame_uniforms.camera_up.xyz;
+}

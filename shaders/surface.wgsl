@@ -1,0 +1,120 @@
+// surface.wgsl — ray–triangle intersection (Eq. 15–16) and relativistic shading (Eq. 17–18):
+// the f32 mirror of crates/srt-trace (intersect.rs, shade.rs and Tracer::shade).
+
+struct TriangleHit {
+    found: bool,
+    distance: f32,
+    zeta: f32,
+    xi: f32,
+}
+
+// Eq. 16 by Cramer's rule with unnormalised spans σ = p1 − p0, τ = p2 − p0 (ζ, ξ barycentric).
+fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
+    let miss = TriangleHit(false, 0.0, 0.0, 0.0);
+    let sigma = p[1] - p[0];
+    let tau = p[2] - p[0];
+    let b = origin - p[0];
+    let q1 = cross(direction, tau);
+    let det = dot(sigma, q1);
+    if (det == 0.0) {
+        return miss;
+    }
+    let inv = 1.0 / det;
+    let zeta = dot(b, q1) * inv;
+    if (zeta < 0.0 || zeta > 1.0) {
+        return miss;
+    }
+    let q2 = cross(b, sigma);
+    let xi = dot(direction, q2) * inv;
+    if (xi < 0.0 || zeta + xi > 1.0) {
+        return miss;
+    }
+    let distance = dot(tau, q2) * inv;
+    if (!(distance > 0.0)) {
+        return miss;
+    }
+    return TriangleHit(true, distance, zeta, xi);
+}
+
+// Barycentric (ζ, ξ) where a line meets the triangle's plane; z = 0 when parallel.
+fn plane_coordinates(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> vec3<f32> {
+    let sigma = p[1] - p[0];
+    let tau = p[2] - p[0];
+    let b = origin - p[0];
+    let q1 = cross(direction, tau);
+    let det = dot(sigma, q1);
+    if (det == 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let q2 = cross(b, sigma);
+    return vec3<f32>(dot(b, q1) / det, dot(direction, q2) / det, 1.0);
+}
+
+// Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.
+fn grey_value(c: vec4<f32>) -> f32 {
+    return 0.3 * c.x + 0.59 * c.y + 0.11 * c.z;
+}
+
+// Interpolated texture coordinates of triangle `t` at barycentric (ζ, ξ).
+fn triangle_uv(t: u32, zeta: f32, xi: f32) -> vec2<f32> {
+    let a = vertices[indices[3u * t]].uv.xy;
+    let b = vertices[indices[3u * t + 1u]].uv.xy;
+    let c = vertices[indices[3u * t + 2u]].uv.xy;
+    return (1.0 - zeta - xi) * a + zeta * b + xi * c;
+}
+
+// Surface colour (texel × base × vertex colour, or the wireframe pattern) of triangle `t` at
+// (ζ, ξ), with texture-coordinate derivatives per pixel.
+fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f32>) -> vec4<f32> {
+    let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
+    let wireframe = object.style.x;
+    if (wireframe > 0.0) {
+        let p = triangle_corners(t);
+        let twice_area = length(cross(p[1] - p[0], p[2] - p[0]));
+        let heights = twice_area / vec3<f32>(length(p[2] - p[1]), length(p[0] - p[2]), length(p[1] - p[0]));
+        let near_edge = any(w * heights < vec3<f32>(wireframe));
+        return select(vec4<f32>(1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), near_edge);
+    }
+    var albedo = part.base_color;
+    if (part.flags.y == 1u) {
+        let c = w.x * vertices[indices[3u * t]].color + w.y * vertices[indices[3u * t + 1u]].color
+            + w.z * vertices[indices[3u * t + 2u]].color;
+        albedo *= c;
+    }
+    if (part.flags.x == 1u) {
+        albedo *= textureSampleGrad(part_texture, part_sampler, triangle_uv(t, zeta, xi), uv_ddx, uv_ddy);
+    }
+    return albedo;
+}
+
+// Display colour of a surface point (§4.2): Phong in S′ with aberrated directions, combined
+// Doppler factor (Eq. 17), colour table at D·T_light, C = f_ar · C_sRGB (Eq. 18).
+fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> vec3<f32> {
+    let beta = object.frame.beta_gamma.xyz;
+    let incident = normalize(apparent - frame_uniforms.light.xyz);
+    let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
+    var doppler = 1.0;
+    if (frame_uniforms.modes.x != 0u) {
+        doppler = reflection_doppler(beta, incident, outgoing);
+    }
+    let to_light = -normalize(aberrate(-beta, incident));
+    let to_observer = normalize(aberrate(-beta, outgoing));
+    let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
+    var normal = normalize(w.x * vertices[indices[3u * t]].normal.xyz + w.y * vertices[indices[3u * t + 1u]].normal.xyz
+        + w.z * vertices[indices[3u * t + 2u]].normal.xyz);
+    if (dot(normal, to_observer) < 0.0) {
+        normal = -normal;
+    }
+    let cos_light = dot(normal, to_light);
+    var diffuse = 0.0;
+    var specular = 0.0;
+    let s = frame_uniforms.shading;
+    if (cos_light > 0.0) {
+        let reflected = 2.0 * cos_light * normal - to_light;
+        diffuse = s.y * cos_light;
+        specular = s.z * pow(max(dot(reflected, to_observer), 0.0), s.w);
+    }
+    let f_ar = 0.5 * (grey_value(albedo) + 1.0) * (s.x + diffuse + specular);
+    let c = lut_sample(lut_table, frame_uniforms.lut, doppler * frame_uniforms.light.w).xyz;
+    return clamp(f_ar * c, vec3<f32>(0.0), vec3<f32>(1.0));
+}

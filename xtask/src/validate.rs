@@ -1,0 +1,289 @@
+//! `cargo xtask validate`: every GPU pass against its CPU mirror on the current adapter.
+//!
+//! 1. physics kernels and colour-table sampling (`srt-gpu` probe pass vs `srt-physics` /
+//!    `srt-color`, f32 vs f64): worst relative error per kernel against its tolerance;
+//! 2. the proxy pass against `srt-proxy`: every GPU footprint must contain the f64 footprint;
+//! 3. images: every built-in scene and three assimp models at 0.5c, 0.9c and 0.99c, GPU local ray
+//!    tracing and the polygon method against the exact CPU reference. The metric is the fraction
+//!    of pixels differing by more than 2/255 in any channel, not counting pixels within 1 px of a
+//!    silhouette edge of the CPU image. PNGs go to `target/validate/`.
+//!
+//! Exits non-zero if any LRT mismatch exceeds 0.001, any kernel its tolerance, or any footprint
+//! is not conservative.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context as _;
+use glam::DVec2;
+use image::RgbImage;
+use srt_gpu::probe::{
+    compare_physics, lut_tolerance, run_lut_probe, run_physics_probe, seeded_cases,
+};
+use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
+use srt_proxy::{Viewport, footprint};
+use srt_scene::Scene;
+use srt_trace::compare::compare;
+use srt_trace::{RenderSettings, Tracer};
+
+use crate::cases::{Case, builtin_cases, model_case, with_speed};
+
+/// Image size of the image comparisons.
+const WIDTH: u32 = 640;
+const HEIGHT: u32 = 360;
+/// Channel tolerance (steps of 1/255) and silhouette margin (pixels) of the image metric.
+const TOLERANCE: u8 = 2;
+const EDGE_MARGIN: u32 = 1;
+/// Largest LRT mismatch accepted.
+const MAX_MISMATCH: f64 = 0.001;
+/// Speeds of the image cases.
+const SPEEDS: [f64; 3] = [0.5, 0.9, 0.99];
+/// The assimp models of the image cases.
+const MODELS: [&str; 3] = [
+    "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+    "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+    "OBJ/WusonOBJ.obj",
+];
+/// How far (pixels) a CPU footprint point may lie outside the GPU hull before it counts as a
+/// failure: the GPU dilates by 0.25 px, so this only absorbs rounding.
+const HULL_TOLERANCE: f64 = 1e-2;
+
+/// Runs the validation; returns an error (non-zero exit) when any check fails.
+///
+/// # Errors
+/// When no GPU is available, a model is missing, or a check fails.
+pub fn run(workspace: &Path) -> anyhow::Result<()> {
+    let ctx = GpuContext::new()
+        .context("cargo xtask validate needs a GPU adapter (software ones count)")?;
+    println!("adapter: {}", ctx.adapter_summary());
+    let mut failures = Vec::new();
+    failures.extend(validate_kernels(&ctx)?);
+    let out = workspace.join("target/validate");
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let mut cases = Vec::new();
+    for case in builtin_cases()? {
+        for speed in SPEEDS {
+            cases.push((
+                Case {
+                    name: case.name.clone(),
+                    scene: with_speed(&case.scene, speed)?,
+                },
+                speed,
+            ));
+        }
+    }
+    for model in MODELS {
+        for speed in SPEEDS {
+            cases.push((model_case(model, speed)?, speed));
+        }
+    }
+    for (case, speed) in &cases {
+        failures.extend(validate_footprints(&ctx, case)?);
+        failures.extend(validate_image(&ctx, case, *speed, &out)?);
+    }
+    ctx.take_errors()?;
+    if failures.is_empty() {
+        println!(
+            "validate: all {} image cases, footprints and kernels agree",
+            cases.len()
+        );
+        Ok(())
+    } else {
+        anyhow::bail!("validate failed:\n  {}", failures.join("\n  "))
+    }
+}
+
+/// Physics kernels and colour-table sampling.
+fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
+    let mut failures = Vec::new();
+    let cases = seeded_cases(0x5eed, 16_384);
+    let results = run_physics_probe(ctx, &cases)?;
+    for error in compare_physics(&cases, &results) {
+        let verdict = if error.passes() { "ok" } else { "FAIL" };
+        println!(
+            "kernel={} worst_relative={:.3e} tolerance={:.1e} {verdict}",
+            error.kernel, error.worst_relative, error.tolerance
+        );
+        if !error.passes() {
+            failures.push(format!(
+                "kernel {} error {:.3e} > {:.1e}",
+                error.kernel, error.worst_relative, error.tolerance
+            ));
+        }
+    }
+    for tone_map in srt_color::ToneMap::ALL {
+        let lut = srt_color::TemperatureLut::with_defaults(tone_map);
+        // Seeded temperatures across and beyond the table: a geometric sweep with an irrational
+        // step, plus every 97th texel temperature exactly.
+        let mut temperatures: Vec<f32> = (0..20_000)
+            .map(|i| (30.0 * (1.000_753_1f64).powi(i)) as f32)
+            .collect();
+        temperatures.extend(
+            (0..lut.size())
+                .step_by(97)
+                .map(|i| lut.texel_temperature(i) as f32),
+        );
+        let gpu = run_lut_probe(ctx, &lut, &temperatures)?;
+        let worst = temperatures
+            .iter()
+            .zip(&gpu)
+            .map(|(&t, g)| {
+                let c = lut.sample(f64::from(t));
+                (0..4).map(|k| (c[k] - g[k]).abs()).fold(0.0f32, f32::max)
+            })
+            .fold(0.0f32, f32::max);
+        let tolerance = lut_tolerance(&lut);
+        let ok = worst <= tolerance;
+        println!(
+            "kernel=lut_{} worst_absolute={worst:.3e} tolerance={tolerance:.1e} {}",
+            tone_map.name(),
+            if ok { "ok" } else { "FAIL" }
+        );
+        if !ok {
+            failures.push(format!(
+                "colour table {} error {worst:.3e} > {tolerance:.1e}",
+                tone_map.name()
+            ));
+        }
+    }
+    Ok(failures)
+}
+
+/// The GPU proxy pass against srt-proxy: each GPU footprint must contain the f64 one.
+fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<String>> {
+    let scene = &case.scene;
+    let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT)?;
+    let viewport = Viewport {
+        width: f64::from(WIDTH),
+        height: f64::from(HEIGHT),
+    };
+    let view_projection =
+        scene
+            .observer
+            .view_projection(viewport.width / viewport.height, 1e-3, 1e5);
+    let observer = scene.observer.event();
+    let (mut triangles, mut not_conservative, mut extra_whole, mut worst_excess) =
+        (0, 0, 0, 0.0f64);
+    let mut culled = 0;
+    let all = renderer.read_footprints(ctx, scene)?;
+    for (object, object_footprints) in scene.objects.iter().zip(&all) {
+        for (part, gpu) in object.parts.iter().zip(object_footprints) {
+            let closed = part.mesh.is_closed_outward();
+            let observer_rest = object.frame.to_rest(observer).position;
+            for (t, g) in gpu.iter().enumerate() {
+                triangles += 1;
+                let corners = part.mesh.triangle_positions(t);
+                if g.hull_len == 0 && g.whole_screen == 0 {
+                    // Culled as a back face: it must be one (up to f32 rounding of edge-on ones).
+                    let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+                    let to_observer = observer_rest - corners[0];
+                    let facing = normal.dot(to_observer) / (normal.length() * to_observer.length());
+                    culled += 1;
+                    not_conservative += usize::from(!closed || facing > 1e-4);
+                    continue;
+                }
+                let cpu = footprint(&object.frame, corners, observer, view_projection, viewport);
+                if g.whole_screen == 1 {
+                    extra_whole += usize::from(!cpu.whole_screen);
+                    continue;
+                }
+                if cpu.whole_screen {
+                    not_conservative += 1;
+                    continue;
+                }
+                let hull: Vec<DVec2> = g.hull[..g.hull_len as usize]
+                    .iter()
+                    .map(|h| DVec2::new(f64::from(h[0]), f64::from(h[1])))
+                    .collect();
+                let points = cpu.corners.iter().chain(&cpu.tangent_points);
+                let outside = points
+                    .clone()
+                    .any(|&q| !srt_proxy::hull_contains(&hull, q, HULL_TOLERANCE));
+                let rect_ok = points.clone().all(|q| {
+                    q.x >= f64::from(g.rect[0]) - HULL_TOLERANCE
+                        && q.y >= f64::from(g.rect[1]) - HULL_TOLERANCE
+                        && q.x <= f64::from(g.rect[2]) + HULL_TOLERANCE
+                        && q.y <= f64::from(g.rect[3]) + HULL_TOLERANCE
+                });
+                not_conservative += usize::from(outside || !rect_ok);
+                let excess = [
+                    cpu.rect.min.x - f64::from(g.rect[0]),
+                    cpu.rect.min.y - f64::from(g.rect[1]),
+                    f64::from(g.rect[2]) - cpu.rect.max.x,
+                    f64::from(g.rect[3]) - cpu.rect.max.y,
+                ];
+                worst_excess = excess.into_iter().fold(worst_excess, f64::max);
+            }
+        }
+    }
+    println!(
+        "proxy scene={} triangles={triangles} culled={culled} not_conservative={not_conservative} extra_whole_screen={extra_whole} worst_rect_margin_px={worst_excess:.3}",
+        case.name
+    );
+    Ok(if not_conservative > 0 {
+        vec![format!(
+            "{}: {not_conservative} GPU footprints do not contain the CPU footprint",
+            case.name
+        )]
+    } else {
+        Vec::new()
+    })
+}
+
+/// GPU LRT and polygon images against the CPU reference.
+fn validate_image(
+    ctx: &GpuContext,
+    case: &Case,
+    speed: f64,
+    out: &Path,
+) -> anyhow::Result<Vec<String>> {
+    let scene: &Scene = &case.scene;
+    let reference = Tracer::new(scene).render(
+        RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            samples: 1,
+        },
+        &|_| {},
+    );
+    let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT)?;
+    let (lrt, _) = renderer.render(ctx, scene, Method::Lrt, FootprintShape::Hull)?;
+    let (polygon, _) = renderer.render(ctx, scene, Method::Polygon, FootprintShape::Hull)?;
+    let lrt_rgb = lrt.to_rgb8();
+    let polygon_rgb = polygon.to_rgb8();
+    let mismatch = compare(&reference, &lrt_rgb, TOLERANCE, EDGE_MARGIN);
+    let polygon_mismatch = compare(&reference, &polygon_rgb, TOLERANCE, EDGE_MARGIN);
+    println!(
+        "scene={} beta={speed} mismatch={:.6} polygon_mismatch={:.6}",
+        case.name,
+        mismatch.fraction(),
+        polygon_mismatch.fraction()
+    );
+    let stem = format!("{}_b{speed}", case.name.replace(['.', ' '], "_"));
+    let reference_rgb = reference.to_rgb8();
+    save(out.join(format!("{stem}_reference.png")), &reference_rgb)?;
+    save(out.join(format!("{stem}_actual.png")), &lrt_rgb)?;
+    save(out.join(format!("{stem}_polygon.png")), &polygon_rgb)?;
+    let difference: Vec<[u8; 3]> = reference_rgb
+        .iter()
+        .zip(&lrt_rgb)
+        .map(|(a, b)| [0, 1, 2].map(|c| a[c].abs_diff(b[c]).saturating_mul(16)))
+        .collect();
+    save(out.join(format!("{stem}_difference.png")), &difference)?;
+    Ok(if mismatch.fraction() > MAX_MISMATCH {
+        vec![format!(
+            "{} at {speed}c: LRT mismatch {:.6} > {MAX_MISMATCH}",
+            case.name,
+            mismatch.fraction()
+        )]
+    } else {
+        Vec::new()
+    })
+}
+
+fn save(path: PathBuf, pixels: &[[u8; 3]]) -> anyhow::Result<()> {
+    let bytes = pixels.iter().flatten().copied().collect();
+    RgbImage::from_raw(WIDTH, HEIGHT, bytes)
+        .context("image size")?
+        .save(&path)
+        .with_context(|| format!("cannot write {}", path.display()))
+}
