@@ -3,9 +3,10 @@
 //
 // Interface (stable; the LRT and polygon passes call it):
 //
-//   fn lut_sample(table: texture_1d<f32>, params: vec4<f32>, t: f32) -> vec4<f32>
+//   fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32>
 //
-// - `table`: the LUT's N texels as a 1D `rgba32float` texture of width N, bound with sample type
+// - `table`: the LUT's N texels as an N × 1 `rgba32float` 2D texture (2D rather than 1D because
+//   naga's GLSL output mistranslates `texture_1d` function parameters), bound with sample type
 //   `float` (filterable: false) — no sampler: two `textureLoad`s and a lerp in f32, so no
 //   `float32-filterable` feature is needed and the filter weight is not quantised.
 // - `params`: (ln T_min, ln T_max, N, unused), i.e. FrameUniforms.lut; srt_gpu::probe::lut_params
@@ -28,7 +29,7 @@ fn lut_is_positive_finite(t: f32) -> bool {
 }
 
 // The colour of temperature `t` in the table `table` with parameters `params` (see above).
-fn lut_sample(table: texture_1d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
+fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
     let last = max(i32(params.z) - 1, 0);
     var u = 0.0;
     if lut_is_positive_finite(t) {
@@ -37,7 +38,7 @@ fn lut_sample(table: texture_1d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
     let x = u * f32(last);
     let i = min(i32(floor(x)), last);
     let f = x - f32(i);
-    let a = textureLoad(table, i, 0);
-    let b = textureLoad(table, min(i + 1, last), 0);
+    let a = textureLoad(table, vec2<i32>(i, 0), 0);
+    let b = textureLoad(table, vec2<i32>(min(i + 1, last), 0), 0);
     return (1.0 - f) * a + f * b;
 }

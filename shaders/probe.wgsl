@@ -81,7 +81,7 @@ fn physics_probe(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @group(0) @binding(2) var<storage, read> lut_temperatures: array<f32>;
 @group(0) @binding(3) var<storage, read_write> lut_colours: array<vec4<f32>>;
-@group(0) @binding(4) var lut_table: texture_1d<f32>;
+@group(0) @binding(4) var lut_table: texture_2d<f32>;
 // (ln T_min, ln T_max, N, unused), as lut_sample takes it.
 @group(0) @binding(5) var<uniform> lut_params: vec4<f32>;
 

@@ -3,7 +3,7 @@
 // crates/srt-gpu/src/pipelines.rs and must match.
 
 @group(0) @binding(0) var<uniform> frame_uniforms: FrameUniforms;
-@group(0) @binding(1) var lut_table: texture_1d<f32>;
+@group(0) @binding(1) var lut_table: texture_2d<f32>;
 
 @group(1) @binding(0) var<uniform> object: ObjectUniforms;
 

@@ -2,7 +2,9 @@
 //!
 //! 1. physics kernels and colour-table sampling (`srt-gpu` probe pass vs `srt-physics` /
 //!    `srt-color`, f32 vs f64): worst relative error per kernel against its tolerance;
-//! 2. the proxy pass against `srt-proxy`: every GPU footprint must contain the f64 footprint;
+//! 2. the proxy pass against `srt-proxy`: every GPU footprint must contain the apparent
+//!    triangle, computed in f64 (its edges sampled densely), and culled back faces must be back
+//!    faces of closed meshes;
 //! 3. images: every built-in scene and three assimp models at 0.5c, 0.9c and 0.99c, GPU local ray
 //!    tracing and the polygon method against the exact CPU reference. The metric is the fraction
 //!    of pixels differing by more than 2/255 in any channel, not counting pixels within 1 px of a
@@ -43,7 +45,9 @@ const MODELS: [&str; 3] = [
     "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
     "OBJ/WusonOBJ.obj",
 ];
-/// How far (pixels) a CPU footprint point may lie outside the GPU hull before it counts as a
+/// Samples per edge of the conservativeness check.
+const EDGE_SAMPLES: u32 = 32;
+/// How far (pixels) a point of the apparent triangle may lie outside the GPU hull before it counts as a
 /// failure: the GPU dilates by 0.25 px, so this only absorbs rounding.
 const HULL_TOLERANCE: f64 = 1e-2;
 
@@ -194,16 +198,27 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
                     .iter()
                     .map(|h| DVec2::new(f64::from(h[0]), f64::from(h[1])))
                     .collect();
-                let points = cpu.corners.iter().chain(&cpu.tangent_points);
-                let outside = points
-                    .clone()
-                    .any(|&q| !srt_proxy::hull_contains(&hull, q, HULL_TOLERANCE));
-                let rect_ok = points.clone().all(|q| {
-                    q.x >= f64::from(g.rect[0]) - HULL_TOLERANCE
+                // The curved apparent triangle, sampled densely along its edges (its boundary),
+                // in f64, must lie inside the GPU's rectangle and hull.
+                let boundary = (0..3).flat_map(|k| {
+                    let (a, b) = (corners[k], corners[(k + 1) % 3]);
+                    (0..EDGE_SAMPLES)
+                        .map(move |s| a + (b - a) * (f64::from(s) / f64::from(EDGE_SAMPLES)))
+                });
+                let (mut outside, mut rect_ok) = (false, true);
+                for rest in boundary {
+                    let seen = object.frame.apparent_position(rest, observer);
+                    let Some(q) = srt_proxy::project(view_projection, viewport, seen) else {
+                        outside = true;
+                        break;
+                    };
+                    outside |= renderer.hulls_supported()
+                        && !srt_proxy::hull_contains(&hull, q, HULL_TOLERANCE);
+                    rect_ok &= q.x >= f64::from(g.rect[0]) - HULL_TOLERANCE
                         && q.y >= f64::from(g.rect[1]) - HULL_TOLERANCE
                         && q.x <= f64::from(g.rect[2]) + HULL_TOLERANCE
-                        && q.y <= f64::from(g.rect[3]) + HULL_TOLERANCE
-                });
+                        && q.y <= f64::from(g.rect[3]) + HULL_TOLERANCE;
+                }
                 not_conservative += usize::from(outside || !rect_ok);
                 let excess = [
                     cpu.rect.min.x - f64::from(g.rect[0]),

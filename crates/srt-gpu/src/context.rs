@@ -1,6 +1,7 @@
 //! Headless GPU access: instance, adapter and device, with wgpu validation errors turned into
 //! Rust errors instead of panics.
 
+use std::io::Write as _;
 use std::sync::{Arc, Mutex};
 
 /// Why the GPU could not be used.
@@ -43,6 +44,8 @@ pub struct GpuContext {
     pub adapter_info: wgpu::AdapterInfo,
     /// Whether GPU timestamp queries are available (for benchmarks).
     pub timestamps: bool,
+    /// The colour format renderers draw into on this device.
+    pub color_format: wgpu::TextureFormat,
     errors: Arc<Mutex<Vec<String>>>,
 }
 
@@ -120,6 +123,11 @@ impl GpuContext {
         adapter_info: wgpu::AdapterInfo,
     ) -> Self {
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let color_format = if adapter_info.backend == wgpu::Backend::Gl {
+            crate::pipelines::FALLBACK_COLOR_FORMAT
+        } else {
+            crate::pipelines::COLOR_FORMAT
+        };
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = Arc::clone(&errors);
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
@@ -132,6 +140,7 @@ impl GpuContext {
             queue,
             adapter_info,
             timestamps,
+            color_format,
             errors,
         }
     }
@@ -210,7 +219,10 @@ pub fn context_or_skip(test: &str) -> Option<GpuContext> {
             if std::env::var("SRT_REQUIRE_GPU").is_ok_and(|v| v == "1") {
                 panic!("{test}: SRT_REQUIRE_GPU=1 but the GPU is unavailable: {error}");
             }
-            eprintln!(
+            // Written to the process's stderr directly: the test harness captures `eprintln!`
+            // of passing tests, and a skip must be visible.
+            let _ = writeln!(
+                std::io::stderr(),
                 "SKIPPED {test}: no GPU adapter ({error}); set SRT_REQUIRE_GPU=1 to make this a failure"
             );
             None

@@ -3,8 +3,13 @@
 
 use crate::shaders;
 
-/// Colour target format: f32 display colours, quantised to 8 bits on the CPU like the reference.
+/// Colour target format: f32 display colours, quantised to 8 bits on the CPU like the
+/// reference. Backends that cannot render to it (OpenGL ES through wgpu's downlevel rules) use
+/// [`FALLBACK_COLOR_FORMAT`].
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Colour target format where `Rgba32Float` is not renderable: half floats (11-bit mantissa,
+/// ample for 8-bit output).
+pub const FALLBACK_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Depth format (apparent distance × depth scale for LRT, clip depth for polygons).
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Proxy workgroup size (must match `@workgroup_size` in proxy.wgsl).
@@ -65,9 +70,10 @@ pub struct Pipelines {
 }
 
 impl Pipelines {
-    /// Creates layouts, shader modules and pipelines on `device`.
+    /// Creates layouts, shader modules and pipelines on `device`, rendering into
+    /// `color_format`.
     #[must_use]
-    pub fn new(device: &wgpu::Device) -> Self {
+    pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
         let all = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("srt frame"),
@@ -78,7 +84,7 @@ impl Pipelines {
                     visibility: all,
                     ty: wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D1,
+                        view_dimension: wgpu::TextureViewDimension::D2,
                         multisampled: false,
                     },
                     count: None,
@@ -165,6 +171,7 @@ impl Pipelines {
             ),
             &lrt_module,
             ("lrt_vertex", "lrt_fragment"),
+            color_format,
         );
         let polygon_module = module("srt polygon", shaders::polygon());
         let polygon = render_pipeline(
@@ -173,6 +180,7 @@ impl Pipelines {
             &layout("srt polygon", &base),
             &polygon_module,
             ("polygon_vertex", "polygon_fragment"),
+            color_format,
         );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("srt texture"),
@@ -204,6 +212,7 @@ fn render_pipeline(
     layout: &wgpu::PipelineLayout,
     module: &wgpu::ShaderModule,
     (vertex, fragment): (&str, &str),
+    color_format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
@@ -231,7 +240,7 @@ fn render_pipeline(
             entry_point: Some(fragment),
             compilation_options: wgpu::PipelineCompilationOptions::default(),
             targets: &[Some(wgpu::ColorTargetState {
-                format: COLOR_FORMAT,
+                format: color_format,
                 blend: None,
                 write_mask: wgpu::ColorWrites::ALL,
             })],

@@ -8,9 +8,8 @@ use srt_scene::{Effects, Part, Scene};
 use wgpu::util::DeviceExt as _;
 
 use crate::context::{GpuContext, GpuError};
-use crate::pipelines::{
-    COLOR_FORMAT, DEPTH_FORMAT, FOOTPRINT_VERTICES, PROXY_WORKGROUP, Pipelines,
-};
+use crate::pipelines::{DEPTH_FORMAT, FOOTPRINT_VERTICES, PROXY_WORKGROUP, Pipelines};
+use crate::probe::{lut_params as lut_params_of, lut_texture};
 use crate::types::{
     FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PartUniforms, mat4, vec4,
 };
@@ -112,10 +111,11 @@ struct Targets {
     depth: wgpu::Texture,
     readback: wgpu::Buffer,
     padded_row: u32,
+    format: wgpu::TextureFormat,
 }
 
 impl Targets {
-    fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
+    fn new(device: &wgpu::Device, format: wgpu::TextureFormat, width: u32, height: u32) -> Self {
         let size = wgpu::Extent3d {
             width,
             height,
@@ -135,7 +135,7 @@ impl Targets {
         };
         let color = texture(
             "srt color",
-            COLOR_FORMAT,
+            format,
             wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::TEXTURE_BINDING,
@@ -145,7 +145,8 @@ impl Targets {
             DEPTH_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
-        let padded_row = (width * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let pixel_bytes = format.block_copy_size(None).unwrap_or(16);
+        let padded_row = (width * pixel_bytes).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("srt color readback"),
             size: u64::from(padded_row) * u64::from(height),
@@ -159,6 +160,7 @@ impl Targets {
             depth,
             readback,
             padded_row,
+            format,
         }
     }
 }
@@ -175,37 +177,8 @@ pub struct GpuRenderer {
     counter_readback: wgpu::Buffer,
     timestamps: Option<(wgpu::QuerySet, wgpu::Buffer, wgpu::Buffer)>,
     targets: Targets,
-}
-
-fn lut_texture(ctx: &GpuContext, lut: &TemperatureLut) -> Result<wgpu::TextureView, GpuError> {
-    let width =
-        u32::try_from(lut.size()).map_err(|_| GpuError::Limits("colour table too large".into()))?;
-    let limit = ctx.device.limits().max_texture_dimension_1d;
-    if width > limit {
-        return Err(GpuError::Limits(format!(
-            "the colour table has {width} texels; this GPU allows {limit}"
-        )));
-    }
-    let texture = ctx.device.create_texture_with_data(
-        &ctx.queue,
-        &wgpu::TextureDescriptor {
-            label: Some("srt colour table"),
-            size: wgpu::Extent3d {
-                width,
-                height: 1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D1,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(lut.texels()),
-    );
-    Ok(texture.create_view(&wgpu::TextureViewDescriptor::default()))
+    /// Draw rectangles even when hulls are asked for (see [`GpuRenderer::hulls_supported`]).
+    rectangles_only: bool,
 }
 
 /// The part's texture with its mip chain (levels larger than the device allows are skipped),
@@ -272,7 +245,7 @@ impl GpuRenderer {
     /// [`GpuError::Limits`] when a mesh exceeds the device's buffer limits, or any wgpu error.
     pub fn new(ctx: &GpuContext, scene: &Scene, width: u32, height: u32) -> Result<Self, GpuError> {
         let device = &ctx.device;
-        let pipelines = Pipelines::new(device);
+        let pipelines = Pipelines::new(device, ctx.color_format);
         let frame_uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("srt frame uniforms"),
             size: std::mem::size_of::<FrameUniforms>() as u64,
@@ -283,13 +256,8 @@ impl GpuRenderer {
         let mut frame_groups = Vec::new();
         for (k, tone_map) in ToneMap::ALL.into_iter().enumerate() {
             let lut = TemperatureLut::with_defaults(tone_map);
-            lut_params[k] = [
-                lut.t_min().ln() as f32,
-                lut.t_max().ln() as f32,
-                lut.size() as f32,
-                0.0,
-            ];
-            let view = lut_texture(ctx, &lut)?;
+            lut_params[k] = lut_params_of(&lut);
+            let view = lut_texture(ctx, &lut)?.create_view(&wgpu::TextureViewDescriptor::default());
             frame_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("srt frame"),
                 layout: &pipelines.frame_layout,
@@ -319,7 +287,7 @@ impl GpuRenderer {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        let max_binding = u64::from(device.limits().max_storage_buffer_binding_size);
+        let max_binding = device.limits().max_storage_buffer_binding_size;
         let mut objects = Vec::new();
         for object in &scene.objects {
             let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
@@ -468,7 +436,7 @@ impl GpuRenderer {
             });
             (set, resolve, readback)
         });
-        let targets = Targets::new(device, width, height);
+        let targets = Targets::new(device, ctx.color_format, width, height);
         let [luminance, searchlight]: [wgpu::BindGroup; 2] = frame_groups
             .try_into()
             .map_err(|_| GpuError::Wgpu("colour tables".into()))?;
@@ -482,9 +450,19 @@ impl GpuRenderer {
             counter_readback,
             timestamps,
             targets,
+            rectangles_only: ctx.adapter_info.backend == wgpu::Backend::Gl,
         };
         ctx.take_errors()?;
         Ok(renderer)
+    }
+
+    /// Whether this device draws convex-hull footprints. On wgpu's OpenGL backend the hull
+    /// computed by the proxy pass is wrong (a shader-translation problem we have not isolated;
+    /// `cargo xtask validate` shows it), so there the renderer always draws the rectangles,
+    /// which are correct, at the cost of more overdraw.
+    #[must_use]
+    pub fn hulls_supported(&self) -> bool {
+        !self.rectangles_only
     }
 
     /// Image width and height.
@@ -496,7 +474,7 @@ impl GpuRenderer {
     /// Changes the image size (recreates the render targets).
     pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) {
         if (width, height) != self.size() {
-            self.targets = Targets::new(&ctx.device, width, height);
+            self.targets = Targets::new(&ctx.device, ctx.color_format, width, height);
         }
     }
 
@@ -557,7 +535,7 @@ impl GpuRenderer {
                     Effects::Doppler => 1,
                     Effects::Searchlight => 2,
                 },
-                u32::from(footprint == FootprintShape::Rectangle),
+                u32::from(footprint == FootprintShape::Rectangle || self.rectangles_only),
                 0,
                 0,
             ],
@@ -732,11 +710,11 @@ impl GpuRenderer {
         );
         ctx.queue.submit([encoder.finish()]);
         let bytes = ctx.read_buffer(&t.readback)?;
+        let pixel_bytes = t.format.block_copy_size(None).unwrap_or(16) as usize;
         let mut pixels = Vec::with_capacity((t.width * t.height) as usize);
         for row in bytes.chunks_exact(t.padded_row as usize) {
-            pixels.extend_from_slice(bytemuck::cast_slice::<u8, [f32; 4]>(
-                &row[..(t.width * 16) as usize],
-            ));
+            let row = &row[..t.width as usize * pixel_bytes];
+            pixels.extend(row.chunks_exact(pixel_bytes).map(decode_pixel));
         }
         let fragments =
             bytemuck::pod_read_unaligned::<u32>(&ctx.read_buffer(&self.counter_readback)?);
@@ -809,4 +787,21 @@ impl GpuRenderer {
         ctx.take_errors()?;
         Ok(footprints)
     }
+}
+
+/// One RGBA pixel of the colour target: four little-endian f32 (16 bytes) or f16 (8 bytes).
+fn decode_pixel(bytes: &[u8]) -> [f32; 4] {
+    let channel = |k: usize| {
+        if bytes.len() == 16 {
+            f32::from_le_bytes([
+                bytes[4 * k],
+                bytes[4 * k + 1],
+                bytes[4 * k + 2],
+                bytes[4 * k + 3],
+            ])
+        } else {
+            half::f16::from_le_bytes([bytes[2 * k], bytes[2 * k + 1]]).to_f32()
+        }
+    };
+    [channel(0), channel(1), channel(2), channel(3)]
 }
