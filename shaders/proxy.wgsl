@@ -7,6 +7,9 @@
 
 // Clip-space w at or below which a point counts as at or behind the camera.
 const MIN_CLIP_W: f32 = 1e-6;
+// How many chord lengths a tangent intersection may lie from its chord's midpoint before the
+// footprint is taken to be the whole screen (as in srt-proxy).
+const MAX_TANGENT_REACH: f32 = 1000.0;
 // Outward dilation of rectangle and hull, in pixels.
 const FOOTPRINT_MARGIN: f32 = 0.25;
 
@@ -88,7 +91,9 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         let g = tangent_intersection(corners[i], ti, corners[j], tj);
         let pp = project_point(corners[i]);
         let pg = project_point(g);
-        if (pp.z == 0.0 || pg.z == 0.0) {
+        // A tangent intersection far beyond its chord is ill-conditioned in f32: whole screen.
+        let far = length(g - 0.5 * (corners[i] + corners[j])) > MAX_TANGENT_REACH * length(corners[j] - corners[i]);
+        if (pp.z == 0.0 || pg.z == 0.0 || far) {
             footprints[t] = whole_screen_footprint();
             return;
         }

@@ -42,7 +42,8 @@ struct PartUniforms {
     // Base colour factor (sRGB-encoded, as stored in files).
     base_color: vec4<f32>,
     // x: 1 if the part has a texture; y: 1 if its vertices carry colours; z: triangle count;
-    // w: 1 if the mesh is closed with outward fronts (back faces may be culled).
+    // w: 1 if back faces may be culled: the mesh is a closed solid with outward fronts and the
+    // observer is outside it (decided per frame on the CPU).
     flags: vec4<u32>,
 }
 

@@ -29,7 +29,11 @@ enum Command {
     },
     /// Check every GPU pass against its CPU mirror on the current adapter (kernels, footprints,
     /// images); exits non-zero on any disagreement.
-    Validate,
+    Validate {
+        /// Only the image cases whose scene name contains this text (kernels always run).
+        #[arg(long)]
+        only: Option<String>,
+    },
     /// Measure the paper's Table 1 on the current adapter and update docs/performance.md.
     Bench {
         /// Frames measured per scene and method (after warm-up).
@@ -54,7 +58,7 @@ fn main() -> anyhow::Result<()> {
                 println!("wrote {}", path.display());
             }
         }
-        Command::Validate => validate::run(&workspace_root())?,
+        Command::Validate { only } => validate::run(&workspace_root(), only.as_deref())?,
         Command::Bench { frames } => bench::run(&workspace_root(), frames)?,
     }
     Ok(())

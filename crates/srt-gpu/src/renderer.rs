@@ -94,6 +94,9 @@ struct PartResources {
     footprints: wgpu::Buffer,
     triangles: u32,
     material: PartUniforms,
+    /// Whether the mesh is a closed solid (back faces may be culled while the observer is
+    /// outside it).
+    closed: bool,
 }
 
 /// Per object: its uniform buffer and parts.
@@ -327,9 +330,10 @@ impl GpuRenderer {
                         u32::from(part.material.texture.is_some()),
                         u32::from(part.mesh.colors().is_some()),
                         triangles,
-                        u32::from(part.mesh.is_closed_outward()),
+                        0,
                     ],
                 };
+                let closed = part.mesh.is_closed_outward();
                 let part_uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("srt part uniforms"),
                     contents: bytemuck::bytes_of(&material),
@@ -408,6 +412,7 @@ impl GpuRenderer {
                     footprints,
                     triangles,
                     material,
+                    closed,
                 });
             }
             objects.push(ObjectResources {
@@ -550,9 +555,15 @@ impl GpuRenderer {
             };
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
+            let observer_rest = object.frame.to_rest(observer.event()).position;
             for (part, part_resources) in object.parts.iter().zip(&resources.parts) {
                 let mut material = part_resources.material;
                 material.base_color = part.material.base_color;
+                // Back-face culling is exact only while the observer is outside the solid (in
+                // S′, where every viewing ray starts at the observer).
+                material.flags[3] = u32::from(
+                    part_resources.closed && part.mesh.winding_number(observer_rest).abs() < 0.5,
+                );
                 ctx.queue
                     .write_buffer(&part_resources.uniforms, 0, bytemuck::bytes_of(&material));
             }

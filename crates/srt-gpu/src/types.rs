@@ -100,7 +100,8 @@ pub struct ObjectUniforms {
 pub struct PartUniforms {
     /// Base colour factor.
     pub base_color: [f32; 4],
-    /// Has texture, has vertex colours, triangle count, closed with outward fronts.
+    /// Has texture, has vertex colours, triangle count, cull back faces (closed solid, observer
+    /// outside it).
     pub flags: [u32; 4],
 }
 

@@ -39,6 +39,12 @@ pub use hull::{contains as hull_contains, convex_hull};
 /// The paper's ε for the chord points Q_ij of Eq. 14.
 pub const PAPER_EPSILON: f64 = 0.01;
 
+/// How many chord lengths a tangent intersection may lie from its chord's midpoint before the
+/// footprint is taken to be the whole screen. Such edges turn by almost 180°; their tangent
+/// intersection is ill-conditioned (in f32 on the GPU especially), and their footprint is huge
+/// anyway.
+pub const MAX_TANGENT_REACH: f64 = 1000.0;
+
 /// Clip-space w at or below which a point counts as at or behind the camera.
 pub const MIN_CLIP_W: f64 = 1e-9;
 
@@ -220,8 +226,9 @@ pub fn apparent_outline(
 ///
 /// Degenerate input has a documented result rather than an error: a zero-area triangle yields a
 /// zero-area footprint (nothing is drawn, and the exact tracer finds no hit either); a triangle
-/// touching the observer's own position, or any corner or tangent intersection at or behind the
-/// camera, yields the whole screen.
+/// touching the observer's own position, any corner or tangent intersection at or behind the
+/// camera, or a tangent intersection more than [`MAX_TANGENT_REACH`] chord lengths away, yields
+/// the whole screen.
 #[must_use]
 pub fn footprint(
     frame: &Frame,
@@ -231,7 +238,17 @@ pub fn footprint(
     viewport: Viewport,
 ) -> Footprint {
     let (corners, tangent_points) = apparent_outline(frame, triangle, observer);
-    let project = |p: DVec3| project(view_projection, viewport, p);
+    let far = (0..3).any(|i| {
+        let (a, b) = (corners[i], corners[(i + 1) % 3]);
+        (tangent_points[i] - 0.5 * (a + b)).length() > MAX_TANGENT_REACH * (b - a).length()
+    });
+    let project = |p: DVec3| {
+        if far {
+            None
+        } else {
+            project(view_projection, viewport, p)
+        }
+    };
     match (corners.map(project), tangent_points.map(project)) {
         ([Some(p1), Some(p2), Some(p3)], [Some(g1), Some(g2), Some(g3)]) => {
             let corners = [p1, p2, p3];

@@ -258,6 +258,23 @@ impl Mesh {
         paired && volume > 0.0
     }
 
+    /// The generalised winding number of the mesh around `point`: the sum of the solid angles
+    /// its triangles subtend, over 4π (Van Oosterom and Strackee's formula). For a closed mesh
+    /// with outward fronts it is 1 inside and 0 outside.
+    #[must_use]
+    pub fn winding_number(&self, point: DVec3) -> f64 {
+        let total: f64 = (0..self.triangles.len())
+            .map(|i| {
+                let [a, b, c] = self.triangle_positions(i).map(|p| p - point);
+                let (la, lb, lc) = (a.length(), b.length(), c.length());
+                let numerator = a.dot(b.cross(c));
+                let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+                2.0 * numerator.atan2(denominator)
+            })
+            .sum();
+        total / (4.0 * std::f64::consts::PI)
+    }
+
     /// Axis-aligned bounds (min, max) of the vertices.
     #[must_use]
     pub fn bounds(&self) -> (DVec3, DVec3) {
@@ -396,6 +413,9 @@ mod tests {
         let t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
         assert!(Mesh::new(p.clone(), t.clone()).unwrap().is_closed_outward());
         let inverted = t.iter().map(|&[a, b, c]| [a, c, b]).collect();
+        let tetrahedron = Mesh::new(p.clone(), t).unwrap();
+        assert!((tetrahedron.winding_number(DVec3::splat(0.1)) - 1.0).abs() < 1e-12);
+        assert!(tetrahedron.winding_number(DVec3::splat(2.0)).abs() < 1e-12);
         assert!(!Mesh::new(p, inverted).unwrap().is_closed_outward());
     }
 

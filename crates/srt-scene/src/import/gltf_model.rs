@@ -273,57 +273,28 @@ fn resolve_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
     }
 }
 
-/// Decodes `%XX` escapes; malformed escapes are kept as they are.
+/// Decodes `%XX` escapes (the `percent-encoding` crate; malformed escapes are kept as they are).
 fn percent_decode(text: &str) -> Vec<u8> {
-    let bytes = text.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = |b: u8| char::from(b).to_digit(16);
-        if bytes[i] == b'%'
-            && i + 2 < bytes.len()
-            && let (Some(h), Some(l)) = (hex(bytes[i + 1]), hex(bytes[i + 2]))
-        {
-            #[expect(clippy::cast_possible_truncation, reason = "two hex digits fit a byte")]
-            out.push((h * 16 + l) as u8);
-            i += 3;
-            continue;
-        }
-        out.push(bytes[i]);
-        i += 1;
-    }
-    out
+    percent_encoding::percent_decode_str(text).collect()
 }
 
-/// Decodes standard or URL-safe base64, ignoring whitespace and stopping at padding.
+/// Decodes standard or URL-safe base64 (the `base64` crate), ignoring whitespace; padding is
+/// optional.
 fn base64_decode(text: &str) -> Result<Vec<u8>, String> {
-    let mut out = Vec::with_capacity(text.len() / 4 * 3 + 3);
-    let mut acc = 0u32;
-    let mut bits = 0u32;
-    for (i, c) in text.bytes().enumerate() {
-        let value = match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' | b'-' => 62,
-            b'/' | b'_' => 63,
-            b'=' => break,
-            b' ' | b'\t' | b'\r' | b'\n' => continue,
-            _ => return Err(format!("invalid base64 character at position {i}")),
-        };
-        acc = (acc << 6) | u32::from(value);
-        bits += 6;
-        if bits >= 8 {
-            bits -= 8;
-            #[expect(
-                clippy::cast_possible_truncation,
-                reason = "the top byte of the accumulator"
-            )]
-            out.push((acc >> bits) as u8);
-            acc &= (1 << bits) - 1;
-        }
-    }
-    Ok(out)
+    use base64::Engine as _;
+    use base64::engine::{DecodePaddingMode, GeneralPurpose, GeneralPurposeConfig};
+    const CONFIG: GeneralPurposeConfig = GeneralPurposeConfig::new()
+        .with_decode_padding_mode(DecodePaddingMode::Indifferent)
+        .with_decode_allow_trailing_bits(true);
+    let compact: String = text.chars().filter(|c| !c.is_ascii_whitespace()).collect();
+    let alphabet = if compact.contains(['-', '_']) {
+        &base64::alphabet::URL_SAFE
+    } else {
+        &base64::alphabet::STANDARD
+    };
+    GeneralPurpose::new(alphabet, CONFIG)
+        .decode(compact)
+        .map_err(|e| format!("invalid base64: {e}"))
 }
 
 /// A node's local transform, composed in `f64`.

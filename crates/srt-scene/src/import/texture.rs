@@ -3,39 +3,18 @@
 //! sharing an image share one [`Arc`].
 
 use std::collections::HashMap;
-use std::io::Cursor;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use image::{ImageFormat, ImageReader};
-
 use crate::mesh::Texture;
 
-/// Decodes an encoded image. `extension` (without the dot) is a format hint for content without
-/// a recognisable signature (TGA); `source` names the image in messages.
+/// Decodes an encoded image (see [`crate::textures::decode_image`]).
 pub(super) fn decode(
     bytes: &[u8],
     extension: Option<&str>,
     source: String,
 ) -> Result<Texture, String> {
-    let mut reader = ImageReader::new(Cursor::new(bytes));
-    if let Some(format) = extension.and_then(ImageFormat::from_extension) {
-        reader.set_format(format);
-    }
-    let reader = reader.with_guessed_format().map_err(|e| e.to_string())?;
-    let image = reader.decode().map_err(|e| e.to_string())?;
-    let rgba = image.into_rgba8();
-    let (width, height) = rgba.dimensions();
-    if width == 0 || height == 0 {
-        return Err("the image has no texels".to_owned());
-    }
-    let texels = rgba.pixels().map(|p| p.0).collect();
-    Ok(Texture {
-        width,
-        height,
-        texels,
-        source,
-    })
+    crate::textures::decode_image(bytes, extension, &source)
 }
 
 /// Texture files loaded so far for one model, by path; `None` for files that failed.
