@@ -59,10 +59,10 @@ fn lrt_fragment(in: LrtVarying) -> LrtOutput {
         let uv = triangle_uv(t, hit.zeta, hit.xi);
         let rx = backward_ray(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0)));
         let ry = backward_ray(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0)));
-        let cx = plane_coordinates(rx.origin, rx.direction, corners);
-        let cy = plane_coordinates(ry.origin, ry.direction, corners);
-        uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, cx.x, cx.y) - uv, cx.z == 1.0);
-        uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, cy.x, cy.y) - uv, cy.z == 1.0);
+        let hx = plane_hit(rx.origin, rx.direction, corners);
+        let hy = plane_hit(ry.origin, ry.direction, corners);
+        uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, hx.zeta, hx.xi) - uv, hx.found);
+        uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
     }
     let emission = vec4<f32>(ray.ct_origin - hit.distance, ray.origin + hit.distance * ray.direction);
     let apparent = to_observer(object.frame, emission).yzw;

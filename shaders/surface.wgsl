@@ -8,46 +8,28 @@ struct TriangleHit {
     xi: f32,
 }
 
-// Eq. 16 by Cramer's rule with unnormalised spans σ = p1 − p0, τ = p2 − p0 (ζ, ξ barycentric).
-fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
-    let miss = TriangleHit(false, 0.0, 0.0, 0.0);
+// Eq. 16 by Cramer's rule with unnormalised spans σ = p1 − p0, τ = p2 − p0 (ζ, ξ barycentric):
+// where the line origin + ψ·direction meets the triangle's plane, inside or not; found = false
+// for lines parallel to the plane (mirror of srt_trace::plane_hit).
+fn plane_hit(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
     let sigma = p[1] - p[0];
     let tau = p[2] - p[0];
     let b = origin - p[0];
     let q1 = cross(direction, tau);
     let det = dot(sigma, q1);
     if (det == 0.0) {
-        return miss;
-    }
-    let inv = 1.0 / det;
-    let zeta = dot(b, q1) * inv;
-    if (zeta < 0.0 || zeta > 1.0) {
-        return miss;
+        return TriangleHit(false, 0.0, 0.0, 0.0);
     }
     let q2 = cross(b, sigma);
-    let xi = dot(direction, q2) * inv;
-    if (xi < 0.0 || zeta + xi > 1.0) {
-        return miss;
-    }
-    let distance = dot(tau, q2) * inv;
-    if (!(distance > 0.0)) {
-        return miss;
-    }
-    return TriangleHit(true, distance, zeta, xi);
+    return TriangleHit(true, dot(tau, q2) / det, dot(b, q1) / det, dot(direction, q2) / det);
 }
 
-// Barycentric (ζ, ξ) where a line meets the triangle's plane; z = 0 when parallel.
-fn plane_coordinates(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> vec3<f32> {
-    let sigma = p[1] - p[0];
-    let tau = p[2] - p[0];
-    let b = origin - p[0];
-    let q1 = cross(direction, tau);
-    let det = dot(sigma, q1);
-    if (det == 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let q2 = cross(b, sigma);
-    return vec3<f32>(dot(b, q1) / det, dot(direction, q2) / det, 1.0);
+// The hit of the ray (ψ > 0) with the triangle, edges included, both faces (mirror of
+// srt_trace::intersect_triangle).
+fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
+    var h = plane_hit(origin, direction, p);
+    h.found = h.found && h.zeta >= 0.0 && h.xi >= 0.0 && h.zeta + h.xi <= 1.0 && h.distance > 0.0;
+    return h;
 }
 
 // Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.

@@ -21,59 +21,41 @@ impl TriangleHit {
     }
 }
 
-/// Solves Eq. 16, A·(ζ, ξ, ψ)ᵀ = b with A = (σ τ −d′) and b = x′_obs − x′₁, by Cramer's rule.
+/// Solves Eq. 16, A·(ζ, ξ, ψ)ᵀ = b with A = (σ τ −d′) and b = x′_obs − x′₁, by Cramer's rule:
+/// where the line `origin + ψ·direction` meets the plane of the triangle, inside or not.
 ///
 /// Unlike the paper, the span vectors σ = x′₂ − x′₁ and τ = x′₃ − x′₁ are *not* normalised, so
 /// that ζ and ξ are barycentric coordinates, as its normal interpolation (§4.2) requires.
-/// Returns `None` for parallel rays, degenerate triangles, hits outside the triangle (edges
-/// included) or at ψ ≤ 0. Both faces count.
+/// `None` for lines parallel to the plane and degenerate triangles.
+#[must_use]
+pub fn plane_hit(origin: DVec3, direction: DVec3, corners: [DVec3; 3]) -> Option<TriangleHit> {
+    let sigma = corners[1] - corners[0];
+    let tau = corners[2] - corners[0];
+    let b = origin - corners[0];
+    // det(σ, τ, −d) = −d · (σ × τ) = σ · (d × τ)
+    let p = direction.cross(tau);
+    let det = sigma.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let q = b.cross(sigma);
+    Some(TriangleHit {
+        distance: tau.dot(q) / det,
+        zeta: b.dot(p) / det,
+        xi: direction.dot(q) / det,
+    })
+}
+
+/// The hit of the ray `origin + ψ·direction`, ψ > 0, with the triangle (edges included, both
+/// faces): [`plane_hit`] restricted to the triangle and to the ray.
 #[must_use]
 pub fn intersect_triangle(
     origin: DVec3,
     direction: DVec3,
     corners: [DVec3; 3],
 ) -> Option<TriangleHit> {
-    let sigma = corners[1] - corners[0];
-    let tau = corners[2] - corners[0];
-    let b = origin - corners[0];
-    // det(σ, τ, −d) = −d · (σ × τ)
-    let p = direction.cross(tau);
-    let det = sigma.dot(p);
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let zeta = b.dot(p) * inv;
-    if !(0.0..=1.0).contains(&zeta) {
-        return None;
-    }
-    let q = b.cross(sigma);
-    let xi = direction.dot(q) * inv;
-    if xi < 0.0 || zeta + xi > 1.0 {
-        return None;
-    }
-    let distance = tau.dot(q) * inv;
-    (distance > 0.0).then_some(TriangleHit { distance, zeta, xi })
-}
-
-/// Barycentric coordinates (ζ, ξ) where the line `origin + t·direction` meets the *plane* of the
-/// triangle, inside or not (for texture-coordinate differentials); `None` if parallel.
-#[must_use]
-pub fn plane_coordinates(
-    origin: DVec3,
-    direction: DVec3,
-    corners: [DVec3; 3],
-) -> Option<(f64, f64)> {
-    let sigma = corners[1] - corners[0];
-    let tau = corners[2] - corners[0];
-    let b = origin - corners[0];
-    let p = direction.cross(tau);
-    let det = sigma.dot(p);
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let q = b.cross(sigma);
-    Some((b.dot(p) / det, direction.dot(q) / det))
+    plane_hit(origin, direction, corners)
+        .filter(|h| h.zeta >= 0.0 && h.xi >= 0.0 && h.zeta + h.xi <= 1.0 && h.distance > 0.0)
 }
 
 #[cfg(test)]

@@ -23,7 +23,7 @@ mod render;
 mod shade;
 mod texture;
 
-pub use intersect::{TriangleHit, intersect_triangle, plane_coordinates};
+pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
 pub use shade::{Illumination, SurfacePoint, grey_value, shade};
 pub use texture::sample_trilinear;

@@ -16,7 +16,7 @@ use srt_color::TemperatureLut;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::{Part, Scene};
 
-use crate::intersect::{TriangleHit, intersect_triangle, plane_coordinates};
+use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::shade::{Illumination, SurfacePoint, shade};
 use crate::texture::sample_trilinear;
 use srt_scene::mip::MipChain;
@@ -294,8 +294,8 @@ impl<'a> Tracer<'a> {
             let observer = self.scene.observer.event();
             let differential = |direction: DVec3| -> DVec2 {
                 let ray = object.frame.backward_ray(observer, direction);
-                plane_coordinates(ray.origin, ray.direction, corners)
-                    .map_or(DVec2::ZERO, |c| uv_at(c) - uv)
+                plane_hit(ray.origin, ray.direction, corners)
+                    .map_or(DVec2::ZERO, |h| uv_at((h.zeta, h.xi)) - uv)
             };
             albedo *= sample_trilinear(
                 texture,
