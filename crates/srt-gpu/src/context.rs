@@ -23,9 +23,6 @@ pub enum GpuError {
     /// wgpu reported a validation or out-of-memory error.
     #[error("GPU error: {0}")]
     Wgpu(String),
-    /// The device was lost.
-    #[error("the GPU device was lost: {0}")]
-    DeviceLost(String),
     /// Waiting for the GPU or mapping a buffer failed.
     #[error("GPU readback failed: {0}")]
     Readback(String),
@@ -135,6 +132,15 @@ impl GpuContext {
                 .unwrap_or_else(std::sync::PoisonError::into_inner)
                 .push(error.to_string());
         }));
+        // A lost device (driver reset, GPU removed) surfaces as an error of the next frame.
+        let lost = Arc::clone(&errors);
+        device.set_device_lost_callback(move |reason, message| {
+            if reason != wgpu::DeviceLostReason::Destroyed {
+                lost.lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner)
+                    .push(format!("the GPU device was lost ({reason:?}): {message}"));
+            }
+        });
         Self {
             device,
             queue,
