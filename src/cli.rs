@@ -21,6 +21,12 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Open the interactive viewer: SCENE_OR_MODEL... (default `teaser`); further models are
+    /// added to the first scene.
+    View {
+        /// Built-in scene names, scene files (.toml) or model files.
+        scenes: Vec<String>,
+    },
 }
 
 impl Default for Command {

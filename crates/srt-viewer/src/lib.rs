@@ -1,0 +1,122 @@
+//! `srt view`: an interactive teaching tool for special relativity (the "future work" of §6 of
+//! Müller, Grottel and Weiskopf 2010). A window shows the scene rendered by the GPU local ray
+//! tracer of `srt-gpu` — the same passes `srt render` uses — and a side panel lets the user add
+//! 3D models, set each object's velocity, fly the observer, scrub the observation time, toggle
+//! the Doppler and searchlight effects, compare local ray tracing with the polygon method, and
+//! save the scene as TOML or the image as PNG.
+//!
+//! - [`edit`]: the scene and every edit of it, independent of the UI and the GPU;
+//! - [`camera`]: the fly camera;
+//! - [`view`]: rendering into textures the UI shows;
+//! - [`app`]: the panel, the status line and the input handling ([`ViewerApp`]);
+//! - [`run`]: opens the window (eframe on winit, egui drawn with egui-wgpu on the same wgpu
+//!   device the scene is rendered with).
+//!
+//! Runs on software adapters too (Mesa's lavapipe with `WGPU_BACKEND=vulkan`, llvmpipe with
+//! `WGPU_BACKEND=gl`), slower but correct.
+
+pub mod app;
+pub mod camera;
+pub mod edit;
+pub mod view;
+
+use std::sync::Arc;
+
+use anyhow::Context as _;
+use eframe::{egui, egui_wgpu};
+use srt_gpu::GpuContext;
+
+pub use app::{Level, Status, ViewerApp};
+pub use edit::{EditError, Editor, FileKind, file_kind, parse_speed};
+pub use view::ViewMethod;
+
+/// Initial size of the window in points.
+pub const WINDOW_SIZE: [f32; 2] = [1600.0, 900.0];
+
+/// The device the window opens: the adapter's own limits for buffers and textures (large
+/// models need them), as `srt_gpu::GpuContext` asks for headless rendering.
+fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
+    let limits = adapter.limits();
+    wgpu::DeviceDescriptor {
+        label: Some("srt view"),
+        required_features: wgpu::Features::empty(),
+        required_limits: wgpu::Limits {
+            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
+            max_buffer_size: limits.max_buffer_size,
+            max_storage_buffers_per_shader_stage: limits
+                .max_storage_buffers_per_shader_stage
+                .min(8),
+            ..wgpu::Limits::downlevel_defaults().using_resolution(limits.clone())
+        },
+        ..Default::default()
+    }
+}
+
+/// The window's wgpu set-up: backends from `WGPU_BACKEND` (default: Vulkan, then GL), our
+/// device limits.
+fn wgpu_options() -> egui_wgpu::WgpuConfiguration {
+    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.device_descriptor = Arc::new(device_descriptor);
+    let present_mode = if std::env::var("SRT_VIEW_NOVSYNC").is_ok() {
+        wgpu::PresentMode::AutoNoVsync
+    } else {
+        wgpu::PresentMode::AutoVsync
+    };
+    egui_wgpu::WgpuConfiguration {
+        wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
+        surface: egui_wgpu::SurfaceConfig {
+            present_mode,
+            desired_maximum_frame_latency: Some(2),
+        },
+        ..Default::default()
+    }
+}
+
+/// Runs `srt view` with the command line's arguments after `view`: scene names (see `srt
+/// scenes`), scene files (`.toml`) and model files (glTF/GLB, OBJ, PLY, STL), as `srt render`
+/// accepts them. The first is the scene (none: the `teaser` scene); every further one adds its
+/// objects to it. Returns when the window is closed.
+///
+/// # Errors
+/// An argument that cannot be opened (unknown name, missing or invalid file), or a window or
+/// GPU that cannot be opened (no display, no adapter).
+pub fn run(arguments: &[String]) -> anyhow::Result<()> {
+    let (editor, warnings) = Editor::from_arguments(arguments)?;
+    let title = format!("srt view — {}", editor.scene().name);
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title(title)
+            .with_app_id("srt-view")
+            .with_inner_size(WINDOW_SIZE)
+            .with_min_inner_size([640.0, 400.0])
+            .with_drag_and_drop(true),
+        renderer: eframe::Renderer::Wgpu,
+        wgpu_options: wgpu_options(),
+        ..Default::default()
+    };
+    eframe::run_native(
+        "srt view",
+        options,
+        Box::new(move |cc| {
+            let state = cc
+                .wgpu_render_state
+                .as_ref()
+                .ok_or("the window has no wgpu renderer")?;
+            let ctx = GpuContext::from_device(
+                state.device.clone(),
+                state.queue.clone(),
+                state.adapter.get_info(),
+            );
+            Ok(Box::new(ViewerApp::new(
+                editor,
+                Some((ctx, Some(Arc::clone(&state.renderer)))),
+                &warnings,
+            )))
+        }),
+    )
+    .map_err(|error| anyhow::anyhow!("{error}"))
+    .context(
+        "cannot open the viewer's window (it needs a display and a GPU adapter; without a GPU, \
+         install Mesa's lavapipe: `apt-get install mesa-vulkan-drivers`, then WGPU_BACKEND=vulkan)",
+    )
+}
