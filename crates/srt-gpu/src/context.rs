@@ -81,28 +81,8 @@ impl GpuContext {
     /// [`GpuError::Device`] when the adapter refuses.
     pub async fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
         let adapter_info = adapter.get_info();
-        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        let required_features = if timestamps {
-            wgpu::Features::TIMESTAMP_QUERY
-        } else {
-            wgpu::Features::empty()
-        };
-        let limits = adapter.limits();
-        let required_limits = wgpu::Limits {
-            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
-            max_buffer_size: limits.max_buffer_size,
-            max_storage_buffers_per_shader_stage: limits
-                .max_storage_buffers_per_shader_stage
-                .min(8),
-            ..wgpu::Limits::downlevel_defaults().using_resolution(limits.clone())
-        };
         let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("srt"),
-                required_features,
-                required_limits,
-                ..Default::default()
-            })
+            .request_device(&device_descriptor(adapter))
             .await
             .map_err(|e| GpuError::Device {
                 adapter: adapter_info.name.clone(),
@@ -209,6 +189,27 @@ impl GpuContext {
             .to_vec();
         buffer.unmap();
         Ok(bytes)
+    }
+}
+
+/// The device srt asks `adapter` for: the adapter's own buffer and texture limits (large
+/// models need them), and timestamp queries where available (for `cargo xtask bench`).
+#[must_use]
+pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
+    let limits = adapter.limits();
+    let timestamps = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    wgpu::DeviceDescriptor {
+        label: Some("srt"),
+        required_features: timestamps,
+        required_limits: wgpu::Limits {
+            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
+            max_buffer_size: limits.max_buffer_size,
+            max_storage_buffers_per_shader_stage: limits
+                .max_storage_buffers_per_shader_stage
+                .min(8),
+            ..wgpu::Limits::downlevel_defaults().using_resolution(limits.clone())
+        },
+        ..Default::default()
     }
 }
 

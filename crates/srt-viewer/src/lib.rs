@@ -33,30 +33,11 @@ pub use view::ViewMethod;
 /// Initial size of the window in points.
 pub const WINDOW_SIZE: [f32; 2] = [1600.0, 900.0];
 
-/// The device the window opens: the adapter's own limits for buffers and textures (large
-/// models need them), as `srt_gpu::GpuContext` asks for headless rendering.
-fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
-    let limits = adapter.limits();
-    wgpu::DeviceDescriptor {
-        label: Some("srt view"),
-        required_features: wgpu::Features::empty(),
-        required_limits: wgpu::Limits {
-            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
-            max_buffer_size: limits.max_buffer_size,
-            max_storage_buffers_per_shader_stage: limits
-                .max_storage_buffers_per_shader_stage
-                .min(8),
-            ..wgpu::Limits::downlevel_defaults().using_resolution(limits.clone())
-        },
-        ..Default::default()
-    }
-}
-
 /// The window's wgpu set-up: backends from `WGPU_BACKEND` (default: Vulkan, then GL), our
 /// device limits.
 fn wgpu_options() -> egui_wgpu::WgpuConfiguration {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
-    setup.device_descriptor = Arc::new(device_descriptor);
+    setup.device_descriptor = Arc::new(srt_gpu::context::device_descriptor);
     let present_mode = if std::env::var("SRT_VIEW_NOVSYNC").is_ok() {
         wgpu::PresentMode::AutoNoVsync
     } else {
