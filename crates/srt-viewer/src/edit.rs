@@ -994,26 +994,8 @@ mod tests {
         assert!(editor.set_wireframe(0, Some(-1.0)).is_err());
     }
 
-    /// A binary STL file with one tetrahedron (4 triangles).
+    /// A binary STL file with one tetrahedron (4 triangles), shared with the UI tests.
     pub(crate) fn tetrahedron_stl() -> Vec<u8> {
-        let p = [
-            [0.0f32, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ];
-        let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-        let mut bytes = vec![0u8; 80];
-        bytes.extend_from_slice(&4u32.to_le_bytes());
-        for face in faces {
-            bytes.extend_from_slice(&[0u8; 12]);
-            for v in face {
-                for c in p[v] {
-                    bytes.extend_from_slice(&c.to_le_bytes());
-                }
-            }
-            bytes.extend_from_slice(&[0u8; 2]);
-        }
-        bytes
+        include_bytes!("../tests/fixtures/tetrahedron.stl").to_vec()
     }
 }

@@ -369,25 +369,7 @@ fn keyboard_flies_and_resets_the_camera() {
     );
 }
 
-/// A binary STL file with one tetrahedron (4 triangles), in front of nothing in particular.
+/// A binary STL file with one tetrahedron (4 triangles), shared with the unit tests.
 fn tetrahedron_stl() -> Vec<u8> {
-    let p = [
-        [0.0f32, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    ];
-    let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-    let mut bytes = vec![0u8; 80];
-    bytes.extend_from_slice(&4u32.to_le_bytes());
-    for face in faces {
-        bytes.extend_from_slice(&[0u8; 12]);
-        for v in face {
-            for c in p[v] {
-                bytes.extend_from_slice(&c.to_le_bytes());
-            }
-        }
-        bytes.extend_from_slice(&[0u8; 2]);
-    }
-    bytes
+    include_bytes!("fixtures/tetrahedron.stl").to_vec()
 }
