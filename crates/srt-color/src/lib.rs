@@ -44,7 +44,7 @@ pub use planck::{
     BOLTZMANN_CONSTANT, PLANCK_CONSTANT, SECOND_RADIATION_CONSTANT, SPEED_OF_LIGHT, planck_radiance,
 };
 pub use rgb::{
-    SRGB_LINEAR_THRESHOLD, SRGB_OFFSET, XYZ_TO_LINEAR_BT709, srgb_decode, srgb_encode,
-    xyz_to_linear_rgb,
+    SRGB_LINEAR_THRESHOLD, SRGB_OFFSET, XYZ_TO_LINEAR_BT709, quantize_8bit, srgb_decode,
+    srgb_encode, xyz_to_linear_rgb,
 };
 pub use tonemap::{SEARCHLIGHT_REFERENCE_K, ToneMap, colour_table};

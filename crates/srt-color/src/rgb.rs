@@ -53,6 +53,15 @@ pub fn srgb_decode(encoded: f64) -> f64 {
     }
 }
 
+/// An encoded display value in [0, 1] as an 8-bit code: clamped, scaled by 255 and rounded to
+/// the nearest code (how every 8-bit image, texture and figure of srt is quantised).
+#[must_use]
+pub fn quantize_8bit(value: f64) -> u8 {
+    // After the clamp the product lies in [0, 255], so the cast neither truncates nor wraps;
+    // NaN (never produced by the renderers) casts to 0.
+    (value.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,5 +105,15 @@ mod tests {
     fn negative_inputs_stay_on_the_linear_segment() {
         assert_eq!(srgb_encode(-0.5), -6.46);
         assert!(srgb_encode(f64::NAN).is_nan());
+    }
+
+    #[test]
+    fn quantize_8bit_rounds_to_the_nearest_code_and_clamps() {
+        assert_eq!(quantize_8bit(0.0), 0);
+        assert_eq!(quantize_8bit(1.0), 255);
+        assert_eq!(quantize_8bit(-0.5), 0);
+        assert_eq!(quantize_8bit(7.0), 255);
+        assert_eq!(quantize_8bit(127.49 / 255.0), 127);
+        assert_eq!(quantize_8bit(127.51 / 255.0), 128);
     }
 }
