@@ -94,11 +94,11 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub effects: Option<EffectsArg>,
     /// Observation time ct_obs (overrides the scene's).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub time: Option<f64>,
     /// Velocity X,Y,Z in units of c given to every object (overrides the scene's; a bare model
     /// without it approaches the observer at 0.9c).
-    #[arg(long, value_parser = parse_vector, allow_negative_numbers = true)]
+    #[arg(long, value_parser = parse_vector, allow_hyphen_values = true)]
     pub beta: Option<DVec3>,
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
@@ -107,10 +107,10 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: Option<u32>,
     /// First observation time of an animation (default: the scene's time).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub t0: Option<f64>,
     /// Last observation time of an animation (default: first + 10).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub t1: Option<f64>,
 }
 

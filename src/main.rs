@@ -27,7 +27,38 @@ fn view(_scenes: &[String]) -> anyhow::Result<()> {
     anyhow::bail!("this srt was built without the `viewer` feature; rebuild with default features")
 }
 
+/// Gives the process a private `XDG_RUNTIME_DIR` when it has no valid one (a bare container, a
+/// CI job, `sudo`): Mesa's Vulkan device-selection layer connects to Wayland while listing
+/// adapters, and libwayland prints "XDG_RUNTIME_DIR is invalid or not set" on every run,
+/// successful ones included. The folder is private (0700), empty, and removed when the
+/// returned guard drops at the end of `main`.
+fn ensure_runtime_dir() -> Option<tempfile::TempDir> {
+    if !cfg!(target_os = "linux") {
+        return None;
+    }
+    // libwayland's rule: the variable must hold an absolute path; it must also exist to be
+    // useful to anyone else.
+    let valid = std::env::var_os("XDG_RUNTIME_DIR")
+        .map(std::path::PathBuf::from)
+        .is_some_and(|dir| dir.is_absolute() && dir.is_dir());
+    if valid {
+        return None;
+    }
+    let dir = tempfile::Builder::new()
+        .prefix("srt-runtime-")
+        .tempdir()
+        .ok()?;
+    // SAFETY: this runs first thing in `main`, before any other thread exists, so no other
+    // thread can be reading or writing the environment at the same time.
+    #[allow(unsafe_code)]
+    unsafe {
+        std::env::set_var("XDG_RUNTIME_DIR", dir.path());
+    }
+    Some(dir)
+}
+
 fn main() -> ExitCode {
+    let _runtime_dir = ensure_runtime_dir();
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or_default() {
         Command::Render(args) => render::run(&args),

@@ -1,13 +1,14 @@
 //! Writing images without ever leaving a half-written file: encode into a temporary file in the
 //! destination folder, then rename it over the destination.
 
-use std::io::{BufWriter, Write as _};
+use std::io::{BufWriter, ErrorKind, Write as _};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context as _, bail};
+use anyhow::{Context as _, anyhow, bail};
 use glam::DVec3;
 use image::{ImageFormat, Rgb32FImage, RgbImage};
-use srt_color::srgb_decode;
+use srt_color::{quantize_8bit, srgb_decode};
+use tempfile::NamedTempFile;
 
 /// Image file formats `srt` writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,22 +54,85 @@ pub fn numbered(path: &Path, frame: u32, digits: usize) -> PathBuf {
     path.with_file_name(format!("{stem}_{frame:0digits$}.{extension}"))
 }
 
-/// Checks up front that `path` can be written (its folder exists and is writable), so a long
-/// render does not end in an error.
+/// Checks up front that `path` can be written (a known image extension, not a folder or a device,
+/// in an existing folder where a file can be created), so a long render does not end in an
+/// error and nothing the user had is replaced by surprise.
 ///
 /// # Errors
-/// If the folder does not exist or a file cannot be created in it.
+/// If any of those does not hold; the message names the path and the reason.
 pub fn check_writable(path: &Path) -> anyhow::Result<()> {
     OutputFormat::for_path(path)?;
+    if let Ok(metadata) = std::fs::metadata(path) {
+        if metadata.is_dir() {
+            bail!("cannot write {}: it is a folder", path.display());
+        }
+        if !metadata.is_file() {
+            bail!(
+                "cannot write {}: it exists and is not a regular file (a device, pipe or socket)",
+                path.display()
+            );
+        }
+    }
     let folder = parent_folder(path);
-    tempfile::NamedTempFile::new_in(folder).with_context(|| {
-        format!(
-            "cannot write {}: folder {} is not writable",
+    match std::fs::metadata(folder) {
+        Ok(metadata) if metadata.is_dir() => {}
+        Ok(_) => bail!(
+            "cannot write {}: {} is not a folder",
             path.display(),
             folder.display()
-        )
-    })?;
+        ),
+        Err(error) if error.kind() == ErrorKind::NotFound => bail!(
+            "cannot write {}: folder {} does not exist",
+            path.display(),
+            folder.display()
+        ),
+        Err(error) => bail!(
+            "cannot write {}: folder {} cannot be used ({})",
+            path.display(),
+            folder.display(),
+            io_reason(&error)
+        ),
+    }
+    temporary_file_beside(path)?;
     Ok(())
+}
+
+/// A new, empty temporary file in `path`'s folder (removed when dropped), created with the
+/// permissions any new file gets there: 0o666 less the umask on Unix, not `tempfile`'s private
+/// 0o600, which would otherwise survive the rename into place.
+fn temporary_file_beside(path: &Path) -> anyhow::Result<NamedTempFile> {
+    let folder = parent_folder(path);
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".srt-").suffix(".partial");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(folder).map_err(|error| {
+        anyhow!(
+            "cannot write {}: cannot create a file in folder {} ({})",
+            path.display(),
+            folder.display(),
+            io_reason(&error)
+        )
+    })
+}
+
+/// The reason of an I/O error in words, as the OS says it ("permission denied"), without the
+/// error number or the temporary file names `tempfile` adds to its messages.
+fn io_reason(error: &std::io::Error) -> String {
+    // `tempfile` wraps the OS error in one of its own: "<OS error> at path \"<temporary>\"".
+    let text = error.to_string();
+    let words = text
+        .split(" (os error")
+        .next()
+        .and_then(|t| t.split(" at path ").next())
+        .unwrap_or(&text);
+    let mut chars = words.chars();
+    chars.next().map_or_else(String::new, |first| {
+        first.to_lowercase().chain(chars).collect()
+    })
 }
 
 fn parent_folder(path: &Path) -> &Path {
@@ -85,24 +149,14 @@ fn parent_folder(path: &Path) -> &Path {
 /// If encoding or writing fails; the destination is then untouched.
 pub fn write_image(width: u32, height: u32, pixels: &[DVec3], path: &Path) -> anyhow::Result<()> {
     let format = OutputFormat::for_path(path)?;
-    let folder = parent_folder(path);
-    let mut temp = tempfile::NamedTempFile::new_in(folder).with_context(|| {
-        format!(
-            "cannot write {}: folder {} is not writable",
-            path.display(),
-            folder.display()
-        )
-    })?;
+    let mut temp = temporary_file_beside(path)?;
     {
         let mut writer = BufWriter::new(temp.as_file_mut());
         match format {
             OutputFormat::Png => {
                 let bytes: Vec<u8> = pixels
                     .iter()
-                    .flat_map(|p| {
-                        p.to_array()
-                            .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-                    })
+                    .flat_map(|p| p.to_array().map(quantize_8bit))
                     .collect();
                 let buffer =
                     RgbImage::from_raw(width, height, bytes).context("image size mismatch")?;
@@ -121,9 +175,14 @@ pub fn write_image(width: u32, height: u32, pixels: &[DVec3], path: &Path) -> an
         .with_context(|| format!("cannot encode {}", path.display()))?;
         writer
             .flush()
-            .with_context(|| format!("cannot write {}", path.display()))?;
+            .map_err(|error| anyhow!("cannot write {} ({})", path.display(), io_reason(&error)))?;
     }
-    temp.persist(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    temp.persist(path).map_err(|error| {
+        anyhow!(
+            "cannot write {} ({})",
+            path.display(),
+            io_reason(&error.error)
+        )
+    })?;
     Ok(())
 }

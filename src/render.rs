@@ -47,16 +47,24 @@ impl Engine {
 /// Any user-facing failure: unknown scene, bad file, bad override, no GPU for `--backend gpu`,
 /// unwritable output.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    // A named output is checked before the scene is even loaded: a typo in -o must not cost a
+    // model import and a render.
+    if let Some(output) = &args.output {
+        check_writable(output)?;
+    }
     let (mut scene, warnings) = load_scene(&args.scene, args.beta)?;
     for warning in &warnings {
         eprintln!("warning: {warning}");
     }
     apply_overrides(&mut scene, args)?;
-    let output = args
-        .output
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("{}.png", file_safe(&scene.name))));
-    check_writable(&output)?;
+    let output = match &args.output {
+        Some(output) => output.clone(),
+        None => {
+            let output = PathBuf::from(format!("{}.png", file_safe(&scene.name)));
+            check_writable(&output)?;
+            output
+        }
+    };
     let settings = RenderSettings {
         width: args.width,
         height: args.height,
