@@ -12,7 +12,7 @@ use bvh::ray::Ray;
 use glam::{DVec2, DVec3, DVec4};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
-use srt_color::TemperatureLut;
+use srt_color::{TemperatureLut, quantize_8bit};
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::{Part, Scene};
 
@@ -52,10 +52,7 @@ impl RenderedImage {
     pub fn to_rgb8(&self) -> Vec<[u8; 3]> {
         self.pixels
             .iter()
-            .map(|p| {
-                p.to_array()
-                    .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-            })
+            .map(|p| p.to_array().map(quantize_8bit))
             .collect()
     }
 }
