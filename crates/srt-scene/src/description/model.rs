@@ -1,0 +1,578 @@
+//! The serde model of a scene file: the description types, their defaults, the custom forms of
+//! `texture` and `scale`, and parsing and saving TOML text.
+
+use std::fmt;
+
+use glam::{DMat4, DQuat, DVec3};
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::ser::{SerializeSeq, Serializer};
+use serde::{Deserialize, Serialize};
+use srt_color::ToneMap;
+
+#[cfg(doc)]
+use super::FIT_RADIUS;
+use super::error::{SceneError, SceneErrorKind, line_column};
+use super::{
+    DEFAULT_CUBE_SIZE, DEFAULT_CUBE_SUBDIVISIONS, DEFAULT_FOV_Y_DEG, DEFAULT_LIGHT_TEMPERATURE_K,
+    DEFAULT_SPHERE_RADIUS, DEFAULT_SPHERE_SEGMENTS, DEFAULT_UP,
+};
+use crate::scene::{Effects, Shading};
+#[cfg(doc)]
+use crate::shapes;
+use crate::textures::{DEFAULT_CHECKER_COLORS, DEFAULT_CHECKER_SQUARES};
+
+/// A scene as written in a TOML scene file (see `docs/scene-format.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDescription {
+    /// Name of the scene (defaults to the file stem).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Free text describing the scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// The observer (the camera) at rest in S.
+    pub observer: ObserverDescription,
+    /// The light at rest in S; without one, a light of [`DEFAULT_LIGHT_TEMPERATURE_K`] sits at
+    /// the observer's position.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub light: Option<LightDescription>,
+    /// Effect mode, tone map, background and Phong factors.
+    #[serde(default)]
+    pub render: RenderDescription,
+    /// The moving objects (`[[object]]` tables).
+    #[serde(default, rename = "object", skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<ObjectDescription>,
+}
+
+/// The `[observer]` table: a pinhole camera at rest in S, observing at time `ct`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObserverDescription {
+    /// Position in S.
+    pub position: [f64; 3],
+    /// A point in S the camera looks at (give this or `direction`, not both).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub look_at: Option<[f64; 3]>,
+    /// Viewing direction in S (give this or `look_at`, not both).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direction: Option<[f64; 3]>,
+    /// Approximate up direction of the image (default +z).
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    /// Vertical field of view in degrees, in (0, 180).
+    #[serde(default = "default_fov")]
+    pub fov_y_deg: f64,
+    /// Observation time ct (c = 1, same unit as positions).
+    #[serde(default)]
+    pub ct: f64,
+}
+
+/// The `[light]` table: a point light at rest in S radiating a Planck spectrum.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightDescription {
+    /// Position in S.
+    pub position: [f64; 3],
+    /// Black-body temperature in kelvin (> 0).
+    #[serde(default = "default_temperature")]
+    pub temperature_k: f64,
+}
+
+/// The `[render]` table: effect mode, tone map, background and Phong factors (Eq. 18).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderDescription {
+    /// Which relativistic effects the colours show.
+    #[serde(default, with = "effects_name")]
+    pub effects: Effects,
+    /// Colour table; `None` means the effect mode's ([`Effects::default_tone_map`]).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "tone_map_name"
+    )]
+    pub tone_map: Option<ToneMap>,
+    /// Display colour (sRGB, components in [0, 1]) where no object is seen.
+    #[serde(default)]
+    pub background: [f64; 3],
+    /// Ambient term (`f_amb` of Eq. 18).
+    #[serde(default = "default_ambient")]
+    pub ambient: f64,
+    /// Diffuse weight.
+    #[serde(default = "default_diffuse")]
+    pub diffuse: f64,
+    /// Specular weight.
+    #[serde(default = "default_specular")]
+    pub specular: f64,
+    /// Phong exponent.
+    #[serde(default = "default_shininess")]
+    pub shininess: f64,
+}
+
+impl Default for RenderDescription {
+    fn default() -> Self {
+        let shading = Shading::default();
+        Self {
+            effects: Effects::default(),
+            tone_map: None,
+            background: [0.0; 3],
+            ambient: shading.ambient,
+            diffuse: shading.diffuse,
+            specular: shading.specular,
+            shininess: shading.shininess,
+        }
+    }
+}
+
+/// One `[[object]]` table: a rigid object at rest in its own frame S′.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectDescription {
+    /// Name for messages and listings (default `object N`, counting from 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// What the object is: a cube, a sphere or a model file.
+    pub shape: ShapeDescription,
+    /// Centre the shape at the S′ origin and scale it to a bounding-sphere radius of
+    /// [`FIT_RADIUS`] before `scale`, `rotate_deg` and `translate` apply.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub fit: bool,
+    /// Texture replacing the shape's own (a checkerboard or an image file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texture: Option<TextureDescription>,
+    /// Base colour (sRGB, components in [0, 1]) multiplied with the texture; default white.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<[f64; 3]>,
+    /// Draw triangle edges of this width (in S′ units) instead of the texture.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wireframe: Option<f64>,
+    /// Velocity of S′ relative to S in units of c (|β| < 1).
+    #[serde(default)]
+    pub beta: [f64; 3],
+    /// Position in S of the S′ origin at t = t′ = 0 (the paper's **a**).
+    #[serde(default)]
+    pub offset: [f64; 3],
+    /// Rest-frame translation, applied last.
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub translate: [f64; 3],
+    /// Rest-frame rotation in degrees about the x, then the y, then the z axis (fixed axes),
+    /// applied after `scale`.
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub rotate_deg: [f64; 3],
+    /// Rest-frame scale (a number or one factor per axis, all > 0), applied first.
+    #[serde(default, skip_serializing_if = "Scale::is_one")]
+    pub scale: Scale,
+}
+
+/// The `shape` of an object.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ShapeDescription {
+    /// An axis-aligned cube centred at the S′ origin ([`shapes::cube`]).
+    Cube {
+        /// Edge length.
+        #[serde(default = "default_cube_size")]
+        size: f64,
+        /// Squares per edge of each face (2·n² triangles per face).
+        #[serde(default = "default_cube_subdivisions")]
+        subdivisions: u32,
+    },
+    /// A latitude–longitude sphere centred at the S′ origin ([`shapes::uv_sphere`]).
+    Sphere {
+        /// Radius.
+        #[serde(default = "default_sphere_radius")]
+        radius: f64,
+        /// Slices around the z axis (rings: half as many).
+        #[serde(default = "default_sphere_segments")]
+        segments: u32,
+    },
+    /// A model file (glTF, GLB, OBJ, PLY, STL), relative to the scene file's folder, or
+    /// `builtin:NAME` for a model embedded in the program.
+    Model {
+        /// The file.
+        path: String,
+    },
+}
+
+/// An object's `texture`: `"checker"`, `{ type = "checker", squares = 8, colors = [...] }`,
+/// `{ type = "image", path = "wood.png" }` or just the image path as a string.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TextureDescription {
+    /// A checkerboard with `squares` × `squares` squares on each texture (each cube face).
+    Checker {
+        /// Squares along each edge.
+        squares: u32,
+        /// The two colours (sRGB, components in [0, 1]); the top-left square has the first.
+        colors: [[f64; 3]; 2],
+    },
+    /// An image file (PNG, JPEG, BMP, TGA), relative to the scene file's folder, or
+    /// `builtin:NAME`.
+    Image {
+        /// The file.
+        path: String,
+    },
+}
+
+impl TextureDescription {
+    /// The default checkerboard ([`DEFAULT_CHECKER_SQUARES`] squares, black and white).
+    #[must_use]
+    pub const fn checker() -> Self {
+        Self::Checker {
+            squares: DEFAULT_CHECKER_SQUARES,
+            colors: DEFAULT_CHECKER_COLORS,
+        }
+    }
+}
+
+/// Serde mirror of [`TextureDescription`] in its table form.
+#[derive(Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+enum TextureTable {
+    Checker {
+        #[serde(default = "default_checker_squares")]
+        squares: u32,
+        #[serde(default = "default_checker_colors")]
+        colors: [[f64; 3]; 2],
+    },
+    Image {
+        path: String,
+    },
+}
+
+impl Serialize for TextureDescription {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            _ if *self == Self::checker() => serializer.serialize_str("checker"),
+            Self::Checker { squares, colors } => TextureTable::Checker {
+                squares: *squares,
+                colors: *colors,
+            }
+            .serialize(serializer),
+            Self::Image { path } => {
+                TextureTable::Image { path: path.clone() }.serialize(serializer)
+            }
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for TextureDescription {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct TextureVisitor;
+        impl<'de> Visitor<'de> for TextureVisitor {
+            type Value = TextureDescription;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(
+                    "\"checker\", an image path, or a table with type = \"checker\" or \"image\"",
+                )
+            }
+            fn visit_str<E: de::Error>(self, value: &str) -> Result<Self::Value, E> {
+                if value.is_empty() {
+                    Err(E::custom("the texture path is empty"))
+                } else if value == "checker" {
+                    Ok(TextureDescription::checker())
+                } else {
+                    Ok(TextureDescription::Image {
+                        path: value.to_owned(),
+                    })
+                }
+            }
+            fn visit_map<M: MapAccess<'de>>(self, map: M) -> Result<Self::Value, M::Error> {
+                Ok(
+                    match TextureTable::deserialize(de::value::MapAccessDeserializer::new(map))? {
+                        TextureTable::Checker { squares, colors } => {
+                            TextureDescription::Checker { squares, colors }
+                        }
+                        TextureTable::Image { path } => TextureDescription::Image { path },
+                    },
+                )
+            }
+        }
+        deserializer.deserialize_any(TextureVisitor)
+    }
+}
+
+/// An object's rest-frame `scale`: one factor, or one per axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scale {
+    /// The same factor on every axis.
+    Uniform(f64),
+    /// Factors for x, y and z.
+    PerAxis([f64; 3]),
+}
+
+impl Default for Scale {
+    fn default() -> Self {
+        Self::Uniform(1.0)
+    }
+}
+
+impl Scale {
+    /// The factors for x, y and z.
+    #[must_use]
+    pub const fn factors(self) -> DVec3 {
+        match self {
+            Self::Uniform(s) => DVec3::splat(s),
+            Self::PerAxis([x, y, z]) => DVec3::new(x, y, z),
+        }
+    }
+
+    /// Whether this is the identity (written as nothing when saving).
+    fn is_one(&self) -> bool {
+        *self == Self::Uniform(1.0)
+    }
+}
+
+impl Serialize for Scale {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match *self {
+            Self::Uniform(s) => serializer.serialize_f64(s),
+            Self::PerAxis(v) => {
+                let mut seq = serializer.serialize_seq(Some(3))?;
+                for c in v {
+                    seq.serialize_element(&c)?;
+                }
+                seq.end()
+            }
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Scale {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct ScaleVisitor;
+        impl<'de> Visitor<'de> for ScaleVisitor {
+            type Value = Scale;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a number or an array of three numbers")
+            }
+            fn visit_f64<E: de::Error>(self, value: f64) -> Result<Self::Value, E> {
+                Ok(Scale::Uniform(value))
+            }
+            #[expect(
+                clippy::cast_precision_loss,
+                reason = "scale factors are small numbers"
+            )]
+            fn visit_i64<E: de::Error>(self, value: i64) -> Result<Self::Value, E> {
+                Ok(Scale::Uniform(value as f64))
+            }
+            #[expect(
+                clippy::cast_precision_loss,
+                reason = "scale factors are small numbers"
+            )]
+            fn visit_u64<E: de::Error>(self, value: u64) -> Result<Self::Value, E> {
+                Ok(Scale::Uniform(value as f64))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+                let mut v = [0.0; 3];
+                for (i, c) in v.iter_mut().enumerate() {
+                    *c = seq
+                        .next_element()?
+                        .ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                }
+                if seq.next_element::<f64>()?.is_some() {
+                    return Err(de::Error::invalid_length(4, &self));
+                }
+                Ok(Scale::PerAxis(v))
+            }
+        }
+        deserializer.deserialize_any(ScaleVisitor)
+    }
+}
+
+mod effects_name {
+    //! Serde for [`Effects`] by its scene-file name.
+    use serde::{Deserialize, Deserializer, Serializer, de};
+
+    use crate::scene::Effects;
+
+    pub(super) fn serialize<S: Serializer>(effects: &Effects, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(effects.name())
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Effects, D::Error> {
+        let name = String::deserialize(d)?;
+        Effects::from_name(&name).ok_or_else(|| {
+            de::Error::custom(format!(
+                "unknown effect mode \"{name}\"; expected \"geometry\", \"doppler\" or \"searchlight\""
+            ))
+        })
+    }
+}
+
+mod tone_map_name {
+    //! Serde for an optional [`ToneMap`] by its name.
+    use serde::{Deserialize, Deserializer, Serializer, de};
+    use srt_color::ToneMap;
+
+    #[expect(
+        clippy::ref_option,
+        reason = "serde's serialize_with passes a reference"
+    )]
+    pub(super) fn serialize<S: Serializer>(
+        tone_map: &Option<ToneMap>,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        match tone_map {
+            Some(t) => s.serialize_str(t.name()),
+            None => s.serialize_none(),
+        }
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<ToneMap>, D::Error> {
+        let name = String::deserialize(d)?;
+        ToneMap::ALL
+            .into_iter()
+            .find(|t| t.name() == name)
+            .map(Some)
+            .ok_or_else(|| {
+                de::Error::custom(format!(
+                    "unknown tone map \"{name}\"; expected \"luminance\" or \"searchlight\""
+                ))
+            })
+    }
+}
+
+fn default_up() -> [f64; 3] {
+    DEFAULT_UP
+}
+fn default_fov() -> f64 {
+    DEFAULT_FOV_Y_DEG
+}
+fn default_temperature() -> f64 {
+    DEFAULT_LIGHT_TEMPERATURE_K
+}
+fn default_ambient() -> f64 {
+    Shading::default().ambient
+}
+fn default_diffuse() -> f64 {
+    Shading::default().diffuse
+}
+fn default_specular() -> f64 {
+    Shading::default().specular
+}
+fn default_shininess() -> f64 {
+    Shading::default().shininess
+}
+fn default_cube_size() -> f64 {
+    DEFAULT_CUBE_SIZE
+}
+fn default_cube_subdivisions() -> u32 {
+    DEFAULT_CUBE_SUBDIVISIONS
+}
+fn default_sphere_radius() -> f64 {
+    DEFAULT_SPHERE_RADIUS
+}
+fn default_sphere_segments() -> u32 {
+    DEFAULT_SPHERE_SEGMENTS
+}
+fn default_checker_squares() -> u32 {
+    DEFAULT_CHECKER_SQUARES
+}
+fn default_checker_colors() -> [[f64; 3]; 2] {
+    DEFAULT_CHECKER_COLORS
+}
+#[expect(
+    clippy::trivially_copy_pass_by_ref,
+    reason = "serde's skip_serializing_if passes a reference"
+)]
+fn is_false(value: &bool) -> bool {
+    !*value
+}
+fn is_zero3(value: &[f64; 3]) -> bool {
+    *value == [0.0; 3]
+}
+
+impl ObjectDescription {
+    /// An object of `shape` at rest at the S′ origin, with every other field at its default.
+    #[must_use]
+    pub fn new(shape: ShapeDescription) -> Self {
+        Self {
+            name: None,
+            shape,
+            fit: false,
+            texture: None,
+            color: None,
+            wireframe: None,
+            beta: [0.0; 3],
+            offset: [0.0; 3],
+            translate: [0.0; 3],
+            rotate_deg: [0.0; 3],
+            scale: Scale::default(),
+        }
+    }
+
+    /// How messages name the object with index `index` (from 0) in its scene: `object "name"`,
+    /// or `object N` (counting from 1) when it has no name.
+    #[must_use]
+    pub fn label(&self, index: usize) -> String {
+        match &self.name {
+            Some(name) => format!("object \"{name}\""),
+            None => format!("object {}", index + 1),
+        }
+    }
+
+    /// The rest-frame placement (scale, then rotation about x, y, z, then translation), not
+    /// including `fit`.
+    #[must_use]
+    pub fn placement(&self) -> DMat4 {
+        let [x, y, z] = self.rotate_deg.map(f64::to_radians);
+        let rotation =
+            DQuat::from_rotation_z(z) * DQuat::from_rotation_y(y) * DQuat::from_rotation_x(x);
+        DMat4::from_scale_rotation_translation(
+            self.scale.factors(),
+            rotation,
+            DVec3::from_array(self.translate),
+        )
+    }
+}
+
+impl SceneDescription {
+    /// Parses a scene file's text; `source_name` (usually the file's path) names it in errors.
+    ///
+    /// # Errors
+    /// [`SceneErrorKind::Syntax`] with the line and column of the problem for invalid TOML, an
+    /// unknown key, a value of the wrong type or a missing required key. Values are not checked
+    /// here: [`SceneDescription::validate`] and [`SceneDescription::build`] do that.
+    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, SceneError> {
+        toml::from_str(text).map_err(|error: toml::de::Error| {
+            let (line, column) = line_column(text, error.span().map_or(0, |span| span.start));
+            let message = error.message().trim_end().to_owned();
+            SceneError::new(
+                source_name,
+                SceneErrorKind::Syntax {
+                    line,
+                    column,
+                    message,
+                },
+            )
+        })
+    }
+
+    /// The description as TOML text that [`SceneDescription::from_toml_str`] reads back into an
+    /// equal description. Defaults are written out, except for empty optional fields.
+    ///
+    /// # Panics
+    /// Never: every value of a description has a TOML representation.
+    #[must_use]
+    pub fn to_toml_string(&self) -> String {
+        toml::to_string(self).expect("a scene description is always representable in TOML")
+    }
+}
+
+impl ObserverDescription {
+    /// The viewing direction (from `direction`, or from `position` to `look_at`), unnormalised.
+    /// `None` if neither or both are given.
+    #[must_use]
+    pub fn view_direction(&self) -> Option<DVec3> {
+        match (self.look_at, self.direction) {
+            (Some(target), None) => {
+                Some(DVec3::from_array(target) - DVec3::from_array(self.position))
+            }
+            (None, Some(direction)) => Some(DVec3::from_array(direction)),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,242 @@
+//! Checks of a description that need no file: ranges, finiteness and consistency of every value.
+
+use glam::DVec3;
+use srt_physics::Frame;
+
+use super::error::{SceneError, SceneErrorKind, value_error};
+use super::model::{
+    ObjectDescription, ObserverDescription, RenderDescription, SceneDescription, ShapeDescription,
+    TextureDescription,
+};
+use crate::shapes::{MAX_CUBE_SUBDIVISIONS, MAX_SPHERE_SEGMENTS, MIN_SPHERE_SEGMENTS};
+use crate::textures::MAX_CHECKER_SQUARES;
+
+impl SceneDescription {
+    /// How errors from [`SceneDescription::build`] name this scene when it is not read from a
+    /// file.
+    pub(super) fn origin(&self) -> String {
+        match &self.name {
+            Some(name) => format!("scene \"{name}\""),
+            None => "scene".to_owned(),
+        }
+    }
+
+    /// Checks every value that does not need a file: the observer (exactly one of `look_at` and
+    /// `direction`, a non-zero direction, `up` not parallel to it, fov in (0, 180)), the light
+    /// (temperature > 0), the render settings and each object (|β| < 1, sizes and scales > 0,
+    /// colours in [0, 1]…). All numbers must be finite.
+    ///
+    /// # Errors
+    /// The first problem found, naming the value (and the object) concerned.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        self.check()
+            .map_err(|kind| SceneError::new(self.origin(), kind))
+    }
+
+    pub(super) fn check(&self) -> Result<(), SceneErrorKind> {
+        self.observer.check()?;
+        if let Some(light) = &self.light {
+            finite3("light.position", light.position)?;
+            if !(light.temperature_k.is_finite() && light.temperature_k > 0.0) {
+                return Err(value_error(
+                    "light.temperature_k",
+                    format!(
+                        "must be a positive number of kelvin, got {}",
+                        light.temperature_k
+                    ),
+                ));
+            }
+        }
+        self.render.check()?;
+        for (index, object) in self.objects.iter().enumerate() {
+            object.check(&object.label(index))?;
+        }
+        Ok(())
+    }
+}
+
+fn finite3(field: &str, value: [f64; 3]) -> Result<DVec3, SceneErrorKind> {
+    let v = DVec3::from_array(value);
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(value_error(
+            field,
+            format!("must have finite components, got {value:?}"),
+        ))
+    }
+}
+
+fn unit_color(field: &str, value: [f64; 3]) -> Result<(), SceneErrorKind> {
+    if value.iter().all(|c| (0.0..=1.0).contains(c)) {
+        Ok(())
+    } else {
+        Err(value_error(
+            field,
+            format!("must have components in [0, 1], got {value:?}"),
+        ))
+    }
+}
+
+fn positive(field: &str, value: f64) -> Result<(), SceneErrorKind> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(value_error(
+            field,
+            format!("must be a positive number, got {value}"),
+        ))
+    }
+}
+
+fn non_negative(field: &str, value: f64) -> Result<(), SceneErrorKind> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(value_error(
+            field,
+            format!("must be a number ≥ 0, got {value}"),
+        ))
+    }
+}
+
+impl ObserverDescription {
+    fn check(&self) -> Result<(), SceneErrorKind> {
+        finite3("observer.position", self.position)?;
+        let direction = match (self.look_at, self.direction) {
+            (Some(target), None) => {
+                finite3("observer.look_at", target)?;
+                DVec3::from_array(target) - DVec3::from_array(self.position)
+            }
+            (None, Some(direction)) => finite3("observer.direction", direction)?,
+            (Some(_), Some(_)) => {
+                return Err(value_error(
+                    "observer",
+                    "gives both look_at and direction; give exactly one of them",
+                ));
+            }
+            (None, None) => {
+                return Err(value_error(
+                    "observer",
+                    "gives neither look_at nor direction; give exactly one of them",
+                ));
+            }
+        };
+        let direction = direction.try_normalize().ok_or_else(|| {
+            value_error(
+                "observer",
+                "has a zero viewing direction (look_at equals position, or direction is zero)",
+            )
+        })?;
+        let up = finite3("observer.up", self.up)?
+            .try_normalize()
+            .ok_or_else(|| value_error("observer.up", "must not be zero"))?;
+        if direction.cross(up).length() < 1e-9 {
+            return Err(value_error(
+                "observer.up",
+                format!(
+                    "must not be parallel to the viewing direction, got {:?}",
+                    self.up
+                ),
+            ));
+        }
+        if !(self.fov_y_deg > 0.0 && self.fov_y_deg < 180.0) {
+            return Err(value_error(
+                "observer.fov_y_deg",
+                format!("must be in (0, 180) degrees, got {}", self.fov_y_deg),
+            ));
+        }
+        if !self.ct.is_finite() {
+            return Err(value_error(
+                "observer.ct",
+                format!("must be finite, got {}", self.ct),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl RenderDescription {
+    fn check(&self) -> Result<(), SceneErrorKind> {
+        unit_color("render.background", self.background)?;
+        non_negative("render.ambient", self.ambient)?;
+        non_negative("render.diffuse", self.diffuse)?;
+        non_negative("render.specular", self.specular)?;
+        non_negative("render.shininess", self.shininess)
+    }
+}
+
+impl ObjectDescription {
+    fn check(&self, label: &str) -> Result<(), SceneErrorKind> {
+        let field = |name: &str| format!("{name} of {label}");
+        Frame::new(DVec3::from_array(self.beta), DVec3::from_array(self.offset)).map_err(
+            |error| SceneErrorKind::Frame {
+                object: label.to_owned(),
+                error,
+            },
+        )?;
+        match &self.shape {
+            ShapeDescription::Cube { size, subdivisions } => {
+                positive(&field("shape.size"), *size)?;
+                if !(1..=MAX_CUBE_SUBDIVISIONS).contains(subdivisions) {
+                    return Err(value_error(
+                        field("shape.subdivisions"),
+                        format!("must be in 1..={MAX_CUBE_SUBDIVISIONS}, got {subdivisions}"),
+                    ));
+                }
+            }
+            ShapeDescription::Sphere { radius, segments } => {
+                positive(&field("shape.radius"), *radius)?;
+                if !(MIN_SPHERE_SEGMENTS..=MAX_SPHERE_SEGMENTS).contains(segments) {
+                    return Err(value_error(
+                        field("shape.segments"),
+                        format!(
+                            "must be in {MIN_SPHERE_SEGMENTS}..={MAX_SPHERE_SEGMENTS}, got {segments}"
+                        ),
+                    ));
+                }
+            }
+            ShapeDescription::Model { path } => {
+                if path.is_empty() {
+                    return Err(value_error(field("shape.path"), "must not be empty"));
+                }
+            }
+        }
+        match &self.texture {
+            Some(TextureDescription::Checker { squares, colors }) => {
+                if !(1..=MAX_CHECKER_SQUARES).contains(squares) {
+                    return Err(value_error(
+                        field("texture.squares"),
+                        format!("must be in 1..={MAX_CHECKER_SQUARES}, got {squares}"),
+                    ));
+                }
+                for color in colors {
+                    unit_color(&field("texture.colors"), *color)?;
+                }
+            }
+            Some(TextureDescription::Image { path }) if path.is_empty() => {
+                return Err(value_error(field("texture.path"), "must not be empty"));
+            }
+            _ => {}
+        }
+        if let Some(color) = self.color {
+            unit_color(&field("color"), color)?;
+        }
+        if let Some(width) = self.wireframe {
+            positive(&field("wireframe"), width)?;
+        }
+        finite3(&field("translate"), self.translate)?;
+        finite3(&field("rotate_deg"), self.rotate_deg)?;
+        let factors = self.scale.factors();
+        if !(factors.is_finite() && factors.min_element() > 0.0) {
+            return Err(value_error(
+                field("scale"),
+                format!(
+                    "must be positive (one number or three), got {:?}",
+                    factors.to_array()
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
