@@ -7,6 +7,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
 use crate::import::{self, ImportError, ImportFailure, Model};
+use crate::input_file::InputFileError;
+use crate::limits::Budget;
 use crate::mesh::Texture;
 use crate::textures;
 
@@ -67,25 +69,34 @@ pub fn resolve(base_dir: &Path, path: &str) -> Result<Resolved, String> {
     }
 }
 
-/// Loads the model at `resolved` with [`import::load_model`]; embedded models are loaded once
-/// per process and cached.
+/// Loads the model at `resolved` with [`import::load_model_within`], charging it to `budget`;
+/// embedded models are loaded once per process and cached (and charged on every use).
 ///
 /// # Errors
-/// [`ImportError`] naming the file, as [`import::load_model`] gives it.
-pub fn load_model(resolved: &Resolved) -> Result<Model, ImportError> {
+/// [`ImportError`] naming the file, as [`import::load_model_within`] gives it.
+pub fn load_model(resolved: &Resolved, budget: &mut Budget) -> Result<Model, ImportError> {
     static CACHE: Mutex<Option<HashMap<&'static str, Model>>> = Mutex::new(None);
     match resolved {
-        Resolved::File(path) => import::load_model(path),
+        Resolved::File(path) => import::load_model_within(path, budget),
         Resolved::Embedded { name, bytes } => {
             let cached = CACHE
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner)
                 .as_ref()
                 .and_then(|cache| cache.get(name).cloned());
+            let label = format!("{BUILTIN_PREFIX}{name}");
             if let Some(model) = cached {
-                return Ok(model);
+                let charged = budget
+                    .charge_parts(model.parts.len() as u64)
+                    .and_then(|()| {
+                        budget
+                            .charge_mesh(model.triangle_count() as u64, model.vertex_count() as u64)
+                    });
+                return charged
+                    .map(|()| model)
+                    .map_err(|e| ImportError::new(label, e.into()));
             }
-            let model = load_model_bytes(&format!("{BUILTIN_PREFIX}{name}"), bytes)?;
+            let model = load_model_bytes(&label, bytes, budget)?;
             CACHE
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner)
@@ -97,13 +108,17 @@ pub fn load_model(resolved: &Resolved) -> Result<Model, ImportError> {
 }
 
 /// Loads a model from the bytes of a single-file model (STL, PLY, GLB, or OBJ/glTF without
-/// external files) called `name`, whose extension picks the format, with [`import::load_model`]:
-/// the bytes are written to a fresh temporary folder, loaded and removed again. Warnings name
-/// `name` rather than the temporary file.
+/// external files) called `name`, whose extension picks the format, with
+/// [`import::load_model_within`] and `budget`: the bytes are written to a fresh temporary
+/// folder, loaded and removed again. Warnings name `name` rather than the temporary file.
 ///
 /// # Errors
 /// [`ImportError`] if the temporary file cannot be written or the model cannot be loaded.
-pub fn load_model_bytes(name: &str, bytes: &[u8]) -> Result<Model, ImportError> {
+pub fn load_model_bytes(
+    name: &str,
+    bytes: &[u8],
+    budget: &mut Budget,
+) -> Result<Model, ImportError> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let file_name = Path::new(name)
         .file_name()
@@ -116,8 +131,11 @@ pub fn load_model_bytes(name: &str, bytes: &[u8]) -> Result<Model, ImportError> 
     let path = dir.join(file_name);
     let written = std::fs::create_dir_all(&dir).and_then(|()| std::fs::write(&path, bytes));
     let result = match written {
-        Ok(()) => import::load_model(&path),
-        Err(error) => Err(ImportError::new(name, ImportFailure::Io(error))),
+        Ok(()) => import::load_model_within(&path, budget),
+        Err(error) => Err(ImportError::new(
+            name,
+            ImportFailure::Io(InputFileError::Io(error)),
+        )),
     };
     // Best effort: a leftover temporary folder is harmless.
     let _ = std::fs::remove_dir_all(&dir);
@@ -129,16 +147,17 @@ pub fn load_model_bytes(name: &str, bytes: &[u8]) -> Result<Model, ImportError> 
     Ok(model)
 }
 
-/// Loads the texture image at `resolved`.
+/// Loads the texture image at `resolved`, charging its texels to `budget`.
 ///
 /// # Errors
-/// A message saying why the image cannot be read or decoded.
-pub fn load_texture(resolved: &Resolved) -> Result<Texture, String> {
+/// A message saying why the image cannot be read or decoded, or does not fit in the budget.
+pub fn load_texture(resolved: &Resolved, budget: &mut Budget) -> Result<Texture, String> {
     match resolved {
-        Resolved::File(path) => textures::load_image(path),
+        Resolved::File(path) => textures::load_image(path, budget),
         Resolved::Embedded { name, bytes } => {
             let extension = Path::new(name).extension().and_then(|e| e.to_str());
-            textures::decode_image(bytes, extension, &format!("{BUILTIN_PREFIX}{name}"))
+            let source = format!("{BUILTIN_PREFIX}{name}");
+            textures::decode_image(bytes, extension, &source, budget)
         }
     }
 }
@@ -170,9 +189,11 @@ mod tests {
     #[test]
     fn the_embedded_spider_loads() {
         let resolved = resolve(Path::new("."), "builtin:models/spider.stl").unwrap();
-        let model = load_model(&resolved).unwrap();
+        let mut budget = Budget::new();
+        let model = load_model(&resolved, &mut budget).unwrap();
         assert_eq!(model.triangle_count(), 1368);
-        // Cached: the second load gives the same model.
-        assert_eq!(load_model(&resolved).unwrap(), model);
+        // Cached: the second load gives the same model, and is charged again.
+        assert_eq!(load_model(&resolved, &mut budget).unwrap(), model);
+        assert_eq!(budget.triangles(), 2 * 1368);
     }
 }

@@ -7,16 +7,70 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::limits::MAX_SCENE_TRIANGLES;
 use crate::mesh::Mesh;
 
-/// The largest `subdivisions` [`cube`] accepts (12 · 1000² = 12 million triangles).
-pub const MAX_CUBE_SUBDIVISIONS: u32 = 1000;
+/// The largest `subdivisions` [`cube`] accepts: 12 · 400² = 1.92 million triangles, the most
+/// that fits in [`MAX_SCENE_TRIANGLES`] with a round number.
+pub const MAX_CUBE_SUBDIVISIONS: u32 = 400;
 
 /// The fewest `segments` [`uv_sphere`] accepts.
 pub const MIN_SPHERE_SEGMENTS: u32 = 3;
 
-/// The most `segments` [`uv_sphere`] accepts.
-pub const MAX_SPHERE_SEGMENTS: u32 = 2000;
+/// The most `segments` [`uv_sphere`] accepts: 1400 give 1.96 million triangles, the most that
+/// fits in [`MAX_SCENE_TRIANGLES`] with a round number.
+pub const MAX_SPHERE_SEGMENTS: u32 = 1400;
+
+const _: () = assert!(cube_triangle_count(MAX_CUBE_SUBDIVISIONS) <= MAX_SCENE_TRIANGLES as u64);
+const _: () = assert!(uv_sphere_triangle_count(MAX_SPHERE_SEGMENTS) <= MAX_SCENE_TRIANGLES as u64);
+
+/// Triangles of [`cube`] with `subdivisions` (clamped like `cube` does): 12 · n².
+#[must_use]
+pub const fn cube_triangle_count(subdivisions: u32) -> u64 {
+    let n = clamp(subdivisions, 1, MAX_CUBE_SUBDIVISIONS) as u64;
+    12 * n * n
+}
+
+/// Vertices of [`cube`] with `subdivisions` (clamped like `cube` does): 6 · (n + 1)².
+#[must_use]
+pub const fn cube_vertex_count(subdivisions: u32) -> u64 {
+    let n = clamp(subdivisions, 1, MAX_CUBE_SUBDIVISIONS) as u64;
+    6 * (n + 1) * (n + 1)
+}
+
+/// Triangles of [`uv_sphere`] with `segments` (clamped like `uv_sphere` does):
+/// 2 · slices · (rings − 1).
+#[must_use]
+pub const fn uv_sphere_triangle_count(segments: u32) -> u64 {
+    let (slices, rings) = sphere_grid(segments);
+    2 * slices as u64 * (rings as u64 - 1)
+}
+
+/// Vertices of [`uv_sphere`] with `segments` (clamped like `uv_sphere` does): one per slice at
+/// each pole and slices + 1 on each inner ring.
+#[must_use]
+pub const fn uv_sphere_vertex_count(segments: u32) -> u64 {
+    let (slices, rings) = sphere_grid(segments);
+    2 * slices as u64 + (rings as u64 - 1) * (slices as u64 + 1)
+}
+
+/// Slices and rings of a sphere of `segments`.
+const fn sphere_grid(segments: u32) -> (u32, u32) {
+    let slices = clamp(segments, MIN_SPHERE_SEGMENTS, MAX_SPHERE_SEGMENTS);
+    let rings = if slices / 2 > 2 { slices / 2 } else { 2 };
+    (slices, rings)
+}
+
+/// `value` clamped to `lo..=hi` (`Ord::clamp` is not `const`).
+const fn clamp(value: u32, lo: u32, hi: u32) -> u32 {
+    if value < lo {
+        lo
+    } else if value > hi {
+        hi
+    } else {
+        value
+    }
+}
 
 /// The faces of a cube: (outward normal, texture right, texture up), with right × up = normal.
 /// Side faces have +z up, the top face +y up and the bottom face −y up.
@@ -46,14 +100,13 @@ pub fn cube(size: f64, subdivisions: u32) -> Mesh {
         size.is_finite() && size > 0.0,
         "cube size must be finite and positive, got {size}"
     );
-    let n = subdivisions.clamp(1, MAX_CUBE_SUBDIVISIONS);
+    let n = clamp(subdivisions, 1, MAX_CUBE_SUBDIVISIONS);
     let half = 0.5 * size;
-    let per_side = n as usize + 1;
-    let vertex_count = 6 * per_side * per_side;
+    let vertex_count = usize::try_from(cube_vertex_count(n)).unwrap_or(0);
     let mut positions = Vec::with_capacity(vertex_count);
     let mut normals = Vec::with_capacity(vertex_count);
     let mut uvs = Vec::with_capacity(vertex_count);
-    let mut triangles = Vec::with_capacity(12 * (n as usize).pow(2));
+    let mut triangles = Vec::with_capacity(usize::try_from(cube_triangle_count(n)).unwrap_or(0));
     let step = 1.0 / f64::from(n);
     for (normal, right, up) in CUBE_FACES {
         let base = u32::try_from(positions.len()).expect("fewer than 2³² cube vertices");
@@ -98,8 +151,7 @@ pub fn uv_sphere(radius: f64, segments: u32) -> Mesh {
         radius.is_finite() && radius > 0.0,
         "sphere radius must be finite and positive, got {radius}"
     );
-    let slices = segments.clamp(MIN_SPHERE_SEGMENTS, MAX_SPHERE_SEGMENTS);
-    let rings = (slices / 2).max(2);
+    let (slices, rings) = sphere_grid(segments);
     let mut positions = Vec::new();
     let mut normals = Vec::new();
     let mut uvs = Vec::new();
@@ -173,6 +225,33 @@ fn finish(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn counts_are_known_before_building() {
+        for n in [0, 1, 2, 5, 17] {
+            let mesh = cube(1.0, n);
+            assert_eq!(mesh.triangles().len() as u64, cube_triangle_count(n), "{n}");
+            assert_eq!(mesh.positions().len() as u64, cube_vertex_count(n), "{n}");
+        }
+        for segments in [0, 3, 4, 5, 8, 31, 64] {
+            let mesh = uv_sphere(1.0, segments);
+            let (triangles, vertices) = (mesh.triangles().len(), mesh.positions().len());
+            assert_eq!(
+                triangles as u64,
+                uv_sphere_triangle_count(segments),
+                "{segments}"
+            );
+            assert_eq!(
+                vertices as u64,
+                uv_sphere_vertex_count(segments),
+                "{segments}"
+            );
+        }
+        assert_eq!(
+            cube_triangle_count(1000),
+            cube_triangle_count(MAX_CUBE_SUBDIVISIONS)
+        );
+    }
 
     #[test]
     fn procedural_shapes_are_closed_solids() {

@@ -7,8 +7,11 @@
 use std::io::Cursor;
 use std::path::Path;
 
-use image::{ImageFormat, ImageReader};
+use image::{ImageFormat, ImageReader, Limits};
+use srt_color::quantize_8bit;
 
+use crate::input_file::{self, FileKind};
+use crate::limits::{Budget, MAX_IMAGE_DECODE_BYTES, MAX_TEXTURE_SIDE};
 use crate::mesh::Texture;
 
 /// Default number of checker squares along each edge of a texture.
@@ -20,21 +23,11 @@ pub const MAX_CHECKER_SQUARES: u32 = 1024;
 /// Default checker colours: white and black (the grey value 𝒢 of Eq. 18 is then 1 and 0).
 pub const DEFAULT_CHECKER_COLORS: [[f64; 3]; 2] = [[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]];
 
-/// A component in [0, 1] as an 8-bit value (clamped; NaN gives 0).
-fn to_u8(component: f64) -> u8 {
-    #[expect(
-        clippy::cast_possible_truncation,
-        clippy::cast_sign_loss,
-        reason = "clamped to 0..=255"
-    )]
-    let value = (component.clamp(0.0, 1.0) * 255.0).round() as u8;
-    if component.is_nan() { 0 } else { value }
-}
-
 /// An opaque RGBA8 texel from an sRGB colour with components in [0, 1].
 #[must_use]
 pub fn texel(color: [f64; 3]) -> [u8; 4] {
-    [to_u8(color[0]), to_u8(color[1]), to_u8(color[2]), 255]
+    let [r, g, b] = color.map(quantize_8bit);
+    [r, g, b, 255]
 }
 
 /// A square checkerboard texture of `texels` × `texels` texels with `squares` × `squares`
@@ -94,26 +87,53 @@ pub fn solid(color: [f64; 3]) -> Texture {
 }
 
 /// Decodes an encoded image (PNG, JPEG, BMP or TGA; the format is guessed from the content,
-/// `extension` — without the dot — is the fallback) into a texture named `source`.
+/// `extension` — without the dot — is the fallback) into a texture named `source`, charging its
+/// texels to `budget`.
+///
+/// The size in the image's header is checked before anything is decoded: at most
+/// [`MAX_TEXTURE_SIDE`] texels per side and what is left of the budget's texels; the decoder
+/// may allocate at most [`MAX_IMAGE_DECODE_BYTES`].
 ///
 /// # Errors
-/// A message saying why the bytes are not a usable image.
+/// A message saying why the bytes are not a usable image, or why it is too large.
 pub fn decode_image(
     bytes: &[u8],
     extension: Option<&str>,
     source: &str,
+    budget: &mut Budget,
 ) -> Result<Texture, String> {
-    let mut reader = ImageReader::new(Cursor::new(bytes));
-    if let Some(format) = extension.and_then(ImageFormat::from_extension) {
-        reader.set_format(format);
-    }
-    let reader = reader.with_guessed_format().map_err(|e| e.to_string())?;
-    let image = reader.decode().map_err(|e| e.to_string())?;
-    let rgba = image.into_rgba8();
-    let (width, height) = rgba.dimensions();
+    let reader = || {
+        let mut reader = ImageReader::new(Cursor::new(bytes));
+        if let Some(format) = extension.and_then(ImageFormat::from_extension) {
+            reader.set_format(format);
+        }
+        reader.with_guessed_format().map_err(|e| e.to_string())
+    };
+    let (width, height) = reader()?.into_dimensions().map_err(|e| e.to_string())?;
     if width == 0 || height == 0 {
         return Err("the image has no texels".to_owned());
     }
+    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+        return Err(format!(
+            "the image is {width} × {height} texels, more than {MAX_TEXTURE_SIDE} per side"
+        ));
+    }
+    let mut charged = budget.clone();
+    charged
+        .charge_texels(width, height)
+        .map_err(|e| format!("the image is too large: {e}"))?;
+    let mut decoder = reader()?;
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    limits.max_alloc = Some(MAX_IMAGE_DECODE_BYTES);
+    decoder.limits(limits);
+    let image = decoder.decode().map_err(|e| e.to_string())?;
+    let rgba = image.into_rgba8();
+    if rgba.dimensions() != (width, height) {
+        return Err("the image's size differs from its header's".to_owned());
+    }
+    *budget = charged;
     let texels = rgba.pixels().map(|p| p.0).collect();
     Ok(Texture {
         width,
@@ -123,16 +143,18 @@ pub fn decode_image(
     })
 }
 
-/// Reads and decodes the image file at `path`.
+/// Reads (through [`input_file::read`]) and decodes the image file at `path`, charging its
+/// texels to `budget`.
 ///
 /// # Errors
 /// A message saying why the file cannot be read or decoded.
-pub fn load_image(path: &Path) -> Result<Texture, String> {
-    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+pub fn load_image(path: &Path, budget: &mut Budget) -> Result<Texture, String> {
+    let bytes = input_file::read(path, FileKind::Image).map_err(|e| e.to_string())?;
     decode_image(
         &bytes,
         path.extension().and_then(|e| e.to_str()),
         &path.display().to_string(),
+        budget,
     )
 }
 
@@ -176,8 +198,9 @@ mod tests {
 
     #[test]
     fn bad_images_are_errors() {
-        assert!(decode_image(b"nope", None, "x").is_err());
-        assert!(load_image(Path::new("/nonexistent/image.png")).is_err());
+        let mut budget = Budget::new();
+        assert!(decode_image(b"nope", None, "x", &mut budget).is_err());
+        assert!(load_image(Path::new("/nonexistent/image.png"), &mut budget).is_err());
         assert!(texel([f64::NAN, 2.0, -1.0]) == [0, 255, 0, 255]);
     }
 }

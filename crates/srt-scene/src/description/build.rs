@@ -1,6 +1,13 @@
 //! Building the runtime scene from a description: procedural shapes, models and textures, and
 //! their placement in each object's rest frame; and reading a scene file.
+//!
+//! Every scene, whatever its source (a scene file, a built-in scene, a bare model, the viewer's
+//! edits), is built here, so the guards live here: one [`Budget`] per scene is charged with
+//! every shape before it is generated and every model and texture while it loads, and every
+//! object's placed geometry must lie within ±[`MAX_COORDINATE`] (checked on its bounding box
+//! before the vertices are transformed). Identical textures are loaded once per scene.
 
+use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -13,9 +20,33 @@ use super::model::{
 };
 use super::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
 use crate::assets;
-use crate::mesh::{Material, MeshError, Part, Texture};
+use crate::input_file::{self, FileKind};
+use crate::limits::{Budget, MAX_COORDINATE, OverBudget};
+use crate::mesh::{Material, Mesh, MeshError, Part, Texture};
+use crate::message::one_line;
 use crate::scene::{Light, Object, Observer, Scene, Shading};
 use crate::{shapes, textures};
+
+/// What building one scene carries from object to object.
+struct Builder<'a> {
+    /// Where relative paths start.
+    base_dir: &'a Path,
+    /// What the scene has used so far.
+    budget: Budget,
+    /// Textures loaded so far, by what they were made from (failures keep their reason).
+    textures: HashMap<TextureKey, Result<Arc<Texture>, String>>,
+    /// Warnings so far.
+    warnings: Vec<String>,
+}
+
+/// What a texture is made from: identical ones are made once per scene.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+enum TextureKey {
+    /// A checkerboard: squares and the bits of its two colours.
+    Checker(u32, [[u64; 3]; 2]),
+    /// An image, by its resolved path (or `builtin:` name).
+    Image(String),
+}
 
 impl SceneDescription {
     /// Validates the description and builds the runtime scene: shapes are generated, models and
@@ -27,12 +58,18 @@ impl SceneDescription {
     ///
     /// # Errors
     /// [`SceneError`] for every problem [`SceneDescription::validate`] finds, a model file that
-    /// is missing or cannot be loaded (the message names it), or a placement that produces
-    /// non-finite geometry.
+    /// is missing or cannot be loaded (the message names it), shapes and models that together
+    /// exceed a scene's budget ([`crate::limits`]), or a placement that puts geometry beyond
+    /// ±[`MAX_COORDINATE`].
     pub fn build(&self, base_dir: &Path) -> Result<(Scene, Vec<String>), SceneError> {
         let fail = |kind| SceneError::new(self.origin(), kind);
         self.check().map_err(fail)?;
-        let mut warnings = Vec::new();
+        let mut builder = Builder {
+            base_dir,
+            budget: Budget::new(),
+            textures: HashMap::new(),
+            warnings: Vec::new(),
+        };
         let observer = self.observer.to_observer();
         let light = self.light.as_ref().map_or(
             Light {
@@ -48,9 +85,10 @@ impl SceneDescription {
             .objects
             .iter()
             .enumerate()
-            .map(|(index, object)| object.build(index, base_dir, &mut warnings))
+            .map(|(index, object)| object.build(index, &mut builder))
             .collect::<Result<Vec<_>, _>>()
             .map_err(fail)?;
+        let mut warnings: Vec<String> = builder.warnings.iter().map(|w| one_line(w)).collect();
         if objects.is_empty() {
             warnings.push("the scene has no objects".to_owned());
         }
@@ -85,7 +123,7 @@ impl SceneDescription {
 /// column), or [`SceneDescription::build`] fails.
 pub fn load_scene_file(path: &Path) -> Result<(Scene, SceneDescription, Vec<String>), SceneError> {
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path)
+    let text = input_file::read_text(path, FileKind::Scene)
         .map_err(|e| SceneError::new(origin.clone(), SceneErrorKind::Io(e)))?;
     let description = SceneDescription::from_toml_str(&text, &origin)?;
     let base_dir = match path.parent() {
@@ -121,47 +159,59 @@ impl ObserverDescription {
 }
 
 impl ObjectDescription {
-    /// Builds the runtime object; only valid after `check`.
-    fn build(
-        &self,
-        index: usize,
-        base_dir: &Path,
-        warnings: &mut Vec<String>,
-    ) -> Result<Object, SceneErrorKind> {
+    /// Builds the runtime object, charging it to the scene's budget; only valid after `check`.
+    fn build(&self, index: usize, builder: &mut Builder<'_>) -> Result<Object, SceneErrorKind> {
         let label = self.label(index);
         let frame = Frame::new(DVec3::from_array(self.beta), DVec3::from_array(self.offset))
             .map_err(|error| SceneErrorKind::Frame {
                 object: label.clone(),
                 error,
             })?;
+        let too_large = |key: &str, error: OverBudget| {
+            value_error(
+                format!("{key} of {label}"),
+                format!("makes the scene too large: {error}"),
+            )
+        };
         let mut parts = match &self.shape {
-            ShapeDescription::Cube { size, subdivisions } => vec![Part {
-                mesh: shapes::cube(*size, *subdivisions),
-                material: Material {
-                    name: "cube".to_owned(),
-                    ..Material::default()
-                },
-            }],
-            ShapeDescription::Sphere { radius, segments } => vec![Part {
-                mesh: shapes::uv_sphere(*radius, *segments),
-                material: Material {
-                    name: "sphere".to_owned(),
-                    ..Material::default()
-                },
-            }],
+            ShapeDescription::Cube { size, subdivisions } => {
+                builder
+                    .budget
+                    .charge_mesh(
+                        shapes::cube_triangle_count(*subdivisions),
+                        shapes::cube_vertex_count(*subdivisions),
+                    )
+                    .and_then(|()| builder.budget.charge_parts(1))
+                    .map_err(|e| too_large("shape.subdivisions", e))?;
+                vec![shape_part("cube", shapes::cube(*size, *subdivisions))]
+            }
+            ShapeDescription::Sphere { radius, segments } => {
+                builder
+                    .budget
+                    .charge_mesh(
+                        shapes::uv_sphere_triangle_count(*segments),
+                        shapes::uv_sphere_vertex_count(*segments),
+                    )
+                    .and_then(|()| builder.budget.charge_parts(1))
+                    .map_err(|e| too_large("shape.segments", e))?;
+                vec![shape_part("sphere", shapes::uv_sphere(*radius, *segments))]
+            }
             ShapeDescription::Model { path } => {
-                let resolved = assets::resolve(base_dir, path)
+                let resolved = assets::resolve(builder.base_dir, path)
                     .map_err(|reason| value_error(format!("shape.path of {label}"), reason))?;
                 let model =
-                    assets::load_model(&resolved).map_err(|error| SceneErrorKind::Model {
-                        object: label.clone(),
-                        error,
+                    assets::load_model(&resolved, &mut builder.budget).map_err(|error| {
+                        SceneErrorKind::Model {
+                            object: label.clone(),
+                            error,
+                        }
                     })?;
-                warnings.extend(model.warnings.into_iter().map(|w| format!("{label}: {w}")));
+                let warnings = model.warnings.into_iter().map(|w| format!("{label}: {w}"));
+                builder.warnings.extend(warnings);
                 model.parts
             }
         };
-        if let Some(texture) = self.texture(base_dir, &label, warnings) {
+        if let Some(texture) = self.texture(&label, builder) {
             for part in &mut parts {
                 part.material.texture = Some(Arc::clone(&texture));
             }
@@ -179,10 +229,18 @@ impl ObjectDescription {
         if self.fit {
             match fit_transform(&parts) {
                 Some(fit) => transform *= fit,
-                None => warnings.push(format!(
-                    "{label}: fit = true ignored, the shape has no extent to scale"
+                None => builder.warnings.push(format!(
+                    "{label}: fit = true ignored, the shape has no usable extent to scale"
                 )),
             }
+        }
+        let reach = placed_reach(&parts, transform);
+        // `reach` is never NaN (`placed_reach` maps non-finite corners to infinity).
+        if reach > MAX_COORDINATE {
+            return Err(SceneErrorKind::OutOfBounds {
+                object: label,
+                reach,
+            });
         }
         if transform != DMat4::IDENTITY {
             parts = parts
@@ -205,39 +263,114 @@ impl ObjectDescription {
         })
     }
 
-    /// The texture this object asks for; `None` (with a warning) if its image cannot be loaded.
-    fn texture(
-        &self,
-        base_dir: &Path,
-        label: &str,
-        warnings: &mut Vec<String>,
-    ) -> Option<Arc<Texture>> {
-        match self.texture.as_ref()? {
-            TextureDescription::Checker { squares, colors } => Some(Arc::new(textures::checker(
-                textures::checker_resolution(*squares),
-                *squares,
-                colors[0],
-                colors[1],
-            ))),
-            TextureDescription::Image { path } => {
-                let loaded = assets::resolve(base_dir, path).and_then(|r| assets::load_texture(&r));
-                match loaded {
-                    Ok(texture) => Some(Arc::new(texture)),
-                    Err(error) => {
-                        let fallback = if matches!(self.shape, ShapeDescription::Model { .. }) {
-                            "the model's own materials are used"
-                        } else {
-                            "the base colour is used"
-                        };
-                        warnings.push(format!(
-                            "{label}: texture \"{path}\" cannot be loaded ({error}); {fallback}"
-                        ));
-                        None
-                    }
-                }
+    /// The texture this object asks for, made once per scene; `None` (with a warning saying
+    /// why) if it cannot be loaded or does not fit in the scene's texel budget: a texture
+    /// problem never fails a scene, the colours it would have given are replaced.
+    fn texture(&self, label: &str, builder: &mut Builder<'_>) -> Option<Arc<Texture>> {
+        let description = self.texture.as_ref()?;
+        let base_dir = builder.base_dir;
+        let budget = &mut builder.budget;
+        let loaded = builder
+            .textures
+            .entry(TextureKey::of(description, base_dir))
+            .or_insert_with(|| make_texture(description, base_dir, budget))
+            .clone();
+        match loaded {
+            Ok(texture) => Some(texture),
+            Err(error) => {
+                let what = match description {
+                    TextureDescription::Image { path } => format!("texture \"{path}\""),
+                    TextureDescription::Checker { .. } => "the checker texture".to_owned(),
+                };
+                let fallback = if matches!(self.shape, ShapeDescription::Model { .. }) {
+                    "the model's own materials are used"
+                } else {
+                    "the base colour is used"
+                };
+                builder.warnings.push(format!(
+                    "{label}: {what} cannot be loaded ({error}); {fallback}"
+                ));
+                None
             }
         }
     }
+}
+
+impl TextureKey {
+    /// The key of `description`, with image paths resolved from `base_dir`.
+    fn of(description: &TextureDescription, base_dir: &Path) -> Self {
+        match description {
+            TextureDescription::Checker { squares, colors } => {
+                Self::Checker(*squares, colors.map(|c| c.map(f64::to_bits)))
+            }
+            TextureDescription::Image { path } => {
+                Self::Image(match assets::resolve(base_dir, path) {
+                    Ok(assets::Resolved::File(file)) => file.display().to_string(),
+                    Ok(assets::Resolved::Embedded { name, .. }) => {
+                        format!("{}{name}", assets::BUILTIN_PREFIX)
+                    }
+                    Err(_) => path.clone(),
+                })
+            }
+        }
+    }
+}
+
+/// Makes the texture `description` asks for, charging its texels to `budget`.
+fn make_texture(
+    description: &TextureDescription,
+    base_dir: &Path,
+    budget: &mut Budget,
+) -> Result<Arc<Texture>, String> {
+    match description {
+        TextureDescription::Checker { squares, colors } => {
+            let size = textures::checker_resolution(*squares);
+            budget
+                .charge_texels(size, size)
+                .map_err(|e| format!("it is too large: {e}"))?;
+            Ok(Arc::new(textures::checker(
+                size, *squares, colors[0], colors[1],
+            )))
+        }
+        TextureDescription::Image { path } => assets::resolve(base_dir, path)
+            .and_then(|resolved| assets::load_texture(&resolved, budget))
+            .map(Arc::new),
+    }
+}
+
+/// A part of a procedural shape, its material named `name`.
+fn shape_part(name: &str, mesh: Mesh) -> Part {
+    Part {
+        mesh,
+        material: Material {
+            name: name.to_owned(),
+            ..Material::default()
+        },
+    }
+}
+
+/// The largest absolute coordinate of `parts` once `transform` is applied, computed on the
+/// corners of each part's bounding box (an affine map takes the box to a parallelepiped whose
+/// extreme coordinates are at its corners); infinite if any is not finite.
+fn placed_reach(parts: &[Part], transform: DMat4) -> f64 {
+    let mut reach = 0.0_f64;
+    for part in parts {
+        let (lo, hi) = part.mesh.bounds();
+        for corner in 0..8 {
+            let pick = |bit: usize, low: f64, high: f64| if corner & bit == 0 { low } else { high };
+            let point = DVec3::new(
+                pick(1, lo.x, hi.x),
+                pick(2, lo.y, hi.y),
+                pick(4, lo.z, hi.z),
+            );
+            let placed = transform.transform_point3(point);
+            if !placed.is_finite() {
+                return f64::INFINITY;
+            }
+            reach = reach.max(placed.abs().max_element());
+        }
+    }
+    reach
 }
 
 /// The transform that centres `parts` (their bounding box) at the origin and scales them to a

@@ -1,17 +1,22 @@
 //! Errors of scene files: where (the file or the scene) and what is wrong.
 
+use std::fmt;
+
 use srt_physics::FrameError;
 
 use crate::import::ImportError;
+use crate::input_file::InputFileError;
+use crate::limits::MAX_COORDINATE;
 use crate::mesh::MeshError;
+use crate::message::one_line;
 
 /// Why a scene could not be loaded or built: where (the file, or the scene's name) and why.
 ///
 /// Its message names both, e.g. `scenes/cube.toml: line 4, column 1: unknown field `colour`, …`
 /// or `scene "demo": object "probe" has an invalid velocity or offset: speed |β| = 1.2 is not
-/// below the speed of light (it must be < 1)`.
-#[derive(Debug, thiserror::Error)]
-#[error("{origin}: {kind}")]
+/// below the speed of light (it must be < 1)`, on one line of at most
+/// [`MAX_MESSAGE_CHARS`](crate::message::MAX_MESSAGE_CHARS) characters.
+#[derive(Debug)]
 pub struct SceneError {
     origin: String,
     kind: Box<SceneErrorKind>,
@@ -50,13 +55,25 @@ impl SceneError {
     }
 }
 
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&one_line(&format!("{}: {}", self.origin, self.kind)))
+    }
+}
+
+impl std::error::Error for SceneError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&*self.kind)
+    }
+}
+
 /// The reason part of a [`SceneError`].
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneErrorKind {
-    /// The scene file could not be read.
+    /// The scene file could not be read, is not a regular file, is too large or is not text.
     #[error("cannot read the scene file: {0}")]
-    Io(std::io::Error),
+    Io(InputFileError),
     /// The text is not valid TOML, or does not fit the format (unknown key, wrong type, missing
     /// key…). Line and column count from 1; columns count characters.
     #[error("line {line}, column {column}: {message}")]
@@ -91,6 +108,19 @@ pub enum SceneErrorKind {
         object: String,
         /// The import error, naming the model file.
         error: ImportError,
+    },
+    /// An object's geometry, placed in its rest frame, reaches beyond ±[`MAX_COORDINATE`] (or is
+    /// not finite).
+    #[error(
+        "{object} reaches {reach:e} scene units from its rest-frame origin once placed; every \
+         coordinate must lie within ±{max:e} (check the model's units, scale and translate)",
+        max = MAX_COORDINATE
+    )]
+    OutOfBounds {
+        /// The object.
+        object: String,
+        /// The largest absolute coordinate (infinite if one is not finite).
+        reach: f64,
     },
     /// Placing an object's geometry produced an invalid mesh (a transform with huge values).
     #[error("{object}: {error}")]

@@ -1,4 +1,7 @@
 //! Checks of a description that need no file: ranges, finiteness and consistency of every value.
+//! Lengths, positions and times are also bounded by [`MAX_COORDINATE`], and shape resolutions by
+//! what fits in [`MAX_SCENE_TRIANGLES`], so that absurd but finite values are refused here, with
+//! the key named, rather than in a renderer or a library.
 
 use glam::DVec3;
 use srt_physics::Frame;
@@ -8,6 +11,7 @@ use super::model::{
     ObjectDescription, ObserverDescription, RenderDescription, SceneDescription, ShapeDescription,
     TextureDescription,
 };
+use crate::limits::{MAX_COORDINATE, MAX_SCENE_TRIANGLES};
 use crate::shapes::{MAX_CUBE_SUBDIVISIONS, MAX_SPHERE_SEGMENTS, MIN_SPHERE_SEGMENTS};
 use crate::textures::MAX_CHECKER_SQUARES;
 
@@ -24,7 +28,8 @@ impl SceneDescription {
     /// Checks every value that does not need a file: the observer (exactly one of `look_at` and
     /// `direction`, a non-zero direction, `up` not parallel to it, fov in (0, 180)), the light
     /// (temperature > 0), the render settings and each object (|β| < 1, sizes and scales > 0,
-    /// colours in [0, 1]…). All numbers must be finite.
+    /// colours in [0, 1]…). All numbers must be finite, and positions, offsets, lengths, scale
+    /// factors and ct at most [`MAX_COORDINATE`] in absolute value.
     ///
     /// # Errors
     /// The first problem found, naming the value (and the object) concerned.
@@ -36,7 +41,7 @@ impl SceneDescription {
     pub(super) fn check(&self) -> Result<(), SceneErrorKind> {
         self.observer.check()?;
         if let Some(light) = &self.light {
-            finite3("light.position", light.position)?;
+            coordinates3("light.position", light.position)?;
             if !(light.temperature_k.is_finite() && light.temperature_k > 0.0) {
                 return Err(value_error(
                     "light.temperature_k",
@@ -67,6 +72,19 @@ fn finite3(field: &str, value: [f64; 3]) -> Result<DVec3, SceneErrorKind> {
     }
 }
 
+/// A position or direction: finite components within ±[`MAX_COORDINATE`].
+fn coordinates3(field: &str, value: [f64; 3]) -> Result<DVec3, SceneErrorKind> {
+    let v = DVec3::from_array(value);
+    if v.is_finite() && v.abs().max_element() <= MAX_COORDINATE {
+        Ok(v)
+    } else {
+        Err(value_error(
+            field,
+            format!("must have finite components within ±{MAX_COORDINATE:e}, got {value:?}"),
+        ))
+    }
+}
+
 fn unit_color(field: &str, value: [f64; 3]) -> Result<(), SceneErrorKind> {
     if value.iter().all(|c| (0.0..=1.0).contains(c)) {
         Ok(())
@@ -78,13 +96,34 @@ fn unit_color(field: &str, value: [f64; 3]) -> Result<(), SceneErrorKind> {
     }
 }
 
-fn positive(field: &str, value: f64) -> Result<(), SceneErrorKind> {
-    if value.is_finite() && value > 0.0 {
+/// A length: positive and at most [`MAX_COORDINATE`].
+fn length(field: &str, value: f64) -> Result<(), SceneErrorKind> {
+    if value > 0.0 && value <= MAX_COORDINATE {
         Ok(())
     } else {
         Err(value_error(
             field,
-            format!("must be a positive number, got {value}"),
+            format!("must be a positive number of at most {MAX_COORDINATE:e}, got {value}"),
+        ))
+    }
+}
+
+/// A shape resolution in `lo..=hi`; the message says how many triangles `value` would make.
+fn resolution(
+    field: &str,
+    value: u32,
+    (lo, hi): (u32, u32),
+    triangles: u64,
+) -> Result<(), SceneErrorKind> {
+    if (lo..=hi).contains(&value) {
+        Ok(())
+    } else {
+        Err(value_error(
+            field,
+            format!(
+                "must be in {lo}..={hi}, got {value} (which would make {triangles} triangles; \
+                 a scene may have at most {MAX_SCENE_TRIANGLES})"
+            ),
         ))
     }
 }
@@ -102,13 +141,13 @@ fn non_negative(field: &str, value: f64) -> Result<(), SceneErrorKind> {
 
 impl ObserverDescription {
     fn check(&self) -> Result<(), SceneErrorKind> {
-        finite3("observer.position", self.position)?;
+        coordinates3("observer.position", self.position)?;
         let direction = match (self.look_at, self.direction) {
             (Some(target), None) => {
-                finite3("observer.look_at", target)?;
+                coordinates3("observer.look_at", target)?;
                 DVec3::from_array(target) - DVec3::from_array(self.position)
             }
-            (None, Some(direction)) => finite3("observer.direction", direction)?,
+            (None, Some(direction)) => coordinates3("observer.direction", direction)?,
             (Some(_), Some(_)) => {
                 return Err(value_error(
                     "observer",
@@ -128,7 +167,7 @@ impl ObserverDescription {
                 "has a zero viewing direction (look_at equals position, or direction is zero)",
             )
         })?;
-        let up = finite3("observer.up", self.up)?
+        let up = coordinates3("observer.up", self.up)?
             .try_normalize()
             .ok_or_else(|| value_error("observer.up", "must not be zero"))?;
         if direction.cross(up).length() < 1e-9 {
@@ -146,10 +185,13 @@ impl ObserverDescription {
                 format!("must be in (0, 180) degrees, got {}", self.fov_y_deg),
             ));
         }
-        if !self.ct.is_finite() {
+        if !self.ct.is_finite() || self.ct.abs() > MAX_COORDINATE {
             return Err(value_error(
                 "observer.ct",
-                format!("must be finite, got {}", self.ct),
+                format!(
+                    "must be finite and within ±{MAX_COORDINATE:e}, got {}",
+                    self.ct
+                ),
             ));
         }
         Ok(())
@@ -175,26 +217,27 @@ impl ObjectDescription {
                 error,
             },
         )?;
+        coordinates3(&field("offset"), self.offset)?;
         match &self.shape {
             ShapeDescription::Cube { size, subdivisions } => {
-                positive(&field("shape.size"), *size)?;
-                if !(1..=MAX_CUBE_SUBDIVISIONS).contains(subdivisions) {
-                    return Err(value_error(
-                        field("shape.subdivisions"),
-                        format!("must be in 1..={MAX_CUBE_SUBDIVISIONS}, got {subdivisions}"),
-                    ));
-                }
+                length(&field("shape.size"), *size)?;
+                let n = u64::from(*subdivisions);
+                resolution(
+                    &field("shape.subdivisions"),
+                    *subdivisions,
+                    (1, MAX_CUBE_SUBDIVISIONS),
+                    12 * n * n,
+                )?;
             }
             ShapeDescription::Sphere { radius, segments } => {
-                positive(&field("shape.radius"), *radius)?;
-                if !(MIN_SPHERE_SEGMENTS..=MAX_SPHERE_SEGMENTS).contains(segments) {
-                    return Err(value_error(
-                        field("shape.segments"),
-                        format!(
-                            "must be in {MIN_SPHERE_SEGMENTS}..={MAX_SPHERE_SEGMENTS}, got {segments}"
-                        ),
-                    ));
-                }
+                length(&field("shape.radius"), *radius)?;
+                let n = u64::from(*segments);
+                resolution(
+                    &field("shape.segments"),
+                    *segments,
+                    (MIN_SPHERE_SEGMENTS, MAX_SPHERE_SEGMENTS),
+                    n * (n / 2).max(2).saturating_sub(1) * 2,
+                )?;
             }
             ShapeDescription::Model { path } => {
                 if path.is_empty() {
@@ -223,16 +266,19 @@ impl ObjectDescription {
             unit_color(&field("color"), color)?;
         }
         if let Some(width) = self.wireframe {
-            positive(&field("wireframe"), width)?;
+            length(&field("wireframe"), width)?;
         }
-        finite3(&field("translate"), self.translate)?;
+        coordinates3(&field("translate"), self.translate)?;
         finite3(&field("rotate_deg"), self.rotate_deg)?;
         let factors = self.scale.factors();
-        if !(factors.is_finite() && factors.min_element() > 0.0) {
+        if !(factors.is_finite()
+            && factors.min_element() > 0.0
+            && factors.max_element() <= MAX_COORDINATE)
+        {
             return Err(value_error(
                 field("scale"),
                 format!(
-                    "must be positive (one number or three), got {:?}",
+                    "must be positive and at most {MAX_COORDINATE:e} (one number or three), got {:?}",
                     factors.to_array()
                 ),
             ));

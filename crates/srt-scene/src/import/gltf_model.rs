@@ -15,7 +15,15 @@
 //! ignored with a warning, as is `KHR_mesh_quantization` (its integer attributes are read like any
 //! others). Other required extensions (Draco or meshopt compression…) make the file an error.
 //! `POSITION` accessors without the `min`/`max` the specification requires get placeholders (with
-//! a warning) so that validation accepts them. Node cycles (invalid glTF) are cut with a warning.
+//! a warning) so that validation accepts them.
+//!
+//! Before anything is instanced, the node graph is counted: the parts and triangles one instance
+//! of each node's subtree gives, from accessor counts alone, memoised per node, so a graph that
+//! shares subtrees (a DAG whose instances multiply exponentially) costs one visit per node and
+//! edge. A cycle (invalid glTF) is an error, and the total is charged to the scene's budget; the
+//! walk then skips subtrees that give nothing. The JSON is refused before parsing when it has
+//! more objects than [`MAX_JSON_OBJECTS`]. External buffers and images are read through
+//! [`crate::input_file`].
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -26,24 +34,38 @@ use gltf::mesh::Mode;
 use gltf::{Document, Gltf, Semantic};
 
 use super::gltf_accessor::{read, read_indices, view_bytes};
-use super::texture::{TextureCache, decode};
-use super::{ImportFailure, Model, RawMesh, encode_srgb, read_file};
+use super::texture::TextureCache;
+use super::{ImportFailure, Model, RawMesh, encode_srgb};
+use crate::input_file::{self, FileKind};
+use crate::limits::Budget;
 use crate::mesh::{Material, Mesh, Part, Texture};
+use crate::textures::decode_image;
 
 /// Node hierarchies deeper than this are cut (with a warning).
 const MAX_DEPTH: usize = 256;
-/// More triangles than this after instancing nodes is an error (a node graph that shares
-/// subtrees can multiply the geometry exponentially).
-const MAX_TRIANGLES: usize = 1 << 24;
+
+/// The most JSON objects (`{`, counted before parsing) a glTF document may have. Parsed, an
+/// object (a node, an accessor…) takes up to a few hundred bytes, so this keeps the parsed
+/// document below about 100 MB; large real scenes have tens of thousands.
+pub const MAX_JSON_OBJECTS: usize = 250_000;
 
 /// Loads a `.gltf` or `.glb` file.
-pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
-    let bytes = read_file(path)?;
+pub(super) fn load(
+    path: &Path,
+    bytes: Vec<u8>,
+    budget: &mut Budget,
+) -> Result<Model, ImportFailure> {
     let invalid = |message: String| ImportFailure::Invalid {
         format: "glTF",
         message,
     };
     check_glb_header(&bytes).map_err(invalid)?;
+    let objects = json_part(&bytes).iter().filter(|&&b| b == b'{').count();
+    if objects > MAX_JSON_OBJECTS {
+        return Err(invalid(format!(
+            "the JSON has {objects} objects, more than the {MAX_JSON_OBJECTS} a glTF file may have"
+        )));
+    }
     let Gltf { document, blob } =
         Gltf::from_slice_without_validation(&bytes).map_err(|e| invalid(e.to_string()))?;
     let mut warnings = Vec::new();
@@ -65,21 +87,9 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
         )));
     }
     fill_missing_position_bounds(&mut root, &mut warnings);
-    let document = Document::from_json(root).map_err(|e| invalid(shorten(e.to_string())))?;
+    let document = Document::from_json(root).map_err(|e| invalid(e.to_string()))?;
     let base = path.parent().unwrap_or_else(|| Path::new(""));
     let buffers = load_buffers(&document, base, blob)?;
-    let mut loader = Loader {
-        document: &document,
-        buffers: &buffers,
-        base,
-        file_name: file_name(path),
-        images: HashMap::new(),
-        files: TextureCache::default(),
-        primitives: HashMap::new(),
-        triangles: 0,
-        warned_skin: false,
-    };
-    let mut parts = Vec::new();
     let roots: Vec<gltf::Node<'_>> = match document.default_scene() {
         Some(scene) => scene.nodes().collect(),
         None => {
@@ -94,24 +104,158 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
             document.nodes().filter(|n| !is_child[n.index()]).collect()
         }
     };
-    if document.nodes().len() == 0 && document.meshes().len() > 0 {
+    let meshes: Vec<Tally> = document
+        .meshes()
+        .map(|mesh| Tally::of_mesh(&mesh))
+        .collect();
+    let nodes = node_tallies(&document, &meshes).map_err(invalid)?;
+    let unplaced_meshes = document.nodes().len() == 0 && document.meshes().len() > 0;
+    let mut total = roots
+        .iter()
+        .fold(Tally::default(), |sum, node| sum.plus(nodes[node.index()]));
+    if unplaced_meshes {
+        total = meshes.iter().fold(total, |sum, &mesh| sum.plus(mesh));
+    }
+    budget.charge_parts(total.parts)?;
+    budget.charge_mesh(total.triangles, 0)?;
+    let mut loader = Loader {
+        document: &document,
+        buffers: &buffers,
+        base,
+        file_name: file_name(path),
+        images: HashMap::new(),
+        files: TextureCache::default(),
+        primitives: HashMap::new(),
+        nodes: &nodes,
+        budget,
+        warned_skin: false,
+    };
+    let mut parts = Vec::new();
+    if unplaced_meshes {
         warnings
             .push("the file has meshes but no nodes; the meshes are placed untransformed".into());
         for mesh in document.meshes() {
             loader.instance(&mesh, DMat4::IDENTITY, &mut parts, &mut warnings)?;
         }
     }
-    let mut ancestors = Vec::new();
     for node in roots {
-        loader.visit(
-            &node,
-            DMat4::IDENTITY,
-            &mut ancestors,
-            &mut parts,
-            &mut warnings,
-        )?;
+        loader.visit(&node, DMat4::IDENTITY, 0, &mut parts, &mut warnings)?;
     }
     Ok(Model { parts, warnings })
+}
+
+/// The JSON of a glTF file: the whole of a `.gltf`, the first chunk of a binary glTF.
+fn json_part(bytes: &[u8]) -> &[u8] {
+    if !bytes.starts_with(b"glTF") {
+        return bytes;
+    }
+    let length = bytes
+        .get(12..16)
+        .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
+    let end = 20usize.saturating_add(length).min(bytes.len());
+    bytes.get(20..end).unwrap_or_default()
+}
+
+/// What one instance of a mesh or a node's subtree gives: parts and triangles, counted from
+/// accessor counts without reading any data (a primitive whose data turns out unusable gives
+/// less, never more).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+struct Tally {
+    parts: u64,
+    triangles: u64,
+}
+
+impl Tally {
+    /// The sum, saturating.
+    const fn plus(self, other: Self) -> Self {
+        Self {
+            parts: self.parts.saturating_add(other.parts),
+            triangles: self.triangles.saturating_add(other.triangles),
+        }
+    }
+
+    /// One instance of `mesh`: its triangle primitives that have positions.
+    fn of_mesh(mesh: &gltf::Mesh<'_>) -> Self {
+        mesh.primitives()
+            .filter_map(|primitive| {
+                let positions = primitive.get(&Semantic::Positions)?;
+                let count = primitive
+                    .indices()
+                    .map_or(positions.count(), |indices| indices.count())
+                    as u64;
+                let triangles = match primitive.mode() {
+                    Mode::Triangles => count / 3,
+                    Mode::TriangleStrip | Mode::TriangleFan => count.saturating_sub(2),
+                    _ => 0,
+                };
+                (triangles > 0).then_some(Self {
+                    parts: 1,
+                    triangles,
+                })
+            })
+            .fold(Self::default(), Self::plus)
+    }
+}
+
+/// Where the depth-first count is with a node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Visit {
+    New,
+    /// On the current path (meeting it again means a cycle).
+    Open,
+    Done,
+}
+
+/// The [`Tally`] of one instance of every node's subtree (its mesh and its children's subtrees,
+/// a child listed twice counting twice), each node computed once: an iterative depth-first
+/// count that needs no stack for deep hierarchies.
+///
+/// # Errors
+/// A message naming a node that is its own ancestor (glTF node graphs must be acyclic).
+fn node_tallies(document: &Document, meshes: &[Tally]) -> Result<Vec<Tally>, String> {
+    let json = &document.as_json().nodes;
+    let children = |node: usize| json[node].children.as_deref().unwrap_or_default();
+    let mut state = vec![Visit::New; json.len()];
+    let mut tallies = vec![Tally::default(); json.len()];
+    for start in 0..json.len() {
+        if state[start] != Visit::New {
+            continue;
+        }
+        state[start] = Visit::Open;
+        let mut path = vec![(start, 0usize)];
+        while let Some((node, next)) = path.last_mut() {
+            let node = *node;
+            if let Some(child) = children(node).get(*next) {
+                *next += 1;
+                let child = child.value();
+                match state.get(child) {
+                    Some(Visit::Open) => {
+                        return Err(format!(
+                            "node {child} is its own ancestor: the node graph has a cycle, which \
+                             glTF does not allow"
+                        ));
+                    }
+                    Some(Visit::New) => {
+                        state[child] = Visit::Open;
+                        path.push((child, 0));
+                    }
+                    _ => {}
+                }
+                continue;
+            }
+            let own = json[node]
+                .mesh
+                .and_then(|mesh| meshes.get(mesh.value()).copied())
+                .unwrap_or_default();
+            tallies[node] = children(node)
+                .iter()
+                .filter_map(|child| tallies.get(child.value()))
+                .fold(own, |sum, &child| sum.plus(child));
+            state[node] = Visit::Done;
+            path.pop();
+        }
+    }
+    Ok(tallies)
 }
 
 /// The file name (without directories) for messages.
@@ -196,20 +340,6 @@ fn fill_missing_position_bounds(root: &mut gltf::json::Root, warnings: &mut Vec<
     }
 }
 
-/// Cuts overly long validation reports.
-fn shorten(mut message: String) -> String {
-    const LIMIT: usize = 600;
-    if message.len() > LIMIT {
-        let mut end = LIMIT;
-        while !message.is_char_boundary(end) {
-            end -= 1;
-        }
-        message.truncate(end);
-        message.push_str(" …");
-    }
-    message
-}
-
 /// Reads every buffer: the GLB binary chunk, a data URI or an external file.
 fn load_buffers(
     document: &Document,
@@ -267,10 +397,7 @@ fn resolve_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
         return Ok(data);
     }
     let path = resolve_uri_path(uri, base)?;
-    match std::fs::read(&path) {
-        Ok(data) => Ok(data),
-        Err(e) => Err(format!("\"{}\": {e}", path.display())),
-    }
+    input_file::read(&path, FileKind::Model).map_err(|e| format!("\"{}\": {e}", path.display()))
 }
 
 /// Decodes `%XX` escapes (the `percent-encoding` crate; malformed escapes are kept as they are).
@@ -336,29 +463,32 @@ struct Loader<'a> {
     files: TextureCache,
     /// Converted primitives by (mesh, primitive) index, untransformed (`None`: skipped).
     primitives: HashMap<(usize, usize), Option<(Mesh, Material)>>,
-    /// Triangles emitted so far.
-    triangles: usize,
+    /// What each node's subtree gives (already charged to the budget).
+    nodes: &'a [Tally],
+    /// The scene's budget, charged with the vertices and texels read.
+    budget: &'a mut Budget,
     warned_skin: bool,
 }
 
 impl Loader<'_> {
-    /// Emits the parts of `node` and its descendants.
+    /// Emits the parts of `node` (at `depth`, 0 for a root) and its descendants, skipping
+    /// subtrees that give no parts.
     fn visit(
         &mut self,
         node: &gltf::Node<'_>,
         parent: DMat4,
-        ancestors: &mut Vec<usize>,
+        depth: usize,
         parts: &mut Vec<Part>,
         warnings: &mut Vec<String>,
     ) -> Result<(), ImportFailure> {
-        if ancestors.contains(&node.index()) {
-            warnings.push(format!(
-                "node {} is its own ancestor (the node graph has a cycle); the cycle is cut",
-                node.index()
-            ));
+        if self
+            .nodes
+            .get(node.index())
+            .is_none_or(|tally| tally.parts == 0)
+        {
             return Ok(());
         }
-        if ancestors.len() >= MAX_DEPTH {
+        if depth >= MAX_DEPTH {
             warnings.push(format!(
                 "the node hierarchy is deeper than {MAX_DEPTH} levels; node {} and below are skipped",
                 node.index()
@@ -375,11 +505,9 @@ impl Loader<'_> {
             }
             self.instance(&mesh, world, parts, warnings)?;
         }
-        ancestors.push(node.index());
         for child in node.children() {
-            self.visit(&child, world, ancestors, parts, warnings)?;
+            self.visit(&child, world, depth + 1, parts, warnings)?;
         }
-        ancestors.pop();
         Ok(())
     }
 
@@ -400,15 +528,6 @@ impl Loader<'_> {
             let Some(Some((local, material))) = self.primitives.get(&key) else {
                 continue;
             };
-            self.triangles += local.triangles().len();
-            if self.triangles > MAX_TRIANGLES {
-                return Err(ImportFailure::Invalid {
-                    format: "glTF",
-                    message: format!(
-                        "the node instances add up to more than {MAX_TRIANGLES} triangles"
-                    ),
-                });
-            }
             let mesh = local
                 .clone()
                 .transformed(world)
@@ -450,6 +569,8 @@ impl Loader<'_> {
             format: "glTF",
             message: format!("{label}: {message}"),
         };
+        self.budget
+            .charge_vertices(position_accessor.count() as u64)?;
         let positions: Vec<DVec3> = read::<3>(&position_accessor, self.buffers, true)
             .map_err(invalid)?
             .into_iter()
@@ -477,6 +598,14 @@ impl Loader<'_> {
             .map_or(0, gltf::texture::Info::tex_coord);
         let optional = |semantic: Semantic, what: &str, warnings: &mut Vec<String>| {
             primitive.get(&semantic).and_then(|accessor| {
+                if accessor.count() != positions.len() {
+                    warnings.push(format!(
+                        "{label}: {what} ignored: {} values for {} vertices",
+                        accessor.count(),
+                        positions.len()
+                    ));
+                    return None;
+                }
                 let result = match accessor.dimensions().multiplicity() {
                     2 => read::<2>(&accessor, self.buffers, true).map(|v| {
                         v.into_iter()
@@ -574,7 +703,9 @@ impl Loader<'_> {
             .and_then(|v| self.document.views().nth(v.value()))
         {
             match view_bytes(&view, self.buffers) {
-                Some(bytes) => decode(bytes, hint.as_deref(), source.clone()).map(Arc::new),
+                Some(bytes) => {
+                    decode_image(bytes, hint.as_deref(), &source, self.budget).map(Arc::new)
+                }
                 None => Err(format!(
                     "buffer view {} lies outside its buffer",
                     view.index()
@@ -583,13 +714,13 @@ impl Loader<'_> {
         } else if let Some(uri) = &json.uri {
             if uri.starts_with("data:") {
                 resolve_uri(uri, self.base)
-                    .and_then(|bytes| decode(&bytes, hint.as_deref(), source.clone()))
+                    .and_then(|bytes| decode_image(&bytes, hint.as_deref(), &source, self.budget))
                     .map(Arc::new)
             } else {
                 match resolve_uri_path(uri, self.base) {
                     Ok(path) => {
                         // The file cache warns itself, naming the file.
-                        let texture = self.files.file(&path, user, warnings);
+                        let texture = self.files.file(&path, user, warnings, self.budget);
                         self.images.insert(index, texture.clone());
                         return texture;
                     }

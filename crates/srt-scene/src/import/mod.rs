@@ -21,6 +21,11 @@
 //!   missing or undecodable texture (the base colour is used instead), a missing MTL file, point
 //!   or line primitives (skipped), ignored glTF extensions — are collected in
 //!   [`Model::warnings`], each naming the file or element concerned.
+//! - **Hostile input**: files are read through [`input_file::read`] (regular files only, size
+//!   capped); every triangle, vertex, part and texel is charged to a [`Budget`] before it is
+//!   allocated ([`crate::limits`]); a glTF node graph is counted before it is walked. Error and
+//!   warning messages are one bounded line ([`crate::message`]) naming the file and, where the
+//!   format has lines, the line.
 //! - Third-party parsers run inside [`std::panic::catch_unwind`] as a last line of defence: a
 //!   panic becomes an [`ImportError`] ("the loader crashed on this file"), not an abort of the
 //!   caller. Inputs that are known to crash them are rejected before they get there.
@@ -32,11 +37,17 @@ mod ply;
 mod stl;
 mod texture;
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
+
+pub use gltf_model::MAX_JSON_OBJECTS;
+
+use crate::input_file::{self, FileKind, InputFileError};
+use crate::limits::{Budget, OverBudget};
+use crate::message::one_line;
 
 #[cfg(doc)]
 use crate::mesh::{Material, Texture};
@@ -83,9 +94,9 @@ impl Model {
 /// Why a model file could not be loaded: the file and the reason.
 ///
 /// Its message always names the file, e.g.
-/// `cannot load model "foo.glb": the file is not valid glTF: …`.
-#[derive(Debug, thiserror::Error)]
-#[error("cannot load model \"{}\": {reason}", path.display())]
+/// `cannot load model "foo.glb": the file is not valid glTF: …`, and is one line of at most
+/// [`MAX_MESSAGE_CHARS`](crate::message::MAX_MESSAGE_CHARS) characters.
+#[derive(Debug)]
 pub struct ImportError {
     path: PathBuf,
     reason: ImportFailure,
@@ -114,13 +125,32 @@ impl ImportError {
     }
 }
 
+impl fmt::Display for ImportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&one_line(&format!(
+            "cannot load model \"{}\": {}",
+            self.path.display(),
+            self.reason
+        )))
+    }
+}
+
+impl std::error::Error for ImportError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.reason)
+    }
+}
+
 /// The reason part of an [`ImportError`].
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ImportFailure {
-    /// The file could not be opened or read.
+    /// The file could not be opened or read, is not a regular file, or is too large.
     #[error("the file cannot be read: {0}")]
-    Io(std::io::Error),
+    Io(InputFileError),
+    /// The model needs more triangles, vertices or parts than a scene may have.
+    #[error("the model is too large: {0}")]
+    TooLarge(#[from] OverBudget),
     /// The file name has no extension, or one no loader handles.
     #[error(
         "the file extension {extension:?} is not supported (supported: gltf, glb, obj, ply, stl)"
@@ -165,22 +195,32 @@ pub enum ImportFailure {
 }
 
 /// Loads a model file, choosing the format by the file extension (case-insensitive: `gltf`,
-/// `glb`, `obj`, `ply`, `stl`).
+/// `glb`, `obj`, `ply`, `stl`), with a budget of its own ([`load_model_within`]).
 ///
 /// See the [module documentation](self) for the conventions (parts, normals, texture
 /// coordinates, colours, what is a warning and what an error).
 ///
 /// # Errors
 /// [`ImportError`] naming the file if the extension is not supported, the file cannot be read
-/// or is malformed, a needed resource (glTF buffer) is missing, a part's geometry is invalid, or
-/// the model has no triangles.
+/// or is malformed, a needed resource (glTF buffer) is missing, a part's geometry is invalid,
+/// the model is larger than a scene may be, or it has no triangles.
 pub fn load_model(path: &Path) -> Result<Model, ImportError> {
+    load_model_within(path, &mut Budget::new())
+}
+
+/// Loads a model file like [`load_model`], charging its triangles, vertices, parts and texture
+/// texels to `budget` (a scene's) before they are allocated.
+///
+/// # Errors
+/// As [`load_model`]; [`ImportFailure::TooLarge`] when the model does not fit in what is left
+/// of `budget`.
+pub fn load_model_within(path: &Path, budget: &mut Budget) -> Result<Model, ImportError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let loader: fn(&Path) -> Result<Model, ImportFailure> = match extension.as_str() {
+    let loader: Loader = match extension.as_str() {
         "gltf" | "glb" => gltf_model::load,
         "obj" => obj::load,
         "ply" => ply::load,
@@ -196,19 +236,25 @@ pub fn load_model(path: &Path) -> Result<Model, ImportError> {
             ));
         }
     };
-    match std::fs::metadata(path) {
-        Err(e) => return Err(ImportError::new(path, ImportFailure::Io(e))),
-        Ok(meta) if meta.is_file() && meta.len() == 0 => {
-            let detail = " (the file is empty)".to_owned();
-            return Err(ImportError::new(path, ImportFailure::Empty { detail }));
-        }
-        Ok(_) => {}
+    let bytes = input_file::read(path, FileKind::Model)
+        .map_err(|e| ImportError::new(path, ImportFailure::Io(e)))?;
+    if bytes.is_empty() {
+        let detail = " (the file is empty)".to_owned();
+        return Err(ImportError::new(path, ImportFailure::Empty { detail }));
     }
-    let model = match catch_unwind(AssertUnwindSafe(|| loader(path))) {
+    // A model that fails is not charged (loaders charge as they go).
+    let before = budget.clone();
+    let mut model = match catch_unwind(AssertUnwindSafe(|| loader(path, bytes, budget))) {
         Ok(result) => result,
         Err(payload) => Err(ImportFailure::Crashed(panic_message(payload.as_ref()))),
     }
-    .map_err(|reason| ImportError::new(path, reason))?;
+    .map_err(|reason| {
+        *budget = before;
+        ImportError::new(path, reason)
+    })?;
+    for warning in &mut model.warnings {
+        *warning = one_line(warning);
+    }
     if model.parts.is_empty() || model.triangle_count() == 0 {
         let mut detail = String::new();
         if !model.warnings.is_empty() {
@@ -234,6 +280,10 @@ pub fn load_model(path: &Path) -> Result<Model, ImportError> {
     Ok(model)
 }
 
+/// A format's loader: the file's path (for messages and the files it names), its bytes, and the
+/// budget to charge.
+type Loader = fn(&Path, Vec<u8>, &mut Budget) -> Result<Model, ImportFailure>;
+
 /// The text of a panic payload.
 fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     if let Some(s) = payload.downcast_ref::<&str>() {
@@ -243,11 +293,6 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     } else {
         "a panic without a message".to_owned()
     }
-}
-
-/// Reads a whole file, mapping the error.
-fn read_file(path: &Path) -> Result<Vec<u8>, ImportFailure> {
-    std::fs::read(path).map_err(ImportFailure::Io)
 }
 
 /// Geometry as read from a file, before validation into a [`Mesh`].

@@ -7,7 +7,10 @@
 //! MTL file or texture is a warning. Text that `tobj` would reject or panic on for reasons that
 //! do not touch the geometry is repaired first (UTF-16 or Latin-1 text, material statements
 //! without a name, one-component MTL colours), and face indices on which its arithmetic would
-//! overflow are rejected first.
+//! overflow are rejected first, in a first pass that also counts the triangles and vertices and
+//! charges them to the budget before `tobj` allocates them. `tobj`'s errors carry no position:
+//! the line is where it stopped reading (or, for an index out of range, the first face that
+//! refers to an element not defined before it).
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -17,12 +20,18 @@ use std::path::{Path, PathBuf};
 use glam::{DVec2, DVec3};
 
 use super::texture::TextureCache;
-use super::{ImportFailure, Model, RawMesh, read_file};
+use super::{ImportFailure, Model, RawMesh};
+use crate::input_file::{self, FileKind};
+use crate::limits::Budget;
 use crate::mesh::{Material, Part};
+use crate::message::quote;
 
 /// Loads an `.obj` file and the MTL files it names.
-pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
-    let bytes = read_file(path)?;
+pub(super) fn load(
+    path: &Path,
+    bytes: Vec<u8>,
+    budget: &mut Budget,
+) -> Result<Model, ImportFailure> {
     let base = path.parent().unwrap_or_else(|| Path::new(""));
     // Material name → directory of its MTL file, for texture paths.
     let material_dirs = RefCell::new(HashMap::<String, PathBuf>::new());
@@ -37,13 +46,15 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
     if let Some(note) = note {
         warnings.borrow_mut().push(format!("the OBJ file {note}"));
     }
-    check_indices(&text).map_err(|message| ImportFailure::Invalid {
+    let counts = prescan(&text).map_err(|message| ImportFailure::Invalid {
         format: "OBJ",
         message,
     })?;
-    let result = tobj::load_obj_buf(&mut Cursor::new(text), &options, |library: &Path| {
+    budget.charge_mesh(counts.triangles, counts.vertices)?;
+    let mut cursor = Cursor::new(text.as_bytes());
+    let result = tobj::load_obj_buf(&mut cursor, &options, |library: &Path| {
         let full = base.join(library);
-        let loaded = std::fs::read(&full)
+        let loaded = input_file::read(&full, FileKind::Model)
             .map_err(|e| e.to_string())
             .and_then(|bytes| {
                 let (text, note) = normalize_text(&bytes, Kind::Mtl);
@@ -52,7 +63,9 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
                         .borrow_mut()
                         .push(format!("material library \"{}\" {note}", full.display()));
                 }
-                tobj::load_mtl_buf(&mut Cursor::new(text)).map_err(|e| e.to_string())
+                let mut cursor = Cursor::new(text.as_bytes());
+                tobj::load_mtl_buf(&mut cursor)
+                    .map_err(|e| describe_error(&e, &text, stopped_at(&cursor), Kind::Mtl))
             });
         match loaded {
             Ok((materials, names)) => {
@@ -74,8 +87,10 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
     });
     let (models, materials) = result.map_err(|e| ImportFailure::Invalid {
         format: "OBJ",
-        message: e.to_string(),
+        message: describe_error(&e, &text, stopped_at(&cursor), Kind::Obj),
     })?;
+    let parts_with_faces = models.iter().filter(|m| !m.mesh.indices.is_empty()).count();
+    budget.charge_parts(parts_with_faces as u64)?;
     // A failed library was warned about above; the materials that did load are kept by tobj
     // only when all succeeded.
     let materials = materials.unwrap_or_default();
@@ -134,7 +149,7 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
             Some((id, m)) => converted
                 .entry(id)
                 .or_insert_with(|| {
-                    convert_material(m, &material_dirs, &mut textures, &mut warnings)
+                    convert_material(m, &material_dirs, &mut textures, &mut warnings, budget)
                 })
                 .clone(),
         };
@@ -214,24 +229,38 @@ fn normalize_text(bytes: &[u8], kind: Kind) -> (String, Option<&'static str>) {
     (out, note)
 }
 
-/// Rejects face, line and point statements with indices on which `tobj`'s arithmetic overflows:
-/// 0 (OBJ counts from 1), relative indices reaching before the first element, and indices beyond
-/// the 32-bit range.
-fn check_indices(text: &str) -> Result<(), String> {
+/// What the first pass over an OBJ file counted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Counts {
+    /// Triangles the faces give after fan triangulation.
+    triangles: u64,
+    /// Vertex positions (`v` statements).
+    vertices: u64,
+}
+
+/// The first pass over an OBJ text: counts triangles and vertices, and rejects face, line and
+/// point statements with indices on which `tobj`'s arithmetic overflows: 0 (OBJ counts from 1),
+/// relative indices reaching before the first element, and indices beyond the 32-bit range.
+fn prescan(text: &str) -> Result<Counts, String> {
     let mut counts = [0i64; 3]; // v, vt, vn so far
+    let mut triangles = 0u64;
     for (number, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
-        match words.next() {
+        let keyword = words.next();
+        match keyword {
             Some("v") => counts[0] += 1,
             Some("vt") => counts[1] += 1,
             Some("vn") => counts[2] += 1,
             Some("f" | "l" | "p") => {
+                let mut corners = 0u64;
                 for word in words {
+                    corners += 1;
                     for (slot, part) in word.split('/').enumerate() {
                         let Some(&count) = counts.get(slot) else {
                             return Err(format!(
-                                "line {}: \"{word}\" has more than three indices",
-                                number + 1
+                                "line {}: {} has more than three indices",
+                                number + 1,
+                                quote(word)
                             ));
                         };
                         // Unparsable numbers are left to tobj, which reports them.
@@ -240,17 +269,108 @@ fn check_indices(text: &str) -> Result<(), String> {
                         };
                         if index == 0 || index < -count || index > i64::from(u32::MAX) {
                             return Err(format!(
-                                "line {}: index {index} in \"{word}\" is out of range",
-                                number + 1
+                                "line {}: index {index} in {} is out of range",
+                                number + 1,
+                                quote(word)
                             ));
                         }
                     }
+                }
+                if keyword == Some("f") {
+                    triangles += corners.saturating_sub(2);
                 }
             }
             _ => {}
         }
     }
-    Ok(())
+    Ok(Counts {
+        triangles,
+        vertices: counts[0].unsigned_abs(),
+    })
+}
+
+/// How far `tobj` read before it stopped, in bytes.
+fn stopped_at(cursor: &Cursor<&[u8]>) -> usize {
+    usize::try_from(cursor.position()).unwrap_or(usize::MAX)
+}
+
+/// A `tobj` error on the OBJ or MTL `text` in words, with its line: the last line `tobj` read
+/// (it stops on the line it rejects) or, for an index out of range, the first face that refers
+/// to an element not defined before it.
+fn describe_error(error: &tobj::LoadError, text: &str, consumed: usize, kind: Kind) -> String {
+    use tobj::LoadError as E;
+    let what = match (error, kind) {
+        (E::PositionParseError, _) => "a vertex position (v) needs three numbers",
+        (E::ScalingByZeroError, _) => "a vertex has the weight w = 0",
+        (E::ColorParseError, _) => "a vertex colour needs three numbers after the position",
+        (E::NormalParseError, _) => "a normal (vn) needs three numbers",
+        (E::TexcoordParseError, _) => "a texture coordinate (vt) needs two numbers",
+        (E::FaceParseError, _) => "a face or line has an index that is not a number",
+        (E::MaterialParseError, Kind::Obj) => "usemtl needs a material name",
+        (E::MaterialParseError, Kind::Mtl) => {
+            "a material statement has a missing or malformed value"
+        }
+        (E::InvalidObjectName, _) => "newmtl needs a material name",
+        (E::FaceVertexOutOfBounds, _) => "a face refers to a vertex that does not exist",
+        (E::FaceTexCoordOutOfBounds, _) => {
+            "a face refers to a texture coordinate that does not exist"
+        }
+        (E::FaceNormalOutOfBounds, _) => "a face refers to a normal that does not exist",
+        (E::FaceColorOutOfBounds, _) => "some vertices have colours and others do not",
+        (E::InvalidPolygon, _) => "a face has fewer than three vertices",
+        (E::UnrecognizedCharacter, _) => "the file has a character the parser does not accept",
+        _ => "the parser failed",
+    };
+    let slot = match error {
+        E::FaceVertexOutOfBounds => Some(0),
+        E::FaceTexCoordOutOfBounds => Some(1),
+        E::FaceNormalOutOfBounds => Some(2),
+        _ => None,
+    };
+    let number = slot
+        .and_then(|slot| first_undefined_reference(text, slot))
+        .unwrap_or_else(|| line_of_offset(text, consumed));
+    match text.lines().nth(number.saturating_sub(1)) {
+        Some(line) if number > 0 => format!("line {number} ({}): {what}", quote(line)),
+        _ => what.to_owned(),
+    }
+}
+
+/// The line (from 1) that byte `offset` of `text` ends; 0 for offset 0.
+fn line_of_offset(text: &str, offset: usize) -> usize {
+    let read = text.as_bytes().get(..offset).unwrap_or(text.as_bytes());
+    let newlines = read.iter().filter(|&&b| b == b'\n').count();
+    if read.is_empty() || read.ends_with(b"\n") {
+        newlines
+    } else {
+        newlines + 1
+    }
+}
+
+/// The first face line (from 1) whose index in `slot` (0: vertex, 1: texture coordinate,
+/// 2: normal) refers to an element not defined before the line.
+fn first_undefined_reference(text: &str, slot: usize) -> Option<usize> {
+    let keyword = ["v", "vt", "vn"][slot];
+    let mut defined = 0i64;
+    for (number, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some(word) if word == keyword => defined += 1,
+            Some("f") => {
+                let undefined = words.any(|word| {
+                    word.split('/')
+                        .nth(slot)
+                        .and_then(|part| part.parse::<i64>().ok())
+                        .is_some_and(|index| index > defined || index < -defined)
+                });
+                if undefined {
+                    return Some(number + 1);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// Our material for an MTL material.
@@ -259,6 +379,7 @@ fn convert_material(
     material_dirs: &HashMap<String, PathBuf>,
     textures: &mut TextureCache,
     warnings: &mut Vec<String>,
+    budget: &mut Budget,
 ) -> Material {
     let [r, g, b] = m.diffuse.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0));
     let alpha = m.dissolve.unwrap_or(1.0).clamp(0.0, 1.0);
@@ -267,7 +388,7 @@ fn convert_material(
             .get(&m.name)
             .map_or(Path::new(""), PathBuf::as_path);
         let path = texture_path(dir, spec);
-        textures.file(&path, &format!("material \"{}\"", m.name), warnings)
+        textures.file(&path, &format!("material \"{}\"", m.name), warnings, budget)
     });
     Material {
         name: m.name.clone(),
@@ -350,14 +471,56 @@ mod tests {
 
     #[test]
     fn indices_tobj_would_overflow_on_are_rejected() {
-        assert!(check_indices("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -1 -2 -3\n").is_ok());
-        assert!(check_indices("v 0 0 0\nf 0 1 1\n").is_err());
-        assert!(check_indices("v 0 0 0\nf -2 1 1\n").is_err());
-        assert!(check_indices("v 0 0 0\nf 1/0 1 1\n").is_err());
-        assert!(check_indices("v 0 0 0\nf 1/1/1/1 1 1\n").is_err());
-        assert!(check_indices("f 99999999999 1 1\n").is_err());
+        let counts = prescan("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -1 -2 -3\n").unwrap();
+        assert_eq!(
+            counts,
+            Counts {
+                triangles: 2,
+                vertices: 3
+            }
+        );
+        assert!(prescan("v 0 0 0\nf 0 1 1\n").is_err());
+        assert!(prescan("v 0 0 0\nf -2 1 1\n").is_err());
+        assert!(prescan("v 0 0 0\nf 1/0 1 1\n").is_err());
+        assert!(prescan("v 0 0 0\nf 1/1/1/1 1 1\n").is_err());
+        assert!(prescan("f 99999999999 1 1\n").is_err());
         // Unparsable numbers are left to tobj.
-        assert!(check_indices("f a b c\n").is_ok());
+        assert!(prescan("f a b c\n").is_ok());
+        // Polygons are fan-triangulated; lines and points give no triangles.
+        assert_eq!(prescan("f 1 2 3 4 5\nl 1 2\np 1\n").unwrap().triangles, 3);
+    }
+
+    #[test]
+    fn errors_name_the_line_tobj_stopped_on() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n";
+        let (_, consumed) = tobj_error(text);
+        let message = describe_error(
+            &tobj::LoadError::PositionParseError,
+            text,
+            consumed,
+            Kind::Obj,
+        );
+        assert_eq!(
+            message,
+            "line 3 (\"v 0 x 0\"): a vertex position (v) needs three numbers"
+        );
+        assert_eq!(line_of_offset("a\nb", 3), 2);
+        assert_eq!(line_of_offset("a\nb\n", 4), 2);
+        assert_eq!(line_of_offset("a", 0), 0);
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n";
+        assert_eq!(first_undefined_reference(text, 0), Some(5));
+        assert_eq!(first_undefined_reference(text, 2), None);
+    }
+
+    /// Runs tobj on `text`, expecting an error; returns it and how far tobj read.
+    fn tobj_error(text: &str) -> (tobj::LoadError, usize) {
+        let mut cursor = Cursor::new(text.as_bytes());
+        let options = tobj::LoadOptions::default();
+        let error = tobj::load_obj_buf(&mut cursor, &options, |_| {
+            Err(tobj::LoadError::OpenFileFailed)
+        })
+        .unwrap_err();
+        (error, stopped_at(&cursor))
     }
 
     #[test]

@@ -8,17 +8,23 @@
 //! Everything else (edges, per-face colours, materials…) is ignored. One part per file. Header
 //! lines that are not PLY statements (free text some exporters write) are read as comments, with
 //! a warning.
+//!
+//! The counts the header declares are checked before the payload is read (vertices and faces
+//! against the scene's budget, every element against the file's size), and the parser's errors
+//! are put into words with the line they give (for ASCII files).
 
 use std::io::{BufReader, Cursor};
 use std::path::Path;
 
 use glam::{DVec2, DVec3};
-use ply_rs_bw::parser::{Parser, Reader};
-use ply_rs_bw::ply::{Property, PropertyAccess};
+use ply_rs_bw::parser::{ParseError, Parser, Reader};
+use ply_rs_bw::ply::{Encoding, Property, PropertyAccess};
 
 use super::texture::TextureCache;
-use super::{ImportFailure, Model, RawMesh, fan, read_file};
+use super::{ImportFailure, Model, RawMesh, fan};
+use crate::limits::{Budget, MAX_SCENE_TRIANGLES, OverBudget};
 use crate::mesh::{Material, Part};
+use crate::message::quote;
 
 /// One vertex as read.
 #[derive(Debug, Default)]
@@ -171,9 +177,14 @@ fn repair_header(bytes: Vec<u8>, warnings: &mut Vec<String>) -> Vec<u8> {
 }
 
 /// Loads a `.ply` file.
-pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
+pub(super) fn load(
+    path: &Path,
+    bytes: Vec<u8>,
+    budget: &mut Budget,
+) -> Result<Model, ImportFailure> {
     let mut warnings = Vec::new();
-    let bytes = repair_header(read_file(path)?, &mut warnings);
+    let file_bytes = bytes.len();
+    let bytes = repair_header(bytes, &mut warnings);
     let invalid = |message: String| ImportFailure::Invalid {
         format: "PLY",
         message,
@@ -181,7 +192,33 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
     let mut reader = Reader::new(BufReader::new(Cursor::new(bytes)));
     let header = Parser::<Vertex>::new()
         .read_header(&mut reader)
-        .map_err(|e| invalid(e.to_string()))?;
+        .map_err(|e| invalid(describe(&e, true)))?;
+    let ascii = header.encoding == Encoding::Ascii;
+    if let Some(vertex) = header.elements.get("vertex") {
+        budget.charge_vertices(vertex.count as u64)?;
+    }
+    if let Some(face) = header.elements.get("face")
+        && face.count > MAX_SCENE_TRIANGLES
+    {
+        return Err(OverBudget {
+            resource: "faces",
+            needed: face.count as u64,
+            used: 0,
+            max: MAX_SCENE_TRIANGLES as u64,
+        }
+        .into());
+    }
+    for (name, element) in &header.elements {
+        // Every element takes at least one byte (a binary one with no properties takes none,
+        // and is useless).
+        if element.count > file_bytes {
+            return Err(invalid(format!(
+                "element \"{name}\" declares {} entries, more than the file's {file_bytes} bytes can hold",
+                element.count
+            )));
+        }
+    }
+    budget.charge_parts(1)?;
     let mut vertices = None;
     let mut faces = None;
     for (name, element) in &header.elements {
@@ -189,7 +226,7 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
             break;
         }
         let context =
-            |e: ply_rs_bw::parser::ParseError| invalid(format!("element \"{name}\": {e}"));
+            |e: ParseError| invalid(format!("element \"{name}\": {}", describe(&e, ascii)));
         match name.as_str() {
             "vertex" if vertices.is_none() => {
                 vertices = Some(
@@ -221,7 +258,7 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
         });
     };
 
-    let mut triangles = Vec::with_capacity(faces.len());
+    let mut triangle_count = 0u64;
     let mut short_faces = 0usize;
     for (i, face) in faces.iter().enumerate() {
         if face.negative {
@@ -232,6 +269,11 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
         if face.indices.len() < 3 {
             short_faces += 1;
         }
+        triangle_count += face.indices.len().saturating_sub(2) as u64;
+    }
+    budget.charge_mesh(triangle_count, 0)?;
+    let mut triangles = Vec::with_capacity(usize::try_from(triangle_count).unwrap_or(0));
+    for face in &faces {
         fan(&face.indices, &mut triangles);
     }
     if short_faces > 0 {
@@ -286,7 +328,12 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
         .filter(|name| !name.is_empty())
         .and_then(|name| {
             let dir = path.parent().unwrap_or_else(|| Path::new(""));
-            TextureCache::default().file(&dir.join(name), "the TextureFile comment", &mut warnings)
+            TextureCache::default().file(
+                &dir.join(name),
+                "the TextureFile comment",
+                &mut warnings,
+                budget,
+            )
         });
     let material = Material {
         texture,
@@ -296,6 +343,93 @@ pub(super) fn load(path: &Path) -> Result<Model, ImportFailure> {
         parts: vec![Part { mesh, material }],
         warnings,
     })
+}
+
+/// A `ply-rs` parse error in words, on one line: "line N: " (when `with_line` and the parser
+/// knows it) and what is wrong, without the Rust debug output its messages carry.
+fn describe(error: &ParseError, with_line: bool) -> String {
+    let text = error.to_string();
+    let message = error
+        .line()
+        .and_then(|line| text.strip_prefix(&format!("Line {line}: ")))
+        .unwrap_or(&text);
+    let words = in_words(message);
+    match error.line() {
+        Some(line) if with_line => format!("line {line}: {words}"),
+        _ => words,
+    }
+}
+
+/// The (possibly multi-line) message of a `ply-rs` error in words.
+fn in_words(message: &str) -> String {
+    // The parser appends details as "\tName: value" lines; values are quoted with '…'.
+    let detail = |name: &str| {
+        message.lines().find_map(|line| {
+            let value = line.trim().strip_prefix(name)?.trim();
+            Some(quote(value.trim_end_matches(',').trim().trim_matches('\'')))
+        })
+    };
+    let first = message.lines().next().unwrap_or("").trim();
+    if let Some(value) = detail("Value:") {
+        format!("{value} is not a number of the type the header declares")
+    } else if message.contains("but found nothing") {
+        "a data line has fewer values than the header declares".to_owned()
+    } else if message.contains("list elements, but found only") {
+        "a list has fewer values than its count says".to_owned()
+    } else if message.contains("Couldn't parse element at index") {
+        "a list value is not a number of the declared type".to_owned()
+    } else if first.starts_with("Expected magic number") {
+        "the file does not start with \"ply\"".to_owned()
+    } else if first.starts_with("Unexpected 'ply'") {
+        "\"ply\" appears again inside the header".to_owned()
+    } else if first.starts_with("Found contradicting format") {
+        "the header has two different format lines".to_owned()
+    } else if first.starts_with("Property") && first.ends_with("found without preceding element.") {
+        "a property is declared before any element".to_owned()
+    } else if first.starts_with("Couldn't parse line") {
+        let line = detail("String:").unwrap_or_default();
+        format!("{line} is not a PLY header statement")
+    } else if message.contains("Couldn't parse element line") {
+        let line = detail("String:").unwrap_or_default();
+        format!("the data line {line} is not a list of numbers")
+    } else if first.starts_with("Couldn't read element line") {
+        let line = detail("String:").unwrap_or_default();
+        format!("the data line {line} does not match the header")
+    } else if let Some(rest) = first.strip_prefix("PLY property '") {
+        let name = rest.split('\'').next().unwrap_or_default();
+        format!(
+            "property {} has a type this importer cannot read",
+            quote(name)
+        )
+    } else {
+        without_debug(first)
+    }
+}
+
+/// `text` with every `Name { … }` or `{ … }` group (Rust debug output) replaced by "…".
+fn without_debug(text: &str) -> String {
+    let mut out = String::new();
+    let mut depth = 0usize;
+    for c in text.chars() {
+        match c {
+            '{' => {
+                if depth == 0 {
+                    // Drop the type name before the brace.
+                    let kept = out
+                        .trim_end()
+                        .rsplit_once([' ', '\'', '('])
+                        .map_or(0, |(head, _)| head.len() + 1);
+                    out.truncate(kept);
+                    out.push('…');
+                }
+                depth += 1;
+            }
+            '}' => depth = depth.saturating_sub(1),
+            _ if depth == 0 => out.push(c),
+            _ => {}
+        }
+    }
+    out.trim().to_owned()
 }
 
 #[cfg(test)]
@@ -317,5 +451,27 @@ mod tests {
         let good = b"ply\nformat ascii 1.0\nend_header\n".to_vec();
         assert_eq!(repair_header(good.clone(), &mut warnings), good);
         assert_eq!(warnings.len(), 1);
+    }
+
+    #[test]
+    fn parser_messages_lose_their_debug_output() {
+        assert_eq!(
+            in_words(
+                "Property 'PropertyDef { name: \"x\", data_type: Scalar(Float) }' found without \
+                 preceding element.\n\tString: 'property float x'"
+            ),
+            "a property is declared before any element"
+        );
+        assert_eq!(
+            in_words(
+                "Couldn't read element line.\n\tString: '1 2 x\n'\n\tError: Parse error.\n\t\
+                 Value: 'x'\n\tError: ParseFloatError { kind: Invalid }, "
+            ),
+            "\"x\" is not a number of the type the header declares"
+        );
+        assert_eq!(
+            without_debug("bad PropertyDef { name: \"x\" } here"),
+            "bad … here"
+        );
     }
 }

@@ -1,21 +1,17 @@
 //! Texture images: decoding (PNG, JPEG, BMP, TGA; the format is guessed from the content, the
 //! file extension is the fallback) into RGBA8 [`Texture`]s, and a per-model cache so that parts
-//! sharing an image share one [`Arc`].
+//! sharing an image share one [`Arc`]. Files are read through [`crate::input_file`] and texels
+//! charged to the scene's [`Budget`]; a texture that cannot be loaded for any reason (missing,
+//! not a regular file, too large, undecodable) is a warning that says why, and the base colour
+//! is used.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use crate::limits::Budget;
 use crate::mesh::Texture;
-
-/// Decodes an encoded image (see [`crate::textures::decode_image`]).
-pub(super) fn decode(
-    bytes: &[u8],
-    extension: Option<&str>,
-    source: String,
-) -> Result<Texture, String> {
-    crate::textures::decode_image(bytes, extension, &source)
-}
+use crate::textures::load_image;
 
 /// Texture files loaded so far for one model, by path; `None` for files that failed.
 #[derive(Debug, Default)]
@@ -32,14 +28,12 @@ impl TextureCache {
         path: &Path,
         user: &str,
         warnings: &mut Vec<String>,
+        budget: &mut Budget,
     ) -> Option<Arc<Texture>> {
         if let Some(texture) = self.files.get(path) {
             return texture.clone();
         }
-        let extension = path.extension().and_then(|e| e.to_str());
-        let result = std::fs::read(path)
-            .map_err(|e| e.to_string())
-            .and_then(|bytes| decode(&bytes, extension, path.display().to_string()));
+        let result = load_image(path, budget);
         let texture = match result {
             Ok(texture) => Some(Arc::new(texture)),
             Err(error) => {
@@ -58,21 +52,26 @@ impl TextureCache {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::textures::decode_image;
 
     #[test]
     fn garbage_is_an_error_not_a_panic() {
-        assert!(decode(b"not an image", None, "x".into()).is_err());
-        assert!(decode(b"", Some("tga"), "x".into()).is_err());
-        assert!(decode(b"\x89PNG\r\n\x1a\n\0\0", Some("png"), "x".into()).is_err());
+        let mut budget = Budget::new();
+        assert!(decode_image(b"not an image", None, "x", &mut budget).is_err());
+        assert!(decode_image(b"", Some("tga"), "x", &mut budget).is_err());
+        let truncated = b"\x89PNG\r\n\x1a\n\0\0";
+        assert!(decode_image(truncated, Some("png"), "x", &mut budget).is_err());
     }
 
     #[test]
     fn a_missing_file_warns_once() {
         let mut cache = TextureCache::default();
         let mut warnings = Vec::new();
+        let mut budget = Budget::new();
         let path = Path::new("/nonexistent/texture.png");
-        assert!(cache.file(path, "material \"m\"", &mut warnings).is_none());
-        assert!(cache.file(path, "material \"m\"", &mut warnings).is_none());
+        let user = "material \"m\"";
+        assert!(cache.file(path, user, &mut warnings, &mut budget).is_none());
+        assert!(cache.file(path, user, &mut warnings, &mut budget).is_none());
         assert_eq!(warnings.len(), 1);
         assert!(warnings[0].contains("texture.png"), "{}", warnings[0]);
     }
