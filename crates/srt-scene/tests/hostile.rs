@@ -193,6 +193,20 @@ fn shape_resolutions_beyond_the_triangle_budget_are_refused_before_building() {
     );
     assert_readable(&message, "shape.segments");
     assert!(message.contains("2000000"), "{message}");
+    // Found by the fuzz campaign: the count in the message overflowed.
+    for shape in [
+        "cube\", subdivisions = 4294967295",
+        "sphere\", segments = 4294967295",
+    ] {
+        let message = scene_error(
+            dir.path(),
+            &scene_with(&format!("shape = {{ type = \"{shape} }}")),
+        );
+        assert!(
+            message.contains("got 4294967295 (which would make 1844674"),
+            "{message}"
+        );
+    }
 }
 
 #[test]
@@ -254,6 +268,22 @@ fn a_deep_shared_node_graph_is_counted_not_walked() {
     let path = gltf_with_nodes(dir.path(), "bomb.gltf", &doubling_chain(64, true), "0");
     let message = model_error(&path);
     assert!(message.contains("the model is too large"), "{message}");
+}
+
+#[test]
+fn a_position_attribute_naming_a_missing_accessor_is_an_error() {
+    // Found by the fuzz campaign: the gltf crate's validation indexed out of bounds on it.
+    let dir = temp();
+    let path = gltf_with_nodes(dir.path(), "missing.gltf", "{\"mesh\":0}", "0");
+    let json = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("\"POSITION\":0", "\"POSITION\":2147483648");
+    let path = write(dir.path(), "missing.gltf", json);
+    let message = model_error(&path);
+    assert!(
+        message.contains("POSITION names accessor 2147483648, but there are only 1"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -611,13 +641,28 @@ fn a_long_ascii_stl_line_gives_a_short_message_with_the_line() {
 #[test]
 fn raw_bytes_of_a_binary_stl_header_are_not_printed() {
     let dir = temp();
-    // Starts like ASCII STL, then binary bytes; its size fits no binary facet count.
+    // A binary STL whose header starts with "solid" (as many exporters write), cut short.
     let mut bytes = b"solid \x00\x01\x1b[31m\x7f\xff\xfe".to_vec();
-    bytes.extend((0..=255u8).cycle().take(1000));
+    bytes.resize(84, 0);
+    bytes[80..84].copy_from_slice(&12u32.to_le_bytes());
+    bytes.extend((0..=255u8).cycle().take(500));
     let path = write(dir.path(), "binary.stl", bytes);
     let message = model_error(&path);
-    assert!(message.contains("line "), "{message}");
-    assert!(message.contains("\\x"), "escapes expected: {message}");
+    assert!(
+        message.contains(
+            "the binary header declares 12 facets (684 bytes), but the file has only 584 bytes"
+        ),
+        "{message}"
+    );
+    // Text with control characters is escaped where it is quoted.
+    let path = write(
+        dir.path(),
+        "text.stl",
+        "solid x\nfacet \x1b[31mnormal 0 0 1\n",
+    );
+    let message = model_error(&path);
+    assert!(message.contains("line 2: expected"), "{message}");
+    assert!(message.contains("\\x1b[31m"), "{message}");
 }
 
 #[test]

@@ -226,7 +226,7 @@ impl ObjectDescription {
                     &field("shape.subdivisions"),
                     *subdivisions,
                     (1, MAX_CUBE_SUBDIVISIONS),
-                    12 * n * n,
+                    n.saturating_mul(n).saturating_mul(12),
                 )?;
             }
             ShapeDescription::Sphere { radius, segments } => {
@@ -236,7 +236,7 @@ impl ObjectDescription {
                     &field("shape.segments"),
                     *segments,
                     (MIN_SPHERE_SEGMENTS, MAX_SPHERE_SEGMENTS),
-                    n * (n / 2).max(2).saturating_sub(1) * 2,
+                    n.saturating_mul((n / 2).max(2) - 1).saturating_mul(2),
                 )?;
             }
             ShapeDescription::Model { path } => {

@@ -86,7 +86,7 @@ pub(super) fn load(
             kept.join(", ")
         )));
     }
-    fill_missing_position_bounds(&mut root, &mut warnings);
+    fill_missing_position_bounds(&mut root, &mut warnings).map_err(invalid)?;
     let document = Document::from_json(root).map_err(|e| invalid(e.to_string()))?;
     let base = path.parent().unwrap_or_else(|| Path::new(""));
     let buffers = load_buffers(&document, base, blob)?;
@@ -300,19 +300,34 @@ fn ignorable_extension(name: &str) -> bool {
 /// Gives `POSITION` accessors without `min`/`max` placeholder bounds, with a warning: the glTF
 /// specification requires them and the `gltf` crate's validation rejects files without them, but
 /// we compute bounds ourselves and many exporters leave them out.
-fn fill_missing_position_bounds(root: &mut gltf::json::Root, warnings: &mut Vec<String>) {
+///
+/// # Errors
+/// A message if a `POSITION` attribute names an accessor that does not exist (the `gltf` crate's
+/// validation would index out of bounds on it).
+fn fill_missing_position_bounds(
+    root: &mut gltf::json::Root,
+    warnings: &mut Vec<String>,
+) -> Result<(), String> {
     use gltf::json::validation::Checked;
-    let mut targets: Vec<usize> = root
-        .meshes
-        .iter()
-        .flat_map(|mesh| &mesh.primitives)
-        .filter_map(|primitive| {
-            primitive
+    let mut targets = Vec::new();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let Some(index) = primitive
                 .attributes
                 .get(&Checked::Valid(Semantic::Positions))
-        })
-        .map(|index| index.value())
-        .collect();
+            else {
+                continue;
+            };
+            if index.value() >= root.accessors.len() {
+                return Err(format!(
+                    "mesh {m} primitive {p}: POSITION names accessor {}, but there are only {}",
+                    index.value(),
+                    root.accessors.len()
+                ));
+            }
+            targets.push(index.value());
+        }
+    }
     targets.sort_unstable();
     targets.dedup();
     let mut filled = Vec::new();
@@ -338,6 +353,7 @@ fn fill_missing_position_bounds(root: &mut gltf::json::Root, warnings: &mut Vec<
             filled.join(", ")
         ));
     }
+    Ok(())
 }
 
 /// Reads every buffer: the GLB binary chunk, a data URI or an external file.

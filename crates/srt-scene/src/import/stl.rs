@@ -4,8 +4,8 @@
 //! ASCII or binary is decided here rather than by `stl_io` (which treats every file starting with
 //! `solid ` as ASCII, although many binary exporters write that into the header): a file whose size
 //! is exactly 84 + 50 × (the triangle count in its header) is binary; otherwise one that starts
-//! with `solid` is ASCII; otherwise a file of at least 84 bytes is binary (truncated ones are
-//! errors). ASCII keywords are case-insensitive, and every `solid … endsolid` section becomes one
+//! with `solid` and has no NUL byte (text never has one, binary headers and facets almost always
+//! do) is ASCII; otherwise a file of at least 84 bytes is binary (truncated ones are errors). ASCII keywords are case-insensitive, and every `solid … endsolid` section becomes one
 //! part. Each facet gets its own three vertices and the facet normal (flat shading); a zero or
 //! non-finite facet normal is replaced by the geometric one. A binary file's declared facets, and
 //! each ASCII facet as it is read, are charged to the budget before they are stored.
@@ -44,14 +44,15 @@ pub(super) fn load(
         .unwrap_or(bytes.len());
     let ascii = bytes
         .get(text_start..text_start + 5)
-        .is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
+        .is_some_and(|w| w.eq_ignore_ascii_case(b"solid"))
+        && !bytes.contains(&0);
     if exact_binary || (!ascii && bytes.len() >= HEADER) {
         binary(bytes, declared.unwrap_or(0), budget)
     } else if ascii {
         ascii_solids(&String::from_utf8_lossy(&bytes), budget)
     } else {
         Err(invalid(format!(
-            "it is neither ASCII STL (it does not start with \"solid\") nor binary STL ({} bytes, \
+            "it is neither ASCII STL (text starting with \"solid\") nor binary STL ({} bytes, \
              shorter than the {HEADER}-byte header)",
             bytes.len()
         )))
@@ -250,8 +251,8 @@ fn ascii_solids(text: &str, budget: &mut Budget) -> Result<Model, ImportFailure>
             )));
         }
         warnings.push(format!(
-            "solid {index} (\"{}\") has no \"endsolid\"",
-            open.name
+            "solid {index} ({}) has no \"endsolid\"",
+            quote(&open.name)
         ));
         open.finish(index, &mut parts, &mut warnings)?;
     }
@@ -290,7 +291,7 @@ impl Solid {
         parts: &mut Vec<Part>,
         warnings: &mut Vec<String>,
     ) -> Result<(), ImportFailure> {
-        let label = format!("solid {index} (\"{}\")", self.name);
+        let label = format!("solid {index} ({})", quote(&self.name));
         if self.facets.raw.triangles.is_empty() {
             warnings.push(format!("{label} has no facets"));
             return Ok(());
