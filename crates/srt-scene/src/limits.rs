@@ -13,8 +13,8 @@
 //! - [`MAX_SCENE_TRIANGLES`] = 2 million. The largest real model we know of in use here,
 //!   2CylinderEngine, has 121 496; the Stanford dragon has 871 414. Rendering a cube of 1.92
 //!   million triangles with the CPU renderer (`srt render --backend cpu`, 32 × 32 pixels) peaked
-//!   at 0.73 GB; a triangle soup (STL: three vertices per triangle, about six times the vertex
-//!   data of the cube) is estimated at about twice that, which keeps a scene well under 4 GB.
+//!   at 0.73 GB, a binary STL triangle soup of 1.99 million triangles (three vertices each) at
+//!   1.15 GB: a scene stays well under 4 GB.
 //! - [`MAX_SCENE_VERTICES`] = three per budgeted triangle (a triangle soup needs that many).
 //! - [`MAX_SCENE_PARTS`] = 100 000 parts (each has its own mesh, material and, in the
 //!   renderers, its own BVH), so a million one-triangle instances are refused.
