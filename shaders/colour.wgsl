@@ -9,7 +9,7 @@
 //   naga's GLSL output mistranslates `texture_1d` function parameters), bound with sample type
 //   `float` (filterable: false) — no sampler: two `textureLoad`s and a lerp in f32, so no
 //   `float32-filterable` feature is needed and the filter weight is not quantised.
-// - `params`: (ln T_min, ln T_max, N, unused), i.e. FrameUniforms.lut; srt_gpu::probe::lut_params
+// - `params`: (ln T_min, ln T_max, N, unused), i.e. FrameUniforms.lut; srt_gpu::lut::lut_params
 //   builds it from a TemperatureLut.
 // - `t`: the temperature in kelvin (D · T_light, §4.2).
 //

@@ -18,9 +18,15 @@ struct LrtOutput {
     @builtin(frag_depth) depth: f32,
 }
 
-// Footprint corner `v` (0–11: four fan triangles of the hull, or two of the rectangle) in pixels.
+// Vertices drawn per footprint instance (srt_gpu::types::FOOTPRINT_VERTICES, the draw call's
+// vertex count): a fan of FOOTPRINT_HULL_POINTS − 2 triangles around hull point 0, so that the
+// largest hull is covered; the spare triangles of smaller hulls are degenerate.
+const FOOTPRINT_VERTICES: u32 = 3u * (FOOTPRINT_HULL_POINTS - 2u);
+
+// Footprint corner `v` (0 to FOOTPRINT_VERTICES − 1: the fan of the hull, or the two triangles
+// of the rectangle) in pixels.
 fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
-    let use_rect = frame_uniforms.modes.y == 1u || f.whole_screen == 1u || f.hull_len < 3u;
+    let use_rect = frame_uniforms.footprint_shape == FOOTPRINT_RECTANGLE || f.whole_screen == 1u || f.hull_len < 3u;
     let triangle = v / 3u;
     let corner = v % 3u;
     if (use_rect) {
@@ -55,7 +61,7 @@ fn lrt_fragment(in: LrtVarying) -> LrtOutput {
     // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
     var uv_ddx = vec2<f32>(0.0);
     var uv_ddy = vec2<f32>(0.0);
-    if (part.flags.x == 1u && object.style.x <= 0.0) {
+    if (part_has(PART_TEXTURED) && object.style.x <= 0.0) {
         let uv = triangle_uv(t, hit.zeta, hit.xi);
         let rx = backward_ray(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0)));
         let ry = backward_ray(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0)));
@@ -69,6 +75,6 @@ fn lrt_fragment(in: LrtVarying) -> LrtOutput {
     let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy);
     var out: LrtOutput;
     out.color = vec4<f32>(shade(t, hit.zeta, hit.xi, apparent, albedo), 1.0);
-    out.depth = clamp(apparent_distance(object.frame, ray, hit.distance) * frame_uniforms.depth_scale.x, 0.0, 1.0);
+    out.depth = clamp(apparent_distance(object.frame, ray, hit.distance) * frame_uniforms.depth_scale, 0.0, 1.0);
     return out;
 }

@@ -2,57 +2,17 @@
 // `cargo xtask validate` can measure each f32 kernel against its f64 CPU original
 // (crates/srt-gpu/src/probe.rs runs it and does the comparing).
 //
-// Composed after physics.wgsl and colour.wgsl. Each struct here has a #[repr(C)] twin in
-// crates/srt-gpu/src/probe.rs whose layout tests/layout.rs checks.
+// Composed after physics.wgsl, types.wgsl (PhysicsProbeInput, PhysicsProbeOutput) and
+// colour.wgsl.
 
-// One set of arguments for every physics kernel.
-struct PhysicsProbeInput {
-    frame: Frame,
-    // An event in S (ct, x, y, z) for to_rest.
-    event: vec4<f32>,
-    // An event in S′ (ct′, x′, y′, z′) for to_observer.
-    rest_event: vec4<f32>,
-    // A point at rest in S′ (xyz) for emission_event, apparent_position and apparent_tangent;
-    // the ray parameter s for apparent_distance (w).
-    point: vec4<f32>,
-    // A direction in S′ (xyz) for apparent_tangent; w unused.
-    direction: vec4<f32>,
-    // A viewing direction in S (xyz, any length) for backward_ray; w unused.
-    view: vec4<f32>,
-    // A propagation direction in S (xyz) for doppler_factor; w unused.
-    propagation: vec4<f32>,
-    // A propagation direction in S′ (xyz) for aberrate with the frame's β; w unused.
-    direction_rest: vec4<f32>,
-    // Incident propagation direction (xyz) for reflection_doppler; w unused.
-    incident: vec4<f32>,
-    // Outgoing propagation direction (xyz) for reflection_doppler; w unused.
-    outgoing: vec4<f32>,
-}
-
-// Every physics kernel's result for one PhysicsProbeInput.
-struct PhysicsProbeOutput {
-    to_observer: vec4<f32>,
-    to_rest: vec4<f32>,
-    emission_event: vec4<f32>,
-    // xyz; w = 0.
-    apparent_position: vec4<f32>,
-    // xyz; w = 0.
-    apparent_tangent: vec4<f32>,
-    // xyz; w = 0.
-    aberrate: vec4<f32>,
-    // backward_ray(frame, view): origin (xyz) and ct_origin (w).
-    ray_origin: vec4<f32>,
-    // backward_ray(frame, view): direction (xyz); w = 0.
-    ray_direction: vec4<f32>,
-    // doppler_factor, reflection_doppler, apparent_distance (along the ray above at s),
-    // lorentz_factor.
-    scalars: vec4<f32>,
-}
+// Invocations per workgroup of both entry points: set at pipeline creation from
+// srt_gpu::shaders::WORKGROUP_SIZE.
+override WORKGROUP_SIZE: u32;
 
 @group(0) @binding(0) var<storage, read> probe_inputs: array<PhysicsProbeInput>;
 @group(0) @binding(1) var<storage, read_write> probe_outputs: array<PhysicsProbeOutput>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn physics_probe(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = id.x;
     if index >= arrayLength(&probe_inputs) {
@@ -85,7 +45,7 @@ fn physics_probe(@builtin(global_invocation_id) id: vec3<u32>) {
 // (ln T_min, ln T_max, N, unused), as lut_sample takes it.
 @group(0) @binding(5) var<uniform> lut_params: vec4<f32>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn lut_probe(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = id.x;
     if index >= arrayLength(&lut_temperatures) {

@@ -5,11 +5,14 @@
 
 @group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
 
+// Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
+override WORKGROUP_SIZE: u32;
+// How many chord lengths a tangent intersection may lie from its chord's midpoint before the
+// footprint is taken to be the whole screen: set at pipeline creation from
+// srt_proxy::MAX_TANGENT_REACH.
+override MAX_TANGENT_REACH: f32;
 // Clip-space w at or below which a point counts as at or behind the camera.
 const MIN_CLIP_W: f32 = 1e-6;
-// How many chord lengths a tangent intersection may lie from its chord's midpoint before the
-// footprint is taken to be the whole screen (as in srt-proxy).
-const MAX_TANGENT_REACH: f32 = 1000.0;
 // Outward dilation of rectangle and hull, in pixels.
 const FOOTPRINT_MARGIN: f32 = 0.25;
 
@@ -58,18 +61,18 @@ fn whole_screen_footprint() -> Footprint {
     return f;
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     // Large parts are dispatched as a 2D grid of workgroups.
-    let t = id.x + id.y * groups.x * 64u;
-    if (t >= part.flags.z) {
+    let t = id.x + id.y * groups.x * WORKGROUP_SIZE;
+    if (t >= part.triangle_count) {
         return;
     }
     let rest = triangle_corners(t);
     // Back-face culling in S′, exact for closed meshes: every viewing ray starts at the
     // observer's rest-frame position, so a triangle facing away from it is hidden behind the
     // rest of the solid. An empty footprint draws nothing.
-    if (part.flags.w == 1u && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
+    if (part_has(PART_CULL_BACK_FACES) && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
         var culled: Footprint;
         culled.hull_len = 0u;
         culled.whole_screen = 0u;
@@ -136,7 +139,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         chain[k] = points[i];
         k++;
     }
-    let len = min(k - 1u, 6u);
+    let len = min(k - 1u, FOOTPRINT_HULL_POINTS);
     if (len < 3u) {
         // Degenerate in f32: fall back to the (dilated, hence non-empty) rectangle.
         f.hull[0] = f.rect.xy;

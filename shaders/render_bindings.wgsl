@@ -1,6 +1,7 @@
 // render_bindings.wgsl — resources shared by the proxy, LRT and polygon passes (groups 0–2;
-// each pass declares its own group 3). The bind group layouts are built in
-// crates/srt-gpu/src/pipelines.rs and must match.
+// each pass declares its own group 3). Their Rust description is in
+// crates/srt-gpu/src/pipelines.rs (slots); tests/reflect.rs checks it against these
+// declarations.
 
 @group(0) @binding(0) var<uniform> frame_uniforms: FrameUniforms;
 @group(0) @binding(1) var lut_table: texture_2d<f32>;
@@ -12,6 +13,11 @@
 @group(2) @binding(2) var<storage, read> indices: array<u32>;
 @group(2) @binding(3) var part_texture: texture_2d<f32>;
 @group(2) @binding(4) var part_sampler: sampler;
+
+// Whether `flag` (one of the PART_* bits of types.wgsl) is set for the current part.
+fn part_has(flag: u32) -> bool {
+    return (part.flags & flag) != 0u;
+}
 
 // Rest-frame corners of triangle `t` of the current part.
 fn triangle_corners(t: u32) -> array<vec3<f32>, 3> {

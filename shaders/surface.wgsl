@@ -58,12 +58,12 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
         return select(vec4<f32>(1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), near_edge);
     }
     var albedo = part.base_color;
-    if (part.flags.y == 1u) {
+    if (part_has(PART_VERTEX_COLOURS)) {
         let c = w.x * vertices[indices[3u * t]].color + w.y * vertices[indices[3u * t + 1u]].color
             + w.z * vertices[indices[3u * t + 2u]].color;
         albedo *= c;
     }
-    if (part.flags.x == 1u) {
+    if (part_has(PART_TEXTURED)) {
         albedo *= textureSampleGrad(part_texture, part_sampler, triangle_uv(t, zeta, xi), uv_ddx, uv_ddy);
     }
     return albedo;
@@ -76,7 +76,7 @@ fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> 
     let incident = normalize(apparent - frame_uniforms.light.xyz);
     let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
     var doppler = 1.0;
-    if (frame_uniforms.modes.x != 0u) {
+    if (frame_uniforms.effects != EFFECTS_GEOMETRY) {
         doppler = reflection_doppler(beta, incident, outgoing);
     }
     let to_light = -normalize(aberrate(-beta, incident));

@@ -1,5 +1,25 @@
 // types.wgsl — data shared by every pass. Each struct has a #[repr(C)] twin in
-// crates/srt-gpu/src/types.rs; a test compares their layouts field by field through naga.
+// crates/srt-gpu/src/types.rs; tests/layout.rs compares their layouts field by field through
+// naga, and tests/reflect.rs checks that every const below equals its Rust twin.
+
+// FrameUniforms.effects (srt_gpu::types::EffectsCode).
+const EFFECTS_GEOMETRY: u32 = 0u;
+const EFFECTS_DOPPLER: u32 = 1u;
+const EFFECTS_SEARCHLIGHT: u32 = 2u;
+
+// FrameUniforms.footprint_shape (srt_gpu::types::FootprintCode).
+const FOOTPRINT_HULL: u32 = 0u;
+const FOOTPRINT_RECTANGLE: u32 = 1u;
+
+// Bits of PartUniforms.flags (srt_gpu::types::PartFlags).
+const PART_TEXTURED: u32 = 1u;
+const PART_VERTEX_COLOURS: u32 = 2u;
+// Back faces may be culled: the mesh is a closed solid with outward fronts and the observer is
+// outside it (decided per frame on the CPU, srt_gpu::culling).
+const PART_CULL_BACK_FACES: u32 = 4u;
+
+// Most points of a footprint's convex hull (srt_gpu::types::FOOTPRINT_HULL_POINTS).
+const FOOTPRINT_HULL_POINTS: u32 = 6u;
 
 // Per image: camera, observer, light, shading and colour-table parameters.
 struct FrameUniforms {
@@ -23,11 +43,13 @@ struct FrameUniforms {
     lut: vec4<f32>,
     // Viewport width, height in pixels and their reciprocals.
     viewport: vec4<f32>,
-    // Effects (0 geometry, 1 doppler, 2 searchlight), footprint shape (0 hull, 1 rectangle),
-    // unused, unused.
-    modes: vec4<u32>,
-    // Depth written per fragment is apparent distance × depth_scale.x; yzw unused.
-    depth_scale: vec4<f32>,
+    // One of EFFECTS_*.
+    effects: u32,
+    // One of FOOTPRINT_*.
+    footprint_shape: u32,
+    // Depth written per LRT fragment is apparent distance × depth_scale.
+    depth_scale: f32,
+    padding: u32,
 }
 
 // Per object: its rest frame and drawing style.
@@ -41,10 +63,10 @@ struct ObjectUniforms {
 struct PartUniforms {
     // Base colour factor (sRGB-encoded, as stored in files).
     base_color: vec4<f32>,
-    // x: 1 if the part has a texture; y: 1 if its vertices carry colours; z: triangle count;
-    // w: 1 if back faces may be culled: the mesh is a closed solid with outward fronts and the
-    // observer is outside it (decided per frame on the CPU).
-    flags: vec4<u32>,
+    // PART_* bits.
+    flags: u32,
+    triangle_count: u32,
+    padding: vec2<u32>,
 }
 
 // One vertex in S′.
@@ -58,10 +80,58 @@ struct Vertex {
 
 // The image-space footprint of one apparent triangle (srt_proxy::Footprint), in pixels.
 struct Footprint {
-    hull: array<vec2<f32>, 6>,
+    hull: array<vec2<f32>, FOOTPRINT_HULL_POINTS>,
     // Rectangle min.xy, max.xy.
     rect: vec4<f32>,
+    // Valid hull points; 0 for a culled back face.
     hull_len: u32,
+    // 1 for a whole-screen footprint.
     whole_screen: u32,
     padding: vec2<u32>,
+}
+
+// The kernel probes of probe.wgsl (srt_gpu::probe).
+
+// One set of arguments for every physics kernel.
+struct PhysicsProbeInput {
+    frame: Frame,
+    // An event in S (ct, x, y, z) for to_rest.
+    event: vec4<f32>,
+    // An event in S′ (ct′, x′, y′, z′) for to_observer.
+    rest_event: vec4<f32>,
+    // A point at rest in S′ (xyz) for emission_event, apparent_position and apparent_tangent;
+    // the ray parameter s for apparent_distance (w).
+    point: vec4<f32>,
+    // A direction in S′ (xyz) for apparent_tangent; w unused.
+    direction: vec4<f32>,
+    // A viewing direction in S (xyz, any length) for backward_ray; w unused.
+    view: vec4<f32>,
+    // A propagation direction in S (xyz) for doppler_factor; w unused.
+    propagation: vec4<f32>,
+    // A propagation direction in S′ (xyz) for aberrate with the frame's β; w unused.
+    direction_rest: vec4<f32>,
+    // Incident propagation direction (xyz) for reflection_doppler; w unused.
+    incident: vec4<f32>,
+    // Outgoing propagation direction (xyz) for reflection_doppler; w unused.
+    outgoing: vec4<f32>,
+}
+
+// Every physics kernel's result for one PhysicsProbeInput.
+struct PhysicsProbeOutput {
+    to_observer: vec4<f32>,
+    to_rest: vec4<f32>,
+    emission_event: vec4<f32>,
+    // xyz; w = 0.
+    apparent_position: vec4<f32>,
+    // xyz; w = 0.
+    apparent_tangent: vec4<f32>,
+    // xyz; w = 0.
+    aberrate: vec4<f32>,
+    // backward_ray(frame, view): origin (xyz) and ct_origin (w).
+    ray_origin: vec4<f32>,
+    // backward_ray(frame, view): direction (xyz); w = 0.
+    ray_direction: vec4<f32>,
+    // doppler_factor, reflection_doppler, apparent_distance (along the ray above at s),
+    // lorentz_factor.
+    scalars: vec4<f32>,
 }

@@ -26,9 +26,32 @@ pub enum GpuError {
     /// Waiting for the GPU or mapping a buffer failed.
     #[error("GPU readback failed: {0}")]
     Readback(String),
-    /// The scene does not fit the device's limits.
+    /// A request exceeds one of the adapter's limits; nothing was allocated. Callers may match
+    /// it (`GpuError::ExceedsLimit { .. }`) to fall back to the CPU.
+    #[error(
+        "{what} is {requested} {unit}, but this adapter ({adapter}) allows at most {limit} ({limit_name})"
+    )]
+    ExceedsLimit {
+        /// What was asked for, e.g. "the width of the 32768 × 4 render target".
+        what: String,
+        /// The amount requested.
+        requested: u64,
+        /// The unit of `requested` and `limit`: "pixels", "bytes", "workgroups"…
+        unit: &'static str,
+        /// The adapter's limit.
+        limit: u64,
+        /// The name of the limit, as wgpu's `Limits` field or another source names it.
+        limit_name: &'static str,
+        /// The adapter's name.
+        adapter: String,
+    },
+    /// The scene's objects or parts changed since it was uploaded ([`crate::GpuRenderer`]
+    /// renders only the structure it uploaded).
+    #[error("the scene's objects changed since it was uploaded")]
+    SceneChanged,
+    /// Something was asked of a renderer or view before it had what it needs.
     #[error("{0}")]
-    Limits(String),
+    NotReady(&'static str),
 }
 
 /// A device and queue, plus facts about the adapter.

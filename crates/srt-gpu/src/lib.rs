@@ -9,14 +9,21 @@
 //!   `srt-trace`);
 //! - `polygon` — the per-vertex photo-object method of §3.2, for comparison.
 //!
-//! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass.
+//! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The
+//! production modules never depend on [`probe`], the validation harness.
 
 pub mod context;
+pub mod culling;
+pub mod limits;
+pub mod lut;
 pub mod pipelines;
 pub mod probe;
+pub mod projection;
+pub mod readback;
 pub mod renderer;
 pub mod shaders;
 pub mod types;
 
 pub use context::{GpuContext, GpuError, context_or_skip};
+pub use readback::{TextureReadback, read_texture};
 pub use renderer::{FootprintShape, FrameStats, GpuImage, GpuRenderer, Method};

@@ -1,7 +1,11 @@
-//! Bind group layouts and the three pipelines (proxy compute, LRT, polygon). The layouts match
-//! the declarations in `shaders/render_bindings.wgsl` (groups 0–2) and each pass's group 3.
+//! Bind groups and the three pipelines (proxy compute, LRT, polygon).
+//!
+//! Every binding is described once, as data ([`Slot`], [`BindGroupSpec`]): the bind group
+//! layouts, the bind groups the renderer creates and the `set_bind_group` calls all read it, and
+//! `tests/reflect.rs` checks it against the `@group`/`@binding` declarations naga reflects from
+//! the WGSL (`shaders/render_bindings.wgsl` for groups 0–2, each pass for its group 3).
 
-use crate::shaders;
+use crate::shaders::{self, Shader};
 
 /// Colour target format: f32 display colours, quantised to 8 bits on the CPU like the
 /// reference. Backends that cannot render to it (OpenGL ES through wgpu's downlevel rules) use
@@ -12,52 +16,276 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const FALLBACK_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Depth format (apparent distance × depth scale for LRT, clip depth for polygons).
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Proxy workgroup size (must match `@workgroup_size` in proxy.wgsl).
-pub const PROXY_WORKGROUP: u32 = 64;
-/// Vertices drawn per footprint instance: four fan triangles (hull of up to six points).
-pub const FOOTPRINT_VERTICES: u32 = 12;
 
-fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
+/// One binding of a bind group: the WGSL global it feeds, its `@binding` and what is bound.
+#[derive(Debug, Clone, Copy)]
+pub struct Slot {
+    /// Name of the WGSL global variable.
+    pub wgsl_name: &'static str,
+    /// Its `@binding` index.
+    pub binding: u32,
+    /// The stages that may use it.
+    pub visibility: wgpu::ShaderStages,
+    /// What is bound.
+    pub ty: wgpu::BindingType,
+}
+
+impl Slot {
+    /// The bind group layout entry.
+    #[must_use]
+    pub const fn layout_entry(&self) -> wgpu::BindGroupLayoutEntry {
+        wgpu::BindGroupLayoutEntry {
+            binding: self.binding,
+            visibility: self.visibility,
+            ty: self.ty,
+            count: None,
+        }
+    }
+
+    /// The bind group entry binding `resource` here.
+    #[must_use]
+    pub const fn entry<'a>(&self, resource: wgpu::BindingResource<'a>) -> wgpu::BindGroupEntry<'a> {
+        wgpu::BindGroupEntry {
+            binding: self.binding,
+            resource,
+        }
     }
 }
 
-fn storage_entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    read_only: bool,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
+/// One bind group: its `@group` index and its slots.
+#[derive(Debug, Clone, Copy)]
+pub struct BindGroupSpec {
+    /// Label of the layout and of the groups made from it.
+    pub label: &'static str,
+    /// The `@group` index.
+    pub index: u32,
+    /// Its bindings.
+    pub slots: &'static [Slot],
+}
+
+impl BindGroupSpec {
+    /// Creates the bind group layout.
+    #[must_use]
+    pub fn create_layout(&self, device: &wgpu::Device) -> wgpu::BindGroupLayout {
+        let entries: Vec<wgpu::BindGroupLayoutEntry> =
+            self.slots.iter().map(Slot::layout_entry).collect();
+        device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(self.label),
+            entries: &entries,
+        })
     }
+}
+
+/// A pipeline as its bindings see it: shader, entry points and bind groups (the group at
+/// position i of `groups` has index i), for reflection against the WGSL.
+#[derive(Debug, Clone)]
+pub struct PipelineSpec {
+    /// The pipeline's label.
+    pub label: &'static str,
+    /// Its shader.
+    pub shader: Shader,
+    /// Its entry points.
+    pub entry_points: &'static [&'static str],
+    /// Its bind groups, by index.
+    pub groups: Vec<BindGroupSpec>,
+}
+
+/// Shader stages of the resources every pass reads.
+const ALL_STAGES: wgpu::ShaderStages =
+    wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
+
+/// A uniform buffer.
+pub const UNIFORM: wgpu::BindingType = wgpu::BindingType::Buffer {
+    ty: wgpu::BufferBindingType::Uniform,
+    has_dynamic_offset: false,
+    min_binding_size: None,
+};
+
+/// A storage buffer, read-only or not.
+#[must_use]
+pub const fn storage(read_only: bool) -> wgpu::BindingType {
+    wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    }
+}
+
+/// A 2D float texture, read with `textureLoad` (`filterable: false`) or sampled.
+#[must_use]
+pub const fn texture_2d(filterable: bool) -> wgpu::BindingType {
+    wgpu::BindingType::Texture {
+        sample_type: wgpu::TextureSampleType::Float { filterable },
+        view_dimension: wgpu::TextureViewDimension::D2,
+        multisampled: false,
+    }
+}
+
+/// The bindings of the render passes, by WGSL name.
+pub mod slots {
+    use super::{ALL_STAGES, Slot, UNIFORM, storage, texture_2d};
+    use wgpu::ShaderStages;
+
+    /// Group 0: `frame_uniforms`.
+    pub const FRAME_UNIFORMS: Slot = Slot {
+        wgsl_name: "frame_uniforms",
+        binding: 0,
+        visibility: ALL_STAGES,
+        ty: UNIFORM,
+    };
+    /// Group 0: `lut_table`, the colour table.
+    pub const LUT_TABLE: Slot = Slot {
+        wgsl_name: "lut_table",
+        binding: 1,
+        visibility: ALL_STAGES,
+        ty: texture_2d(false),
+    };
+    /// Group 1: `object`, the object's uniforms.
+    pub const OBJECT: Slot = Slot {
+        wgsl_name: "object",
+        binding: 0,
+        visibility: ALL_STAGES,
+        ty: UNIFORM,
+    };
+    /// Group 2: `part`, the part's uniforms.
+    pub const PART: Slot = Slot {
+        wgsl_name: "part",
+        binding: 0,
+        visibility: ALL_STAGES,
+        ty: UNIFORM,
+    };
+    /// Group 2: `vertices`.
+    pub const VERTICES: Slot = Slot {
+        wgsl_name: "vertices",
+        binding: 1,
+        visibility: ALL_STAGES,
+        ty: storage(true),
+    };
+    /// Group 2: `indices`.
+    pub const INDICES: Slot = Slot {
+        wgsl_name: "indices",
+        binding: 2,
+        visibility: ALL_STAGES,
+        ty: storage(true),
+    };
+    /// Group 2: `part_texture`.
+    pub const PART_TEXTURE: Slot = Slot {
+        wgsl_name: "part_texture",
+        binding: 3,
+        visibility: ShaderStages::FRAGMENT,
+        ty: texture_2d(true),
+    };
+    /// Group 2: `part_sampler`.
+    pub const PART_SAMPLER: Slot = Slot {
+        wgsl_name: "part_sampler",
+        binding: 4,
+        visibility: ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+    };
+    /// Group 3 of the proxy pass: `footprints`, written.
+    pub const PROXY_FOOTPRINTS: Slot = Slot {
+        wgsl_name: "footprints",
+        binding: 0,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
+    /// Group 3 of the LRT pass: `footprints`, read.
+    pub const LRT_FOOTPRINTS: Slot = Slot {
+        wgsl_name: "footprints",
+        binding: 0,
+        visibility: ShaderStages::VERTEX,
+        ty: storage(true),
+    };
+    /// Group 3 of the LRT pass: `fragment_count`.
+    pub const FRAGMENT_COUNT: Slot = Slot {
+        wgsl_name: "fragment_count",
+        binding: 1,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(false),
+    };
+}
+
+/// Group 0: frame uniforms and colour table.
+pub const FRAME_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt frame",
+    index: 0,
+    slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE],
+};
+/// Group 1: object uniforms.
+pub const OBJECT_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt object",
+    index: 1,
+    slots: &[slots::OBJECT],
+};
+/// Group 2: part uniforms, vertices, indices, texture, sampler.
+pub const PART_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt part",
+    index: 2,
+    slots: &[
+        slots::PART,
+        slots::VERTICES,
+        slots::INDICES,
+        slots::PART_TEXTURE,
+        slots::PART_SAMPLER,
+    ],
+};
+/// Group 3 of the proxy pass: footprints, written.
+pub const PROXY_OUTPUT_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt proxy output",
+    index: 3,
+    slots: &[slots::PROXY_FOOTPRINTS],
+};
+/// Group 3 of the LRT pass: footprints (read) and the fragment counter.
+pub const LRT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt lrt input",
+    index: 3,
+    slots: &[slots::LRT_FOOTPRINTS, slots::FRAGMENT_COUNT],
+};
+
+/// Entry point of the proxy pass.
+const PROXY_ENTRY: &str = "footprint_main";
+/// Entry points of the LRT pass (vertex, fragment).
+const LRT_ENTRIES: [&str; 2] = ["lrt_vertex", "lrt_fragment"];
+/// Entry points of the polygon pass (vertex, fragment).
+const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
+
+/// The three pipelines of the renderer as their bindings see them.
+#[must_use]
+pub fn specs() -> [PipelineSpec; 3] {
+    let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
+    [
+        PipelineSpec {
+            label: "srt proxy",
+            shader: shaders::proxy(),
+            entry_points: &[PROXY_ENTRY],
+            groups: [&base[..], &[PROXY_OUTPUT_GROUP]].concat(),
+        },
+        PipelineSpec {
+            label: "srt lrt",
+            shader: shaders::lrt(),
+            entry_points: &LRT_ENTRIES,
+            groups: [&base[..], &[LRT_INPUT_GROUP]].concat(),
+        },
+        PipelineSpec {
+            label: "srt polygon",
+            shader: shaders::polygon(),
+            entry_points: &POLYGON_ENTRIES,
+            groups: base.to_vec(),
+        },
+    ]
 }
 
 /// The bind group layouts and pipelines, created once per device.
 pub struct Pipelines {
-    /// Group 0: frame uniforms and colour table.
+    /// Layout of [`FRAME_GROUP`].
     pub frame_layout: wgpu::BindGroupLayout,
-    /// Group 1: object uniforms.
+    /// Layout of [`OBJECT_GROUP`].
     pub object_layout: wgpu::BindGroupLayout,
-    /// Group 2: part uniforms, vertices, indices, texture, sampler.
+    /// Layout of [`PART_GROUP`].
     pub part_layout: wgpu::BindGroupLayout,
-    /// Group 3 of the proxy pass: footprints, writable.
+    /// Layout of [`PROXY_OUTPUT_GROUP`].
     pub proxy_output_layout: wgpu::BindGroupLayout,
-    /// Group 3 of the LRT pass: footprints (read) and the fragment counter.
+    /// Layout of [`LRT_INPUT_GROUP`].
     pub lrt_input_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
@@ -71,117 +299,23 @@ pub struct Pipelines {
 
 impl Pipelines {
     /// Creates layouts, shader modules and pipelines on `device`, rendering into
-    /// `color_format`.
+    /// `color_format`. Each pipeline's layout is made from its [`PipelineSpec`]; bind group
+    /// layouts with the same entries are interchangeable (WebGPU's group equivalence), so the
+    /// bind groups made with the layouts kept here fit every pipeline.
     #[must_use]
     pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
-        let all = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
-        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("srt frame"),
-            entries: &[
-                uniform_entry(0),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: all,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-            ],
-        });
-        let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("srt object"),
-            entries: &[uniform_entry(0)],
-        });
-        let part_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("srt part"),
-            entries: &[
-                uniform_entry(0),
-                storage_entry(1, all, true),
-                storage_entry(2, all, true),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
-        let proxy_output_layout =
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("srt proxy output"),
-                entries: &[storage_entry(0, wgpu::ShaderStages::COMPUTE, false)],
-            });
-        let lrt_input_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("srt lrt input"),
-            entries: &[
-                storage_entry(0, wgpu::ShaderStages::VERTEX, true),
-                storage_entry(1, wgpu::ShaderStages::FRAGMENT, false),
-            ],
-        });
-        let module = |label: &str, source: String| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            })
-        };
-        let layout = |label: &str, groups: &[Option<&wgpu::BindGroupLayout>]| {
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(label),
-                bind_group_layouts: groups,
-                immediate_size: 0,
-            })
-        };
-        let base = [
-            Some(&frame_layout),
-            Some(&object_layout),
-            Some(&part_layout),
-        ];
-        let proxy_module = module("srt proxy", shaders::proxy());
+        let [proxy_spec, lrt_spec, polygon_spec] = specs();
+        let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("srt proxy"),
-            layout: Some(&layout(
-                "srt proxy",
-                &[base[0], base[1], base[2], Some(&proxy_output_layout)],
-            )),
+            label: Some(proxy_spec.label),
+            layout: Some(&pipeline_layout(device, &proxy_spec)),
             module: &proxy_module,
-            entry_point: Some("footprint_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            entry_point: Some(PROXY_ENTRY),
+            compilation_options: proxy_spec.shader.compilation_options(),
             cache: None,
         });
-        let lrt_module = module("srt lrt", shaders::lrt());
-        let lrt = render_pipeline(
-            device,
-            "srt lrt",
-            &layout(
-                "srt lrt",
-                &[base[0], base[1], base[2], Some(&lrt_input_layout)],
-            ),
-            &lrt_module,
-            ("lrt_vertex", "lrt_fragment"),
-            color_format,
-        );
-        let polygon_module = module("srt polygon", shaders::polygon());
-        let polygon = render_pipeline(
-            device,
-            "srt polygon",
-            &layout("srt polygon", &base),
-            &polygon_module,
-            ("polygon_vertex", "polygon_fragment"),
-            color_format,
-        );
+        let lrt = render_pipeline(device, &lrt_spec, LRT_ENTRIES, color_format);
+        let polygon = render_pipeline(device, &polygon_spec, POLYGON_ENTRIES, color_format);
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("srt texture"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -193,11 +327,11 @@ impl Pipelines {
             ..Default::default()
         });
         Self {
-            frame_layout,
-            object_layout,
-            part_layout,
-            proxy_output_layout,
-            lrt_input_layout,
+            frame_layout: FRAME_GROUP.create_layout(device),
+            object_layout: OBJECT_GROUP.create_layout(device),
+            part_layout: PART_GROUP.create_layout(device),
+            proxy_output_layout: PROXY_OUTPUT_GROUP.create_layout(device),
+            lrt_input_layout: LRT_INPUT_GROUP.create_layout(device),
             proxy,
             lrt,
             polygon,
@@ -206,21 +340,36 @@ impl Pipelines {
     }
 }
 
+/// The pipeline layout of `spec`: one bind group layout per group, in index order.
+fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgpu::PipelineLayout {
+    let layouts: Vec<wgpu::BindGroupLayout> = spec
+        .groups
+        .iter()
+        .map(|group| group.create_layout(device))
+        .collect();
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(Some).collect();
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(spec.label),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    })
+}
+
+/// The render pipeline of `spec` with its `vertex` and `fragment` entry points.
 fn render_pipeline(
     device: &wgpu::Device,
-    label: &str,
-    layout: &wgpu::PipelineLayout,
-    module: &wgpu::ShaderModule,
-    (vertex, fragment): (&str, &str),
+    spec: &PipelineSpec,
+    [vertex, fragment]: [&str; 2],
     color_format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
+    let module = spec.shader.module(device);
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(layout),
+        label: Some(spec.label),
+        layout: Some(&pipeline_layout(device, spec)),
         vertex: wgpu::VertexState {
-            module,
+            module: &module,
             entry_point: Some(vertex),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            compilation_options: spec.shader.compilation_options(),
             buffers: &[],
         },
         primitive: wgpu::PrimitiveState {
@@ -236,9 +385,9 @@ fn render_pipeline(
         }),
         multisample: wgpu::MultisampleState::default(),
         fragment: Some(wgpu::FragmentState {
-            module,
+            module: &module,
             entry_point: Some(fragment),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            compilation_options: spec.shader.compilation_options(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: color_format,
                 blend: None,

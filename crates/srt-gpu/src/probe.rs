@@ -31,71 +31,20 @@
 //! derived, not fitted: on Mesa lavapipe the worst errors over 3 × 131 072 seeded cases are 0.02
 //! (`apparent_tangent`) to 0.34 (`emission_event`) of them.
 
-use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, DVec4};
 use srt_color::TemperatureLut;
 use srt_physics::{Event, Frame, RestRay};
 use wgpu::util::DeviceExt;
 
 use crate::context::{GpuContext, GpuError};
-use crate::shaders;
-use crate::types::{GpuFrame, vec4};
+use crate::limits::DeviceLimits;
+use crate::lut::{lut_params, lut_texture};
+use crate::pipelines::{BindGroupSpec, PipelineSpec, Slot, UNIFORM, storage, texture_2d};
+use crate::shaders::{self, WORKGROUP_SIZE};
+use crate::types::{GpuFrame, GpuPhysicsProbeInput, GpuPhysicsProbeOutput, event4, vec4};
 
 /// The `f32` unit roundoff u = 2⁻²⁴.
 pub const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
-
-/// Invocations per workgroup of both probe entry points (`@workgroup_size` in `probe.wgsl`).
-const WORKGROUP_SIZE: u32 = 64;
-
-/// Twin of WGSL `PhysicsProbeInput` (`probe.wgsl`): one set of arguments for every kernel.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct GpuPhysicsProbeInput {
-    /// The object's rest frame and the observation event.
-    pub frame: GpuFrame,
-    /// An event in S for `to_rest`.
-    pub event: [f32; 4],
-    /// An event in S′ for `to_observer`.
-    pub rest_event: [f32; 4],
-    /// A point at rest in S′ (xyz) and the ray parameter s (w).
-    pub point: [f32; 4],
-    /// A direction in S′ for `apparent_tangent`.
-    pub direction: [f32; 4],
-    /// A viewing direction in S for `backward_ray`.
-    pub view: [f32; 4],
-    /// A propagation direction in S for `doppler_factor`.
-    pub propagation: [f32; 4],
-    /// A propagation direction in S′ for `aberrate`.
-    pub direction_rest: [f32; 4],
-    /// Incident propagation direction for `reflection_doppler`.
-    pub incident: [f32; 4],
-    /// Outgoing propagation direction for `reflection_doppler`.
-    pub outgoing: [f32; 4],
-}
-
-/// Twin of WGSL `PhysicsProbeOutput` (`probe.wgsl`): every kernel's result for one input.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct GpuPhysicsProbeOutput {
-    /// `to_observer(frame, rest_event)`.
-    pub to_observer: [f32; 4],
-    /// `to_rest(frame, event)`.
-    pub to_rest: [f32; 4],
-    /// `emission_event(frame, point)`.
-    pub emission_event: [f32; 4],
-    /// `apparent_position(frame, point)` (xyz).
-    pub apparent_position: [f32; 4],
-    /// `apparent_tangent(frame, point, direction)` (xyz).
-    pub apparent_tangent: [f32; 4],
-    /// `aberrate(β, direction_rest)` (xyz).
-    pub aberrate: [f32; 4],
-    /// `backward_ray(frame, view)`: origin (xyz) and `ct_origin` (w).
-    pub ray_origin: [f32; 4],
-    /// `backward_ray(frame, view)`: direction (xyz).
-    pub ray_direction: [f32; 4],
-    /// `doppler_factor`, `reflection_doppler`, `apparent_distance`, `lorentz_factor`.
-    pub scalars: [f32; 4],
-}
 
 /// The arguments of every physics kernel for one probe case, in `f64` (rounded to `f32` values).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -167,15 +116,6 @@ fn round_vec(v: DVec3) -> DVec3 {
 
 fn round_event(e: Event) -> Event {
     Event::new(round_f32(e.ct), round_vec(e.position))
-}
-
-fn event4(e: Event) -> [f32; 4] {
-    [
-        e.ct as f32,
-        e.position.x as f32,
-        e.position.y as f32,
-        e.position.z as f32,
-    ]
 }
 
 impl PhysicsProbeCase {
@@ -657,95 +597,144 @@ pub fn compare_physics(
         .collect()
 }
 
-fn workgroups(ctx: &GpuContext, count: usize) -> Result<u32, GpuError> {
-    let groups = count.div_ceil(WORKGROUP_SIZE as usize);
-    let max = ctx.device.limits().max_compute_workgroups_per_dimension;
-    u32::try_from(groups)
-        .ok()
-        .filter(|&g| g <= max)
-        .ok_or_else(|| {
-            GpuError::Limits(format!(
-                "{count} probe inputs need {groups} workgroups, more than the device's {max}"
-            ))
-        })
+/// The probe's bindings in group 0 (`probe.wgsl`), by WGSL name.
+pub mod slots {
+    use super::{Slot, UNIFORM, storage, texture_2d};
+    use wgpu::ShaderStages;
+
+    /// `probe_inputs`: the physics cases.
+    pub const PROBE_INPUTS: Slot = Slot {
+        wgsl_name: "probe_inputs",
+        binding: 0,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(true),
+    };
+    /// `probe_outputs`: the physics results.
+    pub const PROBE_OUTPUTS: Slot = Slot {
+        wgsl_name: "probe_outputs",
+        binding: 1,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
+    /// `lut_temperatures`: the temperatures to sample.
+    pub const LUT_TEMPERATURES: Slot = Slot {
+        wgsl_name: "lut_temperatures",
+        binding: 2,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(true),
+    };
+    /// `lut_colours`: the sampled colours.
+    pub const LUT_COLOURS: Slot = Slot {
+        wgsl_name: "lut_colours",
+        binding: 3,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
+    /// `lut_table`: the colour table.
+    pub const LUT_TABLE: Slot = Slot {
+        wgsl_name: "lut_table",
+        binding: 4,
+        visibility: ShaderStages::COMPUTE,
+        ty: texture_2d(false),
+    };
+    /// `lut_params`: the table's parameters.
+    pub const LUT_PARAMS: Slot = Slot {
+        wgsl_name: "lut_params",
+        binding: 5,
+        visibility: ShaderStages::COMPUTE,
+        ty: UNIFORM,
+    };
 }
 
-fn check_binding_size(ctx: &GpuContext, bytes: usize) -> Result<(), GpuError> {
-    let max = ctx.device.limits().max_storage_buffer_binding_size;
-    if bytes as u64 > max {
-        return Err(GpuError::Limits(format!(
-            "a probe buffer of {bytes} bytes exceeds the device's storage binding limit of {max}"
-        )));
-    }
-    Ok(())
-}
+/// The bind group of the `physics_probe` entry point.
+pub const PHYSICS_PROBE_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "physics probe",
+    index: 0,
+    slots: &[slots::PROBE_INPUTS, slots::PROBE_OUTPUTS],
+};
 
-fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
+/// The bind group of the `lut_probe` entry point.
+pub const LUT_PROBE_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "lut probe",
+    index: 0,
+    slots: &[
+        slots::LUT_TEMPERATURES,
+        slots::LUT_COLOURS,
+        slots::LUT_TABLE,
+        slots::LUT_PARAMS,
+    ],
+};
 
-/// The probe shader: `physics.wgsl`, `colour.wgsl` and `probe.wgsl` composed.
+/// The two probe pipelines (`physics_probe`, `lut_probe`) as their bindings see them.
 #[must_use]
-pub fn source() -> String {
-    shaders::compose(&[
-        ("physics.wgsl", shaders::PHYSICS),
-        ("colour.wgsl", shaders::COLOUR),
-        ("probe.wgsl", shaders::PROBE),
-    ])
+pub fn specs() -> [PipelineSpec; 2] {
+    [
+        PipelineSpec {
+            label: "physics_probe",
+            shader: shaders::probe(),
+            entry_points: &["physics_probe"],
+            groups: vec![PHYSICS_PROBE_GROUP],
+        },
+        PipelineSpec {
+            label: "lut_probe",
+            shader: shaders::probe(),
+            entry_points: &["lut_probe"],
+            groups: vec![LUT_PROBE_GROUP],
+        },
+    ]
 }
 
-fn probe_module(ctx: &GpuContext) -> wgpu::ShaderModule {
-    ctx.device
-        .create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("srt probe"),
-            source: wgpu::ShaderSource::Wgsl(source().into()),
-        })
+/// Workgroups for `count` invocations in one row.
+fn workgroups(ctx: &GpuContext, count: usize) -> Result<u32, GpuError> {
+    let limits = DeviceLimits::of(ctx);
+    let groups = (count as u64).div_ceil(u64::from(WORKGROUP_SIZE));
+    limits.at_most(
+        || format!("the dispatch of {count} probe inputs"),
+        groups,
+        "workgroups",
+        u64::from(limits.limits.max_compute_workgroups_per_dimension),
+        "max_compute_workgroups_per_dimension",
+    )?;
+    Ok(groups as u32)
 }
 
-/// Builds the compute pipeline for `entry_point` with one bind group of `entries`, binds
-/// `resources` to them, dispatches `count` invocations and copies `output` (of `output_size`
-/// bytes) back.
+/// Checks a probe storage buffer of `bytes` (`what` names it) against the device's limits.
+fn check_storage(ctx: &GpuContext, what: &str, bytes: usize) -> Result<(), GpuError> {
+    DeviceLimits::of(ctx)
+        .check_storage_buffer(|| format!("the probe's {what} buffer"), bytes as u64)
+}
+
+/// Builds the compute pipeline of `spec` (one entry point; `group`, its only bind group),
+/// binds `resources` to `group`, dispatches `count` invocations and copies `output` back.
 fn dispatch(
     ctx: &GpuContext,
-    entry_point: &str,
-    entries: &[wgpu::BindGroupLayoutEntry],
-    resources: Vec<wgpu::BindGroupEntry<'_>>,
+    spec: &PipelineSpec,
+    group: BindGroupSpec,
+    resources: &[wgpu::BindGroupEntry<'_>],
     count: usize,
     output: &wgpu::Buffer,
 ) -> Result<Vec<u8>, GpuError> {
     let groups = workgroups(ctx, count)?;
     let device = &ctx.device;
-    let module = probe_module(ctx);
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(entry_point),
-        entries,
-    });
+    let module = spec.shader.module(device);
+    let layout = group.create_layout(device);
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(entry_point),
+        label: Some(spec.label),
         bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry_point),
+        label: Some(spec.label),
         layout: Some(&pipeline_layout),
         module: &module,
-        entry_point: Some(entry_point),
-        compilation_options: wgpu::PipelineCompilationOptions::default(),
+        entry_point: spec.entry_points.first().copied(),
+        compilation_options: spec.shader.compilation_options(),
         cache: None,
     });
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(entry_point),
+        label: Some(spec.label),
         layout: &layout,
-        entries: &resources,
+        entries: resources,
     });
     let readback = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("probe readback"),
@@ -754,15 +743,15 @@ fn dispatch(
         mapped_at_creation: false,
     });
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some(entry_point),
+        label: Some(spec.label),
     });
     {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(entry_point),
+            label: Some(spec.label),
             timestamp_writes: None,
         });
         pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_bind_group(group.index, &bind_group, &[]);
         pass.dispatch_workgroups(groups, 1, 1);
     }
     encoder.copy_buffer_to_buffer(output, 0, &readback, 0, output.size());
@@ -775,7 +764,7 @@ fn dispatch(
 /// Evaluates every physics kernel of `physics.wgsl` on the GPU for each case.
 ///
 /// # Errors
-/// [`GpuError::Limits`] when the cases exceed the device's buffer or dispatch limits,
+/// [`GpuError::ExceedsLimit`] when the cases exceed the device's buffer or dispatch limits,
 /// [`GpuError::Wgpu`] for wgpu validation errors, [`GpuError::Readback`] when reading fails.
 pub fn run_physics_probe(
     ctx: &GpuContext,
@@ -785,10 +774,9 @@ pub fn run_physics_probe(
         return Ok(Vec::new());
     }
     let inputs: Vec<GpuPhysicsProbeInput> = cases.iter().map(PhysicsProbeCase::to_gpu).collect();
-    let output_size = std::mem::size_of_val(inputs.as_slice()) / size_of::<GpuPhysicsProbeInput>()
-        * size_of::<GpuPhysicsProbeOutput>();
-    check_binding_size(ctx, std::mem::size_of_val(inputs.as_slice()))?;
-    check_binding_size(ctx, output_size)?;
+    let output_size = cases.len() * size_of::<GpuPhysicsProbeOutput>();
+    check_storage(ctx, "input", size_of_val(inputs.as_slice()))?;
+    check_storage(ctx, "output", output_size)?;
     let input = ctx
         .device
         .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -802,19 +790,14 @@ pub fn run_physics_probe(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
+    let [physics, _] = specs();
     let bytes = dispatch(
         ctx,
-        "physics_probe",
-        &[storage_entry(0, true), storage_entry(1, false)],
-        vec![
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
+        &physics,
+        PHYSICS_PROBE_GROUP,
+        &[
+            slots::PROBE_INPUTS.entry(input.as_entire_binding()),
+            slots::PROBE_OUTPUTS.entry(output.as_entire_binding()),
         ],
         cases.len(),
         &output,
@@ -823,71 +806,10 @@ pub fn run_physics_probe(
     Ok(outputs.into_iter().map(PhysicsProbeResult::from).collect())
 }
 
-/// The `lut_sample` parameters of `lut`: (ln T_min, ln T_max, N, 0) in `f32`, as
-/// `FrameUniforms::lut` holds them.
-#[must_use]
-pub fn lut_params(lut: &TemperatureLut) -> [f32; 4] {
-    [
-        lut.t_min().ln() as f32,
-        lut.t_max().ln() as f32,
-        lut.size() as f32,
-        0.0,
-    ]
-}
-
-/// Uploads `lut` as the N × 1 `rgba32float` 2D texture `lut_sample` reads (usage
-/// `TEXTURE_BINDING`, bound with sample type `Float { filterable: false }`, view dimension `D2`).
-///
-/// # Errors
-/// [`GpuError::Limits`] when the table is wider than the device's 2D texture limit.
-pub fn lut_texture(ctx: &GpuContext, lut: &TemperatureLut) -> Result<wgpu::Texture, GpuError> {
-    let max = ctx.device.limits().max_texture_dimension_2d;
-    let width = u32::try_from(lut.size())
-        .ok()
-        .filter(|&w| w <= max)
-        .ok_or_else(|| {
-            GpuError::Limits(format!(
-                "a colour table of {} texels exceeds the device's 2D texture limit of {max}",
-                lut.size()
-            ))
-        })?;
-    let size = wgpu::Extent3d {
-        width,
-        height: 1,
-        depth_or_array_layers: 1,
-    };
-    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("temperature LUT"),
-        size,
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    ctx.queue.write_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture: &texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        bytemuck::cast_slice(lut.texels()),
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(width * 16),
-            rows_per_image: None,
-        },
-        size,
-    );
-    Ok(texture)
-}
-
 /// Samples `lut` on the GPU (`lut_sample` of `colour.wgsl`) at each temperature in kelvin.
 ///
 /// # Errors
-/// [`GpuError::Limits`] when the table or the inputs exceed the device's limits,
+/// [`GpuError::ExceedsLimit`] when the table or the inputs exceed the device's limits,
 /// [`GpuError::Wgpu`] for wgpu validation errors, [`GpuError::Readback`] when reading fails.
 pub fn run_lut_probe(
     ctx: &GpuContext,
@@ -898,12 +820,10 @@ pub fn run_lut_probe(
         return Ok(Vec::new());
     }
     let output_size = temperatures.len() * size_of::<[f32; 4]>();
-    check_binding_size(ctx, output_size)?;
+    check_storage(ctx, "temperature", size_of_val(temperatures))?;
+    check_storage(ctx, "colour", output_size)?;
     let texture = lut_texture(ctx, lut)?;
-    let view = texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2),
-        ..Default::default()
-    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
     let device = &ctx.device;
     let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("LUT probe temperatures"),
@@ -921,51 +841,16 @@ pub fn run_lut_probe(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let entries = [
-        storage_entry(2, true),
-        storage_entry(3, false),
-        wgpu::BindGroupLayoutEntry {
-            binding: 4,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 5,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        },
-    ];
+    let [_, lut_spec] = specs();
     let bytes = dispatch(
         ctx,
-        "lut_probe",
-        &entries,
-        vec![
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: output.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 4,
-                resource: wgpu::BindingResource::TextureView(&view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 5,
-                resource: params.as_entire_binding(),
-            },
+        &lut_spec,
+        LUT_PROBE_GROUP,
+        &[
+            slots::LUT_TEMPERATURES.entry(input.as_entire_binding()),
+            slots::LUT_COLOURS.entry(output.as_entire_binding()),
+            slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
+            slots::LUT_PARAMS.entry(params.as_entire_binding()),
         ],
         temperatures.len(),
         &output,

@@ -1,22 +1,32 @@
 //! The GPU renderer: uploads a scene once, then renders it (local ray tracing or the polygon
 //! baseline) for any observer, time, velocities and effect mode with the same mesh structure,
 //! and reads the image back.
+//!
+//! Everything the renderer allocates is checked against the device's limits first
+//! ([`crate::limits`]), so a scene or image size the adapter cannot serve is a
+//! [`GpuError::ExceedsLimit`] before any GPU object exists.
 
-use srt_color::{TemperatureLut, ToneMap};
-use srt_scene::mip::MipChain;
-use srt_scene::{Effects, Part, Scene};
+use srt_color::{TemperatureLut, ToneMap, quantize_8bit};
+use srt_scene::mip::{MipChain, MipLevel};
+use srt_scene::{Object, Part, Scene};
 use wgpu::util::DeviceExt as _;
 
 use crate::context::{GpuContext, GpuError};
-use crate::pipelines::{DEPTH_FORMAT, FOOTPRINT_VERTICES, PROXY_WORKGROUP, Pipelines};
-use crate::probe::{lut_params as lut_params_of, lut_texture};
+use crate::culling::BackFaceCulling;
+use crate::limits::DeviceLimits;
+use crate::lut::{lut_params, lut_texture};
+use crate::pipelines::{
+    DEPTH_FORMAT, FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, PROXY_OUTPUT_GROUP,
+    Pipelines, slots,
+};
+use crate::projection::view_projection;
+use crate::readback::{TextureReadback, texel_bytes};
+use crate::shaders::WORKGROUP_SIZE;
 use crate::types::{
-    FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PartUniforms, mat4, vec4,
+    EffectsCode, FOOTPRINT_VERTICES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame,
+    GpuVertex, ObjectUniforms, PartFlags, PartUniforms, mat4, vec4,
 };
 
-/// Near and far planes of the polygon method's projection.
-const NEAR: f64 = 1e-3;
-const FAR: f64 = 1e5;
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
 /// f32 depth has constant relative precision, so the scale costs nothing).
 const LRT_DEPTH_SCALE: f32 = 1e-6;
@@ -52,6 +62,15 @@ pub enum FootprintShape {
     Rectangle,
 }
 
+impl From<FootprintShape> for FootprintCode {
+    fn from(shape: FootprintShape) -> Self {
+        match shape {
+            FootprintShape::Hull => Self::HULL,
+            FootprintShape::Rectangle => Self::RECTANGLE,
+        }
+    }
+}
+
 /// A rendered image read back from the GPU: display colours (sRGB-encoded, [0, 1]), RGBA.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpuImage {
@@ -69,9 +88,7 @@ impl GpuImage {
     pub fn to_rgb8(&self) -> Vec<[u8; 3]> {
         self.pixels
             .iter()
-            .map(|p| {
-                [p[0], p[1], p[2]].map(|c| (f64::from(c).clamp(0.0, 1.0) * 255.0).round() as u8)
-            })
+            .map(|p| [p[0], p[1], p[2]].map(|c| quantize_8bit(f64::from(c))))
             .collect()
     }
 }
@@ -85,6 +102,53 @@ pub struct FrameStats {
     pub fragments_shaded: u64,
 }
 
+/// One part's buffer sizes and counts, checked against the device's limits before upload.
+struct PartSizes {
+    triangles: u32,
+    footprint_bytes: u64,
+    /// Workgroup grid of the proxy pass.
+    workgroups: (u32, u32),
+}
+
+impl PartSizes {
+    /// The sizes of part `index` of `object`.
+    fn check(
+        limits: &DeviceLimits,
+        object: &Object,
+        index: usize,
+        part: &Part,
+    ) -> Result<Self, GpuError> {
+        let mesh = &part.mesh;
+        let triangles = mesh.triangles().len() as u64;
+        let vertices = mesh.positions().len() as u64;
+        let name = |buffer: &str| {
+            format!(
+                "the {buffer} of part {index} of object {:?} ({triangles} triangles, {vertices} vertices)",
+                object.name
+            )
+        };
+        let footprint_bytes = triangles * size_of::<GpuFootprint>() as u64;
+        limits.check_storage_buffer(
+            || name("vertex buffer"),
+            vertices * size_of::<GpuVertex>() as u64,
+        )?;
+        limits.check_storage_buffer(
+            || name("index buffer"),
+            triangles * size_of::<[u32; 3]>() as u64,
+        )?;
+        limits.check_storage_buffer(|| name("footprint buffer"), footprint_bytes)?;
+        let workgroups =
+            limits.workgroup_grid(|| name("footprint pass"), triangles, WORKGROUP_SIZE)?;
+        // The polygon pass draws three vertices per triangle, the LRT pass one instance each.
+        limits.check_u32(|| name("polygon draw"), 3 * triangles, "vertices")?;
+        Ok(Self {
+            triangles: limits.check_u32(|| name("LRT draw"), triangles, "instances")?,
+            footprint_bytes,
+            workgroups,
+        })
+    }
+}
+
 /// Per part: buffers, texture and bind groups.
 struct PartResources {
     uniforms: wgpu::Buffer,
@@ -92,11 +156,9 @@ struct PartResources {
     proxy_bind_group: wgpu::BindGroup,
     lrt_bind_group: wgpu::BindGroup,
     footprints: wgpu::Buffer,
-    triangles: u32,
+    sizes: PartSizes,
     material: PartUniforms,
-    /// Whether the mesh is a closed solid (back faces may be culled while the observer is
-    /// outside it).
-    closed: bool,
+    culling: BackFaceCulling,
 }
 
 /// Per object: its uniform buffer and parts.
@@ -106,26 +168,26 @@ struct ObjectResources {
     parts: Vec<PartResources>,
 }
 
-/// Render targets and readback buffers for one image size.
+/// Render targets and the readback of the colour for one image size.
 struct Targets {
     width: u32,
     height: u32,
     color: wgpu::Texture,
     depth: wgpu::Texture,
-    readback: wgpu::Buffer,
-    padded_row: u32,
-    format: wgpu::TextureFormat,
+    readback: TextureReadback,
 }
 
 impl Targets {
-    fn new(device: &wgpu::Device, format: wgpu::TextureFormat, width: u32, height: u32) -> Self {
+    /// Checks the size against the device's limits, then creates the targets.
+    fn new(ctx: &GpuContext, width: u32, height: u32) -> Result<Self, GpuError> {
+        DeviceLimits::of(ctx).check_render_target(width, height, texel_bytes(ctx.color_format)?)?;
         let size = wgpu::Extent3d {
             width,
             height,
             depth_or_array_layers: 1,
         };
         let texture = |label, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size,
                 mip_level_count: 1,
@@ -136,34 +198,140 @@ impl Targets {
                 view_formats: &[],
             })
         };
-        let color = texture(
-            "srt color",
-            format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
-        let depth = texture(
-            "srt depth",
-            DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
-        );
-        let pixel_bytes = format.block_copy_size(None).unwrap_or(16);
-        let padded_row = (width * pixel_bytes).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("srt color readback"),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        Self {
+        Ok(Self {
             width,
             height,
-            color,
-            depth,
-            readback,
-            padded_row,
-            format,
+            color: texture(
+                "srt color",
+                ctx.color_format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+            ),
+            depth: texture(
+                "srt depth",
+                DEPTH_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+            readback: TextureReadback::new(ctx, width, height, ctx.color_format)?,
+        })
+    }
+}
+
+/// The frame uniforms and, per tone map, the colour table bound with them.
+struct FrameResources {
+    uniforms: wgpu::Buffer,
+    /// One bind group per tone map, indexed as [`ToneMap::ALL`] (the colour tables differ).
+    bind_groups: Vec<wgpu::BindGroup>,
+    /// The colour-table parameters, indexed as [`ToneMap::ALL`].
+    lut_params: Vec<[f32; 4]>,
+}
+
+impl FrameResources {
+    fn new(ctx: &GpuContext, pipelines: &Pipelines) -> Result<Self, GpuError> {
+        let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("srt frame uniforms"),
+            size: size_of::<FrameUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut bind_groups = Vec::new();
+        let mut params = Vec::new();
+        for tone_map in ToneMap::ALL {
+            let lut = TemperatureLut::with_defaults(tone_map);
+            params.push(lut_params(&lut));
+            let view = lut_texture(ctx, &lut)?.create_view(&wgpu::TextureViewDescriptor::default());
+            bind_groups.push(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(FRAME_GROUP.label),
+                layout: &pipelines.frame_layout,
+                entries: &[
+                    slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
+                    slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
+                ],
+            }));
+        }
+        Ok(Self {
+            uniforms,
+            bind_groups,
+            lut_params: params,
+        })
+    }
+
+    /// Index of `tone_map` in [`ToneMap::ALL`].
+    fn tone_index(tone_map: ToneMap) -> usize {
+        ToneMap::ALL
+            .iter()
+            .position(|&t| t == tone_map)
+            .unwrap_or_default()
+    }
+}
+
+/// The LRT pass's fragment counter and the buffer it is read back through.
+struct FragmentCounter {
+    counter: wgpu::Buffer,
+    readback: wgpu::Buffer,
+}
+
+impl FragmentCounter {
+    fn new(device: &wgpu::Device) -> Self {
+        let buffer = |label, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: 4,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            counter: buffer(
+                "srt fragment counter",
+                wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST,
+            ),
+            readback: buffer(
+                "srt fragment counter readback",
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            ),
+        }
+    }
+}
+
+/// Timestamp queries around the two passes (begin and end of each), where supported.
+struct Timestamps {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+}
+
+/// Timestamps written per frame: begin and end of the proxy and of the render pass.
+const TIMESTAMP_COUNT: u32 = 4;
+
+impl Timestamps {
+    fn new(device: &wgpu::Device) -> Self {
+        let bytes = u64::from(TIMESTAMP_COUNT) * size_of::<u64>() as u64;
+        let buffer = |label, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            set: device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("srt timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: TIMESTAMP_COUNT,
+            }),
+            resolve: buffer(
+                "srt timestamp resolve",
+                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            ),
+            readback: buffer(
+                "srt timestamp readback",
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            ),
         }
     }
 }
@@ -171,14 +339,10 @@ impl Targets {
 /// A scene uploaded to the GPU, ready to render.
 pub struct GpuRenderer {
     pipelines: Pipelines,
-    frame_uniforms: wgpu::Buffer,
-    /// One frame bind group per tone map (the colour tables differ).
-    frame_bind_groups: [wgpu::BindGroup; 2],
-    lut_params: [[f32; 4]; 2],
+    frame: FrameResources,
     objects: Vec<ObjectResources>,
-    counter: wgpu::Buffer,
-    counter_readback: wgpu::Buffer,
-    timestamps: Option<(wgpu::QuerySet, wgpu::Buffer, wgpu::Buffer)>,
+    counter: FragmentCounter,
+    timestamps: Option<Timestamps>,
     targets: Targets,
     /// Draw rectangles even when hulls are asked for (see [`GpuRenderer::hulls_supported`]).
     rectangles_only: bool,
@@ -188,21 +352,22 @@ pub struct GpuRenderer {
 /// or a 1×1 white texture.
 fn part_texture(ctx: &GpuContext, part: &Part) -> wgpu::TextureView {
     let limit = ctx.device.limits().max_texture_dimension_2d;
-    let white = srt_scene::mip::MipLevel {
+    let white = MipLevel {
         width: 1,
         height: 1,
         texels: vec![[255; 4]],
     };
     let chain = part.material.texture.as_deref().map(MipChain::new);
-    let levels: Vec<&srt_scene::mip::MipLevel> = match &chain {
-        Some(chain) => chain
+    let mut levels: Vec<&MipLevel> = chain.as_ref().map_or_else(Vec::new, |chain| {
+        chain
             .levels()
             .iter()
             .filter(|l| l.width <= limit && l.height <= limit)
-            .collect(),
-        None => vec![&white],
-    };
-    let first = levels[0];
+            .collect()
+    });
+    if levels.is_empty() {
+        levels.push(&white);
+    }
     let data: Vec<u8> = levels
         .iter()
         .flat_map(|l| l.texels.iter().flatten().copied())
@@ -212,8 +377,8 @@ fn part_texture(ctx: &GpuContext, part: &Part) -> wgpu::TextureView {
         &wgpu::TextureDescriptor {
             label: Some("srt part texture"),
             size: wgpu::Extent3d {
-                width: first.width,
-                height: first.height,
+                width: levels[0].width,
+                height: levels[0].height,
                 depth_or_array_layers: 1,
             },
             mip_level_count: levels.len() as u32,
@@ -241,220 +406,151 @@ fn vertices(part: &Part) -> Vec<GpuVertex> {
         .collect()
 }
 
+/// Uploads one part (sizes already checked): its buffers, texture and bind groups.
+fn upload_part(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    counter: &FragmentCounter,
+    part: &Part,
+    sizes: PartSizes,
+) -> PartResources {
+    let device = &ctx.device;
+    let material = PartUniforms {
+        base_color: part.material.base_color,
+        flags: PartFlags::default()
+            .with(PartFlags::TEXTURED, part.material.texture.is_some())
+            .with(PartFlags::VERTEX_COLOURS, part.mesh.colors().is_some()),
+        triangle_count: sizes.triangles,
+        padding: [0; 2],
+    };
+    let uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("srt part uniforms"),
+        contents: bytemuck::bytes_of(&material),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("srt vertices"),
+        contents: bytemuck::cast_slice(&vertices(part)),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("srt indices"),
+        contents: bytemuck::cast_slice(part.mesh.triangles()),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let footprints = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt footprints"),
+        size: sizes.footprint_bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let texture = part_texture(ctx, part);
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(PART_GROUP.label),
+        layout: &pipelines.part_layout,
+        entries: &[
+            slots::PART.entry(uniforms.as_entire_binding()),
+            slots::VERTICES.entry(vertex_buffer.as_entire_binding()),
+            slots::INDICES.entry(index_buffer.as_entire_binding()),
+            slots::PART_TEXTURE.entry(wgpu::BindingResource::TextureView(&texture)),
+            slots::PART_SAMPLER.entry(wgpu::BindingResource::Sampler(&pipelines.sampler)),
+        ],
+    });
+    let proxy_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(PROXY_OUTPUT_GROUP.label),
+        layout: &pipelines.proxy_output_layout,
+        entries: &[slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding())],
+    });
+    let lrt_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(LRT_INPUT_GROUP.label),
+        layout: &pipelines.lrt_input_layout,
+        entries: &[
+            slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
+            slots::FRAGMENT_COUNT.entry(counter.counter.as_entire_binding()),
+        ],
+    });
+    PartResources {
+        uniforms,
+        bind_group,
+        proxy_bind_group,
+        lrt_bind_group,
+        footprints,
+        sizes,
+        material,
+        culling: BackFaceCulling::for_mesh(&part.mesh),
+    }
+}
+
+/// Uploads one object (part sizes already checked): its uniform buffer and parts.
+fn upload_object(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    counter: &FragmentCounter,
+    object: &Object,
+    sizes: Vec<PartSizes>,
+) -> ObjectResources {
+    let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt object uniforms"),
+        size: size_of::<ObjectUniforms>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(OBJECT_GROUP.label),
+        layout: &pipelines.object_layout,
+        entries: &[slots::OBJECT.entry(uniforms.as_entire_binding())],
+    });
+    let parts = object
+        .parts
+        .iter()
+        .zip(sizes)
+        .map(|(part, sizes)| upload_part(ctx, pipelines, counter, part, sizes))
+        .collect();
+    ObjectResources {
+        uniforms,
+        bind_group,
+        parts,
+    }
+}
+
 impl GpuRenderer {
     /// Uploads `scene` (meshes, textures, colour tables) for images of `width` × `height`.
     ///
     /// # Errors
-    /// [`GpuError::Limits`] when a mesh exceeds the device's buffer limits, or any wgpu error.
+    /// [`GpuError::ExceedsLimit`] when the image or a mesh exceeds the device's limits (checked
+    /// before anything is allocated), or any wgpu error.
     pub fn new(ctx: &GpuContext, scene: &Scene, width: u32, height: u32) -> Result<Self, GpuError> {
+        let limits = DeviceLimits::of(ctx);
+        limits.check_render_target(width, height, texel_bytes(ctx.color_format)?)?;
+        let sizes = scene
+            .objects
+            .iter()
+            .map(|object| {
+                object
+                    .parts
+                    .iter()
+                    .enumerate()
+                    .map(|(index, part)| PartSizes::check(&limits, object, index, part))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let device = &ctx.device;
         let pipelines = Pipelines::new(device, ctx.color_format);
-        let frame_uniforms = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("srt frame uniforms"),
-            size: std::mem::size_of::<FrameUniforms>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut lut_params = [[0.0; 4]; 2];
-        let mut frame_groups = Vec::new();
-        for (k, tone_map) in ToneMap::ALL.into_iter().enumerate() {
-            let lut = TemperatureLut::with_defaults(tone_map);
-            lut_params[k] = lut_params_of(&lut);
-            let view = lut_texture(ctx, &lut)?.create_view(&wgpu::TextureViewDescriptor::default());
-            frame_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("srt frame"),
-                layout: &pipelines.frame_layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: frame_uniforms.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                ],
-            }));
-        }
-        let counter = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("srt fragment counter"),
-            size: 4,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let counter_readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("srt fragment counter readback"),
-            size: 4,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let max_binding = device.limits().max_storage_buffer_binding_size;
-        let mut objects = Vec::new();
-        for object in &scene.objects {
-            let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("srt object uniforms"),
-                size: std::mem::size_of::<ObjectUniforms>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("srt object"),
-                layout: &pipelines.object_layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: uniforms.as_entire_binding(),
-                }],
-            });
-            let mut parts = Vec::new();
-            for part in &object.parts {
-                let triangles = part.mesh.triangles().len();
-                let vertex_data = vertices(part);
-                let index_data: Vec<u32> =
-                    part.mesh.triangles().iter().flatten().copied().collect();
-                let footprint_bytes = (triangles * std::mem::size_of::<GpuFootprint>()) as u64;
-                let largest = footprint_bytes
-                    .max((vertex_data.len() * std::mem::size_of::<GpuVertex>()) as u64);
-                if largest > max_binding {
-                    return Err(GpuError::Limits(format!(
-                        "object {:?} has a part with {triangles} triangles, which needs a {largest}-byte buffer; this GPU allows {max_binding} bytes per buffer",
-                        object.name
-                    )));
-                }
-                let triangles = u32::try_from(triangles)
-                    .map_err(|_| GpuError::Limits("too many triangles".into()))?;
-                let material = PartUniforms {
-                    base_color: part.material.base_color,
-                    flags: [
-                        u32::from(part.material.texture.is_some()),
-                        u32::from(part.mesh.colors().is_some()),
-                        triangles,
-                        0,
-                    ],
-                };
-                let closed = part.mesh.is_closed_outward();
-                let part_uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("srt part uniforms"),
-                    contents: bytemuck::bytes_of(&material),
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                });
-                let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("srt vertices"),
-                    contents: bytemuck::cast_slice(&vertex_data),
-                    usage: wgpu::BufferUsages::STORAGE,
-                });
-                let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("srt indices"),
-                    contents: bytemuck::cast_slice(&index_data),
-                    usage: wgpu::BufferUsages::STORAGE,
-                });
-                let footprints = device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("srt footprints"),
-                    size: footprint_bytes,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                });
-                let texture = part_texture(ctx, part);
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("srt part"),
-                    layout: &pipelines.part_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: part_uniforms.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: vertex_buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: index_buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: wgpu::BindingResource::TextureView(&texture),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 4,
-                            resource: wgpu::BindingResource::Sampler(&pipelines.sampler),
-                        },
-                    ],
-                });
-                let proxy_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("srt proxy output"),
-                    layout: &pipelines.proxy_output_layout,
-                    entries: &[wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: footprints.as_entire_binding(),
-                    }],
-                });
-                let lrt_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("srt lrt input"),
-                    layout: &pipelines.lrt_input_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: footprints.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: counter.as_entire_binding(),
-                        },
-                    ],
-                });
-                parts.push(PartResources {
-                    uniforms: part_uniforms,
-                    bind_group,
-                    proxy_bind_group,
-                    lrt_bind_group,
-                    footprints,
-                    triangles,
-                    material,
-                    closed,
-                });
-            }
-            objects.push(ObjectResources {
-                uniforms,
-                bind_group,
-                parts,
-            });
-        }
-        let timestamps = ctx.timestamps.then(|| {
-            let set = device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("srt timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 4,
-            });
-            let resolve = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("srt timestamp resolve"),
-                size: 32,
-                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let readback = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("srt timestamp readback"),
-                size: 32,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            });
-            (set, resolve, readback)
-        });
-        let targets = Targets::new(device, ctx.color_format, width, height);
-        let [luminance, searchlight]: [wgpu::BindGroup; 2] = frame_groups
-            .try_into()
-            .map_err(|_| GpuError::Wgpu("colour tables".into()))?;
+        let frame = FrameResources::new(ctx, &pipelines)?;
+        let counter = FragmentCounter::new(device);
+        let objects = scene
+            .objects
+            .iter()
+            .zip(sizes)
+            .map(|(object, sizes)| upload_object(ctx, &pipelines, &counter, object, sizes))
+            .collect();
         let renderer = Self {
+            timestamps: ctx.timestamps.then(|| Timestamps::new(device)),
+            targets: Targets::new(ctx, width, height)?,
             pipelines,
-            frame_uniforms,
-            frame_bind_groups: [luminance, searchlight],
-            lut_params,
+            frame,
             objects,
             counter,
-            counter_readback,
-            timestamps,
-            targets,
             rectangles_only: ctx.adapter_info.backend == wgpu::Backend::Gl,
         };
         ctx.take_errors()?;
@@ -477,19 +573,25 @@ impl GpuRenderer {
     }
 
     /// Changes the image size (recreates the render targets).
-    pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) {
+    ///
+    /// # Errors
+    /// [`GpuError::ExceedsLimit`] when the size exceeds the device's limits; the renderer then
+    /// keeps its previous size.
+    pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
         if (width, height) != self.size() {
-            self.targets = Targets::new(&ctx.device, ctx.color_format, width, height);
+            self.targets = Targets::new(ctx, width, height)?;
         }
+        Ok(())
     }
 
-    /// The texture the last frame was rendered into (`Rgba32Float`), for display.
+    /// The texture the last frame was rendered into, for display.
     #[must_use]
     pub fn color_texture(&self) -> &wgpu::Texture {
         &self.targets.color
     }
 
-    /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities).
+    /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities);
+    /// returns the tone map's index in [`ToneMap::ALL`].
     fn write_uniforms(
         &self,
         ctx: &GpuContext,
@@ -503,18 +605,21 @@ impl GpuRenderer {
                 .zip(&self.objects)
                 .any(|(o, r)| o.parts.len() != r.parts.len())
         {
-            return Err(GpuError::Limits(
-                "the scene's objects changed since it was uploaded".into(),
-            ));
+            return Err(GpuError::SceneChanged);
         }
         let (width, height) = self.size();
         let aspect = f64::from(width) / f64::from(height);
         let observer = &scene.observer;
         let (forward, right, up) = observer.basis();
         let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
-        let tone = usize::from(scene.tone_map == ToneMap::Searchlight);
+        let tone = FrameResources::tone_index(scene.tone_map);
+        let shape = if self.rectangles_only {
+            FootprintShape::Rectangle
+        } else {
+            footprint
+        };
         let uniforms = FrameUniforms {
-            view_projection: mat4(observer.view_projection(aspect, NEAR, FAR)),
+            view_projection: mat4(view_projection(observer, width, height)),
             camera_forward: vec4(forward, 0.0),
             camera_right: vec4(right * tan_half * aspect, 0.0),
             camera_up: vec4(up * tan_half, 0.0),
@@ -527,42 +632,36 @@ impl GpuRenderer {
                 scene.shading.shininess as f32,
             ],
             background: vec4(scene.background, 1.0),
-            lut: self.lut_params[tone],
+            lut: self.frame.lut_params[tone],
             viewport: [
                 width as f32,
                 height as f32,
                 1.0 / width as f32,
                 1.0 / height as f32,
             ],
-            modes: [
-                match scene.effects {
-                    Effects::Geometry => 0,
-                    Effects::Doppler => 1,
-                    Effects::Searchlight => 2,
-                },
-                u32::from(footprint == FootprintShape::Rectangle || self.rectangles_only),
-                0,
-                0,
-            ],
-            depth_scale: [LRT_DEPTH_SCALE, 0.0, 0.0, 0.0],
+            effects: EffectsCode::from(scene.effects),
+            footprint_shape: FootprintCode::from(shape),
+            depth_scale: LRT_DEPTH_SCALE,
+            padding: 0,
         };
         ctx.queue
-            .write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
+            .write_buffer(&self.frame.uniforms, 0, bytemuck::bytes_of(&uniforms));
+        let event = observer.event();
         for (object, resources) in scene.objects.iter().zip(&self.objects) {
             let uniforms = ObjectUniforms {
-                frame: GpuFrame::new(&object.frame, observer.event()),
+                frame: GpuFrame::new(&object.frame, event),
                 style: [object.wireframe.unwrap_or(0.0) as f32, 0.0, 0.0, 0.0],
             };
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
-            let observer_rest = object.frame.to_rest(observer.event()).position;
             for (part, part_resources) in object.parts.iter().zip(&resources.parts) {
                 let mut material = part_resources.material;
                 material.base_color = part.material.base_color;
-                // Back-face culling is exact only while the observer is outside the solid (in
-                // S′, where every viewing ray starts at the observer).
-                material.flags[3] = u32::from(
-                    part_resources.closed && part.mesh.winding_number(observer_rest).abs() < 0.5,
+                material.flags = material.flags.with(
+                    PartFlags::CULL_BACK_FACES,
+                    part_resources
+                        .culling
+                        .applies(&part.mesh, &object.frame, event),
                 );
                 ctx.queue
                     .write_buffer(&part_resources.uniforms, 0, bytemuck::bytes_of(&material));
@@ -575,7 +674,7 @@ impl GpuRenderer {
     /// [`GpuRenderer::color_texture`].
     ///
     /// # Errors
-    /// If the scene's structure differs from the uploaded one.
+    /// [`GpuError::SceneChanged`] if the scene's structure differs from the uploaded one.
     pub fn encode(
         &self,
         ctx: &GpuContext,
@@ -585,99 +684,117 @@ impl GpuRenderer {
         footprint: FootprintShape,
     ) -> Result<(), GpuError> {
         let tone = self.write_uniforms(ctx, scene, footprint)?;
-        let frame_group = &self.frame_bind_groups[tone];
-        let timestamp = |begin: u32| self.timestamps.as_ref().map(|(set, _, _)| (set, begin));
-        encoder.clear_buffer(&self.counter, 0, None);
+        encoder.clear_buffer(&self.counter.counter, 0, None);
         if method == Method::Lrt {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("srt proxy"),
-                timestamp_writes: timestamp(0).map(|(set, i)| wgpu::ComputePassTimestampWrites {
-                    query_set: set,
-                    beginning_of_pass_write_index: Some(i),
-                    end_of_pass_write_index: Some(i + 1),
-                }),
-            });
-            pass.set_pipeline(&self.pipelines.proxy);
-            pass.set_bind_group(0, frame_group, &[]);
-            let max_groups = ctx.device.limits().max_compute_workgroups_per_dimension;
-            for object in &self.objects {
-                pass.set_bind_group(1, &object.bind_group, &[]);
-                for part in &object.parts {
-                    pass.set_bind_group(2, &part.bind_group, &[]);
-                    pass.set_bind_group(3, &part.proxy_bind_group, &[]);
-                    let groups = part.triangles.div_ceil(PROXY_WORKGROUP);
-                    let x = groups.min(max_groups);
-                    pass.dispatch_workgroups(x, groups.div_ceil(x.max(1)), 1);
-                }
-            }
+            self.encode_proxy_pass(encoder, tone);
         }
-        {
-            let color_view = self
-                .targets
-                .color
-                .create_view(&wgpu::TextureViewDescriptor::default());
-            let depth_view = self
-                .targets
-                .depth
-                .create_view(&wgpu::TextureViewDescriptor::default());
-            let b = scene.background;
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("srt render"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &color_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: b.x,
-                            g: b.y,
-                            b: b.z,
-                            a: 1.0,
-                        }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: timestamp(2).map(|(set, i)| wgpu::RenderPassTimestampWrites {
-                    query_set: set,
-                    beginning_of_pass_write_index: Some(i),
-                    end_of_pass_write_index: Some(i + 1),
-                }),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(match method {
-                Method::Lrt => &self.pipelines.lrt,
-                Method::Polygon => &self.pipelines.polygon,
-            });
-            pass.set_bind_group(0, frame_group, &[]);
-            for object in &self.objects {
-                pass.set_bind_group(1, &object.bind_group, &[]);
-                for part in &object.parts {
-                    pass.set_bind_group(2, &part.bind_group, &[]);
-                    match method {
-                        Method::Lrt => {
-                            pass.set_bind_group(3, &part.lrt_bind_group, &[]);
-                            pass.draw(0..FOOTPRINT_VERTICES, 0..part.triangles);
-                        }
-                        Method::Polygon => pass.draw(0..3 * part.triangles, 0..1),
-                    }
-                }
-            }
+        self.encode_render_pass(encoder, scene, method, tone);
+        if let Some(t) = &self.timestamps {
+            encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
+            encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
         }
-        if let Some((set, resolve, readback)) = &self.timestamps {
-            encoder.resolve_query_set(set, 0..4, resolve, 0);
-            encoder.copy_buffer_to_buffer(resolve, 0, readback, 0, 32);
-        }
-        encoder.copy_buffer_to_buffer(&self.counter, 0, &self.counter_readback, 0, 4);
+        encoder.copy_buffer_to_buffer(&self.counter.counter, 0, &self.counter.readback, 0, 4);
         Ok(())
+    }
+
+    /// The footprint compute pass over every part (timestamps 0 and 1).
+    fn encode_proxy_pass(&self, encoder: &mut wgpu::CommandEncoder, tone: usize) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("srt proxy"),
+            timestamp_writes: self
+                .timestamps
+                .as_ref()
+                .map(|t| wgpu::ComputePassTimestampWrites {
+                    query_set: &t.set,
+                    beginning_of_pass_write_index: Some(0),
+                    end_of_pass_write_index: Some(1),
+                }),
+        });
+        pass.set_pipeline(&self.pipelines.proxy);
+        pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+        for object in &self.objects {
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            for part in &object.parts {
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                pass.set_bind_group(PROXY_OUTPUT_GROUP.index, &part.proxy_bind_group, &[]);
+                let (x, y) = part.sizes.workgroups;
+                pass.dispatch_workgroups(x, y, 1);
+            }
+        }
+    }
+
+    /// The LRT or polygon render pass into the targets (timestamps 2 and 3).
+    fn encode_render_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        method: Method,
+        tone: usize,
+    ) {
+        let color_view = self
+            .targets
+            .color
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let depth_view = self
+            .targets
+            .depth
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let b = scene.background;
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("srt render"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &color_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: b.x,
+                        g: b.y,
+                        b: b.z,
+                        a: 1.0,
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: self
+                .timestamps
+                .as_ref()
+                .map(|t| wgpu::RenderPassTimestampWrites {
+                    query_set: &t.set,
+                    beginning_of_pass_write_index: Some(2),
+                    end_of_pass_write_index: Some(3),
+                }),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(match method {
+            Method::Lrt => &self.pipelines.lrt,
+            Method::Polygon => &self.pipelines.polygon,
+        });
+        pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+        for object in &self.objects {
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            for part in &object.parts {
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                let triangles = part.sizes.triangles;
+                match method {
+                    Method::Lrt => {
+                        pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
+                        pass.draw(0..FOOTPRINT_VERTICES, 0..triangles);
+                    }
+                    // Checked at upload: 3 × triangles fits in u32.
+                    Method::Polygon => pass.draw(0..3 * triangles, 0..1),
+                }
+            }
+        }
     }
 
     /// Renders one frame of `scene` and reads it back.
@@ -698,40 +815,16 @@ impl GpuRenderer {
             });
         self.encode(ctx, &mut encoder, scene, method, footprint)?;
         let t = &self.targets;
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &t.color,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &t.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(t.padded_row),
-                    rows_per_image: Some(t.height),
-                },
-            },
-            wgpu::Extent3d {
-                width: t.width,
-                height: t.height,
-                depth_or_array_layers: 1,
-            },
-        );
+        t.readback.encode_copy(&mut encoder, &t.color);
         ctx.queue.submit([encoder.finish()]);
-        let bytes = ctx.read_buffer(&t.readback)?;
-        let pixel_bytes = t.format.block_copy_size(None).unwrap_or(16) as usize;
-        let mut pixels = Vec::with_capacity((t.width * t.height) as usize);
-        for row in bytes.chunks_exact(t.padded_row as usize) {
-            let row = &row[..t.width as usize * pixel_bytes];
-            pixels.extend(row.chunks_exact(pixel_bytes).map(decode_pixel));
-        }
+        let bytes = t.readback.read(ctx)?;
+        let pixel_bytes = texel_bytes(ctx.color_format)? as usize;
+        let pixels = bytes.chunks_exact(pixel_bytes).map(decode_pixel).collect();
         let fragments =
-            bytemuck::pod_read_unaligned::<u32>(&ctx.read_buffer(&self.counter_readback)?);
+            bytemuck::pod_read_unaligned::<u32>(&ctx.read_buffer(&self.counter.readback)?);
         let gpu_time_ms = match &self.timestamps {
-            Some((_, _, readback)) => {
-                let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(readback)?);
+            Some(t) => {
+                let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&t.readback)?);
                 let first = if method == Method::Lrt { 0 } else { 2 };
                 let ns = stamps[3].saturating_sub(stamps[first]) as f64
                     * f64::from(ctx.queue.get_timestamp_period());
@@ -773,7 +866,7 @@ impl GpuRenderer {
         for object in &self.objects {
             let mut parts = Vec::new();
             for part in &object.parts {
-                let size = u64::from(part.triangles) * std::mem::size_of::<GpuFootprint>() as u64;
+                let size = part.sizes.footprint_bytes;
                 let readback = ctx.device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("srt footprint readback"),
                     size,

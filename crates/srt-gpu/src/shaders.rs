@@ -1,12 +1,13 @@
-//! WGSL sources, composed from the shared modules in `shaders/` (WGSL has no includes).
+//! WGSL sources, composed from the shared modules in `shaders/` (WGSL has no includes), and the
+//! values of their pipeline-overridable constants (WGSL `override`s without a default: the
+//! value lives here, in Rust, and the pipeline cannot be created without it).
 
 /// Shared physics (mirror of srt-physics).
 pub const PHYSICS: &str = include_str!("../../../shaders/physics.wgsl");
 /// Shared data layouts (twins of [`crate::types`]).
 pub const TYPES: &str = include_str!("../../../shaders/types.wgsl");
-/// Kernel probes (see [`crate::probe`]); composed after [`PHYSICS`] and [`COLOUR`].
+/// Kernel probes (see [`crate::probe`]).
 pub const PROBE: &str = include_str!("../../../shaders/probe.wgsl");
-
 /// Colour-table sampling (mirror of `TemperatureLut::sample`).
 pub const COLOUR: &str = include_str!("../../../shaders/colour.wgsl");
 /// Bindings and helpers shared by the render passes.
@@ -20,41 +21,111 @@ pub const LRT: &str = include_str!("../../../shaders/lrt.wgsl");
 /// The polygon-rendering baseline pass.
 pub const POLYGON: &str = include_str!("../../../shaders/polygon.wgsl");
 
+/// Invocations per workgroup of every compute entry point (WGSL `override WORKGROUP_SIZE`).
+pub const WORKGROUP_SIZE: u32 = 64;
+
+/// The overrides of the proxy shader.
+const PROXY_OVERRIDES: &[(&str, f64)] = &[
+    ("WORKGROUP_SIZE", WORKGROUP_SIZE as f64),
+    ("MAX_TANGENT_REACH", srt_proxy::MAX_TANGENT_REACH),
+];
+
+/// The overrides of the probe shader.
+const PROBE_OVERRIDES: &[(&str, f64)] = &[("WORKGROUP_SIZE", WORKGROUP_SIZE as f64)];
+
+/// A composed shader and the values of its pipeline-overridable constants.
+#[derive(Debug, Clone)]
+pub struct Shader {
+    /// Name, for labels and test reports.
+    pub name: &'static str,
+    /// The composed WGSL source.
+    pub source: String,
+    /// Value of every WGSL `override` of the source, by name, as wgpu takes them.
+    pub overrides: &'static [(&'static str, f64)],
+}
+
+impl Shader {
+    /// The shader module on `device`.
+    #[must_use]
+    pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
+        device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(self.name),
+            source: wgpu::ShaderSource::Wgsl(self.source.as_str().into()),
+        })
+    }
+
+    /// Pipeline compilation options that set every override of this shader.
+    #[must_use]
+    pub fn compilation_options(&self) -> wgpu::PipelineCompilationOptions<'static> {
+        wgpu::PipelineCompilationOptions {
+            constants: self.overrides,
+            ..Default::default()
+        }
+    }
+}
+
 /// The footprint compute shader.
 #[must_use]
-pub fn proxy() -> String {
-    compose(&[
-        ("physics.wgsl", PHYSICS),
-        ("types.wgsl", TYPES),
-        ("render_bindings.wgsl", RENDER_BINDINGS),
-        ("proxy.wgsl", PROXY),
-    ])
+pub fn proxy() -> Shader {
+    Shader {
+        name: "proxy",
+        source: compose(&[
+            ("physics.wgsl", PHYSICS),
+            ("types.wgsl", TYPES),
+            ("render_bindings.wgsl", RENDER_BINDINGS),
+            ("proxy.wgsl", PROXY),
+        ]),
+        overrides: PROXY_OVERRIDES,
+    }
 }
 
 /// The local ray tracing shader.
 #[must_use]
-pub fn lrt() -> String {
-    compose(&[
-        ("physics.wgsl", PHYSICS),
-        ("types.wgsl", TYPES),
-        ("colour.wgsl", COLOUR),
-        ("render_bindings.wgsl", RENDER_BINDINGS),
-        ("surface.wgsl", SURFACE),
-        ("lrt.wgsl", LRT),
-    ])
+pub fn lrt() -> Shader {
+    Shader {
+        name: "lrt",
+        source: compose(&[
+            ("physics.wgsl", PHYSICS),
+            ("types.wgsl", TYPES),
+            ("colour.wgsl", COLOUR),
+            ("render_bindings.wgsl", RENDER_BINDINGS),
+            ("surface.wgsl", SURFACE),
+            ("lrt.wgsl", LRT),
+        ]),
+        overrides: &[],
+    }
 }
 
 /// The polygon-rendering shader.
 #[must_use]
-pub fn polygon() -> String {
-    compose(&[
-        ("physics.wgsl", PHYSICS),
-        ("types.wgsl", TYPES),
-        ("colour.wgsl", COLOUR),
-        ("render_bindings.wgsl", RENDER_BINDINGS),
-        ("surface.wgsl", SURFACE),
-        ("polygon.wgsl", POLYGON),
-    ])
+pub fn polygon() -> Shader {
+    Shader {
+        name: "polygon",
+        source: compose(&[
+            ("physics.wgsl", PHYSICS),
+            ("types.wgsl", TYPES),
+            ("colour.wgsl", COLOUR),
+            ("render_bindings.wgsl", RENDER_BINDINGS),
+            ("surface.wgsl", SURFACE),
+            ("polygon.wgsl", POLYGON),
+        ]),
+        overrides: &[],
+    }
+}
+
+/// The kernel-probe shader of [`crate::probe`].
+#[must_use]
+pub fn probe() -> Shader {
+    Shader {
+        name: "probe",
+        source: compose(&[
+            ("physics.wgsl", PHYSICS),
+            ("types.wgsl", TYPES),
+            ("colour.wgsl", COLOUR),
+            ("probe.wgsl", PROBE),
+        ]),
+        overrides: PROBE_OVERRIDES,
+    }
 }
 
 /// Composes `modules` into one WGSL source, each preceded by a comment naming it.
@@ -66,18 +137,23 @@ pub fn compose(modules: &[(&str, &str)]) -> String {
         .collect()
 }
 
-/// Every complete shader srt builds, by name, for validation.
+/// Every complete shader srt builds, for validation.
 #[must_use]
-pub fn all() -> Vec<(&'static str, String)> {
+pub fn all() -> Vec<Shader> {
     vec![
-        (
-            "physics+types",
-            compose(&[("physics.wgsl", PHYSICS), ("types.wgsl", TYPES)]),
-        ),
-        ("proxy", proxy()),
-        ("lrt", lrt()),
-        ("polygon", polygon()),
-        ("colour", compose(&[("colour.wgsl", COLOUR)])),
-        ("probe", crate::probe::source()),
+        Shader {
+            name: "physics+types",
+            source: compose(&[("physics.wgsl", PHYSICS), ("types.wgsl", TYPES)]),
+            overrides: &[],
+        },
+        proxy(),
+        lrt(),
+        polygon(),
+        Shader {
+            name: "colour",
+            source: compose(&[("colour.wgsl", COLOUR)]),
+            overrides: &[],
+        },
+        probe(),
     ]
 }

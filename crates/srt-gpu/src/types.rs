@@ -1,10 +1,13 @@
 //! GPU data layouts: `#[repr(C)]` bytemuck twins of the structs in `shaders/types.wgsl` and
-//! `shaders/physics.wgsl`, defined once here. `tests/layout.rs` checks every field's offset and
-//! size against naga's layout of the WGSL struct.
+//! `shaders/physics.wgsl`, defined once here, and the named codes and flag bits those structs
+//! carry. `tests/layout.rs` checks every field's offset and size against naga's layout of the
+//! WGSL struct; `tests/reflect.rs` checks that the WGSL `const`s of the codes and bits equal the
+//! Rust ones.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3};
 use srt_physics::{Event, Frame};
+use srt_scene::Effects;
 
 /// Converts an f64 matrix to the column-major f32 array WGSL expects.
 #[must_use]
@@ -16,6 +19,17 @@ pub fn mat4(m: DMat4) -> [[f32; 4]; 4] {
 #[must_use]
 pub fn vec4(v: DVec3, w: f64) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+/// `vec4<f32>` (ct, x, y, z) of an event.
+#[must_use]
+pub fn event4(e: Event) -> [f32; 4] {
+    [
+        e.ct as f32,
+        e.position.x as f32,
+        e.position.y as f32,
+        e.position.z as f32,
+    ]
 }
 
 /// Twin of WGSL `Frame` (physics.wgsl): an object's rest frame for one observation event.
@@ -38,20 +52,50 @@ impl GpuFrame {
     /// The frame prepared for observation event `observer`.
     #[must_use]
     pub fn new(frame: &Frame, observer: Event) -> Self {
-        let rest = frame.to_rest(observer);
         Self {
             rest_to_observer: mat4(frame.rest_to_observer_matrix()),
             observer_to_rest: mat4(frame.observer_to_rest_matrix()),
             beta_gamma: vec4(frame.beta(), frame.gamma()),
             offset: vec4(frame.offset(), 0.0),
-            observer_rest: [
-                rest.ct as f32,
-                rest.position.x as f32,
-                rest.position.y as f32,
-                rest.position.z as f32,
-            ],
+            observer_rest: event4(frame.to_rest(observer)),
         }
     }
+}
+
+/// `FrameUniforms::effects`: which effects the shading shows (WGSL `EFFECTS_*` in types.wgsl).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct EffectsCode(pub u32);
+
+impl EffectsCode {
+    /// Geometry only: no Doppler shift, no searchlight (WGSL `EFFECTS_GEOMETRY`).
+    pub const GEOMETRY: Self = Self(0);
+    /// The Doppler shift of the light's colour (WGSL `EFFECTS_DOPPLER`).
+    pub const DOPPLER: Self = Self(1);
+    /// Doppler shift and searchlight brightening (WGSL `EFFECTS_SEARCHLIGHT`).
+    pub const SEARCHLIGHT: Self = Self(2);
+}
+
+impl From<Effects> for EffectsCode {
+    fn from(effects: Effects) -> Self {
+        match effects {
+            Effects::Geometry => Self::GEOMETRY,
+            Effects::Doppler => Self::DOPPLER,
+            Effects::Searchlight => Self::SEARCHLIGHT,
+        }
+    }
+}
+
+/// `FrameUniforms::footprint_shape`: what the LRT pass draws per triangle (WGSL `FOOTPRINT_*`).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct FootprintCode(pub u32);
+
+impl FootprintCode {
+    /// The convex hull of the footprint (WGSL `FOOTPRINT_HULL`).
+    pub const HULL: Self = Self(0);
+    /// Its window-aligned rectangle (WGSL `FOOTPRINT_RECTANGLE`).
+    pub const RECTANGLE: Self = Self(1);
 }
 
 /// Twin of WGSL `FrameUniforms`: per-image parameters.
@@ -78,10 +122,14 @@ pub struct FrameUniforms {
     pub lut: [f32; 4],
     /// Width, height, 1/width, 1/height.
     pub viewport: [f32; 4],
-    /// Effects, footprint shape, unused, unused.
-    pub modes: [u32; 4],
-    /// Depth scale (x).
-    pub depth_scale: [f32; 4],
+    /// Which effects the shading shows.
+    pub effects: EffectsCode,
+    /// What the LRT pass draws per triangle.
+    pub footprint_shape: FootprintCode,
+    /// LRT depth = apparent distance × this.
+    pub depth_scale: f32,
+    /// Padding to the WGSL size.
+    pub padding: u32,
 }
 
 /// Twin of WGSL `ObjectUniforms`.
@@ -94,15 +142,51 @@ pub struct ObjectUniforms {
     pub style: [f32; 4],
 }
 
+/// `PartUniforms::flags`: one bit per yes/no property of a mesh part (WGSL `PART_*` in
+/// types.wgsl).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Pod, Zeroable)]
+pub struct PartFlags(pub u32);
+
+impl PartFlags {
+    /// The part has a texture (WGSL `PART_TEXTURED`).
+    pub const TEXTURED: Self = Self(1);
+    /// Its vertices carry colours (WGSL `PART_VERTEX_COLOURS`).
+    pub const VERTEX_COLOURS: Self = Self(2);
+    /// Back faces may be culled this frame: the mesh is a closed solid with outward fronts and
+    /// the observer is outside it ([`crate::culling::culls_back_faces`]) (WGSL
+    /// `PART_CULL_BACK_FACES`).
+    pub const CULL_BACK_FACES: Self = Self(4);
+
+    /// These flags with `flag` set or cleared.
+    #[must_use]
+    pub const fn with(self, flag: Self, on: bool) -> Self {
+        if on {
+            Self(self.0 | flag.0)
+        } else {
+            Self(self.0 & !flag.0)
+        }
+    }
+
+    /// Whether every bit of `flag` is set.
+    #[must_use]
+    pub const fn contains(self, flag: Self) -> bool {
+        self.0 & flag.0 == flag.0
+    }
+}
+
 /// Twin of WGSL `PartUniforms`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct PartUniforms {
     /// Base colour factor.
     pub base_color: [f32; 4],
-    /// Has texture, has vertex colours, triangle count, cull back faces (closed solid, observer
-    /// outside it).
-    pub flags: [u32; 4],
+    /// Yes/no properties of the part.
+    pub flags: PartFlags,
+    /// Triangles in the part.
+    pub triangle_count: u32,
+    /// Padding to the WGSL size.
+    pub padding: [u32; 2],
 }
 
 /// Twin of WGSL `Vertex`.
@@ -119,18 +203,120 @@ pub struct GpuVertex {
     pub uv: [f32; 4],
 }
 
+/// Most points of a footprint's convex hull (WGSL `FOOTPRINT_HULL_POINTS`): the hull of the
+/// three corners and three tangent intersections.
+pub const FOOTPRINT_HULL_POINTS: usize = 6;
+
+/// Vertices drawn per footprint instance: a fan of `FOOTPRINT_HULL_POINTS − 2` triangles (WGSL
+/// `FOOTPRINT_VERTICES` in lrt.wgsl); spare triangles of smaller hulls are degenerate.
+pub const FOOTPRINT_VERTICES: u32 = 3 * (FOOTPRINT_HULL_POINTS as u32 - 2);
+
 /// Twin of WGSL `Footprint`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuFootprint {
     /// Hull points in pixels.
-    pub hull: [[f32; 2]; 6],
+    pub hull: [[f32; 2]; FOOTPRINT_HULL_POINTS],
     /// Rectangle min x, min y, max x, max y.
     pub rect: [f32; 4],
-    /// Valid hull points.
+    /// Valid hull points (0 for a culled back face).
     pub hull_len: u32,
     /// 1 for a whole-screen footprint.
     pub whole_screen: u32,
     /// Padding to the WGSL size.
     pub padding: [u32; 2],
+}
+
+/// Twin of WGSL `PhysicsProbeInput`: one set of arguments for every physics kernel
+/// ([`crate::probe`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuPhysicsProbeInput {
+    /// The object's rest frame and the observation event.
+    pub frame: GpuFrame,
+    /// An event in S for `to_rest`.
+    pub event: [f32; 4],
+    /// An event in S′ for `to_observer`.
+    pub rest_event: [f32; 4],
+    /// A point at rest in S′ (xyz) and the ray parameter s (w).
+    pub point: [f32; 4],
+    /// A direction in S′ for `apparent_tangent`.
+    pub direction: [f32; 4],
+    /// A viewing direction in S for `backward_ray`.
+    pub view: [f32; 4],
+    /// A propagation direction in S for `doppler_factor`.
+    pub propagation: [f32; 4],
+    /// A propagation direction in S′ for `aberrate`.
+    pub direction_rest: [f32; 4],
+    /// Incident propagation direction for `reflection_doppler`.
+    pub incident: [f32; 4],
+    /// Outgoing propagation direction for `reflection_doppler`.
+    pub outgoing: [f32; 4],
+}
+
+/// Twin of WGSL `PhysicsProbeOutput`: every physics kernel's result for one input
+/// ([`crate::probe`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuPhysicsProbeOutput {
+    /// `to_observer(frame, rest_event)`.
+    pub to_observer: [f32; 4],
+    /// `to_rest(frame, event)`.
+    pub to_rest: [f32; 4],
+    /// `emission_event(frame, point)`.
+    pub emission_event: [f32; 4],
+    /// `apparent_position(frame, point)` (xyz).
+    pub apparent_position: [f32; 4],
+    /// `apparent_tangent(frame, point, direction)` (xyz).
+    pub apparent_tangent: [f32; 4],
+    /// `aberrate(β, direction_rest)` (xyz).
+    pub aberrate: [f32; 4],
+    /// `backward_ray(frame, view)`: origin (xyz) and `ct_origin` (w).
+    pub ray_origin: [f32; 4],
+    /// `backward_ray(frame, view)`: direction (xyz).
+    pub ray_direction: [f32; 4],
+    /// `doppler_factor`, `reflection_doppler`, `apparent_distance`, `lorentz_factor`.
+    pub scalars: [f32; 4],
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn part_flags_set_and_clear_single_bits() {
+        let flags = PartFlags::default()
+            .with(PartFlags::TEXTURED, true)
+            .with(PartFlags::CULL_BACK_FACES, true);
+        assert!(flags.contains(PartFlags::TEXTURED));
+        assert!(!flags.contains(PartFlags::VERTEX_COLOURS));
+        assert_eq!(flags.0, 5);
+        let cleared = flags.with(PartFlags::TEXTURED, false);
+        assert_eq!(cleared, PartFlags::CULL_BACK_FACES);
+    }
+
+    #[test]
+    fn part_flag_bits_are_distinct_single_bits() {
+        let bits = [
+            PartFlags::TEXTURED,
+            PartFlags::VERTEX_COLOURS,
+            PartFlags::CULL_BACK_FACES,
+        ];
+        assert!(bits.iter().all(|b| b.0.is_power_of_two()));
+        assert_eq!(bits.iter().fold(0, |acc, b| acc | b.0).count_ones(), 3);
+    }
+
+    #[test]
+    fn effects_map_to_distinct_codes() {
+        let codes =
+            [Effects::Geometry, Effects::Doppler, Effects::Searchlight].map(EffectsCode::from);
+        assert_eq!(
+            codes,
+            [
+                EffectsCode::GEOMETRY,
+                EffectsCode::DOPPLER,
+                EffectsCode::SEARCHLIGHT
+            ]
+        );
+    }
 }

@@ -1,4 +1,4 @@
-//! The `#[repr(C)]` twins in `srt_gpu::types` and `srt_gpu::probe` have exactly the memory layout
+//! The `#[repr(C)]` twins in `srt_gpu::types` have exactly the memory layout
 //! naga computes for their WGSL structs: size, and every member's name, offset, size and scalar
 //! type, in every composed shader that defines the struct.
 //!
@@ -8,9 +8,9 @@ use std::mem::{offset_of, size_of};
 
 use naga::proc::Layouter;
 use naga::{Module, ScalarKind, TypeInner};
-use srt_gpu::probe::{GpuPhysicsProbeInput, GpuPhysicsProbeOutput};
 use srt_gpu::types::{
-    FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PartUniforms,
+    EffectsCode, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuPhysicsProbeInput,
+    GpuPhysicsProbeOutput, GpuVertex, ObjectUniforms, PartFlags, PartUniforms,
 };
 
 /// What a member's components are, as both sides can tell.
@@ -39,6 +39,16 @@ impl HasLeaf for i32 {
 }
 impl<T: HasLeaf, const N: usize> HasLeaf for [T; N] {
     const LEAF: Leaf = T::LEAF;
+}
+// The named codes and flags are u32 on the GPU.
+impl HasLeaf for EffectsCode {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for FootprintCode {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for PartFlags {
+    const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for GpuFrame {
     const LEAF: Leaf = Leaf::Struct("Frame");
@@ -85,9 +95,9 @@ macro_rules! twin {
 fn table() -> Vec<Twin> {
     vec![
         twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
-        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, modes, depth_scale }),
+        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, effects, footprint_shape, depth_scale, padding }),
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style }),
-        twin!(PartUniforms => "PartUniforms" { base_color, flags }),
+        twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
         twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, padding }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
@@ -148,7 +158,7 @@ fn wgsl_layout(module: &Module, layouter: &Layouter, name: &str) -> Option<(usiz
 fn rust_twins_match_naga_layouts() {
     let shaders: Vec<(&str, Module, Layouter)> = srt_gpu::shaders::all()
         .into_iter()
-        .map(|(name, source)| {
+        .map(|srt_gpu::shaders::Shader { name, source, .. }| {
             let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
                 panic!(
                     "{name} does not parse (see tests/shaders.rs):\n{}",

@@ -27,9 +27,10 @@ fn every_shader_parses_and_validates() {
     let shaders = srt_gpu::shaders::all();
     assert!(!shaders.is_empty(), "shaders::all() lists no shader");
     let mut failures = Vec::new();
-    for (name, source) in &shaders {
-        match validate(name, source) {
-            Ok(_) => println!("{name}: ok ({} lines)", source.lines().count()),
+    for shader in &shaders {
+        let name = shader.name;
+        match validate(name, &shader.source) {
+            Ok(_) => println!("{name}: ok ({} lines)", shader.source.lines().count()),
             Err(message) => failures.push(format!("{name}: {message}")),
         }
     }
@@ -45,7 +46,7 @@ fn every_shader_parses_and_validates() {
 #[test]
 fn shader_names_are_unique() {
     let shaders = srt_gpu::shaders::all();
-    let mut names: Vec<&str> = shaders.iter().map(|(name, _)| *name).collect();
+    let mut names: Vec<&str> = shaders.iter().map(|shader| shader.name).collect();
     names.sort_unstable();
     let before = names.len();
     names.dedup();

@@ -271,13 +271,13 @@ impl SceneView {
         size: (u32, u32),
     ) -> Result<(), GpuError> {
         let Some((_, renderer)) = &mut self.renderer else {
-            return Err(GpuError::Limits("no scene has been uploaded".to_owned()));
+            return Err(GpuError::NotReady("no scene has been uploaded"));
         };
         let methods = method.methods();
         let count = u32::try_from(methods.len()).unwrap_or(1);
         let limit = ctx.device.limits().max_texture_dimension_2d;
         let each = ((size.0 / count).clamp(1, limit), size.1.clamp(1, limit));
-        renderer.resize(ctx, each.0, each.1);
+        renderer.resize(ctx, each.0, each.1)?;
         // Displays no longer needed keep their egui ids for later reuse.
         while self.displays.len() > methods.len() {
             if let Some(display) = self.displays.pop() {
@@ -348,53 +348,17 @@ impl SceneView {
     /// [`GpuError`] when nothing was rendered yet or the readback fails.
     pub fn read_image(&self, ctx: &GpuContext) -> Result<image::RgbaImage, GpuError> {
         if self.displays.is_empty() {
-            return Err(GpuError::Readback(
-                "nothing has been rendered yet".to_owned(),
-            ));
+            return Err(GpuError::NotReady("nothing has been rendered yet"));
         }
         let width: u32 = self.displays.iter().map(|d| d.size.0).sum();
         let height = self.displays.iter().map(|d| d.size.1).max().unwrap_or(1);
         let mut image = image::RgbaImage::new(width, height);
         let mut x0 = 0;
         for display in &self.displays {
-            let (w, h) = display.size;
-            let row = (w * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-            let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("srt-viewer readback"),
-                size: u64::from(row) * u64::from(h),
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            });
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("srt-viewer readback"),
-                });
-            encoder.copy_texture_to_buffer(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &display.texture,
-                    mip_level: 0,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                wgpu::TexelCopyBufferInfo {
-                    buffer: &buffer,
-                    layout: wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(row),
-                        rows_per_image: Some(h),
-                    },
-                },
-                wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-            );
-            ctx.queue.submit([encoder.finish()]);
-            let bytes = ctx.read_buffer(&buffer)?;
-            for (y, line) in bytes.chunks_exact(row as usize).enumerate() {
-                for (x, texel) in line[..(w * 4) as usize].chunks_exact(4).enumerate() {
+            let w = display.size.0;
+            let bytes = srt_gpu::read_texture(ctx, &display.texture)?;
+            for (y, line) in bytes.chunks_exact(w as usize * 4).enumerate() {
+                for (x, texel) in line.chunks_exact(4).enumerate() {
                     #[expect(
                         clippy::cast_possible_truncation,
                         reason = "texture sizes fit in u32"
