@@ -18,9 +18,11 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use glam::DVec2;
 use image::RgbImage;
+use srt_gpu::culling::BackFaceCulling;
 use srt_gpu::probe::{
     compare_physics, lut_tolerance, run_lut_probe, run_physics_probe, seeded_cases,
 };
+use srt_gpu::projection::view_projection;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_proxy::{Viewport, footprint};
 use srt_scene::Scene;
@@ -162,10 +164,7 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
         width: f64::from(WIDTH),
         height: f64::from(HEIGHT),
     };
-    let view_projection =
-        scene
-            .observer
-            .view_projection(viewport.width / viewport.height, 1e-3, 1e5);
+    let view_projection = view_projection(&scene.observer, WIDTH, HEIGHT);
     let observer = scene.observer.event();
     let (mut triangles, mut not_conservative, mut extra_whole, mut worst_excess) =
         (0, 0, 0, 0.0f64);
@@ -174,8 +173,8 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
     for (object, object_footprints) in scene.objects.iter().zip(&all) {
         for (part, gpu) in object.parts.iter().zip(object_footprints) {
             let observer_rest = object.frame.to_rest(observer).position;
-            let cullable = part.mesh.is_closed_outward()
-                && part.mesh.winding_number(observer_rest).abs() < 0.5;
+            let cullable =
+                BackFaceCulling::for_mesh(&part.mesh).applies(&part.mesh, &object.frame, observer);
             for (t, g) in gpu.iter().enumerate() {
                 triangles += 1;
                 let corners = part.mesh.triangle_positions(t);

@@ -167,10 +167,9 @@ fn shade_visible_band(canvas: &mut Canvas, axes: &Axes) {
         let strength = (raw.max_element() / (0.25 * peak)).clamp(0.0, 1.0);
         let hue = linear / linear.max_element().max(1e-12);
         let alpha = 0.65 * strength;
-        let rgb = hue.to_array().map(|c| {
-            let blended = alpha * srgb_encode(c) + (1.0 - alpha);
-            (blended.clamp(0.0, 1.0) * 255.0).round() as u8
-        });
+        let rgb = hue
+            .to_array()
+            .map(|c| srt_color::quantize_8bit(alpha * srgb_encode(c) + (1.0 - alpha)));
         canvas.fill_rect(px, top as i32, 1, (bottom - top) as u32, Rgb(rgb));
     }
 }

@@ -73,7 +73,7 @@ fn draw_panel(
     let image = canvas.image_mut();
     for (index, pixel) in table.iter().enumerate() {
         let (i, j) = ((index % w) as u32, (index / w) as u32);
-        let rgb = pixel.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8);
+        let rgb = pixel.map(|c| srt_color::quantize_8bit(f64::from(c)));
         image.put_pixel(x0 + i, y0 + j, Rgb(rgb));
     }
 
