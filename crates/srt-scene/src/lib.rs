@@ -12,6 +12,7 @@ pub mod mesh;
 pub mod message;
 pub mod mip;
 pub mod placement;
+pub mod resolve;
 pub mod scene;
 pub mod shapes;
 pub mod textures;
@@ -24,4 +25,5 @@ pub use description::{
 };
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
+pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{Effects, Light, Object, Observer, Scene, Shading};

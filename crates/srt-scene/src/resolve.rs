@@ -1,0 +1,255 @@
+//! What a scene argument names, for every front end (`srt render SCENE`, `srt view SCENE…`, a
+//! file dropped on the viewer): a built-in scene, a `.toml` scene file or a bare model file, with
+//! one set of messages for what is none of these.
+//!
+//! The rule, in order: a built-in scene's name wins; otherwise the argument is a path, judged by
+//! its extension (case-insensitive): `.toml` is a scene file, one of [`SUPPORTED_EXTENSIONS`] a
+//! model. Any other file that exists is refused as unsupported, anything else as not found. A
+//! scene or model file that turns out to be missing or invalid is reported when it is read, by a
+//! [`SceneError`] that names it.
+//!
+//! A bare model becomes the scene of [`SceneDescription::for_model`]: fitted, in front of the
+//! observer, moving with the β the caller gives or, by default, approaching at
+//! [`DEFAULT_MODEL_SPEED`].
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+
+use crate::builtin::{BuiltinScene, find_builtin};
+use crate::description::{SceneDescription, SceneError, SceneErrorKind, load_scene_file};
+use crate::import::SUPPORTED_EXTENSIONS;
+use crate::input_file;
+use crate::placement::approach_velocity;
+use crate::scene::Scene;
+
+/// Speed of a bare model (as a fraction of c, towards the observer) when no β is given.
+pub const DEFAULT_MODEL_SPEED: f64 = 0.9;
+
+/// The extension of scene files, without the dot.
+pub const SCENE_FILE_EXTENSION: &str = "toml";
+
+/// What a path names, judged by its extension alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathKind {
+    /// A scene file (`.toml`).
+    SceneFile,
+    /// A 3D model: one of [`SUPPORTED_EXTENSIONS`].
+    Model,
+    /// Anything else.
+    Unsupported,
+}
+
+/// Classifies `path` by its extension (case-insensitive), without looking at the file.
+#[must_use]
+pub fn path_kind(path: &Path) -> PathKind {
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some(SCENE_FILE_EXTENSION) => PathKind::SceneFile,
+        Some(ext) if SUPPORTED_EXTENSIONS.contains(&ext) => PathKind::Model,
+        _ => PathKind::Unsupported,
+    }
+}
+
+/// The model extensions for messages and help texts: `.gltf, .glb, .obj, .ply, .stl`.
+#[must_use]
+pub fn model_extension_list() -> String {
+    SUPPORTED_EXTENSIONS
+        .iter()
+        .map(|e| format!(".{e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The folder that relative paths in the scene file at `path` start from: its parent, or `.`
+/// for a bare file name.
+#[must_use]
+pub fn scene_file_folder(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// Why a scene argument names no scene.
+#[derive(Debug, thiserror::Error)]
+pub enum ResolveError {
+    /// Neither a built-in scene's name nor an existing file.
+    #[error("{0:?} is neither a built-in scene (see `srt scenes`) nor an existing file")]
+    NotFound(String),
+    /// A file that is neither a scene file nor a model, judged by its extension.
+    #[error(
+        "cannot open {0:?}: a scene file must end in .{SCENE_FILE_EXTENSION} and a model in one of {list}",
+        list = model_extension_list()
+    )]
+    Unsupported(String),
+    /// The scene or model was found but does not load (the message names the file).
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// What a scene argument names.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum SceneSource {
+    /// A built-in scene.
+    Builtin(&'static BuiltinScene),
+    /// A scene file (it may still turn out to be missing when read).
+    SceneFile(PathBuf),
+    /// A model file (it may still turn out to be missing when read).
+    Model(PathBuf),
+}
+
+/// A scene description and the folder its relative paths start from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LocatedDescription {
+    /// The description.
+    pub description: SceneDescription,
+    /// Where its relative model and texture paths start.
+    pub base_dir: PathBuf,
+}
+
+/// A scene loaded from a [`SceneSource`]: the runtime scene with its description.
+#[derive(Debug, Clone)]
+pub struct LoadedScene {
+    /// The runtime scene.
+    pub scene: Scene,
+    /// What it was built from, and where its relative paths start.
+    pub source: LocatedDescription,
+    /// Problems worked around while building it.
+    pub warnings: Vec<String>,
+}
+
+impl SceneSource {
+    /// What `argument` names: a built-in scene's name, else a path judged by its extension.
+    ///
+    /// # Errors
+    /// [`ResolveError::Unsupported`] for an existing file of another kind,
+    /// [`ResolveError::NotFound`] for anything else.
+    pub fn resolve(argument: &str) -> Result<Self, ResolveError> {
+        if let Some(builtin) = find_builtin(argument) {
+            return Ok(Self::Builtin(builtin));
+        }
+        let path = Path::new(argument);
+        Self::from_path(path).map_err(|error| match error {
+            ResolveError::Unsupported(_) if !path.exists() => {
+                ResolveError::NotFound(argument.to_owned())
+            }
+            other => other,
+        })
+    }
+
+    /// What the file at `path` is, by its extension alone (a file picked or dropped: never a
+    /// built-in scene).
+    ///
+    /// # Errors
+    /// [`ResolveError::Unsupported`] when it is neither a scene file nor a model.
+    pub fn from_path(path: &Path) -> Result<Self, ResolveError> {
+        match path_kind(path) {
+            PathKind::SceneFile => Ok(Self::SceneFile(path.to_path_buf())),
+            PathKind::Model => Ok(Self::Model(path.to_path_buf())),
+            PathKind::Unsupported => Err(ResolveError::Unsupported(path.display().to_string())),
+        }
+    }
+
+    /// The description of the scene, without building it (no model or texture is read). A bare
+    /// model moves with `model_beta`, or approaches at [`DEFAULT_MODEL_SPEED`].
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the scene file when it cannot be read or parsed.
+    pub fn description(&self, model_beta: Option<DVec3>) -> Result<LocatedDescription, SceneError> {
+        let here = || PathBuf::from(".");
+        Ok(match self {
+            Self::Builtin(builtin) => LocatedDescription {
+                description: builtin.description(),
+                base_dir: here(),
+            },
+            Self::SceneFile(path) => LocatedDescription {
+                description: read_scene_file(path)?,
+                base_dir: scene_file_folder(path),
+            },
+            Self::Model(path) => LocatedDescription {
+                description: model_scene(path, model_beta),
+                base_dir: here(),
+            },
+        })
+    }
+
+    /// Loads and builds the scene (see [`SceneSource::description`] for `model_beta`).
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file (or the built-in scene) when it cannot be read, parsed or
+    /// built.
+    pub fn load(&self, model_beta: Option<DVec3>) -> Result<LoadedScene, SceneError> {
+        let (scene, source, warnings) = match self {
+            Self::SceneFile(path) => {
+                let (scene, description, warnings) = load_scene_file(path)?;
+                let base_dir = scene_file_folder(path);
+                let source = LocatedDescription {
+                    description,
+                    base_dir,
+                };
+                (scene, source, warnings)
+            }
+            Self::Builtin(builtin) => {
+                let (scene, warnings) = builtin.build()?;
+                (scene, self.description(model_beta)?, warnings)
+            }
+            Self::Model(_) => {
+                let source = self.description(model_beta)?;
+                let (scene, warnings) = source.description.build(&source.base_dir)?;
+                (scene, source, warnings)
+            }
+        };
+        Ok(LoadedScene {
+            scene,
+            source,
+            warnings,
+        })
+    }
+}
+
+/// Reads and parses the scene file at `path` (values are checked when it is built).
+fn read_scene_file(path: &Path) -> Result<SceneDescription, SceneError> {
+    let origin = path.display().to_string();
+    let text = input_file::read_text(path, input_file::FileKind::Scene)
+        .map_err(|error| SceneError::new(origin.clone(), SceneErrorKind::Io(error)))?;
+    SceneDescription::from_toml_str(&text, &origin)
+}
+
+/// The scene of a bare model at `path`, moving with `beta` or approaching at
+/// [`DEFAULT_MODEL_SPEED`].
+fn model_scene(path: &Path, beta: Option<DVec3>) -> SceneDescription {
+    let beta = beta.unwrap_or_else(|| approach_velocity(DEFAULT_MODEL_SPEED));
+    SceneDescription::for_model(path, beta)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_are_classified_by_extension_whatever_its_case() {
+        assert_eq!(path_kind(Path::new("a/b/ship.GLB")), PathKind::Model);
+        for name in ["x.gltf", "x.obj", "x.ply", "x.stl"] {
+            assert_eq!(path_kind(Path::new(name)), PathKind::Model, "{name}");
+        }
+        assert_eq!(path_kind(Path::new("scene.TOML")), PathKind::SceneFile);
+        assert_eq!(path_kind(Path::new("notes.txt")), PathKind::Unsupported);
+        assert_eq!(path_kind(Path::new("Makefile")), PathKind::Unsupported);
+        assert_eq!(path_kind(Path::new("toml")), PathKind::Unsupported);
+    }
+
+    #[test]
+    fn the_extension_list_names_every_model_format_once() {
+        assert_eq!(model_extension_list(), ".gltf, .glb, .obj, .ply, .stl");
+    }
+
+    #[test]
+    fn scene_files_resolve_paths_from_their_folder() {
+        assert_eq!(scene_file_folder(Path::new("a/b/s.toml")), Path::new("a/b"));
+        assert_eq!(scene_file_folder(Path::new("s.toml")), Path::new("."));
+    }
+}
