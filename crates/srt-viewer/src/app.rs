@@ -14,11 +14,13 @@ use eframe::egui_wgpu;
 use glam::DVec3;
 use srt_color::ToneMap;
 use srt_gpu::GpuContext;
+use srt_physics::{Frame, doppler_factor};
 use srt_scene::import::SUPPORTED_EXTENSIONS;
-use srt_scene::{Effects, Observer};
+use srt_scene::resolve::{PathKind, SCENE_FILE_EXTENSION, model_extension_list, path_kind};
+use srt_scene::{Effects, Observer, ResolveError};
 
 use crate::camera::{self, Movement};
-use crate::edit::{EditError, Editor, FileKind, MAX_SLIDER_SPEED, file_kind, parse_speed};
+use crate::edit::{EditError, Editor, MAX_SLIDER_SPEED, parse_speed};
 use crate::view::{SceneView, ViewMethod};
 
 /// The egui renderer the display textures are registered with.
@@ -210,18 +212,24 @@ impl ViewerApp {
     }
 
     fn open_file(&mut self, path: &Path) {
-        let kind = file_kind(path);
         let before = self.editor.clone();
         let result = self.editor.open_file(path);
         self.finish_structure_change(before, result, &format!("opened {}", path.display()));
-        if kind == FileKind::Model && self.status.level != Level::Error {
-            self.selected = Some(self.editor.object_count() - 1);
-            self.status.text.push_str(
-                " — it rests in front of you; give it a speed (e.g. type 0.9) to see it distort and change colour",
-            );
-        } else if kind == FileKind::Scene && self.status.level != Level::Error {
-            self.selected = (self.editor.object_count() > 0).then_some(0);
-            self.reset_time_range();
+        if self.status.level == Level::Error {
+            return;
+        }
+        match path_kind(path) {
+            PathKind::Model => {
+                self.selected = self.editor.object_count().checked_sub(1);
+                self.status.text.push_str(
+                    " — it rests in front of you; give it a speed (e.g. type 0.9) to see it distort and change colour",
+                );
+            }
+            PathKind::SceneFile => {
+                self.selected = (self.editor.object_count() > 0).then_some(0);
+                self.reset_time_range();
+            }
+            PathKind::Unsupported => {}
         }
     }
 
@@ -354,23 +362,18 @@ impl ViewerApp {
     fn file_action(&mut self, purpose: Purpose, path: &Path) {
         match purpose {
             Purpose::AddModel => {
-                if file_kind(path) == FileKind::Model {
+                if path_kind(path) == PathKind::Model {
                     self.open_file(path);
                 } else {
-                    self.error(
-                        EditError::Unsupported {
-                            path: path.display().to_string(),
-                        }
-                        .to_string(),
-                    );
+                    self.error(ResolveError::Unsupported(path.display().to_string()).to_string());
                 }
             }
             Purpose::OpenScene => {
-                if file_kind(path) == FileKind::Scene {
+                if path_kind(path) == PathKind::SceneFile {
                     self.open_file(path);
                 } else {
                     self.error(format!(
-                        "{}: a scene file must end in .toml",
+                        "{}: a scene file must end in .{SCENE_FILE_EXTENSION}",
                         path.display()
                     ));
                 }
@@ -416,12 +419,12 @@ impl ViewerApp {
                     .pick_file(),
                 Purpose::OpenScene => dialog
                     .set_title("Open a scene")
-                    .add_filter("srt scenes", &["toml"])
+                    .add_filter("srt scenes", &[SCENE_FILE_EXTENSION])
                     .pick_file(),
                 Purpose::SaveScene => dialog
                     .set_title("Save the scene")
-                    .add_filter("srt scenes", &["toml"])
-                    .set_file_name(format!("{name}.toml"))
+                    .add_filter("srt scenes", &[SCENE_FILE_EXTENSION])
+                    .set_file_name(format!("{name}.{SCENE_FILE_EXTENSION}"))
                     .save_file(),
                 Purpose::SaveImage => dialog
                     .set_title("Save the image")
@@ -470,8 +473,8 @@ impl ViewerApp {
             self.playing = !self.playing;
         }
         if reset {
-            self.editor.reset_view();
-            self.needs_render = true;
+            let result = self.editor.reset_view();
+            self.edited(result);
         }
         if !movement.is_zero() {
             let speed = self.fly_speed * if fast { 4.0 } else { 1.0 };
@@ -571,7 +574,7 @@ impl ViewerApp {
         ui.horizontal(|ui| {
             if ui
                 .button("Add model…")
-                .on_hover_text(format!("a file dialog for {}", supported()))
+                .on_hover_text(format!("a file dialog for {}", model_extension_list()))
                 .clicked()
             {
                 self.start_dialog(Purpose::AddModel);
@@ -598,8 +601,40 @@ impl ViewerApp {
     }
 
     fn object_controls(&mut self, ui: &mut egui::Ui, index: usize) {
-        let name = self.editor.objects()[index].name.clone();
+        let object = &self.editor.objects()[index];
+        let (name, readout) = (object.name.clone(), motion_readout(&object.frame));
         ui.label(RichText::new(&name).strong());
+        self.speed_controls(ui, index, &name);
+        ui.label(RichText::new(readout).small());
+        self.direction_controls(ui, index);
+        ui.checkbox(
+            &mut self.keep_apparent,
+            "Keep it where it is seen when the velocity changes",
+        )
+        .on_hover_text(
+            "adjusts the offset so that the object's centre stays at the same place in the image",
+        );
+        let mut offset = self.editor.offset(index);
+        if vector_row(ui, "Offset", &mut offset, 0.05, None) {
+            let result = self.editor.set_offset(index, offset);
+            self.edited(result);
+        }
+        self.wireframe_controls(ui, index);
+    }
+
+    /// Sets the velocity of object `index` (keeping where it is seen, if so chosen); whether the
+    /// edit was accepted (a refusal goes to the status line).
+    fn set_velocity(&mut self, index: usize, speed: f64, direction: DVec3) -> bool {
+        let result = self
+            .editor
+            .set_velocity(index, speed, direction, self.keep_apparent);
+        let done = result.is_ok();
+        self.edited(result);
+        done
+    }
+
+    /// The speed slider and the typed-speed field of object `index`.
+    fn speed_controls(&mut self, ui: &mut egui::Ui, index: usize, name: &str) {
         let speed = self.editor.speed(index);
         let direction = self.editor.direction(index);
         let mut slider_speed = speed;
@@ -608,10 +643,7 @@ impl ViewerApp {
             .clamping(egui::SliderClamping::Always)
             .max_decimals(4);
         if ui.add(slider).changed() {
-            let result =
-                self.editor
-                    .set_velocity(index, slider_speed, direction, self.keep_apparent);
-            self.edited(result);
+            self.set_velocity(index, slider_speed, direction);
             self.speed_text_for = None;
         }
         ui.horizontal(|ui| {
@@ -627,33 +659,22 @@ impl ViewerApp {
             if entered || ui.button("Set").clicked() {
                 match parse_speed(&self.speed_text) {
                     Ok(typed) => {
-                        let result =
-                            self.editor
-                                .set_velocity(index, typed, direction, self.keep_apparent);
-                        if result.is_ok() {
+                        if self.set_velocity(index, typed, direction) {
                             self.info(format!("{name} now moves at {typed}c"));
                         }
-                        self.edited(result);
                     }
                     Err(error) => self.error(error.to_string()),
                 }
             }
         });
-        let gamma = 1.0 / (1.0 - speed * speed).sqrt();
-        ui.label(
-            RichText::new(format!(
-                "γ = {gamma:.3}; Doppler factor from {:.3} (receding) to {:.3} (approaching)",
-                ((1.0 - speed) / (1.0 + speed)).sqrt(),
-                ((1.0 + speed) / (1.0 - speed)).sqrt()
-            ))
-            .small(),
-        );
-        let mut d = direction;
-        if vector_row(ui, "Direction", &mut d, 0.01, Some(-1.0..=1.0)) {
-            let result = self
-                .editor
-                .set_velocity(index, speed, d, self.keep_apparent);
-            self.edited(result);
+    }
+
+    /// The direction of motion of object `index`, typed or from the presets.
+    fn direction_controls(&mut self, ui: &mut egui::Ui, index: usize) {
+        let speed = self.editor.speed(index);
+        let mut direction = self.editor.direction(index);
+        if vector_row(ui, "Direction", &mut direction, 0.01, Some(-1.0..=1.0)) {
+            self.set_velocity(index, speed, direction);
         }
         ui.horizontal(|ui| {
             let (forward, right, _) = self.editor.scene().observer.basis();
@@ -663,27 +684,16 @@ impl ViewerApp {
                 ("left to right", right),
                 ("right to left", -right),
             ];
-            for (label, d) in presets {
+            for (label, preset) in presets {
                 if ui.small_button(label).clicked() {
-                    let result = self
-                        .editor
-                        .set_velocity(index, speed, d, self.keep_apparent);
-                    self.edited(result);
+                    self.set_velocity(index, speed, preset);
                 }
             }
         });
-        ui.checkbox(
-            &mut self.keep_apparent,
-            "Keep it where it is seen when the velocity changes",
-        )
-        .on_hover_text(
-            "adjusts the offset so that the object's centre stays at the same place in the image",
-        );
-        let mut offset = self.editor.offset(index);
-        if vector_row(ui, "Offset", &mut offset, 0.05, None) {
-            let result = self.editor.set_offset(index, offset);
-            self.edited(result);
-        }
+    }
+
+    /// The wireframe switch and line width of object `index`.
+    fn wireframe_controls(&mut self, ui: &mut egui::Ui, index: usize) {
         ui.horizontal(|ui| {
             let wireframe = self.editor.wireframe(index);
             let mut on = wireframe.is_some();
@@ -733,8 +743,8 @@ impl ViewerApp {
                 .on_hover_text(hover);
         }
         if effects != self.editor.scene().effects {
-            self.editor.set_effects(effects);
-            self.needs_render = true;
+            let result = self.editor.set_effects(effects);
+            self.edited(result);
         }
         let mut tone = self.editor.tone_map_choice();
         let name = |t: Option<ToneMap>| match t {
@@ -750,8 +760,8 @@ impl ViewerApp {
                 }
             });
         if tone != self.editor.tone_map_choice() {
-            self.editor.set_tone_map(tone);
-            self.needs_render = true;
+            let result = self.editor.set_tone_map(tone);
+            self.edited(result);
         }
     }
 
@@ -806,8 +816,8 @@ impl ViewerApp {
         );
         ui.horizontal(|ui| {
             if ui.button("Reset view").on_hover_text("R").clicked() {
-                self.editor.reset_view();
-                self.needs_render = true;
+                let result = self.editor.reset_view();
+                self.edited(result);
             }
             ui.label(
                 RichText::new(
@@ -908,8 +918,8 @@ impl ViewerApp {
         });
         ui.label(
             RichText::new(format!(
-                "or drop {} or .toml files on the window",
-                supported()
+                "or drop {} or .{SCENE_FILE_EXTENSION} files on the window",
+                model_extension_list()
             ))
             .small(),
         );
@@ -1103,18 +1113,23 @@ fn vector_row(
     .inner
 }
 
+/// γ and the range of Doppler factors of an object moving in `frame`: from light it sends
+/// straight backwards (seen receding) to light it sends straight ahead (seen approaching).
+fn motion_readout(frame: &Frame) -> String {
+    let beta = frame.beta();
+    let ahead = beta.try_normalize().unwrap_or(DVec3::X);
+    format!(
+        "γ = {:.3}; Doppler factor from {:.3} (receding) to {:.3} (approaching)",
+        frame.gamma(),
+        doppler_factor(beta, -ahead),
+        doppler_factor(beta, ahead)
+    )
+}
+
 /// A speed for the typed-speed field: at most six decimals, without trailing zeros.
 fn format_speed(speed: f64) -> String {
     let text = format!("{speed:.6}");
     text.trim_end_matches('0').trim_end_matches('.').to_owned()
-}
-
-fn supported() -> String {
-    SUPPORTED_EXTENSIONS
-        .iter()
-        .map(|e| format!(".{e}"))
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn intro(editor: &Editor) -> String {
@@ -1142,5 +1157,18 @@ mod tests {
         assert_eq!(format_speed(0.950_013_99), "0.950014");
         assert_eq!(format_speed(0.9), "0.9");
         assert_eq!(format_speed(0.0), "0");
+    }
+
+    #[test]
+    fn the_readout_gives_gamma_and_the_doppler_range_of_the_motion() {
+        let frame = |beta| Frame::new(beta, DVec3::ONE).unwrap();
+        assert_eq!(
+            motion_readout(&frame(DVec3::new(0.0, -0.6, 0.0))),
+            "γ = 1.250; Doppler factor from 0.500 (receding) to 2.000 (approaching)"
+        );
+        assert_eq!(
+            motion_readout(&frame(DVec3::ZERO)),
+            "γ = 1.000; Doppler factor from 1.000 (receding) to 1.000 (approaching)"
+        );
     }
 }

@@ -1,13 +1,19 @@
 //! The scene being viewed and every edit the side panel can make to it, without any UI or GPU.
 //!
 //! An [`Editor`] keeps two views of the scene in step: the [`SceneDescription`] (what `srt render`
-//! reads and what "Save scene" writes) and the runtime [`Scene`] the GPU renders. Edits of
-//! velocities, offsets, the observer, the light and the effect mode change both in place; models
-//! are loaded only when an object is added, so dragging a slider never re-reads a file. Objects
-//! are added and removed as a whole, and [`Editor::structure_version`] tells the renderer when the
-//! set of meshes changed and must be uploaded again.
+//! reads and what "Save scene" writes) and the runtime [`Scene`] the GPU renders. Every edit
+//! changes a copy of the description; [`SceneDescription::validate`] checks the copy with the
+//! scene file's own rules and messages, and only then is the runtime scene brought in step, so a
+//! refused edit leaves both as they were.
 //!
-//! Every edit validates its input first and leaves the scene as it was when it returns an error.
+//! Bringing the runtime scene in step never reads a file again: each runtime object remembers the
+//! geometry it was built from (its description without motion, name and wireframe), and an
+//! object whose geometry is unchanged keeps its parts. Only new objects (or objects whose
+//! geometry changed) are built, by [`SceneDescription::build`]; so dragging a slider costs no
+//! more than a validation. [`Editor::structure_version`] tells the renderer when the set of
+//! meshes changed and must be uploaded again.
+//!
+//! Arguments and files are resolved by [`srt_scene::resolve`], as `srt render` resolves them.
 
 use std::path::{Path, PathBuf};
 
@@ -15,13 +21,12 @@ use glam::DVec3;
 use srt_color::ToneMap;
 use srt_physics::Frame;
 use srt_scene::assets::BUILTIN_PREFIX;
-use srt_scene::builtin::find_builtin;
 use srt_scene::description::FIT_RADIUS;
-use srt_scene::import::SUPPORTED_EXTENSIONS;
-use srt_scene::placement::approach_velocity;
+use srt_scene::resolve::{LocatedDescription, PathKind, path_kind};
 use srt_scene::{
-    Effects, LightDescription, Object, ObjectDescription, Observer, Scene, SceneDescription,
-    SceneError, ShapeDescription, TextureDescription, load_scene_file,
+    Effects, LightDescription, LoadedScene, Object, ObjectDescription, Observer,
+    ObserverDescription, Part, ResolveError, Scene, SceneDescription, SceneError, SceneErrorKind,
+    SceneSource, ShapeDescription, TextureDescription,
 };
 
 /// The scene opened when `srt view` is given no argument.
@@ -30,34 +35,27 @@ pub const DEFAULT_SCENE: &str = "teaser";
 /// The fastest speed the speed slider offers, as a fraction of c.
 pub const MAX_SLIDER_SPEED: f64 = 0.999;
 
-/// Speed of a bare model given on the command line as the first argument (as `srt render`).
-pub const DEFAULT_MODEL_SPEED: f64 = 0.9;
+/// How far in front of the camera an added model is placed, in radii of its bounding sphere
+/// (times the cotangent of half the field of view: it then fills most of the image height).
+const ADDED_MODEL_DISTANCE: f64 = 1.6;
 
 /// Why an edit or a file operation was refused. The message is meant for the status line.
 #[derive(Debug, thiserror::Error)]
 pub enum EditError {
-    /// A typed speed that is not a number in [0, 1).
+    /// Typed text that is not a speed (not a number, or negative).
     #[error("{0}")]
     Speed(String),
-    /// A value out of its range (a direction of length zero, a field of view of 200°…).
-    #[error("{0}")]
-    Value(String),
-    /// A file whose kind the viewer cannot open.
-    #[error(
-        "cannot open {path}: the viewer opens 3D models ({}) and scene files (.toml)",
-        supported_list()
-    )]
-    Unsupported {
-        /// The file.
-        path: String,
-    },
-    /// A scene or model that failed to load or build (the message names the file).
-    #[error("{0}")]
+    /// A direction of motion that is zero or not finite.
+    #[error("the direction of motion must be a non-zero vector, got {0}")]
+    Direction(DVec3),
+    /// An argument or file that names no scene or model (not found, or of another kind).
+    #[error(transparent)]
+    Source(#[from] ResolveError),
+    /// An edit the scene file's rules refuse, or a scene or model that does not load (the
+    /// message names the value or the file).
+    #[error(transparent)]
     Scene(#[from] SceneError),
-    /// An argument that is neither a built-in scene nor an existing file.
-    #[error("{0:?} is neither a built-in scene (see `srt scenes`) nor an existing file")]
-    NotFound(String),
-    /// Reading or writing a file failed.
+    /// Writing a file failed.
     #[error("{path}: {error}")]
     Io {
         /// The file.
@@ -70,74 +68,30 @@ pub enum EditError {
     NoSuchObject(usize),
 }
 
-fn supported_list() -> String {
-    SUPPORTED_EXTENSIONS
-        .iter()
-        .map(|e| format!(".{e}"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// What kind of file a path names, by its extension (case-insensitive).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FileKind {
-    /// A 3D model: glTF/GLB, OBJ, PLY or STL.
-    Model,
-    /// A scene file (`.toml`).
-    Scene,
-    /// Anything else.
-    Unsupported,
-}
-
-/// Classifies `path` by its extension: what dropping it on the window does.
-#[must_use]
-pub fn file_kind(path: &Path) -> FileKind {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match extension.as_deref() {
-        Some("toml") => FileKind::Scene,
-        Some(ext) if SUPPORTED_EXTENSIONS.contains(&ext) => FileKind::Model,
-        _ => FileKind::Unsupported,
-    }
-}
-
-/// Parses a speed typed by the user: a number (optionally followed by `c`) in [0, 1).
+/// Parses a speed typed by the user: a number ≥ 0 (a fraction of c), optionally followed by
+/// `c`. Whether it is below the speed of light is the scene's rule, checked when it is set.
 ///
 /// # Errors
-/// [`EditError::Speed`] with a message for the status line when the text is not a number, is
-/// negative, or is 1 or more (nothing with mass reaches the speed of light).
+/// [`EditError::Speed`] with a message for the status line when the text is not a finite
+/// number or is negative.
 pub fn parse_speed(text: &str) -> Result<f64, EditError> {
     let trimmed = text.trim();
     let number = trimmed.strip_suffix('c').unwrap_or(trimmed).trim();
-    let speed: f64 = number.parse().map_err(|_| {
-        EditError::Speed(format!(
-            "\"{trimmed}\" is not a speed: type a fraction of the speed of light, e.g. 0.9"
-        ))
-    })?;
-    check_speed(speed)
-}
-
-/// Checks that `speed` (a fraction of c) is finite and in [0, 1).
-///
-/// # Errors
-/// [`EditError::Speed`] otherwise.
-pub fn check_speed(speed: f64) -> Result<f64, EditError> {
-    if !speed.is_finite() {
-        Err(EditError::Speed(format!("{speed} is not a usable speed")))
-    } else if speed >= 1.0 {
-        Err(EditError::Speed(format!(
-            "a speed of {speed}c is impossible: nothing with mass reaches the speed of light; \
-             type a value below 1 (e.g. 0.999) — the scene is unchanged"
-        )))
-    } else if speed < 0.0 {
-        Err(EditError::Speed(format!(
+    let speed = number
+        .parse::<f64>()
+        .ok()
+        .filter(|speed| speed.is_finite())
+        .ok_or_else(|| {
+            EditError::Speed(format!(
+                "\"{trimmed}\" is not a speed: type a fraction of the speed of light, e.g. 0.9"
+            ))
+        })?;
+    if speed < 0.0 {
+        return Err(EditError::Speed(format!(
             "a speed of {speed}c is negative: type a speed ≥ 0 and reverse the direction instead"
-        )))
-    } else {
-        Ok(speed)
+        )));
     }
+    Ok(speed)
 }
 
 /// The velocity `speed · direction` (units of c) that keeps the point `apparent` — seen at
@@ -160,45 +114,51 @@ pub struct Editor {
     description: SceneDescription,
     base_dir: PathBuf,
     scene: Scene,
+    /// The geometry ([`geometry_of`]) each runtime object's parts were built from, in order.
+    built_from: Vec<ObjectDescription>,
     /// Remembered unit direction of motion of each object (kept when the speed is 0).
     directions: Vec<DVec3>,
     home: Observer,
     structure_version: u64,
 }
 
-impl Editor {
-    /// An editor for `description`, whose relative paths are relative to `base_dir`.
-    ///
-    /// # Errors
-    /// [`EditError::Scene`] when the description does not build (a missing model…).
-    pub fn new(
-        description: SceneDescription,
-        base_dir: &Path,
-    ) -> Result<(Self, Vec<String>), EditError> {
-        let (scene, warnings) = description.build(base_dir)?;
-        Ok((
-            Self::from_parts(description, base_dir.to_path_buf(), scene),
-            warnings,
-        ))
-    }
+/// Where each object of an edited description gets its parts: `Some(index)` of the runtime
+/// object whose parts it keeps, or `None` when it must be built.
+type PartsPlan = Vec<Option<usize>>;
 
-    fn from_parts(mut description: SceneDescription, base_dir: PathBuf, scene: Scene) -> Self {
-        if description.name.is_none() {
-            description.name = Some(scene.name.clone());
+impl Editor {
+    /// An editor for a scene loaded by the resolver, and the warnings met loading it. Unnamed
+    /// objects (and the scene) are given the names the runtime scene has, so that names stay
+    /// put when objects are removed.
+    fn from_loaded(loaded: LoadedScene) -> (Self, Vec<String>) {
+        let LoadedScene {
+            scene,
+            source,
+            warnings,
+        } = loaded;
+        let LocatedDescription {
+            mut description,
+            base_dir,
+        } = source;
+        description.name.get_or_insert_with(|| scene.name.clone());
+        for (object, built) in description.objects.iter_mut().zip(&scene.objects) {
+            object.name.get_or_insert_with(|| built.name.clone());
         }
         let directions = description
             .objects
             .iter()
             .map(|o| default_direction(DVec3::from_array(o.beta), &scene.observer))
             .collect();
-        Self {
+        let editor = Self {
             home: scene.observer,
+            built_from: description.objects.iter().map(geometry_of).collect(),
             description,
             base_dir,
             scene,
             directions,
             structure_version: 0,
-        }
+        };
+        (editor, warnings)
     }
 
     /// Opens what `srt view` was given: none opens [`DEFAULT_SCENE`]; the first argument is a
@@ -220,110 +180,58 @@ impl Editor {
         Ok((editor, warnings))
     }
 
-    /// Opens one scene argument (a built-in scene, a `.toml` file or a model).
+    /// Opens one scene argument (a built-in scene, a `.toml` file or a model), as `srt render`
+    /// does.
     ///
     /// # Errors
     /// As [`Editor::from_arguments`].
     pub fn open(argument: &str) -> Result<(Self, Vec<String>), EditError> {
-        if let Some(builtin) = find_builtin(argument) {
-            return Self::new(builtin.description(), Path::new("."));
-        }
-        let path = Path::new(argument);
-        match file_kind(path) {
-            FileKind::Scene => {
-                let (scene, description, warnings) = load_scene_file(path)?;
-                Ok((
-                    Self::from_parts(description, folder_of(path), scene),
-                    warnings,
-                ))
-            }
-            FileKind::Model => {
-                let beta = approach_velocity(DEFAULT_MODEL_SPEED);
-                let description = SceneDescription::for_model(&absolute(path), beta);
-                Self::new(description, Path::new("."))
-            }
-            FileKind::Unsupported if path.exists() => Err(EditError::Unsupported {
-                path: argument.to_owned(),
-            }),
-            FileKind::Unsupported => Err(EditError::NotFound(argument.to_owned())),
-        }
+        Ok(Self::from_loaded(
+            SceneSource::resolve(argument)?.load(None)?,
+        ))
     }
 
+    /// Adds what a further argument names: a model in front of the camera, or the objects of a
+    /// scene.
     fn add_argument(&mut self, argument: &str) -> Result<Vec<String>, EditError> {
-        if let Some(builtin) = find_builtin(argument) {
-            return self.merge(builtin.description(), Path::new("."));
-        }
-        let path = Path::new(argument);
-        match file_kind(path) {
-            FileKind::Model => self.add_model(path),
-            FileKind::Scene => {
-                let text = std::fs::read_to_string(path).map_err(|error| EditError::Io {
-                    path: argument.to_owned(),
-                    error,
-                })?;
-                let description = SceneDescription::from_toml_str(&text, argument)?;
-                self.merge(description, &folder_of(path))
-            }
-            FileKind::Unsupported if path.exists() => Err(EditError::Unsupported {
-                path: argument.to_owned(),
-            }),
-            FileKind::Unsupported => Err(EditError::NotFound(argument.to_owned())),
+        match SceneSource::resolve(argument)? {
+            SceneSource::Model(path) => self.add_model(&path),
+            source => self.merge(source.description(None)?),
         }
     }
 
-    /// Adds the objects of `other` (whose paths are relative to `base_dir`) to this scene.
-    fn merge(
-        &mut self,
-        other: SceneDescription,
-        base_dir: &Path,
-    ) -> Result<Vec<String>, EditError> {
-        let mut objects = other.objects;
+    /// Adds the objects of `other` (whose paths are relative to its `base_dir`) to this scene.
+    fn merge(&mut self, other: LocatedDescription) -> Result<Vec<String>, EditError> {
+        let mut objects = other.description.objects;
         for object in &mut objects {
-            absolutize_object(object, base_dir);
+            absolutize_object(object, &other.base_dir);
         }
         self.add_objects(objects)
     }
 
-    /// Builds `objects` (paths already absolute or `builtin:`) and appends them; nothing changes
-    /// if any of them fails.
+    /// Appends `objects` (paths already absolute or `builtin:`), each under a name no other
+    /// object has; nothing changes if any of them fails.
     fn add_objects(
         &mut self,
         mut objects: Vec<ObjectDescription>,
     ) -> Result<Vec<String>, EditError> {
+        let first_new = self.description.objects.len();
+        let mut taken: Vec<String> = self.scene.objects.iter().map(|o| o.name.clone()).collect();
         for (i, object) in objects.iter_mut().enumerate() {
-            let base = object
-                .name
-                .clone()
-                .unwrap_or_else(|| format!("object {}", self.description.objects.len() + i + 1));
-            object.name = Some(self.unique_name(&base));
+            let base = runtime_name(object, first_new + i);
+            let name = unique_name(&base, &taken);
+            taken.push(name.clone());
+            object.name = Some(name);
         }
-        let probe = SceneDescription {
-            objects: objects.clone(),
-            ..self.description.clone()
-        };
-        let (built, warnings) = probe.build(&self.base_dir)?;
-        for (object, built) in objects.into_iter().zip(built.objects) {
-            self.directions.push(default_direction(
-                DVec3::from_array(object.beta),
-                &self.scene.observer,
-            ));
-            self.description.objects.push(object);
-            self.scene.objects.push(built);
-        }
-        self.structure_version += 1;
+        let warnings = self.apply(|description| {
+            description.objects.extend(objects);
+            Ok(())
+        })?;
+        let observer = self.scene.observer;
+        let added = self.description.objects[first_new..].iter();
+        self.directions
+            .extend(added.map(|o| default_direction(DVec3::from_array(o.beta), &observer)));
         Ok(warnings)
-    }
-
-    /// A name not yet used by an object: `base`, or `base 2`, `base 3`…
-    fn unique_name(&self, base: &str) -> String {
-        let taken = |name: &str| self.scene.objects.iter().any(|o| o.name == name);
-        if !taken(base) {
-            return base.to_owned();
-        }
-        (2..)
-            .map(|n| format!("{base} {n}"))
-            .find(|name| !taken(name))
-            .unwrap_or_default()
     }
 
     /// Adds the model file at `path`, scaled to radius [`FIT_RADIUS`], at rest in front of the
@@ -331,13 +239,11 @@ impl Editor {
     /// so that giving it a speed shows it approaching.
     ///
     /// # Errors
-    /// [`EditError::Unsupported`] for a file that is not a model, [`EditError::Scene`] when the
+    /// [`EditError::Source`] for a file that is not a model, [`EditError::Scene`] when the
     /// model does not load (the message names the file). The scene is then unchanged.
     pub fn add_model(&mut self, path: &Path) -> Result<Vec<String>, EditError> {
-        if file_kind(path) != FileKind::Model {
-            return Err(EditError::Unsupported {
-                path: path.display().to_string(),
-            });
+        if path_kind(path) != PathKind::Model {
+            return Err(ResolveError::Unsupported(path.display().to_string()).into());
         }
         let path = absolute(path);
         let mut object = ObjectDescription::new(ShapeDescription::Model {
@@ -350,32 +256,31 @@ impl Editor {
         object.fit = true;
         let observer = &self.scene.observer;
         let (forward, _, _) = observer.basis();
-        let distance = 1.6 * FIT_RADIUS / (0.5 * observer.fov_y_deg.to_radians()).tan();
+        let half_fov = 0.5 * observer.fov_y_deg.to_radians();
+        let distance = ADDED_MODEL_DISTANCE * FIT_RADIUS / half_fov.tan();
         object.offset = (observer.position + forward * distance).to_array();
-        let count = self.description.objects.len();
-        self.add_objects(vec![object])?;
-        self.directions[count] = -forward;
-        Ok(Vec::new())
+        let warnings = self.add_objects(vec![object])?;
+        if let Some(direction) = self.directions.last_mut() {
+            *direction = -forward;
+        }
+        Ok(warnings)
     }
 
     /// Opens a dropped or chosen file: a model is added, a scene file replaces the scene.
     ///
     /// # Errors
-    /// [`EditError::Unsupported`] for other files, and whatever loading the file gives; the
-    /// scene is then unchanged.
+    /// [`EditError::Source`] for other files, and whatever loading the file gives; the scene
+    /// is then unchanged.
     pub fn open_file(&mut self, path: &Path) -> Result<Vec<String>, EditError> {
-        match file_kind(path) {
-            FileKind::Model => self.add_model(path),
-            FileKind::Scene => {
-                let (scene, description, warnings) = load_scene_file(path)?;
+        match SceneSource::from_path(path)? {
+            SceneSource::Model(path) => self.add_model(&path),
+            source => {
+                let (editor, warnings) = Self::from_loaded(source.load(None)?);
                 let version = self.structure_version;
-                *self = Self::from_parts(description, folder_of(path), scene);
+                *self = editor;
                 self.structure_version = version + 1;
                 Ok(warnings)
             }
-            FileKind::Unsupported => Err(EditError::Unsupported {
-                path: path.display().to_string(),
-            }),
         }
     }
 
@@ -384,20 +289,127 @@ impl Editor {
     /// # Errors
     /// [`EditError::NoSuchObject`] when there is none.
     pub fn remove_object(&mut self, index: usize) -> Result<(), EditError> {
-        self.check_index(index)?;
-        self.description.objects.remove(index);
-        self.scene.objects.remove(index);
+        self.edit(|description| {
+            object_mut(description, index)?;
+            description.objects.remove(index);
+            Ok(())
+        })?;
         self.directions.remove(index);
-        self.structure_version += 1;
         Ok(())
     }
 
-    fn check_index(&self, index: usize) -> Result<(), EditError> {
-        if index < self.scene.objects.len() {
-            Ok(())
-        } else {
-            Err(EditError::NoSuchObject(index))
+    /// Applies `change` to a copy of the description; if the scene file's rules accept the
+    /// result, makes it the description and brings the runtime scene in step (building only
+    /// objects whose geometry is new); otherwise nothing changes. Returns the warnings met
+    /// building new objects.
+    fn apply(
+        &mut self,
+        change: impl FnOnce(&mut SceneDescription) -> Result<(), EditError>,
+    ) -> Result<Vec<String>, EditError> {
+        let mut description = self.description.clone();
+        change(&mut description)?;
+        description.validate()?;
+        let plan = self.plan(&description);
+        let (built, warnings) = self.build_new_objects(&description, &plan)?;
+        let frames = frames_of(&description)?;
+        self.commit(description, &plan, built, frames);
+        Ok(warnings)
+    }
+
+    /// [`Editor::apply`] for edits that add no object (and so meet no warning).
+    fn edit(
+        &mut self,
+        change: impl FnOnce(&mut SceneDescription) -> Result<(), EditError>,
+    ) -> Result<(), EditError> {
+        self.apply(change).map(|_no_warnings| ())
+    }
+
+    /// Which runtime object's parts each object of `description` keeps: the first one not yet
+    /// taken with the same geometry.
+    fn plan(&self, description: &SceneDescription) -> PartsPlan {
+        let mut taken = vec![false; self.built_from.len()];
+        description
+            .objects
+            .iter()
+            .map(|object| {
+                let geometry = geometry_of(object);
+                let found = (0..taken.len()).find(|&j| !taken[j] && self.built_from[j] == geometry);
+                if let Some(j) = found {
+                    taken[j] = true;
+                }
+                found
+            })
+            .collect()
+    }
+
+    /// Builds the scene of `description` with only the objects `plan` does not find parts for:
+    /// its observer, light and render settings, and those objects' parts. Warnings are those of
+    /// the new objects.
+    fn build_new_objects(
+        &self,
+        description: &SceneDescription,
+        plan: &PartsPlan,
+    ) -> Result<(Scene, Vec<String>), SceneError> {
+        let new_objects: Vec<ObjectDescription> = description
+            .objects
+            .iter()
+            .zip(plan)
+            .filter(|(_, reused)| reused.is_none())
+            .map(|(object, _)| object.clone())
+            .collect();
+        let nothing_new = new_objects.is_empty();
+        let probe = SceneDescription {
+            objects: new_objects,
+            ..description.clone()
+        };
+        let (built, warnings) = probe.build(&self.base_dir)?;
+        // Without objects the only warning is that the probe has none, which is not news.
+        Ok((built, if nothing_new { Vec::new() } else { warnings }))
+    }
+
+    /// Makes `description` the scene: the settings come from `built`, each object's parts from
+    /// the runtime object `plan` names or, in order, from `built`'s objects.
+    fn commit(
+        &mut self,
+        description: SceneDescription,
+        plan: &PartsPlan,
+        built: Scene,
+        frames: Vec<Frame>,
+    ) {
+        let old_count = self.scene.objects.len();
+        let mut kept: Vec<Option<Vec<Part>>> = std::mem::take(&mut self.scene.objects)
+            .into_iter()
+            .map(|object| Some(object.parts))
+            .collect();
+        let mut new_parts = built.objects.into_iter().map(|object| object.parts);
+        let objects = description
+            .objects
+            .iter()
+            .zip(plan)
+            .zip(frames)
+            .enumerate()
+            .map(|(index, ((object, reused), frame))| Object {
+                name: runtime_name(object, index),
+                parts: match reused {
+                    Some(j) => kept[*j].take(),
+                    None => new_parts.next(),
+                }
+                .expect("the plan takes each runtime object once and builds the rest"),
+                frame,
+                wireframe: object.wireframe,
+            })
+            .collect();
+        let unchanged = plan.len() == old_count
+            && plan
+                .iter()
+                .enumerate()
+                .all(|(i, reused)| *reused == Some(i));
+        if !unchanged {
+            self.structure_version += 1;
         }
+        self.built_from = description.objects.iter().map(geometry_of).collect();
+        self.scene = Scene { objects, ..built };
+        self.description = description;
     }
 
     /// The runtime scene to render.
@@ -424,6 +436,12 @@ impl Editor {
         self.scene.objects.len()
     }
 
+    /// The objects of the scene.
+    #[must_use]
+    pub fn objects(&self) -> &[Object] {
+        &self.scene.objects
+    }
+
     /// Speed |β| of object `index` as a fraction of c (0 for an index out of range).
     #[must_use]
     pub fn speed(&self, index: usize) -> f64 {
@@ -448,13 +466,20 @@ impl Editor {
             .map_or(DVec3::ZERO, |o| o.frame.offset())
     }
 
+    /// The wireframe line width of object `index` (`None`: textured).
+    #[must_use]
+    pub fn wireframe(&self, index: usize) -> Option<f64> {
+        self.scene.objects.get(index).and_then(|o| o.wireframe)
+    }
+
     /// Sets the velocity of object `index` to `speed · direction`. With `keep_apparent`, the
     /// offset changes too, so that the object's origin stays where the observer sees it now
     /// (only its shape and colour change); otherwise the offset stays.
     ///
     /// # Errors
-    /// [`EditError::Speed`] for a speed outside [0, 1), [`EditError::Value`] for a zero or
-    /// non-finite direction; the scene is then unchanged.
+    /// [`EditError::Direction`] for a zero or non-finite direction, [`EditError::Scene`] for a
+    /// velocity or offset the scene file's rules refuse (a speed of 1 or more…); the scene is
+    /// then unchanged.
     pub fn set_velocity(
         &mut self,
         index: usize,
@@ -462,13 +487,16 @@ impl Editor {
         direction: DVec3,
         keep_apparent: bool,
     ) -> Result<(), EditError> {
-        self.check_index(index)?;
-        let speed = check_speed(speed)?;
-        let direction = direction.try_normalize().ok_or_else(|| {
-            EditError::Value("the direction of motion must not be zero".to_owned())
-        })?;
-        let beta = speed * direction;
-        let old = self.scene.objects[index].frame;
+        let old = self
+            .scene
+            .objects
+            .get(index)
+            .ok_or(EditError::NoSuchObject(index))?
+            .frame;
+        let unit = direction
+            .try_normalize()
+            .ok_or(EditError::Direction(direction))?;
+        let beta = speed * unit;
         let offset = if keep_apparent {
             let observer = self.scene.observer.event();
             let apparent = old.apparent_position(DVec3::ZERO, observer);
@@ -477,70 +505,52 @@ impl Editor {
         } else {
             old.offset()
         };
-        self.set_frame(index, beta, offset)?;
-        self.directions[index] = direction;
+        self.edit_object(index, |object| {
+            object.beta = beta.to_array();
+            object.offset = offset.to_array();
+        })?;
+        self.directions[index] = beta.try_normalize().unwrap_or(unit);
         Ok(())
     }
 
     /// Sets the offset **a** of object `index`.
     ///
     /// # Errors
-    /// [`EditError::Value`] for a non-finite offset.
+    /// [`EditError::Scene`] for an offset the scene file's rules refuse (not finite, too far).
     pub fn set_offset(&mut self, index: usize, offset: DVec3) -> Result<(), EditError> {
-        self.check_index(index)?;
-        let beta = self.scene.objects[index].frame.beta();
-        self.set_frame(index, beta, offset)
-    }
-
-    fn set_frame(&mut self, index: usize, beta: DVec3, offset: DVec3) -> Result<(), EditError> {
-        let frame = Frame::new(beta, offset)
-            .map_err(|e| EditError::Value(format!("{}: {e}", self.scene.objects[index].name)))?;
-        self.scene.objects[index].frame = frame;
-        let description = &mut self.description.objects[index];
-        description.beta = beta.to_array();
-        description.offset = offset.to_array();
-        Ok(())
-    }
-
-    /// The wireframe line width of object `index` (`None`: textured).
-    #[must_use]
-    pub fn wireframe(&self, index: usize) -> Option<f64> {
-        self.scene.objects.get(index).and_then(|o| o.wireframe)
+        self.edit_object(index, |object| object.offset = offset.to_array())
     }
 
     /// Draws object `index` as a wireframe of lines `width` wide (in its own units), or textured.
     ///
     /// # Errors
-    /// [`EditError::Value`] for a width that is not positive.
+    /// [`EditError::Scene`] for a width the scene file's rules refuse (not positive…).
     pub fn set_wireframe(&mut self, index: usize, width: Option<f64>) -> Result<(), EditError> {
-        self.check_index(index)?;
-        if let Some(w) = width
-            && !(w.is_finite() && w > 0.0)
-        {
-            return Err(EditError::Value(format!(
-                "a wireframe width must be positive, got {w}"
-            )));
-        }
-        self.scene.objects[index].wireframe = width;
-        self.description.objects[index].wireframe = width;
-        Ok(())
+        self.edit_object(index, |object| object.wireframe = width)
     }
 
-    /// The objects of the scene.
-    #[must_use]
-    pub fn objects(&self) -> &[Object] {
-        &self.scene.objects
+    /// Applies `change` to the description of object `index`, as [`Editor::apply`] does.
+    fn edit_object(
+        &mut self,
+        index: usize,
+        change: impl FnOnce(&mut ObjectDescription),
+    ) -> Result<(), EditError> {
+        self.edit(|description| {
+            change(object_mut(description, index)?);
+            Ok(())
+        })
     }
 
     /// Sets the effect mode (and the tone map that goes with it, unless one was chosen).
-    pub fn set_effects(&mut self, effects: Effects) {
-        self.description.render.effects = effects;
-        self.scene.effects = effects;
-        self.scene.tone_map = self
-            .description
-            .render
-            .tone_map
-            .unwrap_or_else(|| effects.default_tone_map());
+    ///
+    /// # Errors
+    /// None in practice: every effect mode is valid (the edit goes through the same checks as
+    /// any other).
+    pub fn set_effects(&mut self, effects: Effects) -> Result<(), EditError> {
+        self.edit(|description| {
+            description.render.effects = effects;
+            Ok(())
+        })
     }
 
     /// The tone map chosen explicitly (`None`: the effect mode's).
@@ -550,86 +560,59 @@ impl Editor {
     }
 
     /// Chooses the tone map (`None`: the effect mode's own).
-    pub fn set_tone_map(&mut self, tone_map: Option<ToneMap>) {
-        self.description.render.tone_map = tone_map;
-        self.scene.tone_map = tone_map.unwrap_or_else(|| self.scene.effects.default_tone_map());
+    ///
+    /// # Errors
+    /// None in practice, as [`Editor::set_effects`].
+    pub fn set_tone_map(&mut self, tone_map: Option<ToneMap>) -> Result<(), EditError> {
+        self.edit(|description| {
+            description.render.tone_map = tone_map;
+            Ok(())
+        })
     }
 
     /// Sets the light's temperature (kelvin) and position.
     ///
     /// # Errors
-    /// [`EditError::Value`] for a temperature that is not positive or a non-finite position.
+    /// [`EditError::Scene`] for values the scene file's rules refuse (a temperature that is not
+    /// positive, a position that is not finite…).
     pub fn set_light(&mut self, temperature_k: f64, position: DVec3) -> Result<(), EditError> {
-        if !(temperature_k.is_finite() && temperature_k > 0.0) {
-            return Err(EditError::Value(format!(
-                "the light's temperature must be positive, got {temperature_k} K"
-            )));
-        }
-        if !position.is_finite() {
-            return Err(EditError::Value(
-                "the light's position must be finite".to_owned(),
-            ));
-        }
-        self.scene.light.temperature_k = temperature_k;
-        self.scene.light.position = position;
-        self.description.light = Some(LightDescription {
-            position: position.to_array(),
-            temperature_k,
-        });
-        Ok(())
+        self.edit(|description| {
+            description.light = Some(LightDescription {
+                position: position.to_array(),
+                temperature_k,
+            });
+            Ok(())
+        })
     }
 
     /// Sets the observer (camera and observation time).
     ///
     /// # Errors
-    /// [`EditError::Value`] for a non-finite position or time, a zero direction, an up vector
-    /// parallel to it, or a field of view outside (0°, 180°); the observer is then unchanged.
+    /// [`EditError::Scene`] for values the scene file's rules refuse (a zero direction, an up
+    /// vector parallel to it, a field of view outside (0°, 180°), a position or time that is not
+    /// finite…); the observer is then unchanged.
     pub fn set_observer(&mut self, observer: Observer) -> Result<(), EditError> {
-        let direction = observer.direction.try_normalize().filter(|d| d.is_finite());
-        let Some(direction) = direction else {
-            return Err(EditError::Value(
-                "the viewing direction must not be zero".to_owned(),
-            ));
-        };
-        if !(observer.position.is_finite() && observer.ct.is_finite()) {
-            return Err(EditError::Value(
-                "the observer's position and time must be finite".to_owned(),
-            ));
-        }
-        if direction.cross(observer.up).length() < 1e-9 {
-            return Err(EditError::Value(
-                "the camera cannot look straight along its up direction".to_owned(),
-            ));
-        }
-        if !(observer.fov_y_deg > 0.0 && observer.fov_y_deg < 180.0) {
-            return Err(EditError::Value(format!(
-                "the field of view must be in (0°, 180°), got {}°",
-                observer.fov_y_deg
-            )));
-        }
-        let observer = Observer {
-            direction,
-            ..observer
-        };
-        self.scene.observer = observer;
-        let d = &mut self.description.observer;
-        d.position = observer.position.to_array();
-        d.look_at = None;
-        d.direction = Some(direction.to_array());
-        d.up = observer.up.to_array();
-        d.fov_y_deg = observer.fov_y_deg;
-        d.ct = observer.ct;
-        Ok(())
+        self.edit(|description| {
+            description.observer = ObserverDescription {
+                position: observer.position.to_array(),
+                look_at: None,
+                direction: Some(observer.direction.to_array()),
+                up: observer.up.to_array(),
+                fov_y_deg: observer.fov_y_deg,
+                ct: observer.ct,
+            };
+            Ok(())
+        })
     }
 
     /// Sets the observation time ct.
     ///
     /// # Errors
-    /// [`EditError::Value`] for a non-finite time.
+    /// [`EditError::Scene`] for a time the scene file's rules refuse (not finite, too large).
     pub fn set_time(&mut self, ct: f64) -> Result<(), EditError> {
-        self.set_observer(Observer {
-            ct,
-            ..self.scene.observer
+        self.edit(|description| {
+            description.observer.ct = ct;
+            Ok(())
         })
     }
 
@@ -640,13 +623,14 @@ impl Editor {
     }
 
     /// Puts the camera back where the scene started (the observation time stays).
-    pub fn reset_view(&mut self) {
-        let home = Observer {
+    ///
+    /// # Errors
+    /// As [`Editor::set_observer`] (the home observer was accepted when the scene was built).
+    pub fn reset_view(&mut self) -> Result<(), EditError> {
+        self.set_observer(Observer {
             ct: self.scene.observer.ct,
             ..self.home
-        };
-        // The home observer was valid when the scene was built.
-        let _ = self.set_observer(home);
+        })
     }
 
     /// The description as it should be saved: model and texture paths made absolute, so the
@@ -674,18 +658,69 @@ impl Editor {
     }
 }
 
+/// What an object's parts are built from: its description without what edits change cheaply
+/// (velocity, offset, name, wireframe).
+fn geometry_of(object: &ObjectDescription) -> ObjectDescription {
+    ObjectDescription {
+        name: None,
+        wireframe: None,
+        beta: [0.0; 3],
+        offset: [0.0; 3],
+        ..object.clone()
+    }
+}
+
+/// The rest frame of each object. [`SceneDescription::validate`] has accepted every velocity and
+/// offset, so this fails only if that rule and [`Frame::new`]'s part ways; the message is then
+/// the scene file's.
+fn frames_of(description: &SceneDescription) -> Result<Vec<Frame>, SceneError> {
+    description
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(index, object)| {
+            Frame::new(
+                DVec3::from_array(object.beta),
+                DVec3::from_array(object.offset),
+            )
+            .map_err(|error| {
+                let object = object.label(index);
+                SceneError::new("the edited scene", SceneErrorKind::Frame { object, error })
+            })
+        })
+        .collect()
+}
+
+/// The name the runtime object of `object`, number `index` (from 0), has: its own, or
+/// `object N` as [`SceneDescription::build`] names it.
+fn runtime_name(object: &ObjectDescription, index: usize) -> String {
+    object.name.clone().unwrap_or_else(|| object.label(index))
+}
+
+/// The description of object `index`.
+fn object_mut(
+    description: &mut SceneDescription,
+    index: usize,
+) -> Result<&mut ObjectDescription, EditError> {
+    description
+        .objects
+        .get_mut(index)
+        .ok_or(EditError::NoSuchObject(index))
+}
+
+/// `base`, or `base 2`, `base 3`… whichever is not in `taken`.
+fn unique_name(base: &str, taken: &[String]) -> String {
+    let free = |name: &String| !taken.contains(name);
+    std::iter::once(base.to_owned())
+        .chain((2..).map(|n| format!("{base} {n}")))
+        .find(free)
+        .unwrap_or_default()
+}
+
 /// Direction of motion to remember for an object moving with `beta`: its own, or (at rest)
 /// towards the observer.
 fn default_direction(beta: DVec3, observer: &Observer) -> DVec3 {
     beta.try_normalize().unwrap_or_else(|| -observer.basis().0)
-}
-
-/// The folder of a scene file, `.` for a bare file name.
-fn folder_of(path: &Path) -> PathBuf {
-    match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
 }
 
 /// `path` made absolute (against the current folder), without resolving links.
@@ -704,6 +739,7 @@ fn absolutize(path: &str, base_dir: &Path) -> String {
     }
 }
 
+/// The model and texture paths of `object` made absolute against `base_dir`.
 fn absolutize_object(object: &mut ObjectDescription, base_dir: &Path) {
     if let ShapeDescription::Model { path } = &mut object.shape {
         *path = absolutize(path, base_dir);
@@ -715,52 +751,127 @@ fn absolutize_object(object: &mut ObjectDescription, base_dir: &Path) {
 
 #[cfg(test)]
 mod tests {
+    use srt_scene::load_scene_file;
+    use srt_scene::resolve::DEFAULT_MODEL_SPEED;
+
     use super::*;
 
     fn teaser() -> Editor {
         Editor::from_arguments(&[]).expect("the teaser builds").0
     }
 
+    /// A folder holding the tetrahedron fixture as `tetra.stl`, and that file's path.
+    fn tetrahedron_file() -> (tempfile::TempDir, PathBuf) {
+        let dir = tempfile::tempdir().unwrap();
+        let model = dir.path().join("tetra.stl");
+        std::fs::write(&model, tetrahedron_stl()).unwrap();
+        (dir, model)
+    }
+
     #[test]
-    fn typed_speeds_below_one_are_accepted() {
+    fn typed_speeds_are_numbers_of_at_least_zero() {
         assert_eq!(parse_speed("0.9").unwrap(), 0.9);
         assert_eq!(parse_speed(" 0.5c ").unwrap(), 0.5);
         assert_eq!(parse_speed("0").unwrap(), 0.0);
         assert_eq!(parse_speed("0.9999").unwrap(), 0.9999);
+        // Whether it is below c is the scene's rule, checked when the speed is set.
+        assert_eq!(parse_speed("1.5c").unwrap(), 1.5);
+        let message = |text| parse_speed(text).unwrap_err().to_string();
+        assert!(message("fast").contains("not a speed"));
+        assert!(message("NaN").contains("not a speed"));
+        assert!(message("inf").contains("not a speed"));
+        assert!(message("-0.5").contains("negative"));
     }
 
+    /// Refused edits say what the scene file says about the same values, and change nothing.
     #[test]
-    fn typed_speeds_of_one_or_more_are_refused_with_a_message() {
-        for text in ["1", "1.0", "1c", "1.5", "300000"] {
-            let message = parse_speed(text).unwrap_err().to_string();
-            assert!(message.contains("speed of light"), "{text}: {message}");
+    fn refused_edits_give_the_scene_files_message_and_change_nothing() {
+        type Edit = fn(&mut Editor) -> Result<(), EditError>;
+        type Same = fn(&mut SceneDescription);
+        let cases: [(&str, Edit, Same); 6] = [
+            (
+                "speed",
+                |e| e.set_velocity(1, 1.5, DVec3::X, false),
+                |d| d.objects[1].beta = [1.5, 0.0, 0.0],
+            ),
+            (
+                "offset",
+                |e| e.set_offset(2, DVec3::new(0.0, f64::NAN, 0.0)),
+                |d| d.objects[2].offset[1] = f64::NAN,
+            ),
+            (
+                "wireframe",
+                |e| e.set_wireframe(0, Some(-1.0)),
+                |d| d.objects[0].wireframe = Some(-1.0),
+            ),
+            (
+                "light",
+                |e| e.set_light(0.0, DVec3::ONE),
+                |d| {
+                    d.light = Some(LightDescription {
+                        position: [1.0; 3],
+                        temperature_k: 0.0,
+                    });
+                },
+            ),
+            (
+                "time",
+                |e| e.set_time(f64::INFINITY),
+                |d| {
+                    d.observer.ct = f64::INFINITY;
+                },
+            ),
+            (
+                "field of view",
+                |e| {
+                    let observer = e.scene().observer;
+                    e.set_observer(Observer {
+                        fov_y_deg: 180.0,
+                        ..observer
+                    })
+                },
+                |d| d.observer.fov_y_deg = 180.0,
+            ),
+        ];
+        for (what, edit, same) in cases {
+            let mut editor = teaser();
+            let (description, scene) = (editor.description().clone(), editor.scene().clone());
+            let version = editor.structure_version();
+            let error = edit(&mut editor).unwrap_err();
+            assert!(matches!(error, EditError::Scene(_)), "{what}: {error}");
+            let mut expected = description.clone();
+            same(&mut expected);
+            assert_eq!(
+                error.to_string(),
+                expected.validate().unwrap_err().to_string(),
+                "{what}"
+            );
+            assert_eq!(editor.description(), &description, "{what}");
+            assert_eq!(editor.scene(), &scene, "{what}");
+            assert_eq!(editor.structure_version(), version, "{what}");
         }
-        assert!(
-            parse_speed("fast")
-                .unwrap_err()
-                .to_string()
-                .contains("not a speed")
-        );
-        assert!(
-            parse_speed("-0.5")
-                .unwrap_err()
-                .to_string()
-                .contains("negative")
-        );
-        assert!(parse_speed("NaN").is_err());
-        assert!(parse_speed("inf").is_err());
     }
 
     #[test]
-    fn files_are_classified_by_extension() {
-        assert_eq!(file_kind(Path::new("a/b/ship.GLB")), FileKind::Model);
-        assert_eq!(file_kind(Path::new("bunny.ply")), FileKind::Model);
-        assert_eq!(file_kind(Path::new("x.stl")), FileKind::Model);
-        assert_eq!(file_kind(Path::new("x.obj")), FileKind::Model);
-        assert_eq!(file_kind(Path::new("x.gltf")), FileKind::Model);
-        assert_eq!(file_kind(Path::new("scene.toml")), FileKind::Scene);
-        assert_eq!(file_kind(Path::new("notes.txt")), FileKind::Unsupported);
-        assert_eq!(file_kind(Path::new("Makefile")), FileKind::Unsupported);
+    fn a_speed_of_c_or_more_is_refused_naming_the_speed_of_light() {
+        let mut editor = teaser();
+        for text in ["1", "1.0", "1c", "300000"] {
+            let speed = parse_speed(text).unwrap();
+            let error = editor.set_velocity(1, speed, DVec3::X, true).unwrap_err();
+            assert!(
+                error.to_string().contains("speed of light"),
+                "{text}: {error}"
+            );
+        }
+        assert!(matches!(
+            editor.set_velocity(1, 0.5, DVec3::ZERO, true),
+            Err(EditError::Direction(_))
+        ));
+        assert!(matches!(
+            editor.set_velocity(7, 0.5, DVec3::X, true),
+            Err(EditError::NoSuchObject(7))
+        ));
+        assert_eq!(editor.description(), teaser().description());
     }
 
     #[test]
@@ -772,25 +883,29 @@ mod tests {
     }
 
     #[test]
-    fn further_arguments_add_objects() {
-        let (editor, _) =
-            Editor::from_arguments(&["fig7".to_owned(), "teaser".to_owned()]).unwrap();
-        assert_eq!(editor.object_count(), 4);
+    fn further_arguments_add_objects_under_names_of_their_own() {
+        let arguments = ["fig7", "teaser", "teaser"].map(str::to_owned);
+        let (editor, _) = Editor::from_arguments(&arguments).unwrap();
+        assert_eq!(editor.object_count(), 7);
         let names: Vec<_> = editor.objects().iter().map(|o| o.name.as_str()).collect();
-        assert_eq!(names.len(), 4);
         assert!(
             names
                 .iter()
                 .all(|n| names.iter().filter(|m| *m == n).count() == 1),
             "{names:?}"
         );
+        let described: Vec<_> = editor
+            .description()
+            .objects
+            .iter()
+            .map(|o| o.name.as_deref().unwrap_or_default())
+            .collect();
+        assert_eq!(described, names);
     }
 
     #[test]
     fn a_bare_model_approaches_the_observer() {
-        let dir = tempfile::tempdir().unwrap();
-        let model = dir.path().join("tetra.stl");
-        std::fs::write(&model, tetrahedron_stl()).unwrap();
+        let (_dir, model) = tetrahedron_file();
         let (editor, _) = Editor::from_arguments(&[model.display().to_string()]).unwrap();
         let object = &editor.scene().objects[0];
         let observer = editor.scene().observer.event();
@@ -801,26 +916,25 @@ mod tests {
     }
 
     #[test]
-    fn unknown_arguments_are_errors() {
+    fn unknown_arguments_and_unsupported_files_are_refused_by_the_resolver() {
         assert!(matches!(
             Editor::from_arguments(&["no-such-scene".to_owned()]),
-            Err(EditError::NotFound(_))
+            Err(EditError::Source(ResolveError::NotFound(_)))
         ));
-    }
-
-    #[test]
-    fn a_refused_speed_leaves_the_scene_unchanged() {
+        let dir = tempfile::tempdir().unwrap();
+        let notes = dir.path().join("notes.txt");
+        std::fs::write(&notes, "hello").unwrap();
         let mut editor = teaser();
-        let before = editor.description().clone();
-        let frame = editor.scene().objects[1].frame;
-        assert!(matches!(
-            editor.set_velocity(1, 1.0, DVec3::X, true),
-            Err(EditError::Speed(_))
-        ));
-        assert!(editor.set_velocity(1, 0.5, DVec3::ZERO, true).is_err());
-        assert!(editor.set_velocity(7, 0.5, DVec3::X, true).is_err());
-        assert_eq!(editor.description(), &before);
-        assert_eq!(editor.scene().objects[1].frame, frame);
+        for result in [
+            editor.open_file(&notes),
+            editor.add_model(&notes),
+            editor.add_model(Path::new("teaser")),
+        ] {
+            assert!(
+                matches!(result, Err(EditError::Source(ResolveError::Unsupported(_)))),
+                "{result:?}"
+            );
+        }
     }
 
     #[test]
@@ -872,21 +986,14 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(missing.contains("missing.obj"), "{missing}");
-        let text = dir.path().join("notes.txt");
-        std::fs::write(&text, "hello").unwrap();
-        assert!(matches!(
-            editor.open_file(&text),
-            Err(EditError::Unsupported { .. })
-        ));
         assert_eq!(editor.object_count(), 3);
+        assert_eq!(editor.description().objects.len(), 3);
         assert_eq!(editor.structure_version(), version);
     }
 
     #[test]
     fn models_are_added_in_view_and_removed() {
-        let dir = tempfile::tempdir().unwrap();
-        let model = dir.path().join("tetra.stl");
-        std::fs::write(&model, tetrahedron_stl()).unwrap();
+        let (_dir, model) = tetrahedron_file();
         let mut editor = teaser();
         editor.add_model(&model).unwrap();
         editor.add_model(&model).unwrap();
@@ -908,21 +1015,64 @@ mod tests {
         let version = editor.structure_version();
         editor.remove_object(0).unwrap();
         assert_eq!(editor.object_count(), 4);
+        assert_eq!(editor.description().objects.len(), 4);
+        assert_eq!(editor.objects()[2].name, "tetra");
         assert!(editor.structure_version() > version);
         assert!(editor.remove_object(9).is_err());
     }
 
+    /// Edits of motion, time, light and style reuse the loaded parts: they succeed with the
+    /// model file gone, and the meshes need no new upload.
+    #[test]
+    fn cheap_edits_never_read_a_model_file_again() {
+        let (dir, model) = tetrahedron_file();
+        let mut editor = teaser();
+        editor.add_model(&model).unwrap();
+        drop(dir);
+        assert!(!model.exists());
+        let version = editor.structure_version();
+        editor.set_velocity(3, 0.8, DVec3::Y, true).unwrap();
+        editor.set_offset(3, DVec3::new(1.0, 2.0, 3.0)).unwrap();
+        editor.set_wireframe(3, Some(0.05)).unwrap();
+        editor.set_time(1.5).unwrap();
+        editor.set_light(5000.0, DVec3::ONE).unwrap();
+        editor.set_effects(Effects::Geometry).unwrap();
+        assert_eq!(editor.structure_version(), version);
+        editor.remove_object(0).unwrap();
+        let tetra = &editor.objects()[2];
+        assert_eq!((tetra.name.as_str(), tetra.triangle_count()), ("tetra", 4));
+        assert_eq!(tetra.frame.offset(), DVec3::new(1.0, 2.0, 3.0));
+        assert_eq!(tetra.wireframe, Some(0.05));
+    }
+
+    /// An edit of an object's geometry rebuilds that object (and only needs its own files).
+    #[test]
+    fn an_edit_of_the_geometry_rebuilds_the_object() {
+        let mut editor = teaser();
+        let version = editor.structure_version();
+        let triangles = editor.objects()[0].triangle_count();
+        editor
+            .edit_object(1, |object| {
+                object.shape = ShapeDescription::Cube {
+                    size: 2.0,
+                    subdivisions: 3,
+                };
+            })
+            .unwrap();
+        assert_eq!(editor.objects()[1].triangle_count(), 12 * 3 * 3);
+        assert_eq!(editor.objects()[0].triangle_count(), triangles);
+        assert!(editor.structure_version() > version);
+    }
+
     #[test]
     fn saved_scenes_load_back_with_the_edits() {
-        let dir = tempfile::tempdir().unwrap();
-        let model = dir.path().join("tetra.stl");
-        std::fs::write(&model, tetrahedron_stl()).unwrap();
+        let (dir, model) = tetrahedron_file();
         let mut editor = teaser();
         editor.add_model(&model).unwrap();
         editor
             .set_velocity(3, 0.9, DVec3::new(0.0, -1.0, 0.0), true)
             .unwrap();
-        editor.set_effects(Effects::Searchlight);
+        editor.set_effects(Effects::Searchlight).unwrap();
         editor.set_wireframe(1, Some(0.02)).unwrap();
         editor.set_light(8000.0, DVec3::new(1.0, 2.0, 3.0)).unwrap();
         editor.set_time(2.5).unwrap();
@@ -947,33 +1097,24 @@ mod tests {
         moved.position += DVec3::new(1.0, 2.0, 0.5);
         moved.fov_y_deg = 60.0;
         editor.set_observer(moved).unwrap();
-        assert!(
-            editor
-                .set_observer(Observer {
-                    fov_y_deg: 180.0,
-                    ..moved
-                })
-                .is_err()
-        );
-        assert!(
-            editor
-                .set_observer(Observer {
-                    direction: DVec3::ZERO,
-                    ..moved
-                })
-                .is_err()
-        );
-        assert!(
-            editor
-                .set_observer(Observer {
-                    direction: moved.up,
-                    ..moved
-                })
-                .is_err()
-        );
+        for refused in [
+            Observer {
+                direction: DVec3::ZERO,
+                ..moved
+            },
+            Observer {
+                direction: moved.up,
+                ..moved
+            },
+        ] {
+            assert!(matches!(
+                editor.set_observer(refused),
+                Err(EditError::Scene(_))
+            ));
+        }
         assert_eq!(editor.scene().observer.fov_y_deg, 60.0);
         editor.set_time(4.0).unwrap();
-        editor.reset_view();
+        editor.reset_view().unwrap();
         assert_eq!(editor.scene().observer.position, home.position);
         assert_eq!(editor.scene().observer.ct, 4.0);
     }
@@ -981,21 +1122,19 @@ mod tests {
     #[test]
     fn effects_and_tone_maps() {
         let mut editor = teaser();
-        editor.set_effects(Effects::Searchlight);
+        editor.set_effects(Effects::Searchlight).unwrap();
         assert_eq!(editor.scene().tone_map, ToneMap::Searchlight);
-        editor.set_tone_map(Some(ToneMap::Luminance));
+        editor.set_tone_map(Some(ToneMap::Luminance)).unwrap();
         assert_eq!(editor.scene().tone_map, ToneMap::Luminance);
-        editor.set_effects(Effects::Geometry);
+        editor.set_effects(Effects::Geometry).unwrap();
         assert_eq!(editor.scene().tone_map, ToneMap::Luminance);
-        editor.set_tone_map(None);
-        editor.set_effects(Effects::Searchlight);
+        editor.set_tone_map(None).unwrap();
+        editor.set_effects(Effects::Searchlight).unwrap();
         assert_eq!(editor.scene().tone_map, ToneMap::Searchlight);
-        assert!(editor.set_light(0.0, DVec3::ZERO).is_err());
-        assert!(editor.set_wireframe(0, Some(-1.0)).is_err());
     }
 
-    /// A binary STL file with one tetrahedron (4 triangles), shared with the UI tests.
-    pub(crate) fn tetrahedron_stl() -> Vec<u8> {
+    /// A binary STL file with one tetrahedron (4 triangles), the fixture the UI tests use too.
+    fn tetrahedron_stl() -> Vec<u8> {
         include_bytes!("../tests/fixtures/tetrahedron.stl").to_vec()
     }
 }

@@ -5,7 +5,9 @@
 //! the Doppler and searchlight effects, compare local ray tracing with the polygon method, and
 //! save the scene as TOML or the image as PNG.
 //!
-//! - [`edit`]: the scene and every edit of it, independent of the UI and the GPU;
+//! - [`edit`]: the scene and every edit of it, independent of the UI and the GPU (arguments and
+//!   files are resolved by [`srt_scene::resolve`], every edit is checked by the scene file's
+//!   rules);
 //! - [`camera`]: the fly camera;
 //! - [`view`]: rendering into textures the UI shows;
 //! - [`app`]: the panel, the status line and the input handling ([`ViewerApp`]);
@@ -27,7 +29,7 @@ use eframe::{egui, egui_wgpu};
 use srt_gpu::GpuContext;
 
 pub use app::{Level, Status, ViewerApp};
-pub use edit::{EditError, Editor, FileKind, file_kind, parse_speed};
+pub use edit::{EditError, Editor, parse_speed};
 pub use view::ViewMethod;
 
 /// Initial size of the window in points.
