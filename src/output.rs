@@ -8,6 +8,7 @@ use anyhow::{Context as _, anyhow, bail};
 use glam::DVec3;
 use image::{ImageFormat, Rgb32FImage, RgbImage};
 use srt_color::{quantize_8bit, srgb_decode};
+use srt_scene::message::io_reason;
 use tempfile::NamedTempFile;
 
 /// Image file formats `srt` writes.
@@ -116,22 +117,6 @@ fn temporary_file_beside(path: &Path) -> anyhow::Result<NamedTempFile> {
             folder.display(),
             io_reason(&error)
         )
-    })
-}
-
-/// The reason of an I/O error in words, as the OS says it ("permission denied"), without the
-/// error number or the temporary file names `tempfile` adds to its messages.
-fn io_reason(error: &std::io::Error) -> String {
-    // `tempfile` wraps the OS error in one of its own: "<OS error> at path \"<temporary>\"".
-    let text = error.to_string();
-    let words = text
-        .split(" (os error")
-        .next()
-        .and_then(|t| t.split(" at path ").next())
-        .unwrap_or(&text);
-    let mut chars = words.chars();
-    chars.next().map_or_else(String::new, |first| {
-        first.to_lowercase().chain(chars).collect()
     })
 }
 

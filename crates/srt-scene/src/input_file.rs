@@ -61,7 +61,7 @@ impl FileKind {
 #[non_exhaustive]
 pub enum InputFileError {
     /// The operating system could not open or read it (missing, no permission…).
-    #[error("{0}")]
+    #[error("{}", crate::message::io_reason(.0))]
     Io(#[from] std::io::Error),
     /// It is a folder.
     #[error("it is a folder, not a file")]

@@ -25,6 +25,22 @@ pub fn quote(text: &str) -> String {
     format!("\"{}\"", bounded(text, MAX_QUOTE_CHARS))
 }
 
+/// The reason of an I/O error in words as the OS says it ("no such file or directory"), without
+/// the "(os error N)" number or the " at path …" temporary-file names `tempfile` adds.
+#[must_use]
+pub fn io_reason(error: &std::io::Error) -> String {
+    let text = error.to_string();
+    let words = text
+        .split(" (os error")
+        .next()
+        .and_then(|t| t.split(" at path ").next())
+        .unwrap_or(&text);
+    let mut chars = words.chars();
+    chars.next().map_or_else(String::new, |first| {
+        first.to_lowercase().chain(chars).collect()
+    })
+}
+
 /// `text` as one printable line of at most `max_chars` characters (at least 1): every run of
 /// whitespace (newlines and tabs included) becomes one space, control and invisible formatting
 /// characters (and U+FFFD, which stands for bytes that were not text) are written as escapes

@@ -61,11 +61,9 @@ impl fmt::Display for SceneError {
     }
 }
 
-impl std::error::Error for SceneError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        Some(&*self.kind)
-    }
-}
+/// The kind is part of the message already, so it is not also given as the `source` (callers
+/// that print the whole chain, as `{:#}` does, would say it twice); use [`SceneError::kind`].
+impl std::error::Error for SceneError {}
 
 /// The reason part of a [`SceneError`].
 #[derive(Debug, thiserror::Error)]
