@@ -31,6 +31,10 @@
 //! [`SceneDescription::build`]: crate::description::SceneDescription::build
 //! [`load_model`]: crate::import::load_model
 
+use std::sync::Arc;
+
+use crate::mesh::{Part, Texture};
+
 /// The largest absolute value of any coordinate in scene units: rest-frame vertex positions after
 /// placement, positions and offsets in S, and the observation time ct.
 pub const MAX_COORDINATE: f64 = 1e9;
@@ -156,6 +160,36 @@ impl Budget {
             });
         }
         self.texels = after;
+        Ok(())
+    }
+}
+
+impl Budget {
+    /// Charges parts a scene already holds from an earlier build (the viewer keeps the parts of
+    /// objects an edit did not change): one part each, its mesh's triangles and vertices, and the
+    /// texels of each distinct texture once.
+    ///
+    /// # Errors
+    /// [`OverBudget`] if they do not fit; the budget may then hold part of them.
+    pub fn charge_held_parts<'a>(
+        &mut self,
+        parts: impl IntoIterator<Item = &'a Part>,
+    ) -> Result<(), OverBudget> {
+        let mut textures_seen: Vec<*const Texture> = Vec::new();
+        for part in parts {
+            self.charge_parts(1)?;
+            self.charge_mesh(
+                wide(part.mesh.triangles().len()),
+                wide(part.mesh.positions().len()),
+            )?;
+            if let Some(texture) = &part.material.texture {
+                let identity = Arc::as_ptr(texture);
+                if !textures_seen.contains(&identity) {
+                    textures_seen.push(identity);
+                    self.charge_texels(texture.width, texture.height)?;
+                }
+            }
+        }
         Ok(())
     }
 }

@@ -17,9 +17,9 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 
 use crate::builtin::{BuiltinScene, find_builtin};
-use crate::description::{SceneDescription, SceneError, SceneErrorKind, load_scene_file};
+pub use crate::description::scene_file_folder;
+use crate::description::{SceneDescription, SceneError, load_scene_file, read_scene_file};
 use crate::import::SUPPORTED_EXTENSIONS;
-use crate::input_file;
 use crate::placement::approach_velocity;
 use crate::scene::Scene;
 
@@ -62,16 +62,6 @@ pub fn model_extension_list() -> String {
         .map(|e| format!(".{e}"))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// The folder that relative paths in the scene file at `path` start from: its parent, or `.`
-/// for a bare file name.
-#[must_use]
-pub fn scene_file_folder(path: &Path) -> PathBuf {
-    match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
 }
 
 /// Why a scene argument names no scene.
@@ -209,14 +199,6 @@ impl SceneSource {
             warnings,
         })
     }
-}
-
-/// Reads and parses the scene file at `path` (values are checked when it is built).
-fn read_scene_file(path: &Path) -> Result<SceneDescription, SceneError> {
-    let origin = path.display().to_string();
-    let text = input_file::read_text(path, input_file::FileKind::Scene)
-        .map_err(|error| SceneError::new(origin.clone(), SceneErrorKind::Io(error)))?;
-    SceneDescription::from_toml_str(&text, &origin)
 }
 
 /// The scene of a bare model at `path`, moving with `beta` or approaching at

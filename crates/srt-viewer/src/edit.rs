@@ -22,6 +22,7 @@ use srt_color::ToneMap;
 use srt_physics::Frame;
 use srt_scene::assets::BUILTIN_PREFIX;
 use srt_scene::description::FIT_RADIUS;
+use srt_scene::limits::Budget;
 use srt_scene::resolve::{LocatedDescription, PathKind, path_kind};
 use srt_scene::{
     Effects, LightDescription, LoadedScene, Object, ObjectDescription, Observer,
@@ -343,8 +344,8 @@ impl Editor {
     }
 
     /// Builds the scene of `description` with only the objects `plan` does not find parts for:
-    /// its observer, light and render settings, and those objects' parts. Warnings are those of
-    /// the new objects.
+    /// its observer, light and render settings, and those objects' parts, charged to one scene
+    /// budget together with the parts the plan keeps. Warnings are those of the new objects.
     fn build_new_objects(
         &self,
         description: &SceneDescription,
@@ -362,7 +363,19 @@ impl Editor {
             objects: new_objects,
             ..description.clone()
         };
-        let (built, warnings) = probe.build(&self.base_dir)?;
+        let mut budget = Budget::new();
+        let kept_parts = plan
+            .iter()
+            .flatten()
+            .flat_map(|&index| &self.scene.objects[index].parts);
+        budget.charge_held_parts(kept_parts).map_err(|error| {
+            let kind = SceneErrorKind::Value {
+                field: "the objects this edit keeps".to_owned(),
+                reason: format!("make the scene too large: {error}"),
+            };
+            SceneError::new(description.origin(), kind)
+        })?;
+        let (built, warnings) = probe.build_within(&self.base_dir, budget)?;
         // Without objects the only warning is that the probe has none, which is not news.
         Ok((built, if nothing_new { Vec::new() } else { warnings }))
     }
@@ -1043,6 +1056,27 @@ mod tests {
         assert_eq!((tetra.name.as_str(), tetra.triangle_count()), ("tetra", 4));
         assert_eq!(tetra.frame.offset(), DVec3::new(1.0, 2.0, 3.0));
         assert_eq!(tetra.wireframe, Some(0.05));
+    }
+
+    /// The parts an edit keeps count against the scene's budget with the ones it builds: two
+    /// cubes of 1.08 million triangles each do not fit in one scene (2 million), even when
+    /// they are made one edit at a time.
+    #[test]
+    fn kept_parts_count_against_the_scene_budget() {
+        let mut editor = teaser();
+        let big_cube = |object: &mut ObjectDescription| {
+            object.shape = ShapeDescription::Cube {
+                size: 1.0,
+                subdivisions: 300,
+            };
+        };
+        editor.edit_object(0, big_cube).unwrap();
+        let refused = editor.edit_object(1, big_cube).unwrap_err().to_string();
+        assert!(
+            refused.contains("too large") && refused.contains("already loaded"),
+            "{refused}"
+        );
+        assert_ne!(editor.objects()[1].triangle_count(), 12 * 300 * 300);
     }
 
     /// An edit of an object's geometry rebuilds that object (and only needs its own files).

@@ -8,7 +8,7 @@
 //! before the vertices are transformed). Identical textures are loaded once per scene.
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{DMat4, DVec3};
@@ -62,11 +62,25 @@ impl SceneDescription {
     /// exceed a scene's budget ([`crate::limits`]), or a placement that puts geometry beyond
     /// ±[`MAX_COORDINATE`].
     pub fn build(&self, base_dir: &Path) -> Result<(Scene, Vec<String>), SceneError> {
+        self.build_within(base_dir, Budget::new())
+    }
+
+    /// [`SceneDescription::build`], charging the scene's shapes, models and textures to
+    /// `budget`, which may already hold what the scene keeps from elsewhere (the viewer charges
+    /// the parts an edit keeps with [`Budget::charge_held_parts`] and builds only new objects).
+    ///
+    /// # Errors
+    /// As [`SceneDescription::build`].
+    pub fn build_within(
+        &self,
+        base_dir: &Path,
+        budget: Budget,
+    ) -> Result<(Scene, Vec<String>), SceneError> {
         let fail = |kind| SceneError::new(self.origin(), kind);
         self.check().map_err(fail)?;
         let mut builder = Builder {
             base_dir,
-            budget: Budget::new(),
+            budget,
             textures: HashMap::new(),
             warnings: Vec::new(),
         };
@@ -114,25 +128,39 @@ impl SceneDescription {
     }
 }
 
+/// Reads and parses the scene file at `path`, without building it (nothing else is read).
+///
+/// # Errors
+/// [`SceneError`] naming the file: it cannot be read, or it is not a valid scene file (with line
+/// and column).
+pub fn read_scene_file(path: &Path) -> Result<SceneDescription, SceneError> {
+    let origin = path.display().to_string();
+    let text = input_file::read_text(path, FileKind::Scene)
+        .map_err(|e| SceneError::new(origin.clone(), SceneErrorKind::Io(e)))?;
+    SceneDescription::from_toml_str(&text, &origin)
+}
+
+/// The folder that relative paths in the scene file at `path` start from: its parent, or `.`
+/// for a bare file name.
+#[must_use]
+pub fn scene_file_folder(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// Reads, parses and builds the scene file at `path`; model and texture paths in it are relative
 /// to its folder. Returns the scene (named after the file stem unless the file gives a name), the
 /// description (for editing and saving) and the warnings.
 ///
 /// # Errors
-/// [`SceneError`] naming the file: it cannot be read, it is not a valid scene file (with line and
-/// column), or [`SceneDescription::build`] fails.
+/// [`SceneError`] naming the file: as [`read_scene_file`], or [`SceneDescription::build`] fails.
 pub fn load_scene_file(path: &Path) -> Result<(Scene, SceneDescription, Vec<String>), SceneError> {
-    let origin = path.display().to_string();
-    let text = input_file::read_text(path, FileKind::Scene)
-        .map_err(|e| SceneError::new(origin.clone(), SceneErrorKind::Io(e)))?;
-    let description = SceneDescription::from_toml_str(&text, &origin)?;
-    let base_dir = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
+    let description = read_scene_file(path)?;
     let (mut scene, warnings) = description
-        .build(base_dir)
-        .map_err(|e| e.with_origin(origin.clone()))?;
+        .build(&scene_file_folder(path))
+        .map_err(|e| e.with_origin(path.display().to_string()))?;
     if description.name.is_none()
         && let Some(stem) = path.file_stem()
     {

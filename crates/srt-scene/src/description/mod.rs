@@ -21,7 +21,7 @@ mod error;
 mod model;
 mod validate;
 
-pub use build::{fit_transform, load_scene_file};
+pub use build::{fit_transform, load_scene_file, read_scene_file, scene_file_folder};
 pub use error::{SceneError, SceneErrorKind, line_column};
 pub use model::{
     LightDescription, ObjectDescription, ObserverDescription, RenderDescription, Scale,
