@@ -18,7 +18,8 @@ use crate::textures::MAX_CHECKER_SQUARES;
 impl SceneDescription {
     /// How errors from [`SceneDescription::build`] name this scene when it is not read from a
     /// file.
-    pub(super) fn origin(&self) -> String {
+    #[must_use]
+    pub fn origin(&self) -> String {
         match &self.name {
             Some(name) => format!("scene \"{name}\""),
             None => "scene".to_owned(),
@@ -46,7 +47,7 @@ impl SceneDescription {
                 return Err(value_error(
                     "light.temperature_k",
                     format!(
-                        "must be a positive number of kelvin, got {}",
+                        "must be a positive number of kelvin, got {:?}",
                         light.temperature_k
                     ),
                 ));
@@ -103,7 +104,7 @@ fn length(field: &str, value: f64) -> Result<(), SceneErrorKind> {
     } else {
         Err(value_error(
             field,
-            format!("must be a positive number of at most {MAX_COORDINATE:e}, got {value}"),
+            format!("must be a positive number of at most {MAX_COORDINATE:e}, got {value:?}"),
         ))
     }
 }
@@ -128,13 +129,14 @@ fn resolution(
     }
 }
 
+/// A factor: finite and at least 0.
 fn non_negative(field: &str, value: f64) -> Result<(), SceneErrorKind> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
         Err(value_error(
             field,
-            format!("must be a number ≥ 0, got {value}"),
+            format!("must be a number ≥ 0, got {value:?}"),
         ))
     }
 }
@@ -182,14 +184,14 @@ impl ObserverDescription {
         if !(self.fov_y_deg > 0.0 && self.fov_y_deg < 180.0) {
             return Err(value_error(
                 "observer.fov_y_deg",
-                format!("must be in (0, 180) degrees, got {}", self.fov_y_deg),
+                format!("must be in (0, 180) degrees, got {:?}", self.fov_y_deg),
             ));
         }
         if !self.ct.is_finite() || self.ct.abs() > MAX_COORDINATE {
             return Err(value_error(
                 "observer.ct",
                 format!(
-                    "must be finite and within ±{MAX_COORDINATE:e}, got {}",
+                    "must be finite and within ±{MAX_COORDINATE:e}, got {:?}",
                     self.ct
                 ),
             ));
