@@ -22,6 +22,8 @@ struct LrtOutput {
 // vertex count): a fan of FOOTPRINT_HULL_POINTS − 2 triangles around hull point 0, so that the
 // largest hull is covered; the spare triangles of smaller hulls are degenerate.
 const FOOTPRINT_VERTICES: u32 = 3u * (FOOTPRINT_HULL_POINTS - 2u);
+// The same draw covers a rectangle footprint with two triangles (corners 0 to 5).
+const_assert FOOTPRINT_VERTICES >= 6u;
 
 // Footprint corner `v` (0 to FOOTPRINT_VERTICES − 1: the fan of the hull, or the two triangles
 // of the rectangle) in pixels.
