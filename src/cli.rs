@@ -17,6 +17,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    // The model list in this help text is checked against `model_extension_list()` by a test.
     /// Render a built-in scene, a scene file (.toml) or a 3D model (.gltf, .glb, .obj, .ply, .stl).
     Render(RenderArgs),
     /// List the built-in scenes.
@@ -151,4 +152,33 @@ fn parse_vector(text: &str) -> Result<DVec3, String> {
         }
     };
     Ok(DVec3::new(number(x)?, number(y)?, number(z)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory as _;
+
+    use super::Cli;
+
+    /// The `render` help names the model formats the resolver accepts, in its order.
+    #[test]
+    fn render_help_lists_the_resolvers_model_extensions() {
+        let command = Cli::command();
+        let render = command
+            .find_subcommand("render")
+            .expect("a render subcommand");
+        let about = render.get_about().expect("render has help").to_string();
+        let listed = format!("({})", srt_scene::resolve::model_extension_list());
+        assert!(
+            about.contains(&listed),
+            "`srt render` help {about:?} should list {listed}"
+        );
+    }
+
+    /// A negative vector is ordinary input for `--beta`.
+    #[test]
+    fn negative_components_parse() {
+        let vector = super::parse_vector("-0.9, 0,-1e-3").expect("parses");
+        assert_eq!(vector, glam::DVec3::new(-0.9, 0.0, -1e-3));
+    }
 }

@@ -8,8 +8,9 @@ use std::time::Instant;
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
+use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_physics::Frame;
+use srt_scene::limits::MAX_COORDINATE;
 use srt_scene::{Effects, Scene};
 use srt_trace::{RenderSettings, Tracer};
 
@@ -74,11 +75,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     match args.frames {
         None => render_one(&mut engine, &scene, settings, &output),
         Some(frames) => {
-            let t0 = args.t0.unwrap_or(scene.observer.ct);
-            let t1 = args.t1.unwrap_or(t0 + 10.0);
-            if !t0.is_finite() || !t1.is_finite() {
-                bail!("--t0 and --t1 must be finite numbers");
-            }
+            let t0 = observation_time("--t0", args.t0.unwrap_or(scene.observer.ct))?;
+            let t1 = observation_time("--t1", args.t1.unwrap_or(t0 + 10.0))?;
             let digits = frames.to_string().len().max(4);
             for frame in 0..frames {
                 let fraction = if frames > 1 {
@@ -123,8 +121,29 @@ fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
     };
     // Supersampling on the GPU: render at ⌈√N⌉× the size and average.
     let scale = f64::from(args.samples).sqrt().ceil() as u32;
-    let renderer = GpuRenderer::new(&context, scene, args.width * scale, args.height * scale)
-        .with_context(|| format!("cannot prepare scene {} for the GPU", scene.name))?;
+    let (width, height) = (args.width * scale, args.height * scale);
+    let renderer = match GpuRenderer::new(&context, scene, width, height) {
+        Ok(renderer) => renderer,
+        Err(error @ GpuError::ExceedsLimit { .. })
+            if args.backend == Backend::Auto && method == Method::Lrt =>
+        {
+            eprintln!(
+                "note: the GPU cannot render {}x{} at {} samples (a {width}x{height} target): \
+                 {error}; rendering on the CPU instead",
+                args.width, args.height, args.samples
+            );
+            return Ok(Engine::Cpu);
+        }
+        Err(error) => {
+            return Err(error).with_context(|| {
+                format!(
+                    "cannot prepare scene {} for the GPU ({}x{} at {} samples needs a \
+                     {width}x{height} target; use fewer pixels or samples, or --backend cpu)",
+                    scene.name, args.width, args.height, args.samples
+                )
+            });
+        }
+    };
     Ok(Engine::Gpu {
         context: Box::new(context),
         renderer: Box::new(renderer),
@@ -143,22 +162,28 @@ fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> anyhow::Result<()> {
         });
     }
     if let Some(ct) = args.time {
-        if !ct.is_finite() {
-            bail!("--time must be a finite number");
-        }
-        scene.observer.ct = ct;
+        scene.observer.ct = observation_time("--time", ct)?;
     }
     if let Some(beta) = args.beta {
         for object in &mut scene.objects {
             object.frame = Frame::new(beta, object.frame.offset()).with_context(|| {
                 format!(
-                    "--beta {},{},{} is not a valid velocity",
+                    "--beta {:?},{:?},{:?} is not a valid velocity",
                     beta.x, beta.y, beta.z
                 )
             })?;
         }
     }
     Ok(())
+}
+
+/// `ct` if it is a finite observation time within ±`MAX_COORDINATE`, the scene file's bound.
+fn observation_time(option: &str, ct: f64) -> anyhow::Result<f64> {
+    if ct.is_finite() && ct.abs() <= MAX_COORDINATE {
+        Ok(ct)
+    } else {
+        bail!("{option} must be a finite number within ±{MAX_COORDINATE:e}, got {ct:?}")
+    }
 }
 
 /// A name usable as a file name.

@@ -1,6 +1,7 @@
 //! End-to-end tests of the `srt` program: it renders, lists scenes, and meets bad input with one
 //! clear message, exit code 2, no panic and no (half-)written or destroyed output.
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -261,6 +262,82 @@ fn polygon_method_needs_the_gpu_backend() {
     );
 }
 
+/// `true` when `output` is srt's refusal for want of a GPU adapter (after printing a visible
+/// skip line); a failure instead when `SRT_REQUIRE_GPU=1`.
+fn skipped_for_want_of_an_adapter(test: &str, output: &Output) -> bool {
+    let err = stderr(output);
+    if !err.contains("no GPU adapter") {
+        return false;
+    }
+    assert!(
+        std::env::var("SRT_REQUIRE_GPU").as_deref() != Ok("1"),
+        "{test}: SRT_REQUIRE_GPU=1 but srt found no adapter:\n{err}"
+    );
+    // Written to stderr directly: the test harness captures `eprintln!` of passing tests, and a
+    // skip must be visible.
+    let _ = writeln!(
+        std::io::stderr(),
+        "SKIPPED {test}: srt found no GPU adapter; set SRT_REQUIRE_GPU=1 to make this a failure"
+    );
+    true
+}
+
+/// A render target beyond the adapter's texture limit (16384 pixels wide at 9 samples is a
+/// 49152-pixel-wide target; no adapter allows more than 32768) is refused before anything is
+/// allocated, naming the limit; `auto` renders on the CPU instead and says why.
+#[test]
+fn gpu_limits_are_named_and_auto_falls_back_to_the_cpu() {
+    let dir = folder();
+    let wide = [
+        "render",
+        "fig7",
+        "--width",
+        "16384",
+        "--height",
+        "1",
+        "--samples",
+        "9",
+        "-o",
+        "w.png",
+    ];
+    let on_gpu = srt(&[&wide[..], &["--backend", "gpu"]].concat(), dir.path());
+    if skipped_for_want_of_an_adapter(
+        "gpu_limits_are_named_and_auto_falls_back_to_the_cpu",
+        &on_gpu,
+    ) {
+        return;
+    }
+    assert_clean_failure(&on_gpu, &["max_texture_dimension_2d", "49152", "fig7"]);
+    assert!(!dir.path().join("w.png").exists());
+
+    let auto = srt(&[&wide[..], &["--backend", "auto"]].concat(), dir.path());
+    let err = stderr(&auto);
+    assert!(auto.status.success(), "{err}");
+    assert!(
+        err.contains("note:")
+            && err.contains("max_texture_dimension_2d")
+            && err.contains("rendering on the CPU instead"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&auto.stdout).contains(", cpu,"));
+    let image = image::open(dir.path().join("w.png")).expect("a PNG");
+    assert_eq!((image.width(), image.height()), (16384, 1));
+}
+
+/// A missing scene file or model is named with the reason in words, said once, without the OS
+/// error number.
+#[test]
+fn a_missing_file_is_named_with_its_reason_once() {
+    let dir = folder();
+    for name in ["gone.glb", "gone.toml"] {
+        let output = srt(&["render", name, "--backend", "cpu"], dir.path());
+        assert_clean_failure(&output, &[name, "no such file or directory"]);
+        let err = stderr(&output);
+        assert_eq!(err.matches("no such file").count(), 1, "{err}");
+        assert!(!err.contains("os error"), "{err}");
+    }
+}
+
 #[test]
 fn negative_numbers_are_ordinary_option_values() {
     let dir = folder();
@@ -326,6 +403,29 @@ fn negative_numbers_are_ordinary_option_values() {
         &["--time", "finite"],
     );
     assert!(!dir.path().join("x.png").exists());
+}
+
+/// Absurd but finite numbers are refused with the scene file's bounds and written shortly
+/// (`1e300`, not three hundred digits).
+#[test]
+fn absurd_times_and_velocities_are_refused_in_short_words() {
+    let dir = folder();
+    let base = ["render", "fig4", "--backend", "cpu", "-o", "x.png"];
+    for (extra, mentions) in [
+        (["--time", "1e300"], ["--time", "1e300"]),
+        (["--t1", "-1e20"], ["--t1", "-1e20"]),
+        (["--beta", "1e300,0,0"], ["--beta", "1e300"]),
+    ] {
+        let mut args = base.to_vec();
+        args.extend(extra);
+        if extra[0] == "--t1" {
+            args.extend(["--frames", "2"]);
+        }
+        let output = srt(&args, dir.path());
+        assert_clean_failure(&output, &mentions);
+        assert!(stderr(&output).len() < 200, "{}", stderr(&output));
+    }
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
 }
 
 #[test]
