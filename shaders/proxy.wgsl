@@ -61,6 +61,106 @@ fn whole_screen_footprint() -> Footprint {
     return f;
 }
 
+// The footprint of a triangle the tangent construction cannot bound (a point at or behind the
+// camera, or an ill-conditioned tangent intersection): the rectangle of the on-screen part of its
+// swept prism, clamped to the screen (srt_proxy::swept_prism and srt_proxy::visible_rect, whose
+// documentation proves it conservative); empty when nothing of it can be seen, the whole screen
+// when the prism may reach the camera.
+fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
+    let beta = object.frame.beta_gamma.xyz;
+    let observer = frame_uniforms.observer.xyz;
+    var emission: array<vec4<f32>, 3>;
+    var start: array<vec3<f32>, 3>;
+    var slope: array<vec3<f32>, 3>;
+    var latest_corner = -3.0e38;
+    for (var i = 0u; i < 3u; i++) {
+        emission[i] = to_observer(object.frame, emission_event(object.frame, rest[i]));
+        // Where the corner is at ct = 0, and the gradient −n/(1 + n·β) of its emission time.
+        start[i] = emission[i].yzw - beta * emission[i].x;
+        let to_point = emission[i].yzw - observer;
+        let reach = length(to_point);
+        if (!(reach > 0.0)) {
+            return whole_screen_footprint();
+        }
+        let n = to_point / reach;
+        slope[i] = -n / (1.0 + dot(n, beta));
+        latest_corner = max(latest_corner, emission[i].x);
+    }
+    var latest = 3.0e38;
+    for (var i = 0u; i < 3u; i++) {
+        var highest = -3.0e38;
+        for (var j = 0u; j < 3u; j++) {
+            highest = max(highest, emission[i].x + dot(slope[i], start[j] - start[i]));
+        }
+        latest = min(latest, highest);
+    }
+    latest = max(latest, latest_corner);
+    var clip: array<vec4<f32>, 6>;
+    var lo = vec4<f32>(3.0e38);
+    var hi = vec4<f32>(-3.0e38);
+    // Signed distances to the camera plane and the four side planes of the view pyramid: a
+    // plane with all six points behind it hides the prism.
+    var all_beyond = vec4<bool>(true);
+    var all_behind = true;
+    for (var k = 0u; k < 6u; k++) {
+        let p = select(emission[k % 3u].yzw, start[k % 3u] + beta * latest, k >= 3u);
+        let c = frame_uniforms.view_projection * vec4<f32>(p, 1.0);
+        clip[k] = c;
+        lo = min(lo, c);
+        hi = max(hi, c);
+        all_beyond = all_beyond & (vec4<f32>(c.w - c.x, c.w + c.x, c.w - c.y, c.w + c.y) < vec4<f32>(0.0));
+        all_behind = all_behind && c.w < 0.0;
+    }
+    var empty: Footprint;
+    empty.hull_len = 0u;
+    empty.whole_screen = 0u;
+    empty.rect = vec4<f32>(0.0);
+    if (all_behind || any(all_beyond)) {
+        return empty;
+    }
+    let clearance = max(max(max(lo.x, -hi.x), max(lo.y, -hi.y)), lo.w);
+    if (!(clearance > 0.0 && clearance < 3.0e38)) {
+        return whole_screen_footprint();
+    }
+    let near = 0.5 * clearance;
+    var pixels_lo = vec2<f32>(3.0e38);
+    var pixels_hi = vec2<f32>(-3.0e38);
+    for (var a = 0u; a < 6u; a++) {
+        if (clip[a].w < near) {
+            continue;
+        }
+        for (var b = 0u; b < 7u; b++) {
+            // b = 6 stands for the point a itself; b < 6 for the crossing towards a point behind.
+            var c = clip[a];
+            if (b < 6u) {
+                if (clip[b].w >= near) {
+                    continue;
+                }
+                c = clip[a] + (clip[b] - clip[a]) * ((near - clip[a].w) / (clip[b].w - clip[a].w));
+            }
+            let w = max(c.w, near);
+            let pixel = vec2<f32>((c.x / w + 1.0) * 0.5 * frame_uniforms.viewport.x, (1.0 - c.y / w) * 0.5 * frame_uniforms.viewport.y);
+            pixels_lo = min(pixels_lo, pixel);
+            pixels_hi = max(pixels_hi, pixel);
+        }
+    }
+    let screen = frame_uniforms.viewport.xy;
+    let rect_lo = max(pixels_lo - FOOTPRINT_MARGIN, vec2<f32>(0.0));
+    let rect_hi = min(pixels_hi + FOOTPRINT_MARGIN, screen);
+    if (!all(rect_lo < rect_hi)) {
+        return empty;
+    }
+    var f: Footprint;
+    f.rect = vec4<f32>(rect_lo, rect_hi);
+    f.hull[0] = rect_lo;
+    f.hull[1] = vec2<f32>(rect_hi.x, rect_lo.y);
+    f.hull[2] = rect_hi;
+    f.hull[3] = vec2<f32>(rect_lo.x, rect_hi.y);
+    f.hull_len = 4u;
+    f.whole_screen = 0u;
+    return f;
+}
+
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     // Large parts are dispatched as a 2D grid of workgroups.
@@ -97,7 +197,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         // A tangent intersection far beyond its chord is ill-conditioned in f32: whole screen.
         let far = length(g - 0.5 * (corners[i] + corners[j])) > MAX_TANGENT_REACH * length(corners[j] - corners[i]);
         if (pp.z == 0.0 || pg.z == 0.0 || far) {
-            footprints[t] = whole_screen_footprint();
+            footprints[t] = swept_footprint(rest);
             return;
         }
         points[2u * i] = pp.xy;

@@ -1,5 +1,6 @@
 //! The scenes `validate` and `bench` run: the built-in scenes and models from Debian's
-//! assimp-testmodels package, at chosen speeds.
+//! assimp-testmodels package, at chosen speeds, and scenes in motion (objects passing beside,
+//! through and behind the camera, an object around it).
 
 use std::path::{Path, PathBuf};
 
@@ -86,4 +87,100 @@ pub fn with_speed(scene: &Scene, speed: f64) -> anyhow::Result<Scene> {
         }
     }
     Ok(scene)
+}
+
+/// The 2CylinderEngine model (121 496 triangles) of the assimp corpus.
+pub const ENGINE: &str = "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+
+/// `scene` seen at observation time `ct`, named `NAME@ct=CT`.
+#[must_use]
+pub fn at_time(name: &str, scene: &Scene, ct: f64) -> Case {
+    let mut scene = scene.clone();
+    scene.observer.ct = ct;
+    Case {
+        name: format!("{name}@ct={ct}"),
+        scene,
+    }
+}
+
+/// `scene` with every object's path moved by `shift` (in S): the same motion, passing
+/// elsewhere.
+#[must_use]
+pub fn shifted(scene: &Scene, shift: glam::DVec3) -> Scene {
+    let mut scene = scene.clone();
+    for object in &mut scene.objects {
+        object.frame = Frame::new(object.frame.beta(), object.frame.offset() + shift)
+            .expect("the velocity was valid already");
+    }
+    scene
+}
+
+/// The teaser's sweep of the issue that found whole-screen footprints: 12 frames from
+/// ct = −20 to 20 (the spider passes the camera from frame 7 on).
+#[must_use]
+pub fn teaser_sweep_times() -> Vec<f64> {
+    (0..12)
+        .map(|k| -20.0 + 40.0 * f64::from(k) / 11.0)
+        .collect()
+}
+
+/// The engine approaching at 0.9c passes through the camera at ct ≈ 0.39: a sweep from in
+/// front of the camera, through it, to behind it.
+#[must_use]
+pub fn engine_sweep_times() -> Vec<f64> {
+    (0..12).map(|k| -2.0 + 0.5 * f64::from(k)).collect()
+}
+
+/// Sideways shift of the engine's path so that it passes beside and above the camera instead
+/// of through it.
+pub const ENGINE_BESIDE: glam::DVec3 = glam::DVec3::new(1.2, 0.4, 1.0);
+
+/// A checkered sphere of radius 5 around the observer, moving at 0.5c: the camera inside an
+/// object.
+///
+/// # Errors
+/// If the scene does not build (a bug).
+pub fn enclosing_case() -> anyhow::Result<Case> {
+    let text = r#"
+        name = "enclosing"
+        [observer]
+        position = [0.0, 0.0, 0.0]
+        look_at = [0.0, 1.0, 0.2]
+        fov_y_deg = 70.0
+        [[object]]
+        shape = { type = "sphere", radius = 5.0, segments = 48 }
+        texture = { type = "checker", squares = 12 }
+        beta = [0.5, 0.0, 0.0]
+        offset = [0.0, 0.0, 0.0]
+    "#;
+    let (scene, _) = SceneDescription::from_toml_str(text, "enclosing")?.build(Path::new("/"))?;
+    Ok(Case {
+        name: "enclosing".to_owned(),
+        scene,
+    })
+}
+
+/// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine
+/// passing through and beside the camera, and the camera inside a sphere.
+///
+/// # Errors
+/// If the engine model is missing.
+pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
+    let teaser = builtin_cases()?
+        .into_iter()
+        .find(|c| c.name == "teaser")
+        .context("the teaser is a built-in scene")?;
+    let mut cases: Vec<Case> = teaser_sweep_times()[6..]
+        .iter()
+        .step_by(2)
+        .map(|&ct| at_time("teaser", &teaser.scene, ct))
+        .collect();
+    let engine = model_case(ENGINE, 0.9)?;
+    let beside = shifted(&engine.scene, ENGINE_BESIDE);
+    for ct in [0.2, 0.5, 1.5] {
+        cases.push(at_time("engine-through", &engine.scene, ct));
+        cases.push(at_time("engine-beside", &beside, ct));
+    }
+    cases.push(enclosing_case()?);
+    Ok(cases)
 }

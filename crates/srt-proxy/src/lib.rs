@@ -13,7 +13,26 @@
 //! 3. projection with the view-projection matrix and viewport;
 //! 4. the window-aligned rectangle (min–max of P̄_i, Ḡ_ij) and the tighter convex hull (3–6
 //!    points) of the same six points;
-//! 5. if any of the six points is at or behind the camera, the whole screen.
+//! 5. if any of the six points is at or behind the camera, or a tangent intersection is
+//!    ill-conditioned, the paper takes the whole screen. We bound such a triangle instead by a
+//!    *swept prism* (below), clip it at the camera and take the rectangle of what is left on the
+//!    screen: a triangle beside or behind the camera draws only where it can be seen, and one
+//!    wholly behind draws nothing. The whole screen remains only for a triangle whose prism
+//!    reaches the camera itself.
+//!
+//! **The swept prism.** A point of the object that is at x₀ in S at ct = 0 moves along
+//! x₀ + β·ct; it is seen where that worldline meets the observer's backward light cone, at the
+//! emission time u(x₀), solving ct_obs − u = ‖x₀ + βu − o‖. Solved for u, this is a linear
+//! function minus a norm of x₀, so u is *concave* over the (flat) triangle of x₀ points, with
+//! gradient ∇u = −n/(1 + n·β), n the unit direction from the observer to the apparent point
+//! (differentiate the light-cone condition). Hence over the triangle u lies above the plane
+//! through its corner values and below each corner's tangent plane; the apparent triangle
+//! {x₀ + β u(x₀)} lies in the convex hull of the three apparent corners P_i = x₀ᵢ + β uᵢ and
+//! the three points x₀ᵢ + β u_max, where u_max = min over corners i of the largest value of
+//! corner i's tangent plane over the triangle (at one of its corners). Clipping this convex
+//! set at a plane w = ε in front of the camera, chosen from the six points' clip-space bounds
+//! so that no part of the set between the camera and that plane is on screen, keeps every point
+//! that can be seen; its projection is bounded.
 //!
 //! **Where this differs from the paper.** The paper approximates the tangent at P_i by the chord
 //! to Q_ij = R(P′_i + ε(P′_j − P′_i)) with ε = 0.01 (Eq. 14). A chord lies *inside* a convex arc,
@@ -127,8 +146,14 @@ pub struct Footprint {
     pub hull: [DVec2; 6],
     /// Number of valid points in `hull`.
     pub hull_len: usize,
-    /// True when a point lies at or behind the camera: the footprint is then the whole screen.
+    /// True when the triangle's swept prism reaches the camera itself: the footprint is then
+    /// the whole screen.
     pub whole_screen: bool,
+    /// True when the footprint bounds the clipped swept prism (a triangle reaching beside or
+    /// behind the camera, or with an ill-conditioned tangent intersection) rather than the
+    /// tangent construction: its hull is then its rectangle, clamped to the screen (or empty when
+    /// nothing of it can be seen).
+    pub swept: bool,
 }
 
 impl Footprint {
@@ -161,7 +186,51 @@ impl Footprint {
             hull,
             hull_len: 4,
             whole_screen: true,
+            swept: false,
         }
+    }
+
+    /// The footprint of a swept prism whose visible part projects into `rect` (clamped to the
+    /// screen here); empty (zero rectangle, no hull) when `rect` misses the screen.
+    fn swept(
+        viewport: Viewport,
+        corners: [DVec2; 3],
+        tangent_points: [DVec2; 3],
+        rect: Rect,
+    ) -> Self {
+        let rect = rect.clamped(viewport);
+        let visible = rect.min.cmplt(rect.max).all();
+        let mut hull = [DVec2::ZERO; 6];
+        if visible {
+            hull[..4].copy_from_slice(&[
+                rect.min,
+                DVec2::new(rect.max.x, rect.min.y),
+                rect.max,
+                DVec2::new(rect.min.x, rect.max.y),
+            ]);
+        }
+        Self {
+            corners,
+            tangent_points,
+            rect: if visible {
+                rect
+            } else {
+                Rect {
+                    min: DVec2::ZERO,
+                    max: DVec2::ZERO,
+                }
+            },
+            hull,
+            hull_len: if visible { 4 } else { 0 },
+            whole_screen: false,
+            swept: true,
+        }
+    }
+
+    /// Whether nothing is drawn for it (an empty rectangle).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        !self.whole_screen && self.rect.area() <= 0.0 && self.hull_len == 0
     }
 }
 
@@ -263,11 +332,116 @@ pub fn footprint(
                 hull,
                 hull_len,
                 whole_screen: false,
+                swept: false,
             }
         }
         (c, g) => {
             let or_zero = |p: Option<DVec2>| p.unwrap_or(DVec2::ZERO);
-            Footprint::whole(viewport, c.map(or_zero), g.map(or_zero))
+            let (c, g) = (c.map(or_zero), g.map(or_zero));
+            match swept_prism(frame, triangle, observer)
+                .and_then(|prism| visible_rect(&prism, view_projection, viewport))
+            {
+                Some(rect) => Footprint::swept(viewport, c, g, rect),
+                None => Footprint::whole(viewport, c, g),
+            }
         }
     }
+}
+
+/// The six points whose convex hull holds the apparent image of `triangle` (see the crate
+/// documentation): the apparent corners P_i, then x₀ᵢ + β u_max. `None` when the observer's
+/// own position is a corner's apparent position (no direction to it).
+#[must_use]
+pub fn swept_prism(frame: &Frame, triangle: [DVec3; 3], observer: Event) -> Option<[DVec3; 6]> {
+    let beta = frame.beta();
+    let emissions = triangle.map(|p| frame.to_observer(frame.emission_event(p, observer)));
+    let mut start = [DVec3::ZERO; 3];
+    let mut slope = [DVec3::ZERO; 3];
+    for (i, emission) in emissions.iter().enumerate() {
+        // Where the corner is at ct = 0, and the gradient −n/(1 + n·β) of u at it.
+        start[i] = emission.position - beta * emission.ct;
+        let n = (emission.position - observer.position).try_normalize()?;
+        slope[i] = -n / (1.0 + n.dot(beta));
+    }
+    let latest = (0..3)
+        .map(|i| {
+            (0..3)
+                .map(|j| emissions[i].ct + slope[i].dot(start[j] - start[i]))
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .fold(f64::INFINITY, f64::min);
+    let latest = latest.max(
+        emissions
+            .iter()
+            .map(|e| e.ct)
+            .fold(f64::NEG_INFINITY, f64::max),
+    );
+    let points = [
+        emissions[0].position,
+        emissions[1].position,
+        emissions[2].position,
+        start[0] + beta * latest,
+        start[1] + beta * latest,
+        start[2] + beta * latest,
+    ];
+    points.iter().all(|p| p.is_finite()).then_some(points)
+}
+
+/// The rectangle (pixels, not yet clamped to the screen) holding every on-screen point of the
+/// convex hull of `points` (in S), or `None` when that hull may reach the camera itself.
+///
+/// In clip space the on-screen points with 0 < w ≤ ε lie in the box |x|, |y| ≤ ε, 0 ≤ w ≤ ε.
+/// With ε half the distance by which the points' bounding box misses that box at ε = its
+/// largest possible value, nothing of the hull is on screen before w = ε, so the hull is
+/// clipped there: the points with w ≥ ε and the crossings of w = ε by the segments between
+/// points on either side (these include every vertex of the clipped hull) are projected.
+#[must_use]
+pub fn visible_rect(points: &[DVec3], view_projection: DMat4, viewport: Viewport) -> Option<Rect> {
+    let clip: Vec<DVec4> = points
+        .iter()
+        .map(|p| view_projection * DVec4::new(p.x, p.y, p.z, 1.0))
+        .collect();
+    let lo = clip.iter().fold(DVec4::INFINITY, |a, &c| a.min(c));
+    let hi = clip.iter().fold(DVec4::NEG_INFINITY, |a, &c| a.max(c));
+    let nothing = Rect {
+        min: DVec2::INFINITY,
+        max: DVec2::NEG_INFINITY,
+    };
+    // Wholly behind the camera, or wholly beyond one side plane of the view pyramid.
+    let beyond = |f: &dyn Fn(DVec4) -> f64| clip.iter().all(|&c| f(c) < 0.0);
+    if beyond(&|c| c.w)
+        || beyond(&|c| c.w - c.x)
+        || beyond(&|c| c.w + c.x)
+        || beyond(&|c| c.w - c.y)
+        || beyond(&|c| c.w + c.y)
+    {
+        return Some(nothing);
+    }
+    let clearance = lo.x.max(-hi.x).max(lo.y).max(-hi.y).max(lo.w);
+    if !(clearance > 0.0 && clearance.is_finite()) {
+        return None;
+    }
+    let near = 0.5 * clearance;
+    let mut kept: Vec<DVec4> = clip.iter().copied().filter(|c| c.w >= near).collect();
+    for a in &clip {
+        for b in &clip {
+            if a.w >= near && b.w < near {
+                kept.push(*a + (*b - *a) * ((near - a.w) / (b.w - a.w)));
+            }
+        }
+    }
+    let pixels: Vec<DVec2> = kept
+        .iter()
+        .map(|c| {
+            DVec2::new(
+                (c.x / c.w + 1.0) * 0.5 * viewport.width,
+                (1.0 - c.y / c.w) * 0.5 * viewport.height,
+            )
+        })
+        .collect();
+    Some(if pixels.is_empty() {
+        nothing
+    } else {
+        Rect::bounding(&pixels)
+    })
 }

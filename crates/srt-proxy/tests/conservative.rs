@@ -7,7 +7,7 @@ use glam::dcamera::rh::view::look_at_mat4 as look_at;
 use glam::{DMat4, DVec2, DVec3};
 use proptest::prelude::*;
 use srt_physics::{Event, Frame};
-use srt_proxy::{Viewport, footprint, project};
+use srt_proxy::{Rect, Viewport, footprint, project};
 
 const VIEWPORT: Viewport = Viewport {
     width: 640.0,
@@ -92,27 +92,155 @@ fn rest_samples(t: [DVec3; 3]) -> Vec<DVec3> {
     out
 }
 
+/// A setup whose camera looks anywhere (not at the triangle), from closer: triangles beside,
+/// behind and around the camera, as when objects pass it.
+fn passing_setup() -> impl Strategy<Value = Setup> {
+    (setup(), vec3(1.0), vec3(1.0), 0.0..1.0f64).prop_filter_map(
+        "valid camera",
+        |(s, look, up, closeness)| {
+            let position = s.observer.position;
+            // Pull the observer towards the triangle's apparent centroid, often into it.
+            let centroid = (s.triangle[0] + s.triangle[1] + s.triangle[2]) / 3.0;
+            let seen = s.frame.apparent_position(centroid, s.observer);
+            let observer = Event::new(s.observer.ct, position + closeness * (seen - position));
+            if look.length() < 1e-3 || up.cross(look).length() < 1e-3 * up.length() * look.length()
+            {
+                return None;
+            }
+            let view = look_at(observer.position, observer.position + look, up.normalize());
+            let projection = perspective(1.2, VIEWPORT.width / VIEWPORT.height, 0.01, 1000.0);
+            Some(Setup {
+                observer,
+                view_projection: projection * view,
+                ..s
+            })
+        },
+    )
+}
+
+/// Every sample of the apparent triangle that lands on the screen lies in the footprint's
+/// rectangle and hull (samples behind the camera, or off screen for a footprint clamped to it,
+/// are never seen).
+fn assert_conservative(s: &Setup) -> Result<(), TestCaseError> {
+    let fp = footprint(
+        &s.frame,
+        s.triangle,
+        s.observer,
+        s.view_projection,
+        VIEWPORT,
+    );
+    let extent = if fp.whole_screen {
+        1.0
+    } else {
+        (fp.rect.max - fp.rect.min).length()
+    };
+    let tolerance = 1e-7 * (1.0 + extent.max(VIEWPORT.width));
+    for p in rest_samples(s.triangle) {
+        let seen = s.frame.apparent_position(p, s.observer);
+        match project(s.view_projection, VIEWPORT, seen) {
+            None => {}
+            // The whole screen covers every pixel that can show the point.
+            Some(_) if fp.whole_screen => {}
+            Some(px) if fp.swept && !Rect::screen(VIEWPORT).contains(px, 0.0) => {}
+            Some(px) => {
+                prop_assert!(
+                    fp.rect.contains(px, tolerance),
+                    "{px} outside rect {:?}",
+                    fp.rect
+                );
+                prop_assert!(
+                    fp.hull_contains(px, tolerance),
+                    "{px} outside hull {:?}",
+                    fp.hull_points()
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
 
     #[test]
     fn apparent_triangle_lies_inside_rectangle_and_hull(s in setup()) {
-        let fp = footprint(&s.frame, s.triangle, s.observer, s.view_projection, VIEWPORT);
-        let extent = if fp.whole_screen { 1.0 } else { (fp.rect.max - fp.rect.min).length() };
-        let tolerance = 1e-7 * (1.0 + extent);
-        for p in rest_samples(s.triangle) {
-            let seen = s.frame.apparent_position(p, s.observer);
-            match project(s.view_projection, VIEWPORT, seen) {
-                None => prop_assert!(fp.whole_screen, "a point behind the camera needs the whole screen"),
-                // The whole screen covers every pixel that can show the point.
-                Some(_) if fp.whole_screen => {}
-                Some(px) => {
-                    prop_assert!(fp.rect.contains(px, tolerance), "{px} outside rect {:?}", fp.rect);
-                    prop_assert!(fp.hull_contains(px, tolerance), "{px} outside hull {:?}", fp.hull_points());
-                }
-            }
-        }
+        assert_conservative(&s)?;
     }
+
+    #[test]
+    fn triangles_passing_the_camera_stay_inside_their_footprints(s in passing_setup()) {
+        assert_conservative(&s)?;
+    }
+}
+
+#[test]
+fn few_passing_triangles_need_the_whole_screen() {
+    // Guards the second property test against passing through the whole-screen case, and
+    // measures what the swept prism saves: the whole screen is left only for triangles whose
+    // prism reaches the camera.
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let mut runner = TestRunner::deterministic();
+    let strategy = passing_setup();
+    let total = 400;
+    let (mut whole, mut swept, mut empty) = (0, 0, 0);
+    for _ in 0..total {
+        let s = strategy.new_tree(&mut runner).unwrap().current();
+        let fp = footprint(
+            &s.frame,
+            s.triangle,
+            s.observer,
+            s.view_projection,
+            VIEWPORT,
+        );
+        whole += usize::from(fp.whole_screen);
+        swept += usize::from(fp.swept);
+        empty += usize::from(fp.is_empty());
+    }
+    eprintln!("passing footprints: {whole} whole screen, {swept} swept, {empty} empty of {total}");
+    assert!(
+        whole * 10 < total,
+        "{whole} of {total} passing footprints were the whole screen"
+    );
+    assert!(
+        swept * 5 > total,
+        "only {swept} of {total} passing footprints were swept prisms"
+    );
+    assert!(
+        empty * 10 > total,
+        "only {empty} of {total} passing footprints were empty"
+    );
+}
+
+#[test]
+fn a_triangle_beside_and_behind_the_camera_draws_only_where_it_is_seen() {
+    // The observer at the origin looks along −z; a long triangle moving at 0.9c along −z
+    // passes beside the camera, seen partly in front of it and partly behind it.
+    let frame = Frame::new(DVec3::new(0.0, 0.0, -0.9), DVec3::new(0.0, 0.0, 0.0)).unwrap();
+    let observer = Event::new(0.0, DVec3::ZERO);
+    let view = look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y);
+    let vp = perspective(1.0, 4.0 / 3.0, 0.1, 100.0) * view;
+    let beside = [
+        DVec3::new(2.0, -0.5, -12.0),
+        DVec3::new(2.5, 0.5, 1.0),
+        DVec3::new(3.0, 0.0, -4.0),
+    ];
+    let seen_z = beside.map(|p| frame.apparent_position(p, observer).z);
+    assert!(seen_z[0] < 0.0 && seen_z[1] > 0.0, "{seen_z:?}");
+    let fp = footprint(&frame, beside, observer, vp, VIEWPORT);
+    assert!(!fp.whole_screen && fp.swept, "{fp:?}");
+    assert!(
+        fp.rect.area() < 0.5 * VIEWPORT.width * VIEWPORT.height,
+        "{fp:?}"
+    );
+    assert!(
+        fp.rect.max.x == VIEWPORT.width,
+        "the part in front reaches the right edge: {fp:?}"
+    );
+    // Wholly behind the camera: nothing.
+    let behind = beside.map(|p| p + DVec3::new(-2.0, 0.0, 40.0));
+    let fp = footprint(&frame, behind, observer, vp, VIEWPORT);
+    assert!(fp.is_empty(), "{fp:?}");
 }
 
 #[test]
