@@ -6,7 +6,12 @@
 
 @group(3) @binding(0) var<storage, read> footprints: array<Footprint>;
 // Fragments shaded, for the overdraw figure of `cargo xtask bench`.
-@group(3) @binding(1) var<storage, read_write> fragment_count: atomic<u32>;
+// Fragments run ([0]) and fragments that hit their triangle and were shaded ([1]).
+@group(3) @binding(1) var<storage, read_write> fragment_count: array<atomic<u32>, 2>;
+// Whether fragments are counted in fragment_count: set at pipeline creation by
+// srt_gpu::shaders::lrt(counting), true only for measurements (global atomics per fragment
+// contend on a real GPU).
+override COUNT_FRAGMENTS: bool;
 
 struct LrtVarying {
     @builtin(position) position: vec4<f32>,
@@ -51,7 +56,9 @@ fn lrt_vertex(@builtin(vertex_index) v: u32, @builtin(instance_index) t: u32) ->
 
 @fragment
 fn lrt_fragment(in: LrtVarying) -> LrtOutput {
-    atomicAdd(&fragment_count, 1u);
+    if (COUNT_FRAGMENTS) {
+        atomicAdd(&fragment_count[0], 1u);
+    }
     let t = in.triangle;
     let pixel = in.position.xy;
     let ray = backward_ray(object.frame, view_direction(pixel));
@@ -59,6 +66,9 @@ fn lrt_fragment(in: LrtVarying) -> LrtOutput {
     let hit = intersect_triangle(ray.origin, ray.direction, corners);
     if (!hit.found) {
         discard;
+    }
+    if (COUNT_FRAGMENTS) {
+        atomicAdd(&fragment_count[1], 1u);
     }
     // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
     var uv_ddx = vec2<f32>(0.0);

@@ -80,7 +80,8 @@ fn measure(ctx: &GpuContext, case: &Case, frames: u32) -> anyhow::Result<Row> {
         Ok(renderer
             .render(ctx, scene, Method::Lrt, shape)?
             .1
-            .fragments_shaded as f64)
+            .fragments_shaded
+            .context("the renderer counts fragments")? as f64)
     };
     Ok(Row {
         scene: case.name.clone(),

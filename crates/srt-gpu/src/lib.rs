@@ -26,4 +26,4 @@ pub mod types;
 
 pub use context::{GpuContext, GpuError, context_or_skip};
 pub use readback::{TextureReadback, read_texture};
-pub use renderer::{FootprintShape, FrameStats, GpuImage, GpuRenderer, Method};
+pub use renderer::{FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method};

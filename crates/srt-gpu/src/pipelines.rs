@@ -262,7 +262,7 @@ pub fn specs() -> [PipelineSpec; 3] {
         },
         PipelineSpec {
             label: "srt lrt",
-            shader: shaders::lrt(),
+            shader: shaders::lrt(false),
             entry_points: &LRT_ENTRIES,
             groups: [&base[..], &[LRT_INPUT_GROUP]].concat(),
         },
@@ -291,6 +291,11 @@ pub struct Pipelines {
     pub proxy: wgpu::ComputePipeline,
     /// The local ray tracing pipeline.
     pub lrt: wgpu::RenderPipeline,
+    /// The local ray tracing pipeline that counts fragments, made when first asked for
+    /// ([`Pipelines::lrt_counting`]).
+    lrt_counting: std::sync::OnceLock<wgpu::RenderPipeline>,
+    /// The colour format the render pipelines draw into.
+    color_format: wgpu::TextureFormat,
     /// The polygon-rendering pipeline.
     pub polygon: wgpu::RenderPipeline,
     /// Trilinear, repeating sampler for part textures.
@@ -334,9 +339,25 @@ impl Pipelines {
             lrt_input_layout: LRT_INPUT_GROUP.create_layout(device),
             proxy,
             lrt,
+            lrt_counting: std::sync::OnceLock::new(),
+            color_format,
             polygon,
             sampler,
         }
+    }
+
+    /// The LRT pipeline whose fragments add 1 each to the fragment counter, created on first
+    /// use (only measurements need it).
+    pub fn lrt_counting(&self, device: &wgpu::Device) -> &wgpu::RenderPipeline {
+        self.lrt_counting.get_or_init(|| {
+            let [_, lrt_spec, _] = specs();
+            let spec = PipelineSpec {
+                label: "srt lrt (counting)",
+                shader: shaders::lrt(true),
+                ..lrt_spec
+            };
+            render_pipeline(device, &spec, LRT_ENTRIES, self.color_format)
+        })
     }
 }
 

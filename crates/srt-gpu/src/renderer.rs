@@ -23,8 +23,8 @@ use crate::projection::view_projection;
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
 use crate::types::{
-    EffectsCode, FOOTPRINT_VERTICES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame,
-    GpuVertex, ObjectUniforms, PartFlags, PartUniforms, mat4, vec4,
+    EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms,
+    GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PartFlags, PartUniforms, mat4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -98,8 +98,18 @@ impl GpuImage {
 pub struct FrameStats {
     /// GPU time of the passes in milliseconds, where timestamp queries are supported.
     pub gpu_time_ms: Option<f64>,
-    /// Fragments the LRT pass ran (0 for the polygon method).
-    pub fragments_shaded: u64,
+    /// The LRT pass's fragments, when the renderer counts them
+    /// ([`GpuRenderer::set_fragment_counting`]; zero for the polygon method).
+    pub fragments: Option<FragmentCounts>,
+}
+
+/// What the LRT pass's fragment shader did in one frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FragmentCounts {
+    /// Fragment shader invocations (one per footprint pixel that passed the rasteriser).
+    pub run: u64,
+    /// Those whose ray hit the triangle and were shaded (the rest discard).
+    pub shaded: u64,
 }
 
 /// One part's buffer sizes and counts, checked against the device's limits before upload.
@@ -277,7 +287,7 @@ impl FragmentCounter {
         let buffer = |label, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: 4,
+                size: FRAGMENT_COUNTER_BYTES,
                 usage,
                 mapped_at_creation: false,
             })
@@ -346,6 +356,8 @@ pub struct GpuRenderer {
     targets: Targets,
     /// Draw rectangles even when hulls are asked for (see [`GpuRenderer::hulls_supported`]).
     rectangles_only: bool,
+    /// Whether the LRT pass counts its fragments.
+    count_fragments: bool,
 }
 
 /// The part's texture with its mip chain (levels larger than the device allows are skipped),
@@ -552,6 +564,7 @@ impl GpuRenderer {
             objects,
             counter,
             rectangles_only: ctx.adapter_info.backend == wgpu::Backend::Gl,
+            count_fragments: false,
         };
         ctx.take_errors()?;
         Ok(renderer)
@@ -564,6 +577,12 @@ impl GpuRenderer {
     #[must_use]
     pub fn hulls_supported(&self) -> bool {
         !self.rectangles_only
+    }
+
+    /// Makes the LRT pass count the fragments it runs ([`FrameStats::fragments_shaded`]), or
+    /// stop counting. Counting is for measurements: it costs a global atomic per fragment.
+    pub fn set_fragment_counting(&mut self, counting: bool) {
+        self.count_fragments = counting;
     }
 
     /// Image width and height.
@@ -684,16 +703,26 @@ impl GpuRenderer {
         footprint: FootprintShape,
     ) -> Result<(), GpuError> {
         let tone = self.write_uniforms(ctx, scene, footprint)?;
-        encoder.clear_buffer(&self.counter.counter, 0, None);
+        if self.count_fragments {
+            encoder.clear_buffer(&self.counter.counter, 0, None);
+        }
         if method == Method::Lrt {
             self.encode_proxy_pass(encoder, tone);
         }
-        self.encode_render_pass(encoder, scene, method, tone);
+        self.encode_render_pass(&ctx.device, encoder, scene, method, tone);
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
             encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
         }
-        encoder.copy_buffer_to_buffer(&self.counter.counter, 0, &self.counter.readback, 0, 4);
+        if self.count_fragments {
+            encoder.copy_buffer_to_buffer(
+                &self.counter.counter,
+                0,
+                &self.counter.readback,
+                0,
+                FRAGMENT_COUNTER_BYTES,
+            );
+        }
         Ok(())
     }
 
@@ -726,6 +755,7 @@ impl GpuRenderer {
     /// The LRT or polygon render pass into the targets (timestamps 2 and 3).
     fn encode_render_pass(
         &self,
+        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         scene: &Scene,
         method: Method,
@@ -776,6 +806,7 @@ impl GpuRenderer {
             multiview_mask: None,
         });
         pass.set_pipeline(match method {
+            Method::Lrt if self.count_fragments => self.pipelines.lrt_counting(device),
             Method::Lrt => &self.pipelines.lrt,
             Method::Polygon => &self.pipelines.polygon,
         });
@@ -820,8 +851,16 @@ impl GpuRenderer {
         let bytes = t.readback.read(ctx)?;
         let pixel_bytes = texel_bytes(ctx.color_format)? as usize;
         let pixels = bytes.chunks_exact(pixel_bytes).map(decode_pixel).collect();
-        let fragments =
-            bytemuck::pod_read_unaligned::<u32>(&ctx.read_buffer(&self.counter.readback)?);
+        let fragments = if self.count_fragments {
+            let [run, shaded] =
+                bytemuck::pod_read_unaligned::<[u32; 2]>(&ctx.read_buffer(&self.counter.readback)?);
+            Some(FragmentCounts {
+                run: u64::from(run),
+                shaded: u64::from(shaded),
+            })
+        } else {
+            None
+        };
         let gpu_time_ms = match &self.timestamps {
             Some(t) => {
                 let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&t.readback)?);
@@ -841,7 +880,7 @@ impl GpuRenderer {
             },
             FrameStats {
                 gpu_time_ms,
-                fragments_shaded: u64::from(fragments),
+                fragments,
             },
         ))
     }

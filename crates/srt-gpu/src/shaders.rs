@@ -30,6 +30,10 @@ const PROXY_OVERRIDES: &[(&str, f64)] = &[
     ("MAX_TANGENT_REACH", srt_proxy::MAX_TANGENT_REACH),
 ];
 
+/// The overrides of the LRT shader: without and with the fragment counter.
+const LRT_OVERRIDES: [&[(&str, f64)]; 2] =
+    [&[("COUNT_FRAGMENTS", 0.0)], &[("COUNT_FRAGMENTS", 1.0)]];
+
 /// The overrides of the probe shader.
 const PROBE_OVERRIDES: &[(&str, f64)] = &[("WORKGROUP_SIZE", WORKGROUP_SIZE as f64)];
 
@@ -79,11 +83,12 @@ pub fn proxy() -> Shader {
     }
 }
 
-/// The local ray tracing shader.
+/// The local ray tracing shader; with `counting`, every fragment it runs adds 1 to the
+/// fragment counter (for measurements only: one global atomic per fragment).
 #[must_use]
-pub fn lrt() -> Shader {
+pub fn lrt(counting: bool) -> Shader {
     Shader {
-        name: "lrt",
+        name: if counting { "lrt (counting)" } else { "lrt" },
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -92,7 +97,7 @@ pub fn lrt() -> Shader {
             ("surface.wgsl", SURFACE),
             ("lrt.wgsl", LRT),
         ]),
-        overrides: &[],
+        overrides: LRT_OVERRIDES[usize::from(counting)],
     }
 }
 
@@ -147,7 +152,8 @@ pub fn all() -> Vec<Shader> {
             overrides: &[],
         },
         proxy(),
-        lrt(),
+        lrt(false),
+        lrt(true),
         polygon(),
         Shader {
             name: "colour",

@@ -211,6 +211,10 @@ pub const FOOTPRINT_HULL_POINTS: usize = 6;
 /// `FOOTPRINT_VERTICES` in lrt.wgsl); spare triangles of smaller hulls are degenerate.
 pub const FOOTPRINT_VERTICES: u32 = 3 * (FOOTPRINT_HULL_POINTS as u32 - 2);
 
+/// Size of the LRT pass's WGSL `fragment_count` (`array<atomic<u32>, 2>`: fragments run, then
+/// fragments shaded), which the renderer clears and reads back.
+pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
+
 /// Twin of WGSL `Footprint`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

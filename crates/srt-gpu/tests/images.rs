@@ -24,7 +24,8 @@ fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
             },
             &|_| {},
         );
-        let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+        let mut renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+        renderer.set_fragment_counting(true);
         let mut line = format!("scene={}", builtin.name);
         for (method, shape) in [
             (Method::Lrt, FootprintShape::Hull),
@@ -34,12 +35,12 @@ fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
             let (image, stats) = renderer.render(&ctx, &scene, method, shape).unwrap();
             let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
             line += &format!(
-                " {}/{:?}: mismatch={:.5} max={} fragments={}",
+                " {}/{:?}: mismatch={:.5} max={} fragments={:?}",
                 method.name(),
                 shape,
                 mismatch.fraction(),
                 mismatch.max_difference,
-                stats.fragments_shaded
+                stats.fragments
             );
             if method == Method::Lrt {
                 assert!(mismatch.fraction() <= 0.001, "{line}");
@@ -48,4 +49,39 @@ fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
         println!("{line}");
     }
     ctx.take_errors().unwrap();
+}
+
+/// The LRT pass counts its fragments only when asked to, and then shades at least one per
+/// covered pixel and runs more than it shades (footprints are conservative); counting changes
+/// no pixel.
+#[test]
+fn fragments_are_counted_only_when_measuring() {
+    let Some(ctx) = context_or_skip("fragments_are_counted_only_when_measuring") else {
+        return;
+    };
+    let (scene, _) = builtin_scenes()
+        .iter()
+        .find(|b| b.name == "fig4")
+        .expect("fig4 is built in")
+        .build()
+        .unwrap();
+    let mut renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+    let render = |renderer: &GpuRenderer| {
+        renderer
+            .render(&ctx, &scene, Method::Lrt, FootprintShape::Hull)
+            .unwrap()
+    };
+    let (plain, stats) = render(&renderer);
+    assert_eq!(stats.fragments, None);
+    renderer.set_fragment_counting(true);
+    let (counted, stats) = render(&renderer);
+    let covered = plain.to_rgb8().iter().filter(|p| **p != [0, 0, 0]).count() as u64;
+    let fragments = stats.fragments.expect("counting");
+    assert!(
+        covered > 0 && fragments.shaded >= covered && fragments.run > fragments.shaded,
+        "{fragments:?}, {covered} covered"
+    );
+    assert_eq!(plain.to_rgb8(), counted.to_rgb8());
+    renderer.set_fragment_counting(false);
+    assert_eq!(render(&renderer).1.fragments, None);
 }

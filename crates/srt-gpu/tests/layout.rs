@@ -226,6 +226,24 @@ fn rust_twins_match_naga_layouts() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
+/// The fragment counter the renderer clears and reads back has the size of its WGSL global.
+#[test]
+fn the_fragment_counter_has_the_size_rust_reads() {
+    let shader = srt_gpu::shaders::lrt(true);
+    let module = naga::front::wgsl::parse_str(&shader.source).expect("lrt parses");
+    let mut layouter = Layouter::default();
+    layouter.update(module.to_ctx()).expect("layout");
+    let (_, counter) = module
+        .global_variables
+        .iter()
+        .find(|(_, g)| g.name.as_deref() == Some("fragment_count"))
+        .expect("lrt.wgsl declares fragment_count");
+    assert_eq!(
+        u64::from(layouter[counter.ty].size),
+        srt_gpu::types::FRAGMENT_COUNTER_BYTES
+    );
+}
+
 #[test]
 fn a_layout_mismatch_is_detected() {
     // Guards the comparison against passing vacuously: vec3 + f32 packs into 16 bytes in WGSL,
