@@ -1,25 +1,36 @@
-// lrt.wgsl — local ray tracing (§4.2, Algorithm 1): the footprints of the proxy pass are drawn
-// instanced (WebGPU has no geometry shader); every fragment traces its own viewing ray in the
-// triangle's rest frame S′ (Eq. 3, 5, 15–16), maps the hit back to S (Eq. 7–8), writes the
-// apparent distance as depth and shades (Eq. 17–18). Mirror: crates/srt-trace (Tracer::trace
-// and Tracer::shade for a single triangle).
+// lrt.wgsl — local ray tracing (§4.2, Algorithm 1) in two passes over the footprints of the
+// proxy pass, drawn instanced (WebGPU has no geometry shader). In both, every fragment traces its
+// own viewing ray in the triangle's rest frame S′ (Eq. 3, 5, 15–16).
+//
+// 1. Visibility (`lrt_visibility`): a hit writes the apparent distance (Eq. 7–8) as depth and the
+//    triangle's id (part id, triangle) — the depth test keeps the nearest.
+// 2. Shading (`lrt_shade_vertex`, `lrt_shade`): one rectangle per part, its screen bound; a
+//    pixel where the visibility pass kept a triangle of this part shades it (Eq. 17–18), the
+//    others stop at once. So each pixel is shaded once, however deep the model, and the
+//    footprints are rasterised once.
+//
+// Mirror: crates/srt-trace (Tracer::trace and Tracer::shade for a single triangle).
 
 @group(3) @binding(0) var<storage, read> footprints: array<Footprint>;
-// Fragments shaded, for the overdraw figure of `cargo xtask bench`.
-// Fragments run ([0]) and fragments that hit their triangle and were shaded ([1]).
+// Fragments run by the visibility pass ([0]) and fragments shaded by the shading pass ([1]).
 @group(3) @binding(1) var<storage, read_write> fragment_count: array<atomic<u32>, 2>;
 // Whether fragments are counted in fragment_count: set at pipeline creation by
 // srt_gpu::shaders::lrt(counting), true only for measurements (global atomics per fragment
 // contend on a real GPU).
 override COUNT_FRAGMENTS: bool;
+// The part's screen bound written by the proxy pass (see proxy.wgsl): the shading pass draws it.
+@group(3) @binding(2) var<storage, read> part_bound: array<u32, 4>;
+// The triangle the visibility pass kept at each pixel: (part id, triangle), (0, 0) for none.
+// Bound only for the shading pass (the visibility pass renders into it).
+@group(0) @binding(2) var visible_ids: texture_2d<u32>;
 
 struct LrtVarying {
     @builtin(position) position: vec4<f32>,
     @location(0) @interpolate(flat) triangle: u32,
 }
 
-struct LrtOutput {
-    @location(0) color: vec4<f32>,
+struct VisibilityOutput {
+    @location(0) id: vec2<u32>,
     @builtin(frag_depth) depth: f32,
 }
 
@@ -54,22 +65,62 @@ fn lrt_vertex(@builtin(vertex_index) v: u32, @builtin(instance_index) t: u32) ->
     return LrtVarying(vec4<f32>(ndc, 0.5, 1.0), t);
 }
 
+// The backward viewing ray through `pixel` in S′, the rest-frame corners of triangle `t` and the
+// ray's hit with it.
+struct LrtHit {
+    ray: RestRay,
+    corners: array<vec3<f32>, 3>,
+    hit: TriangleHit,
+}
+
+fn lrt_hit(t: u32, pixel: vec2<f32>) -> LrtHit {
+    let ray = backward_ray(object.frame, view_direction(pixel));
+    let corners = triangle_corners(t);
+    return LrtHit(ray, corners, intersect_triangle(ray.origin, ray.direction, corners));
+}
+
 @fragment
-fn lrt_fragment(in: LrtVarying) -> LrtOutput {
+fn lrt_visibility(in: LrtVarying) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }
-    let t = in.triangle;
-    let pixel = in.position.xy;
-    let ray = backward_ray(object.frame, view_direction(pixel));
-    let corners = triangle_corners(t);
-    let hit = intersect_triangle(ray.origin, ray.direction, corners);
-    if (!hit.found) {
+    let h = lrt_hit(in.triangle, in.position.xy);
+    if (!h.hit.found) {
+        discard;
+    }
+    var out: VisibilityOutput;
+    out.id = vec2<u32>(part.id, in.triangle);
+    out.depth = clamp(apparent_distance(object.frame, h.ray, h.hit.distance) * frame_uniforms.depth_scale, 0.0, 1.0);
+    return out;
+}
+
+@vertex
+fn lrt_shade_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+    let lo = vec2<f32>(f32(~part_bound[0]), f32(~part_bound[1]));
+    let hi = vec2<f32>(f32(part_bound[2]), f32(part_bound[3]));
+    // Two triangles; an empty bound (lo > hi) is made degenerate.
+    let far = select(lo, hi, all(lo < hi));
+    let corners = array<vec2<f32>, 6>(lo, vec2<f32>(far.x, lo.y), far, lo, far, vec2<f32>(lo.x, far.y));
+    let pixel = corners[min(v, 5u)];
+    let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
+    return vec4<f32>(ndc, 0.5, 1.0);
+}
+
+@fragment
+fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let pixel = position.xy;
+    let kept = textureLoad(visible_ids, vec2<i32>(pixel), 0).xy;
+    if (kept.x != part.id) {
         discard;
     }
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[1], 1u);
     }
+    let t = kept.y;
+    // The same computation as in the visibility pass, so the same hit.
+    let h = lrt_hit(t, pixel);
+    let corners = h.corners;
+    let hit = h.hit;
     // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
     var uv_ddx = vec2<f32>(0.0);
     var uv_ddy = vec2<f32>(0.0);
@@ -82,11 +133,8 @@ fn lrt_fragment(in: LrtVarying) -> LrtOutput {
         uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, hx.zeta, hx.xi) - uv, hx.found);
         uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
     }
-    let emission = vec4<f32>(ray.ct_origin - hit.distance, ray.origin + hit.distance * ray.direction);
+    let emission = vec4<f32>(h.ray.ct_origin - hit.distance, h.ray.origin + hit.distance * h.ray.direction);
     let apparent = to_observer(object.frame, emission).yzw;
     let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy);
-    var out: LrtOutput;
-    out.color = vec4<f32>(shade(t, hit.zeta, hit.xi, apparent, albedo), 1.0);
-    out.depth = clamp(apparent_distance(object.frame, ray, hit.distance) * frame_uniforms.depth_scale, 0.0, 1.0);
-    return out;
+    return vec4<f32>(shade(t, hit.zeta, hit.xi, apparent, albedo), 1.0);
 }

@@ -4,6 +4,10 @@
 // stays conservative (the validation checks it against the f64 footprint).
 
 @group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
+// The part's screen bound, the union of its footprints' rectangles in whole pixels, for the LRT
+// shading pass: (!min x, !min y, max x, max y) so that all four grow by atomicMax from the
+// cleared value 0 (which reads as empty: min > max).
+@group(3) @binding(1) var<storage, read_write> part_bound: array<atomic<u32>, 4>;
 
 // Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
@@ -161,6 +165,22 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
     return f;
 }
 
+// Stores footprint `f` of triangle `t` and grows the part's screen bound by its rectangle,
+// clamped to the screen (an empty footprint adds nothing).
+fn store_footprint(t: u32, f: Footprint) {
+    footprints[t] = f;
+    let screen = frame_uniforms.viewport.xy;
+    let lo = max(floor(f.rect.xy), vec2<f32>(0.0));
+    let hi = min(ceil(f.rect.zw), screen);
+    if (f.hull_len == 0u || !all(lo < hi)) {
+        return;
+    }
+    atomicMax(&part_bound[0], ~u32(lo.x));
+    atomicMax(&part_bound[1], ~u32(lo.y));
+    atomicMax(&part_bound[2], u32(hi.x));
+    atomicMax(&part_bound[3], u32(hi.y));
+}
+
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     // Large parts are dispatched as a 2D grid of workgroups.
@@ -177,7 +197,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         culled.hull_len = 0u;
         culled.whole_screen = 0u;
         culled.rect = vec4<f32>(0.0);
-        footprints[t] = culled;
+        store_footprint(t, culled);
         return;
     }
     var corners: array<vec3<f32>, 3>;
@@ -197,7 +217,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         // A tangent intersection far beyond its chord is ill-conditioned in f32: whole screen.
         let far = length(g - 0.5 * (corners[i] + corners[j])) > MAX_TANGENT_REACH * length(corners[j] - corners[i]);
         if (pp.z == 0.0 || pg.z == 0.0 || far) {
-            footprints[t] = swept_footprint(rest);
+            store_footprint(t, swept_footprint(rest));
             return;
         }
         points[2u * i] = pp.xy;
@@ -264,5 +284,5 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         f.hull_len = len;
     }
     f.whole_screen = 0u;
-    footprints[t] = f;
+    store_footprint(t, f);
 }

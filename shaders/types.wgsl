@@ -66,7 +66,9 @@ struct PartUniforms {
     // PART_* bits.
     flags: u32,
     triangle_count: u32,
-    padding: vec2<u32>,
+    // The part's number in the scene, from 1 (0 marks "no triangle" in the visibility pass).
+    id: u32,
+    padding: u32,
 }
 
 // One vertex in S′.

@@ -1,7 +1,17 @@
-//! `cargo xtask bench`: the paper's Table 1 on the current adapter at 1280×720 — median frame
-//! time of local ray tracing and of the polygon method, their ratio, and the overdraw of the LRT
-//! footprints (fragments shaded per pixel actually covered) with rectangles and with hulls.
-//! Prints one line per scene and rewrites the table in `docs/performance.md`.
+//! `cargo xtask bench`: the paper's Table 1 on the current adapter, and scenes in motion.
+//!
+//! For each case: the median frame time of local ray tracing (LRT, hull footprints) and of the
+//! polygon method, their ratio, and what the LRT fragments did per pixel the scene actually
+//! covers (coverage from the exact CPU renderer): `overdraw_hull`, fragments run, and
+//! `shaded_per_pixel`, fragments that hit their triangle and were shaded. Cases:
+//!
+//! - the paper's static frames (the five scenes of the issue) at 1280×720 and 1920×1080;
+//! - fly-by sweeps at 1280×720: the teaser while the spider passes the camera, and the engine
+//!   passing beside, above and behind it, 12 frames each; one line per sweep with the worst
+//!   frame's ratio (`worst_ratio`) and the slowest LRT frame;
+//! - a large scene: three engines side by side (364 488 triangles).
+//!
+//! Prints one line per case and rewrites the tables in `docs/performance.md`.
 
 use std::path::Path;
 use std::time::Instant;
@@ -11,22 +21,30 @@ use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_scene::Scene;
 use srt_trace::{RenderSettings, Tracer};
 
-use crate::cases::{Case, builtin_cases, model_case};
+use crate::cases::{
+    Case, ENGINE, ENGINE_BESIDE, at_time, builtin_cases, engine_sweep_times, model_case, shifted,
+    teaser_sweep_times,
+};
 
-const WIDTH: u32 = 1280;
-const HEIGHT: u32 = 720;
-const WARM_UP: u32 = 3;
+/// Image sizes of the static cases; the first is also that of the sweeps.
+const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
+const WARM_UP: u32 = 2;
 const TABLE_START: &str = "<!-- table1:start (written by cargo xtask bench) -->";
 const TABLE_END: &str = "<!-- table1:end -->";
 
-/// One row of Table 1.
-struct Row {
-    scene: String,
-    triangles: usize,
+/// One measured frame: a scene at one size.
+struct Measurement {
     lrt_ms: f64,
+    proxy_ms: f64,
     polygon_ms: f64,
-    overdraw_rect: f64,
     overdraw_hull: f64,
+    shaded_per_pixel: f64,
+}
+
+impl Measurement {
+    fn ratio(&self) -> f64 {
+        self.lrt_ms / self.polygon_ms
+    }
 }
 
 fn median(mut values: Vec<f64>) -> f64 {
@@ -34,39 +52,46 @@ fn median(mut values: Vec<f64>) -> f64 {
     values[values.len() / 2]
 }
 
-/// Median frame time in ms: GPU timestamps where supported, else wall clock of render + readback.
+/// Median frame time in ms (GPU timestamps where supported, else wall clock of render +
+/// readback) and median time of the proxy pass (0 where unknown).
 fn frame_time(
     ctx: &GpuContext,
     renderer: &GpuRenderer,
     scene: &Scene,
     method: Method,
     frames: u32,
-) -> anyhow::Result<(f64, bool)> {
+) -> anyhow::Result<(f64, f64)> {
     for _ in 0..WARM_UP {
         renderer.render(ctx, scene, method, FootprintShape::Hull)?;
     }
-    let mut times = Vec::new();
-    let mut timestamps = true;
+    let (mut times, mut proxy) = (Vec::new(), Vec::new());
     for _ in 0..frames {
         let start = Instant::now();
         let (_, stats) = renderer.render(ctx, scene, method, FootprintShape::Hull)?;
         let wall = start.elapsed().as_secs_f64() * 1e3;
-        timestamps &= stats.gpu_time_ms.is_some();
         times.push(stats.gpu_time_ms.unwrap_or(wall));
+        proxy.push(stats.proxy_time_ms.unwrap_or(0.0));
     }
-    Ok((median(times), timestamps))
+    Ok((median(times), median(proxy)))
 }
 
-fn measure(ctx: &GpuContext, case: &Case, frames: u32) -> anyhow::Result<Row> {
-    let scene = &case.scene;
-    let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT)?;
-    let (lrt_ms, _) = frame_time(ctx, &renderer, scene, Method::Lrt, frames)?;
-    let (polygon_ms, _) = frame_time(ctx, &renderer, scene, Method::Polygon, frames)?;
+/// Times both methods on `scene` with `renderer` (made for this scene's structure), then counts
+/// the LRT fragments against the pixels the exact renderer finds covered.
+fn measure(
+    ctx: &GpuContext,
+    renderer: &mut GpuRenderer,
+    scene: &Scene,
+    frames: u32,
+) -> anyhow::Result<Measurement> {
+    renderer.set_fragment_counting(false);
+    let (lrt_ms, proxy_ms) = frame_time(ctx, renderer, scene, Method::Lrt, frames)?;
+    let (polygon_ms, _) = frame_time(ctx, renderer, scene, Method::Polygon, frames)?;
+    let (width, height) = renderer.size();
     let covered = Tracer::new(scene)
         .render(
             RenderSettings {
-                width: WIDTH,
-                height: HEIGHT,
+                width,
+                height,
                 samples: 1,
             },
             &|_| {},
@@ -76,84 +101,196 @@ fn measure(ctx: &GpuContext, case: &Case, frames: u32) -> anyhow::Result<Row> {
         .filter(|&&c| c != 0)
         .count()
         .max(1) as f64;
-    let fragments = |shape| -> anyhow::Result<f64> {
-        Ok(renderer
-            .render(ctx, scene, Method::Lrt, shape)?
-            .1
-            .fragments_shaded
-            .context("the renderer counts fragments")? as f64)
-    };
-    Ok(Row {
-        scene: case.name.clone(),
-        triangles: scene.triangle_count(),
+    renderer.set_fragment_counting(true);
+    let fragments = renderer
+        .render(ctx, scene, Method::Lrt, FootprintShape::Hull)?
+        .1
+        .fragments
+        .context("the renderer counts fragments")?;
+    renderer.set_fragment_counting(false);
+    Ok(Measurement {
         lrt_ms,
+        proxy_ms,
         polygon_ms,
-        overdraw_rect: fragments(FootprintShape::Rectangle)? / covered,
-        overdraw_hull: fragments(FootprintShape::Hull)? / covered,
+        overdraw_hull: fragments.run as f64 / covered,
+        shaded_per_pixel: fragments.shaded as f64 / covered,
     })
 }
 
-/// Runs the benchmark and updates `docs/performance.md`.
+/// A line of the report and a row of the table.
+struct Line {
+    text: String,
+    row: String,
+}
+
+fn static_line(case: &Case, (width, height): (u32, u32), m: &Measurement) -> Line {
+    let tris = case.scene.triangle_count();
+    Line {
+        text: format!(
+            "scene={} size={width}x{height} tris={tris} lrt_ms={:.2} proxy_ms={:.2} polygon_ms={:.2} ratio={:.2} shaded_per_pixel={:.2} overdraw_hull={:.2}",
+            case.name,
+            m.lrt_ms,
+            m.proxy_ms,
+            m.polygon_ms,
+            m.ratio(),
+            m.shaded_per_pixel,
+            m.overdraw_hull
+        ),
+        row: format!(
+            "| {} | {width}×{height} | {tris} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            case.name,
+            m.lrt_ms,
+            m.polygon_ms,
+            m.ratio(),
+            m.shaded_per_pixel,
+            m.overdraw_hull
+        ),
+    }
+}
+
+/// Measures `scene` at each of `times` (one renderer for the whole sweep, as a viewer would
+/// use) and summarises the sweep in one line: the worst ratio and slowest LRT frame.
+fn sweep(
+    ctx: &GpuContext,
+    name: &str,
+    scene: &Scene,
+    times: &[f64],
+    frames: u32,
+) -> anyhow::Result<Line> {
+    let (width, height) = SIZES[0];
+    let mut renderer = GpuRenderer::new(ctx, scene, width, height)?;
+    let mut measured = Vec::new();
+    for &ct in times {
+        let case = at_time(name, scene, ct);
+        let m = measure(ctx, &mut renderer, &case.scene, frames)?;
+        println!(
+            "  {} lrt_ms={:.2} proxy_ms={:.2} polygon_ms={:.2} ratio={:.2} shaded_per_pixel={:.2} overdraw_hull={:.2}",
+            case.name,
+            m.lrt_ms,
+            m.proxy_ms,
+            m.polygon_ms,
+            m.ratio(),
+            m.shaded_per_pixel,
+            m.overdraw_hull
+        );
+        measured.push((ct, m));
+    }
+    let worst = measured
+        .iter()
+        .max_by(|a, b| a.1.ratio().total_cmp(&b.1.ratio()))
+        .context("a sweep has frames")?;
+    let slowest = measured.iter().map(|(_, m)| m.lrt_ms).fold(0.0, f64::max);
+    let median_ratio = median(measured.iter().map(|(_, m)| m.ratio()).collect());
+    let tris = scene.triangle_count();
+    let frames_swept = times.len();
+    Ok(Line {
+        text: format!(
+            "sweep={name} size={width}x{height} tris={tris} frames={frames_swept} worst_ratio={:.2} worst_ct={:.2} median_ratio={median_ratio:.2} slowest_lrt_ms={slowest:.2} worst_shaded_per_pixel={:.2}",
+            worst.1.ratio(),
+            worst.0,
+            measured
+                .iter()
+                .map(|(_, m)| m.shaded_per_pixel)
+                .fold(0.0, f64::max)
+        ),
+        row: format!(
+            "| {name} (sweep, {frames_swept} frames) | {width}×{height} | {tris} | ≤ {slowest:.2} | | worst {:.2} (ct = {:.2}), median {median_ratio:.2} | | |",
+            worst.1.ratio(),
+            worst.0
+        ),
+    })
+}
+
+/// Three engines side by side, each approaching at 0.9c.
+fn three_engines() -> anyhow::Result<Case> {
+    let engine = model_case(ENGINE, 0.9)?;
+    let mut scene = engine.scene.clone();
+    for shift in [-1.0, 1.0] {
+        let copy = shifted(
+            &engine.scene,
+            glam::DVec3::new(3.0 * shift, 0.0, 0.8 * shift),
+        );
+        scene.objects.extend(copy.objects);
+    }
+    Ok(Case {
+        name: "three engines".to_owned(),
+        scene,
+    })
+}
+
+/// Runs the benchmark with `frames` timed frames per measurement and updates
+/// `docs/performance.md`; with `only`, runs the cases whose name contains it and leaves the
+/// document alone.
 ///
 /// # Errors
 /// No GPU, missing models, or an unwritable document.
-pub fn run(workspace: &Path, frames: u32) -> anyhow::Result<()> {
+pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<()> {
+    let selected = |name: &str| only.is_none_or(|o| name.contains(o));
     let ctx =
         GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
     let adapter = ctx.adapter_summary();
     println!("adapter: {adapter}");
     let builtins = builtin_cases()?;
-    let builtin = |name: &str| {
-        builtins.iter().find(|c| c.name == name).map(|c| Case {
-            name: c.name.clone(),
-            scene: c.scene.clone(),
-        })
+    let builtin = |name: &str| -> anyhow::Result<Case> {
+        builtins
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| Case {
+                name: c.name.clone(),
+                scene: c.scene.clone(),
+            })
+            .with_context(|| format!("{name} is a built-in scene"))
     };
-    let cases = [
-        builtin("fig10-cube50"),
-        builtin("fig10-cube200"),
-        Some(model_case("OBJ/spider.obj", 0.9)?),
-        Some(model_case(
-            "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
-            0.9,
-        )?),
-        builtin("teaser"),
+    let static_cases = [
+        builtin("fig10-cube50")?,
+        builtin("fig10-cube200")?,
+        model_case("OBJ/spider.obj", 0.9)?,
+        model_case(ENGINE, 0.9)?,
+        builtin("teaser")?,
+        three_engines()?,
     ];
+    let mut lines = Vec::new();
+    for size in SIZES {
+        for case in static_cases.iter().filter(|c| selected(&c.name)) {
+            let mut renderer = GpuRenderer::new(&ctx, &case.scene, size.0, size.1)?;
+            let m = measure(&ctx, &mut renderer, &case.scene, frames)?;
+            let line = static_line(case, size, &m);
+            println!("{}", line.text);
+            lines.push(line);
+        }
+    }
+    let teaser = builtin("teaser")?;
+    let engine = model_case(ENGINE, 0.9)?;
+    for (name, scene, times) in [
+        ("teaser", teaser.scene, teaser_sweep_times()),
+        (
+            "engine-beside",
+            shifted(&engine.scene, ENGINE_BESIDE),
+            engine_sweep_times(),
+        ),
+    ] {
+        if !selected(name) {
+            continue;
+        }
+        let line = sweep(&ctx, name, &scene, &times, frames)?;
+        println!("{}", line.text);
+        lines.push(line);
+    }
+    if only.is_some() {
+        return Ok(());
+    }
     let timing = if ctx.timestamps {
         "GPU timestamp queries"
     } else {
         "wall clock of render + readback"
     };
-    let mut rows = Vec::new();
-    for case in cases.into_iter().flatten() {
-        let row = measure(&ctx, &case, frames)?;
-        println!(
-            "scene={} tris={} lrt_ms={:.2} polygon_ms={:.2} ratio={:.2} overdraw_rect={:.2} overdraw_hull={:.2}",
-            row.scene,
-            row.triangles,
-            row.lrt_ms,
-            row.polygon_ms,
-            row.lrt_ms / row.polygon_ms,
-            row.overdraw_rect,
-            row.overdraw_hull
-        );
-        rows.push(row);
-    }
     let mut table = format!(
-        "{TABLE_START}\nAdapter: {adapter}. 1280×720, median of {frames} frames after {WARM_UP} warm-up frames, timed by {timing}.\n\n\
-         | scene | triangles | LRT ms | polygon ms | LRT / polygon | overdraw (rectangle) | overdraw (hull) |\n|---|---:|---:|---:|---:|---:|---:|\n"
+        "{TABLE_START}\nAdapter: {adapter}. Median of {frames} frames after {WARM_UP} warm-up frames per measurement, timed by {timing}.\n\n\
+         | scene | size | triangles | LRT ms | polygon ms | LRT / polygon | shaded per covered pixel | LRT fragments per covered pixel |\n|---|---|---:|---:|---:|---:|---:|---:|\n"
     );
-    for r in &rows {
-        table += &format!(
-            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
-            r.scene,
-            r.triangles,
-            r.lrt_ms,
-            r.polygon_ms,
-            r.lrt_ms / r.polygon_ms,
-            r.overdraw_rect,
-            r.overdraw_hull
-        );
+    for line in &lines {
+        table += &line.row;
+        table.push('\n');
     }
     table += TABLE_END;
     let doc = workspace.join("docs/performance.md");

@@ -34,11 +34,15 @@ enum Command {
         #[arg(long)]
         only: Option<String>,
     },
-    /// Measure the paper's Table 1 on the current adapter and update docs/performance.md.
+    /// Measure the paper's Table 1 and scenes in motion on the current adapter and update
+    /// docs/performance.md.
     Bench {
         /// Frames measured per scene and method (after warm-up).
-        #[arg(long, default_value_t = 30)]
+        #[arg(long, default_value_t = 5)]
         frames: u32,
+        /// Only the cases whose name contains this text, printed without updating the document.
+        #[arg(long)]
+        only: Option<String>,
     },
 }
 
@@ -59,7 +63,7 @@ fn main() -> anyhow::Result<()> {
             }
         }
         Command::Validate { only } => validate::run(&workspace_root(), only.as_deref())?,
-        Command::Bench { frames } => bench::run(&workspace_root(), frames)?,
+        Command::Bench { frames, only } => bench::run(&workspace_root(), frames, only.as_deref())?,
     }
     Ok(())
 }

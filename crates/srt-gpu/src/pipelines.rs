@@ -1,4 +1,4 @@
-//! Bind groups and the three pipelines (proxy compute, LRT, polygon).
+//! Bind groups and the four pipelines (proxy compute, LRT visibility, LRT shading, polygon).
 //!
 //! Every binding is described once, as data ([`Slot`], [`BindGroupSpec`]): the bind group
 //! layouts, the bind groups the renderer creates and the `set_bind_group` calls all read it, and
@@ -14,6 +14,8 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// Colour target format where `Rgba32Float` is not renderable: half floats (11-bit mantissa,
 /// ample for 8-bit output).
 pub const FALLBACK_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Format of the LRT visibility pass's id target: (part id, triangle) per pixel.
+pub const VISIBLE_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// Depth format (apparent distance × depth scale for LRT, clip depth for polygons).
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -189,12 +191,37 @@ pub mod slots {
         visibility: ShaderStages::COMPUTE,
         ty: storage(false),
     };
+    /// Group 3 of the proxy pass: `part_bound`, grown by every footprint.
+    pub const PROXY_PART_BOUND: Slot = Slot {
+        wgsl_name: "part_bound",
+        binding: 1,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
+    /// Group 3 of the LRT pass: `part_bound`, read by the shading pass.
+    pub const LRT_PART_BOUND: Slot = Slot {
+        wgsl_name: "part_bound",
+        binding: 2,
+        visibility: ShaderStages::VERTEX,
+        ty: storage(true),
+    };
     /// Group 3 of the LRT pass: `footprints`, read.
     pub const LRT_FOOTPRINTS: Slot = Slot {
         wgsl_name: "footprints",
         binding: 0,
         visibility: ShaderStages::VERTEX,
         ty: storage(true),
+    };
+    /// Group 0 of the LRT shading pass: `visible_ids`, the visibility pass's id target.
+    pub const VISIBLE_IDS: Slot = Slot {
+        wgsl_name: "visible_ids",
+        binding: 2,
+        visibility: ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Uint,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
     };
     /// Group 3 of the LRT pass: `fragment_count`.
     pub const FRAGMENT_COUNT: Slot = Slot {
@@ -210,6 +237,13 @@ pub const FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt frame",
     index: 0,
     slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE],
+};
+/// Group 0 of the LRT shading pass: the frame group and the visibility pass's ids (a separate
+/// layout, because the visibility pass renders into the ids while group 0 is bound).
+pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt frame (shading)",
+    index: 0,
+    slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE, slots::VISIBLE_IDS],
 };
 /// Group 1: object uniforms.
 pub const OBJECT_GROUP: BindGroupSpec = BindGroupSpec {
@@ -229,29 +263,37 @@ pub const PART_GROUP: BindGroupSpec = BindGroupSpec {
         slots::PART_SAMPLER,
     ],
 };
-/// Group 3 of the proxy pass: footprints, written.
+/// Group 3 of the proxy pass: footprints and the part's screen bound, written.
 pub const PROXY_OUTPUT_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt proxy output",
     index: 3,
-    slots: &[slots::PROXY_FOOTPRINTS],
+    slots: &[slots::PROXY_FOOTPRINTS, slots::PROXY_PART_BOUND],
 };
-/// Group 3 of the LRT pass: footprints (read) and the fragment counter.
+/// Group 3 of the LRT passes: footprints (read), the fragment counter and the part's screen
+/// bound (read).
 pub const LRT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt lrt input",
     index: 3,
-    slots: &[slots::LRT_FOOTPRINTS, slots::FRAGMENT_COUNT],
+    slots: &[
+        slots::LRT_FOOTPRINTS,
+        slots::FRAGMENT_COUNT,
+        slots::LRT_PART_BOUND,
+    ],
 };
 
 /// Entry point of the proxy pass.
 const PROXY_ENTRY: &str = "footprint_main";
-/// Entry points of the LRT pass (vertex, fragment).
-const LRT_ENTRIES: [&str; 2] = ["lrt_vertex", "lrt_fragment"];
+/// Entry points of the LRT visibility pass (vertex, fragment).
+const LRT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "lrt_visibility"];
+/// Entry points of the LRT shading pass (vertex, fragment).
+const LRT_SHADE_ENTRIES: [&str; 2] = ["lrt_shade_vertex", "lrt_shade"];
 /// Entry points of the polygon pass (vertex, fragment).
 const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
-/// The three pipelines of the renderer as their bindings see them.
+/// The four pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
+/// shading (with the fragment counter when `counting`) and polygon.
 #[must_use]
-pub fn specs() -> [PipelineSpec; 3] {
+pub fn specs(counting: bool) -> [PipelineSpec; 4] {
     let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
     [
         PipelineSpec {
@@ -261,10 +303,16 @@ pub fn specs() -> [PipelineSpec; 3] {
             groups: [&base[..], &[PROXY_OUTPUT_GROUP]].concat(),
         },
         PipelineSpec {
-            label: "srt lrt",
-            shader: shaders::lrt(false),
-            entry_points: &LRT_ENTRIES,
+            label: "srt lrt visibility",
+            shader: shaders::lrt(counting),
+            entry_points: &LRT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[LRT_INPUT_GROUP]].concat(),
+        },
+        PipelineSpec {
+            label: "srt lrt shading",
+            shader: shaders::lrt(counting),
+            entry_points: &LRT_SHADE_ENTRIES,
+            groups: vec![SHADE_FRAME_GROUP, OBJECT_GROUP, PART_GROUP, LRT_INPUT_GROUP],
         },
         PipelineSpec {
             label: "srt polygon",
@@ -273,6 +321,33 @@ pub fn specs() -> [PipelineSpec; 3] {
             groups: base.to_vec(),
         },
     ]
+}
+
+/// The two pipelines of local ray tracing.
+pub struct LrtPipelines {
+    /// Nearest hit per pixel: depth and id.
+    pub visibility: wgpu::RenderPipeline,
+    /// One shading per pixel.
+    pub shade: wgpu::RenderPipeline,
+}
+
+impl LrtPipelines {
+    fn new(
+        device: &wgpu::Device,
+        [_, visibility, shade, _]: &[PipelineSpec; 4],
+        color_format: wgpu::TextureFormat,
+    ) -> Self {
+        Self {
+            visibility: render_pipeline(
+                device,
+                visibility,
+                LRT_VISIBILITY_ENTRIES,
+                VISIBLE_ID_FORMAT,
+                true,
+            ),
+            shade: render_pipeline(device, shade, LRT_SHADE_ENTRIES, color_format, false),
+        }
+    }
 }
 
 /// The bind group layouts and pipelines, created once per device.
@@ -287,13 +362,15 @@ pub struct Pipelines {
     pub proxy_output_layout: wgpu::BindGroupLayout,
     /// Layout of [`LRT_INPUT_GROUP`].
     pub lrt_input_layout: wgpu::BindGroupLayout,
+    /// Layout of [`SHADE_FRAME_GROUP`].
+    pub shade_frame_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
-    /// The local ray tracing pipeline.
-    pub lrt: wgpu::RenderPipeline,
-    /// The local ray tracing pipeline that counts fragments, made when first asked for
+    /// The local ray tracing pipelines.
+    pub lrt: LrtPipelines,
+    /// The local ray tracing pipelines that count fragments, made when first asked for
     /// ([`Pipelines::lrt_counting`]).
-    lrt_counting: std::sync::OnceLock<wgpu::RenderPipeline>,
+    lrt_counting: std::sync::OnceLock<LrtPipelines>,
     /// The colour format the render pipelines draw into.
     color_format: wgpu::TextureFormat,
     /// The polygon-rendering pipeline.
@@ -309,18 +386,19 @@ impl Pipelines {
     /// bind groups made with the layouts kept here fit every pipeline.
     #[must_use]
     pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
-        let [proxy_spec, lrt_spec, polygon_spec] = specs();
+        let specs = specs(false);
+        let [proxy_spec, _, _, polygon_spec] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(proxy_spec.label),
-            layout: Some(&pipeline_layout(device, &proxy_spec)),
+            layout: Some(&pipeline_layout(device, proxy_spec)),
             module: &proxy_module,
             entry_point: Some(PROXY_ENTRY),
             compilation_options: proxy_spec.shader.compilation_options(),
             cache: None,
         });
-        let lrt = render_pipeline(device, &lrt_spec, LRT_ENTRIES, color_format);
-        let polygon = render_pipeline(device, &polygon_spec, POLYGON_ENTRIES, color_format);
+        let lrt = LrtPipelines::new(device, &specs, color_format);
+        let polygon = render_pipeline(device, polygon_spec, POLYGON_ENTRIES, color_format, true);
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("srt texture"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -337,6 +415,7 @@ impl Pipelines {
             part_layout: PART_GROUP.create_layout(device),
             proxy_output_layout: PROXY_OUTPUT_GROUP.create_layout(device),
             lrt_input_layout: LRT_INPUT_GROUP.create_layout(device),
+            shade_frame_layout: SHADE_FRAME_GROUP.create_layout(device),
             proxy,
             lrt,
             lrt_counting: std::sync::OnceLock::new(),
@@ -346,18 +425,11 @@ impl Pipelines {
         }
     }
 
-    /// The LRT pipeline whose fragments add 1 each to the fragment counter, created on first
-    /// use (only measurements need it).
-    pub fn lrt_counting(&self, device: &wgpu::Device) -> &wgpu::RenderPipeline {
-        self.lrt_counting.get_or_init(|| {
-            let [_, lrt_spec, _] = specs();
-            let spec = PipelineSpec {
-                label: "srt lrt (counting)",
-                shader: shaders::lrt(true),
-                ..lrt_spec
-            };
-            render_pipeline(device, &spec, LRT_ENTRIES, self.color_format)
-        })
+    /// The LRT pipelines that count their fragments, created on first use (only measurements
+    /// need them).
+    pub fn lrt_counting(&self, device: &wgpu::Device) -> &LrtPipelines {
+        self.lrt_counting
+            .get_or_init(|| LrtPipelines::new(device, &specs(true), self.color_format))
     }
 }
 
@@ -376,12 +448,14 @@ fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgpu::Pipeline
     })
 }
 
-/// The render pipeline of `spec` with its `vertex` and `fragment` entry points.
+/// The render pipeline of `spec` with its `vertex` and `fragment` entry points, drawing into
+/// `color_format`, with a depth test (nearer wins, depth written) when `depth`.
 fn render_pipeline(
     device: &wgpu::Device,
     spec: &PipelineSpec,
     [vertex, fragment]: [&str; 2],
     color_format: wgpu::TextureFormat,
+    depth: bool,
 ) -> wgpu::RenderPipeline {
     let module = spec.shader.module(device);
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -397,7 +471,7 @@ fn render_pipeline(
             cull_mode: None,
             ..Default::default()
         },
-        depth_stencil: Some(wgpu::DepthStencilState {
+        depth_stencil: depth.then_some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
             depth_write_enabled: Some(true),
             depth_compare: Some(wgpu::CompareFunction::Less),

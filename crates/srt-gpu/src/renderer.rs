@@ -17,14 +17,15 @@ use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{
     DEPTH_FORMAT, FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, PROXY_OUTPUT_GROUP,
-    Pipelines, slots,
+    Pipelines, SHADE_FRAME_GROUP, VISIBLE_ID_FORMAT, slots,
 };
 use crate::projection::view_projection;
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
 use crate::types::{
     EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms,
-    GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PartFlags, PartUniforms, mat4, vec4,
+    GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags, PartUniforms,
+    mat4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -98,6 +99,9 @@ impl GpuImage {
 pub struct FrameStats {
     /// GPU time of the passes in milliseconds, where timestamp queries are supported.
     pub gpu_time_ms: Option<f64>,
+    /// GPU time of the LRT's footprint (proxy) pass alone, in milliseconds, where timestamp
+    /// queries are supported (`None` for the polygon method).
+    pub proxy_time_ms: Option<f64>,
     /// The LRT pass's fragments, when the renderer counts them
     /// ([`GpuRenderer::set_fragment_counting`]; zero for the polygon method).
     pub fragments: Option<FragmentCounts>,
@@ -166,6 +170,8 @@ struct PartResources {
     proxy_bind_group: wgpu::BindGroup,
     lrt_bind_group: wgpu::BindGroup,
     footprints: wgpu::Buffer,
+    /// The part's screen bound (WGSL `part_bound`), cleared before every proxy pass.
+    bound: wgpu::Buffer,
     sizes: PartSizes,
     material: PartUniforms,
     culling: BackFaceCulling,
@@ -178,18 +184,29 @@ struct ObjectResources {
     parts: Vec<PartResources>,
 }
 
-/// Render targets and the readback of the colour for one image size.
+/// Render targets, the readback of the colour and the LRT shading pass's frame bind groups
+/// (which bind the id target) for one image size.
 struct Targets {
     width: u32,
     height: u32,
     color: wgpu::Texture,
     depth: wgpu::Texture,
+    /// The LRT visibility pass's (part id, triangle) per pixel.
+    ids: wgpu::Texture,
+    /// [`SHADE_FRAME_GROUP`] per tone map, indexed as [`ToneMap::ALL`].
+    shade_frame_groups: Vec<wgpu::BindGroup>,
     readback: TextureReadback,
 }
 
 impl Targets {
     /// Checks the size against the device's limits, then creates the targets.
-    fn new(ctx: &GpuContext, width: u32, height: u32) -> Result<Self, GpuError> {
+    fn new(
+        ctx: &GpuContext,
+        width: u32,
+        height: u32,
+        pipelines: &Pipelines,
+        frame: &FrameResources,
+    ) -> Result<Self, GpuError> {
         DeviceLimits::of(ctx).check_render_target(width, height, texel_bytes(ctx.color_format)?)?;
         let size = wgpu::Extent3d {
             width,
@@ -208,6 +225,27 @@ impl Targets {
                 view_formats: &[],
             })
         };
+        let ids = texture(
+            "srt visible ids",
+            VISIBLE_ID_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let ids_view = ids.create_view(&wgpu::TextureViewDescriptor::default());
+        let shade_frame_groups = frame
+            .lut_views
+            .iter()
+            .map(|lut| {
+                ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(SHADE_FRAME_GROUP.label),
+                    layout: &pipelines.shade_frame_layout,
+                    entries: &[
+                        slots::FRAME_UNIFORMS.entry(frame.uniforms.as_entire_binding()),
+                        slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(lut)),
+                        slots::VISIBLE_IDS.entry(wgpu::BindingResource::TextureView(&ids_view)),
+                    ],
+                })
+            })
+            .collect();
         Ok(Self {
             width,
             height,
@@ -223,6 +261,8 @@ impl Targets {
                 DEPTH_FORMAT,
                 wgpu::TextureUsages::RENDER_ATTACHMENT,
             ),
+            ids,
+            shade_frame_groups,
             readback: TextureReadback::new(ctx, width, height, ctx.color_format)?,
         })
     }
@@ -235,6 +275,8 @@ struct FrameResources {
     bind_groups: Vec<wgpu::BindGroup>,
     /// The colour-table parameters, indexed as [`ToneMap::ALL`].
     lut_params: Vec<[f32; 4]>,
+    /// The colour tables, indexed as [`ToneMap::ALL`] (also bound by [`SHADE_FRAME_GROUP`]).
+    lut_views: Vec<wgpu::TextureView>,
 }
 
 impl FrameResources {
@@ -247,6 +289,7 @@ impl FrameResources {
         });
         let mut bind_groups = Vec::new();
         let mut params = Vec::new();
+        let mut lut_views = Vec::new();
         for tone_map in ToneMap::ALL {
             let lut = TemperatureLut::with_defaults(tone_map);
             params.push(lut_params(&lut));
@@ -259,11 +302,13 @@ impl FrameResources {
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
                 ],
             }));
+            lut_views.push(view);
         }
         Ok(Self {
             uniforms,
             bind_groups,
             lut_params: params,
+            lut_views,
         })
     }
 
@@ -424,6 +469,7 @@ fn upload_part(
     pipelines: &Pipelines,
     counter: &FragmentCounter,
     part: &Part,
+    id: u32,
     sizes: PartSizes,
 ) -> PartResources {
     let device = &ctx.device;
@@ -433,7 +479,8 @@ fn upload_part(
             .with(PartFlags::TEXTURED, part.material.texture.is_some())
             .with(PartFlags::VERTEX_COLOURS, part.mesh.colors().is_some()),
         triangle_count: sizes.triangles,
-        padding: [0; 2],
+        id,
+        padding: 0,
     };
     let uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt part uniforms"),
@@ -456,6 +503,12 @@ fn upload_part(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
+    let bound = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt part bound"),
+        size: PART_BOUND_BYTES,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
     let texture = part_texture(ctx, part);
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(PART_GROUP.label),
@@ -471,7 +524,10 @@ fn upload_part(
     let proxy_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(PROXY_OUTPUT_GROUP.label),
         layout: &pipelines.proxy_output_layout,
-        entries: &[slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding())],
+        entries: &[
+            slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding()),
+            slots::PROXY_PART_BOUND.entry(bound.as_entire_binding()),
+        ],
     });
     let lrt_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(LRT_INPUT_GROUP.label),
@@ -479,6 +535,7 @@ fn upload_part(
         entries: &[
             slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
             slots::FRAGMENT_COUNT.entry(counter.counter.as_entire_binding()),
+            slots::LRT_PART_BOUND.entry(bound.as_entire_binding()),
         ],
     });
     PartResources {
@@ -487,18 +544,21 @@ fn upload_part(
         proxy_bind_group,
         lrt_bind_group,
         footprints,
+        bound,
         sizes,
         material,
         culling: BackFaceCulling::for_mesh(&part.mesh),
     }
 }
 
-/// Uploads one object (part sizes already checked): its uniform buffer and parts.
+/// Uploads one object (part sizes already checked): its uniform buffer and parts, numbered from
+/// `first_id`.
 fn upload_object(
     ctx: &GpuContext,
     pipelines: &Pipelines,
     counter: &FragmentCounter,
     object: &Object,
+    first_id: u32,
     sizes: Vec<PartSizes>,
 ) -> ObjectResources {
     let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -516,7 +576,8 @@ fn upload_object(
         .parts
         .iter()
         .zip(sizes)
-        .map(|(part, sizes)| upload_part(ctx, pipelines, counter, part, sizes))
+        .zip(first_id..)
+        .map(|((part, sizes), id)| upload_part(ctx, pipelines, counter, part, id, sizes))
         .collect();
     ObjectResources {
         uniforms,
@@ -550,15 +611,21 @@ impl GpuRenderer {
         let pipelines = Pipelines::new(device, ctx.color_format);
         let frame = FrameResources::new(ctx, &pipelines)?;
         let counter = FragmentCounter::new(device);
+        // Parts are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
+        let mut first_id = 1u32;
         let objects = scene
             .objects
             .iter()
             .zip(sizes)
-            .map(|(object, sizes)| upload_object(ctx, &pipelines, &counter, object, sizes))
+            .map(|(object, sizes)| {
+                let id = first_id;
+                first_id += sizes.len() as u32;
+                upload_object(ctx, &pipelines, &counter, object, id, sizes)
+            })
             .collect();
         let renderer = Self {
             timestamps: ctx.timestamps.then(|| Timestamps::new(device)),
-            targets: Targets::new(ctx, width, height)?,
+            targets: Targets::new(ctx, width, height, &pipelines, &frame)?,
             pipelines,
             frame,
             objects,
@@ -598,7 +665,7 @@ impl GpuRenderer {
     /// keeps its previous size.
     pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
         if (width, height) != self.size() {
-            self.targets = Targets::new(ctx, width, height)?;
+            self.targets = Targets::new(ctx, width, height, &self.pipelines, &self.frame)?;
         }
         Ok(())
     }
@@ -707,6 +774,9 @@ impl GpuRenderer {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
         if method == Method::Lrt {
+            for part in self.objects.iter().flat_map(|o| &o.parts) {
+                encoder.clear_buffer(&part.bound, 0, None);
+            }
             self.encode_proxy_pass(encoder, tone);
         }
         self.encode_render_pass(&ctx.device, encoder, scene, method, tone);
@@ -752,7 +822,9 @@ impl GpuRenderer {
         }
     }
 
-    /// The LRT or polygon render pass into the targets (timestamps 2 and 3).
+    /// The render passes into the targets (timestamps 2 and 3): for the polygon method one
+    /// pass into colour and depth; for LRT the visibility pass into ids and depth, then the
+    /// shading pass into colour.
     fn encode_render_pass(
         &self,
         device: &wgpu::Device,
@@ -761,71 +833,144 @@ impl GpuRenderer {
         method: Method,
         tone: usize,
     ) {
-        let color_view = self
-            .targets
-            .color
-            .create_view(&wgpu::TextureViewDescriptor::default());
-        let depth_view = self
-            .targets
-            .depth
-            .create_view(&wgpu::TextureViewDescriptor::default());
+        let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
+        let (color_view, depth_view, ids_view) = (
+            view(&self.targets.color),
+            view(&self.targets.depth),
+            view(&self.targets.ids),
+        );
         let b = scene.background;
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("srt render"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &color_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: b.x,
-                        g: b.y,
-                        b: b.z,
-                        a: 1.0,
-                    }),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
+        let background = wgpu::Color {
+            r: b.x,
+            g: b.y,
+            b: b.z,
+            a: 1.0,
+        };
+        let depth = wgpu::RenderPassDepthStencilAttachment {
+            view: &depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
             }),
-            timestamp_writes: self
-                .timestamps
-                .as_ref()
-                .map(|t| wgpu::RenderPassTimestampWrites {
-                    query_set: &t.set,
-                    beginning_of_pass_write_index: Some(2),
-                    end_of_pass_write_index: Some(3),
+            stencil_ops: None,
+        };
+        let lrt = if self.count_fragments {
+            self.pipelines.lrt_counting(device)
+        } else {
+            &self.pipelines.lrt
+        };
+        match method {
+            Method::Polygon => {
+                let mut pass = self.begin_pass(
+                    encoder,
+                    "srt polygon",
+                    &color_view,
+                    background,
+                    Some(depth),
+                    [Some(2), Some(3)],
+                );
+                pass.set_pipeline(&self.pipelines.polygon);
+                pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+                self.draw_parts(&mut pass, |pass, part| {
+                    // Checked at upload: 3 × triangles fits in u32.
+                    pass.draw(0..3 * part.sizes.triangles, 0..1);
+                });
+            }
+            Method::Lrt => {
+                let none = wgpu::Color::TRANSPARENT;
+                let mut pass = self.begin_pass(
+                    encoder,
+                    "srt lrt visibility",
+                    &ids_view,
+                    none,
+                    Some(depth),
+                    [Some(2), None],
+                );
+                pass.set_pipeline(&lrt.visibility);
+                pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+                self.draw_parts(&mut pass, Self::draw_footprints);
+                drop(pass);
+                let mut pass = self.begin_pass(
+                    encoder,
+                    "srt lrt shading",
+                    &color_view,
+                    background,
+                    None,
+                    [None, Some(3)],
+                );
+                pass.set_pipeline(&lrt.shade);
+                pass.set_bind_group(
+                    SHADE_FRAME_GROUP.index,
+                    &self.targets.shade_frame_groups[tone],
+                    &[],
+                );
+                self.draw_parts(&mut pass, |pass, part| {
+                    // Group 3 for the part's bound; the shader draws it as two triangles.
+                    pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
+                    pass.draw(0..6, 0..1);
+                });
+            }
+        }
+    }
+
+    /// Begins a render pass into `target` (cleared to `clear`) and `depth`, writing timestamps
+    /// at the indices `[beginning, end]` given.
+    fn begin_pass<'a>(
+        &self,
+        encoder: &'a mut wgpu::CommandEncoder,
+        label: &str,
+        target: &wgpu::TextureView,
+        clear: wgpu::Color,
+        depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
+        [beginning, end]: [Option<u32>; 2],
+    ) -> wgpu::RenderPass<'a> {
+        encoder
+            .begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(clear),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: depth,
+                timestamp_writes: self.timestamps.as_ref().map(|t| {
+                    wgpu::RenderPassTimestampWrites {
+                        query_set: &t.set,
+                        beginning_of_pass_write_index: beginning,
+                        end_of_pass_write_index: end,
+                    }
                 }),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(match method {
-            Method::Lrt if self.count_fragments => self.pipelines.lrt_counting(device),
-            Method::Lrt => &self.pipelines.lrt,
-            Method::Polygon => &self.pipelines.polygon,
-        });
-        pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+                occlusion_query_set: None,
+                multiview_mask: None,
+            })
+            .forget_lifetime()
+    }
+
+    /// Binds each object's and part's groups in `pass` (groups 1 and 2) and lets `draw` draw the
+    /// part.
+    fn draw_parts(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        draw: impl Fn(&mut wgpu::RenderPass<'_>, &PartResources),
+    ) {
         for object in &self.objects {
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
-                let triangles = part.sizes.triangles;
-                match method {
-                    Method::Lrt => {
-                        pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
-                        pass.draw(0..FOOTPRINT_VERTICES, 0..triangles);
-                    }
-                    // Checked at upload: 3 × triangles fits in u32.
-                    Method::Polygon => pass.draw(0..3 * triangles, 0..1),
-                }
+                draw(pass, part);
             }
         }
+    }
+
+    /// Draws the footprints of `part`, one instance per triangle (group 3: footprints and
+    /// counter).
+    fn draw_footprints(pass: &mut wgpu::RenderPass<'_>, part: &PartResources) {
+        pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
+        pass.draw(0..FOOTPRINT_VERTICES, 0..part.sizes.triangles);
     }
 
     /// Renders one frame of `scene` and reads it back.
@@ -861,15 +1006,20 @@ impl GpuRenderer {
         } else {
             None
         };
-        let gpu_time_ms = match &self.timestamps {
+        let (gpu_time_ms, proxy_time_ms) = match &self.timestamps {
             Some(t) => {
                 let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&t.readback)?);
-                let first = if method == Method::Lrt { 0 } else { 2 };
-                let ns = stamps[3].saturating_sub(stamps[first]) as f64
-                    * f64::from(ctx.queue.get_timestamp_period());
-                Some(ns * 1e-6)
+                let ms = |from: usize, to: usize| {
+                    stamps[to].saturating_sub(stamps[from]) as f64
+                        * f64::from(ctx.queue.get_timestamp_period())
+                        * 1e-6
+                };
+                match method {
+                    Method::Lrt => (Some(ms(0, 3)), Some(ms(0, 1))),
+                    Method::Polygon => (Some(ms(2, 3)), None),
+                }
             }
-            None => None,
+            None => (None, None),
         };
         ctx.take_errors()?;
         Ok((
@@ -880,6 +1030,7 @@ impl GpuRenderer {
             },
             FrameStats {
                 gpu_time_ms,
+                proxy_time_ms,
                 fragments,
             },
         ))

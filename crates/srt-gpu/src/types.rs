@@ -185,8 +185,11 @@ pub struct PartUniforms {
     pub flags: PartFlags,
     /// Triangles in the part.
     pub triangle_count: u32,
+    /// The part's number in the scene, from 1: the LRT visibility pass writes it (0 where no
+    /// triangle is seen) and the shading pass compares it.
+    pub id: u32,
     /// Padding to the WGSL size.
-    pub padding: [u32; 2],
+    pub padding: u32,
 }
 
 /// Twin of WGSL `Vertex`.
@@ -214,6 +217,9 @@ pub const FOOTPRINT_VERTICES: u32 = 3 * (FOOTPRINT_HULL_POINTS as u32 - 2);
 /// Size of the LRT pass's WGSL `fragment_count` (`array<atomic<u32>, 2>`: fragments run, then
 /// fragments shaded), which the renderer clears and reads back.
 pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
+
+/// Size of WGSL `part_bound` (`array<u32, 4>`: a part's screen bound), one buffer per part.
+pub const PART_BOUND_BYTES: u64 = 16;
 
 /// Twin of WGSL `Footprint`.
 #[repr(C)]

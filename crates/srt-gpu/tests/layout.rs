@@ -97,7 +97,7 @@ fn table() -> Vec<Twin> {
         twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
         twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, effects, footprint_shape, depth_scale, padding }),
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style }),
-        twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, padding }),
+        twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
         twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, padding }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
@@ -226,22 +226,37 @@ fn rust_twins_match_naga_layouts() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
-/// The fragment counter the renderer clears and reads back has the size of its WGSL global.
+/// Buffers the renderer sizes in Rust have the size of their WGSL globals: the fragment counter
+/// and the part bound (in every shader that declares them).
 #[test]
-fn the_fragment_counter_has_the_size_rust_reads() {
-    let shader = srt_gpu::shaders::lrt(true);
-    let module = naga::front::wgsl::parse_str(&shader.source).expect("lrt parses");
-    let mut layouter = Layouter::default();
-    layouter.update(module.to_ctx()).expect("layout");
-    let (_, counter) = module
-        .global_variables
-        .iter()
-        .find(|(_, g)| g.name.as_deref() == Some("fragment_count"))
-        .expect("lrt.wgsl declares fragment_count");
-    assert_eq!(
-        u64::from(layouter[counter.ty].size),
-        srt_gpu::types::FRAGMENT_COUNTER_BYTES
-    );
+fn buffers_sized_in_rust_match_their_wgsl_globals() {
+    let expected = [
+        ("fragment_count", srt_gpu::types::FRAGMENT_COUNTER_BYTES),
+        ("part_bound", srt_gpu::types::PART_BOUND_BYTES),
+    ];
+    for (name, bytes) in expected {
+        let mut declared_in = Vec::new();
+        for shader in srt_gpu::shaders::all() {
+            let module = naga::front::wgsl::parse_str(&shader.source).expect("shaders parse");
+            let mut layouter = Layouter::default();
+            layouter.update(module.to_ctx()).expect("layout");
+            let found = module
+                .global_variables
+                .iter()
+                .find(|(_, g)| g.name.as_deref() == Some(name));
+            if let Some((_, global)) = found {
+                assert_eq!(
+                    u64::from(layouter[global.ty].size),
+                    bytes,
+                    "{name} in {}",
+                    shader.name
+                );
+                declared_in.push(shader.name);
+            }
+        }
+        assert!(!declared_in.is_empty(), "no shader declares {name}");
+        println!("{name}: {bytes} bytes in {}", declared_in.join(", "));
+    }
 }
 
 #[test]

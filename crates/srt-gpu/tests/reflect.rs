@@ -306,14 +306,22 @@ fn kind_matches(module: &Module, var: &naga::GlobalVariable, ty: &wgpu::BindingT
         } => matches!(var.space, AddressSpace::Storage { access }
             if access.contains(naga::StorageAccess::STORE) != *read_only),
         wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { .. },
+            sample_type,
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled,
-        } => matches!(inner, TypeInner::Image {
-            dim: ImageDimension::D2,
-            arrayed: false,
-            class: ImageClass::Sampled { kind: naga::ScalarKind::Float, multi },
-        } if multi == multisampled),
+        } => {
+            let expected_kind = match sample_type {
+                wgpu::TextureSampleType::Float { .. } => naga::ScalarKind::Float,
+                wgpu::TextureSampleType::Uint => naga::ScalarKind::Uint,
+                wgpu::TextureSampleType::Sint => naga::ScalarKind::Sint,
+                wgpu::TextureSampleType::Depth => return false,
+            };
+            matches!(inner, TypeInner::Image {
+                dim: ImageDimension::D2,
+                arrayed: false,
+                class: ImageClass::Sampled { kind, multi },
+            } if *kind == expected_kind && multi == multisampled)
+        }
         wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering) => {
             matches!(inner, TypeInner::Sampler { comparison: false })
         }
@@ -414,7 +422,8 @@ fn check_bindings(spec: &PipelineSpec) -> Vec<String> {
 }
 
 fn all_specs() -> Vec<PipelineSpec> {
-    let mut specs = srt_gpu::pipelines::specs().to_vec();
+    let mut specs = srt_gpu::pipelines::specs(false).to_vec();
+    specs.extend(srt_gpu::pipelines::specs(true));
     specs.extend(srt_gpu::probe::specs());
     specs
 }
@@ -422,7 +431,11 @@ fn all_specs() -> Vec<PipelineSpec> {
 #[test]
 fn bindings_match_the_wgsl() {
     let specs = all_specs();
-    assert_eq!(specs.len(), 5, "proxy, lrt, polygon and two probes");
+    assert_eq!(
+        specs.len(),
+        10,
+        "proxy, lrt visibility, lrt shading, polygon (twice: without and with counting) and two probes"
+    );
     let mut failures = Vec::new();
     for spec in &specs {
         failures.extend(check_bindings(spec));
@@ -440,7 +453,7 @@ fn bindings_match_the_wgsl() {
 fn a_binding_mismatch_is_detected() {
     // Guards the comparison against passing vacuously: move the LRT's fragment counter to
     // binding 7, make its footprints writable and hide them from the vertex stage.
-    let mut lrt = srt_gpu::pipelines::specs()[1].clone();
+    let mut lrt = srt_gpu::pipelines::specs(true)[1].clone();
     let mut group = lrt.groups[3];
     let mut slots = group.slots.to_vec();
     slots[0].ty = srt_gpu::pipelines::storage(false);
