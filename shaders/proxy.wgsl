@@ -232,11 +232,20 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     }
     f.rect = vec4<f32>(lo - FOOTPRINT_MARGIN, hi + FOOTPRINT_MARGIN);
     // Andrew's monotone chain on six points: insertion sort by (x, y), then both chains.
+    // No array is indexed before the bound that makes the index valid has been tested in an
+    // earlier statement: `a && b[i - 1]` may be evaluated in full by a shader compiler (naga
+    // emits both operands for GLSL, and an out-of-range read there is undefined behaviour that
+    // llvmpipe's GLSL compiler optimised into a wrong sort, hence wrong hulls on wgpu's GL
+    // backend).
     for (var i = 1u; i < 6u; i++) {
         let p = points[i];
         var j = i;
-        while (j > 0u && (points[j - 1u].x > p.x || (points[j - 1u].x == p.x && points[j - 1u].y > p.y))) {
-            points[j] = points[j - 1u];
+        while (j > 0u) {
+            let q = points[j - 1u];
+            if (!(q.x > p.x || (q.x == p.x && q.y > p.y))) {
+                break;
+            }
+            points[j] = q;
             j--;
         }
         points[j] = p;
@@ -244,7 +253,10 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     var chain: array<vec2<f32>, 12>;
     var k = 0u;
     for (var i = 0u; i < 6u; i++) {
-        while (k >= 2u && turn(chain[k - 2u], chain[k - 1u], points[i]) <= 0.0) {
+        while (k >= 2u) {
+            if (turn(chain[k - 2u], chain[k - 1u], points[i]) > 0.0) {
+                break;
+            }
             k--;
         }
         chain[k] = points[i];
@@ -253,7 +265,10 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     let lower = k + 1u;
     for (var n = 0u; n < 5u; n++) {
         let i = 4u - n;
-        while (k >= lower && turn(chain[k - 2u], chain[k - 1u], points[i]) <= 0.0) {
+        while (k >= lower) {
+            if (turn(chain[k - 2u], chain[k - 1u], points[i]) > 0.0) {
+                break;
+            }
             k--;
         }
         chain[k] = points[i];

@@ -243,8 +243,7 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
                     if !on_screen(q) {
                         continue;
                     }
-                    outside |= renderer.hulls_supported()
-                        && !srt_proxy::hull_contains(&hull, q, HULL_TOLERANCE);
+                    outside |= !srt_proxy::hull_contains(&hull, q, HULL_TOLERANCE);
                     rect_ok &= q.x >= f64::from(g.rect[0]) - HULL_TOLERANCE
                         && q.y >= f64::from(g.rect[1]) - HULL_TOLERANCE
                         && q.x <= f64::from(g.rect[2]) + HULL_TOLERANCE

@@ -399,8 +399,6 @@ pub struct GpuRenderer {
     counter: FragmentCounter,
     timestamps: Option<Timestamps>,
     targets: Targets,
-    /// Draw rectangles even when hulls are asked for (see [`GpuRenderer::hulls_supported`]).
-    rectangles_only: bool,
     /// Whether the LRT pass counts its fragments.
     count_fragments: bool,
 }
@@ -630,24 +628,15 @@ impl GpuRenderer {
             frame,
             objects,
             counter,
-            rectangles_only: ctx.adapter_info.backend == wgpu::Backend::Gl,
             count_fragments: false,
         };
         ctx.take_errors()?;
         Ok(renderer)
     }
 
-    /// Whether this device draws convex-hull footprints. On wgpu's OpenGL backend the hull
-    /// computed by the proxy pass is wrong (a shader-translation problem we have not isolated;
-    /// `cargo xtask validate` shows it), so there the renderer always draws the rectangles,
-    /// which are correct, at the cost of more overdraw.
-    #[must_use]
-    pub fn hulls_supported(&self) -> bool {
-        !self.rectangles_only
-    }
-
-    /// Makes the LRT pass count the fragments it runs ([`FrameStats::fragments_shaded`]), or
-    /// stop counting. Counting is for measurements: it costs a global atomic per fragment.
+    /// Makes the LRT passes count the fragments they run and shade
+    /// ([`FrameStats::fragments`]), or stop counting. Counting is for measurements: it costs
+    /// global atomics per fragment.
     pub fn set_fragment_counting(&mut self, counting: bool) {
         self.count_fragments = counting;
     }
@@ -699,11 +688,6 @@ impl GpuRenderer {
         let (forward, right, up) = observer.basis();
         let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
         let tone = FrameResources::tone_index(scene.tone_map);
-        let shape = if self.rectangles_only {
-            FootprintShape::Rectangle
-        } else {
-            footprint
-        };
         let uniforms = FrameUniforms {
             view_projection: mat4(view_projection(observer, width, height)),
             camera_forward: vec4(forward, 0.0),
@@ -726,7 +710,7 @@ impl GpuRenderer {
                 1.0 / height as f32,
             ],
             effects: EffectsCode::from(scene.effects),
-            footprint_shape: FootprintCode::from(shape),
+            footprint_shape: FootprintCode::from(footprint),
             depth_scale: LRT_DEPTH_SCALE,
             padding: 0,
         };
