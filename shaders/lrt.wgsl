@@ -34,13 +34,6 @@ struct VisibilityOutput {
     @builtin(frag_depth) depth: f32,
 }
 
-// Vertices drawn per footprint instance (srt_gpu::types::FOOTPRINT_VERTICES, the draw call's
-// vertex count): a fan of FOOTPRINT_HULL_POINTS − 2 triangles around hull point 0, so that the
-// largest hull is covered; the spare triangles of smaller hulls are degenerate.
-const FOOTPRINT_VERTICES: u32 = 3u * (FOOTPRINT_HULL_POINTS - 2u);
-// The same draw covers a rectangle footprint with two triangles (corners 0 to 5).
-const_assert FOOTPRINT_VERTICES >= 6u;
-
 // Footprint corner `v` (0 to FOOTPRINT_VERTICES − 1: the fan of the hull, or the two triangles
 // of the rectangle) in pixels.
 fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
@@ -59,8 +52,9 @@ fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
 }
 
 @vertex
-fn lrt_vertex(@builtin(vertex_index) v: u32, @builtin(instance_index) t: u32) -> LrtVarying {
-    let pixel = footprint_corner(footprints[t], v);
+fn lrt_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
+    let t = index / FOOTPRINT_VERTICES;
+    let pixel = footprint_corner(footprints[t], index % FOOTPRINT_VERTICES);
     let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
     return LrtVarying(vec4<f32>(ndc, 0.5, 1.0), t);
 }

@@ -8,6 +8,11 @@
 // shading pass: (!min x, !min y, max x, max y) so that all four grow by atomicMax from the
 // cleared value 0 (which reads as empty: min > max).
 @group(3) @binding(1) var<storage, read_write> part_bound: array<atomic<u32>, 4>;
+// The arguments of the part's indirect footprint draw (vertex count, instance count, first
+// vertex, first instance): the CPU writes (0, 1, 0, 0) before the pass, and the vertex count
+// grows to the end of the last triangle with a footprint on screen (FOOTPRINT_VERTICES per
+// triangle), so a part wholly off screen or behind the camera draws nothing.
+@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, 4>;
 
 // Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
@@ -165,8 +170,8 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
     return f;
 }
 
-// Stores footprint `f` of triangle `t` and grows the part's screen bound by its rectangle,
-// clamped to the screen (an empty footprint adds nothing).
+// Stores footprint `f` of triangle `t`, grows the part's screen bound by its rectangle clamped
+// to the screen and the draw's vertex count past `t` (an empty footprint adds nothing).
 fn store_footprint(t: u32, f: Footprint) {
     footprints[t] = f;
     let screen = frame_uniforms.viewport.xy;
@@ -175,6 +180,7 @@ fn store_footprint(t: u32, f: Footprint) {
     if (f.hull_len == 0u || !all(lo < hi)) {
         return;
     }
+    atomicMax(&draw_args[0], (t + 1u) * FOOTPRINT_VERTICES);
     atomicMax(&part_bound[0], ~u32(lo.x));
     atomicMax(&part_bound[1], ~u32(lo.y));
     atomicMax(&part_bound[2], u32(hi.x));

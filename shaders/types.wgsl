@@ -20,6 +20,13 @@ const PART_CULL_BACK_FACES: u32 = 4u;
 
 // Most points of a footprint's convex hull (srt_gpu::types::FOOTPRINT_HULL_POINTS).
 const FOOTPRINT_HULL_POINTS: u32 = 6u;
+// Vertices drawn per footprint (srt_gpu::types::FOOTPRINT_VERTICES): a fan of
+// FOOTPRINT_HULL_POINTS − 2 triangles around hull point 0, so that the largest hull is covered;
+// the spare triangles of smaller hulls are degenerate. The LRT draws this many vertices per
+// triangle, and the proxy pass counts them into the indirect draw.
+const FOOTPRINT_VERTICES: u32 = 3u * (FOOTPRINT_HULL_POINTS - 2u);
+// The same vertices cover a rectangle footprint with two triangles (corners 0 to 5).
+const_assert FOOTPRINT_VERTICES >= 6u;
 
 // Per image: camera, observer, light, shading and colour-table parameters.
 struct FrameUniforms {

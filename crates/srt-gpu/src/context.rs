@@ -66,6 +66,9 @@ pub struct GpuContext {
     pub timestamps: bool,
     /// The colour format renderers draw into on this device.
     pub color_format: wgpu::TextureFormat,
+    /// Whether draws may take their counts from GPU buffers (`draw_indirect`; every Vulkan,
+    /// Metal and DX12 adapter, OpenGL from 4.3 / ES 3.1, not WebGL 2).
+    pub indirect_draws: bool,
     errors: Arc<Mutex<Vec<String>>>,
 }
 
@@ -103,25 +106,25 @@ impl GpuContext {
     /// # Errors
     /// [`GpuError::Device`] when the adapter refuses.
     pub async fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
-        let adapter_info = adapter.get_info();
         let (device, queue) = adapter
             .request_device(&device_descriptor(adapter))
             .await
             .map_err(|e| GpuError::Device {
-                adapter: adapter_info.name.clone(),
+                adapter: adapter.get_info().name,
                 reason: e.to_string(),
             })?;
-        Ok(Self::from_device(device, queue, adapter_info))
+        Ok(Self::from_device(device, queue, adapter))
     }
 
-    /// Wraps a device that someone else opened (e.g. the viewer's window system), so the
-    /// renderer can draw with it.
+    /// Wraps a device that someone else opened on `adapter` (e.g. the viewer's window system),
+    /// so the renderer can draw with it.
     #[must_use]
-    pub fn from_device(
-        device: wgpu::Device,
-        queue: wgpu::Queue,
-        adapter_info: wgpu::AdapterInfo,
-    ) -> Self {
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, adapter: &wgpu::Adapter) -> Self {
+        let adapter_info = adapter.get_info();
+        let indirect_draws = adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::INDIRECT_EXECUTION);
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let color_format = if adapter_info.backend == wgpu::Backend::Gl {
             crate::pipelines::FALLBACK_COLOR_FORMAT
@@ -150,6 +153,7 @@ impl GpuContext {
             adapter_info,
             timestamps,
             color_format,
+            indirect_draws,
             errors,
         }
     }

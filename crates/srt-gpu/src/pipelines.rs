@@ -198,6 +198,13 @@ pub mod slots {
         visibility: ShaderStages::COMPUTE,
         ty: storage(false),
     };
+    /// Group 3 of the proxy pass: `draw_args`, the part's indirect draw arguments.
+    pub const PROXY_DRAW_ARGS: Slot = Slot {
+        wgsl_name: "draw_args",
+        binding: 2,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
     /// Group 3 of the LRT pass: `part_bound`, read by the shading pass.
     pub const LRT_PART_BOUND: Slot = Slot {
         wgsl_name: "part_bound",
@@ -263,11 +270,15 @@ pub const PART_GROUP: BindGroupSpec = BindGroupSpec {
         slots::PART_SAMPLER,
     ],
 };
-/// Group 3 of the proxy pass: footprints and the part's screen bound, written.
+/// Group 3 of the proxy pass: footprints, the part's screen bound and its draw arguments, written.
 pub const PROXY_OUTPUT_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt proxy output",
     index: 3,
-    slots: &[slots::PROXY_FOOTPRINTS, slots::PROXY_PART_BOUND],
+    slots: &[
+        slots::PROXY_FOOTPRINTS,
+        slots::PROXY_PART_BOUND,
+        slots::PROXY_DRAW_ARGS,
+    ],
 };
 /// Group 3 of the LRT passes: footprints (read), the fragment counter and the part's screen
 /// bound (read).

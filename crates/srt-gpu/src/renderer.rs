@@ -23,9 +23,9 @@ use crate::projection::view_projection;
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
 use crate::types::{
-    EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms,
-    GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags, PartUniforms,
-    mat4, vec4,
+    DRAW_ARGS_BYTES, EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode,
+    FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags,
+    PartUniforms, mat4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -153,10 +153,15 @@ impl PartSizes {
         limits.check_storage_buffer(|| name("footprint buffer"), footprint_bytes)?;
         let workgroups =
             limits.workgroup_grid(|| name("footprint pass"), triangles, WORKGROUP_SIZE)?;
-        // The polygon pass draws three vertices per triangle, the LRT pass one instance each.
+        // The polygon pass draws three vertices per triangle, the LRT pass FOOTPRINT_VERTICES.
         limits.check_u32(|| name("polygon draw"), 3 * triangles, "vertices")?;
+        limits.check_u32(
+            || name("LRT draw"),
+            u64::from(FOOTPRINT_VERTICES) * triangles,
+            "vertices",
+        )?;
         Ok(Self {
-            triangles: limits.check_u32(|| name("LRT draw"), triangles, "instances")?,
+            triangles: limits.check_u32(|| name("part"), triangles, "triangles")?,
             footprint_bytes,
             workgroups,
         })
@@ -172,6 +177,8 @@ struct PartResources {
     footprints: wgpu::Buffer,
     /// The part's screen bound (WGSL `part_bound`), cleared before every proxy pass.
     bound: wgpu::Buffer,
+    /// The arguments of its footprint draw (WGSL `draw_args`), reset before every proxy pass.
+    draw_args: wgpu::Buffer,
     sizes: PartSizes,
     material: PartUniforms,
     culling: BackFaceCulling,
@@ -401,6 +408,9 @@ pub struct GpuRenderer {
     targets: Targets,
     /// Whether the LRT pass counts its fragments.
     count_fragments: bool,
+    /// Whether footprint draws take their instance counts from the proxy pass
+    /// ([`GpuContext::indirect_draws`]).
+    indirect_draws: bool,
 }
 
 /// The part's texture with its mip chain (levels larger than the device allows are skipped),
@@ -507,6 +517,14 @@ fn upload_part(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
+    let draw_args = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt footprint draw"),
+        size: DRAW_ARGS_BYTES,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::INDIRECT
+            | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
     let texture = part_texture(ctx, part);
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(PART_GROUP.label),
@@ -525,6 +543,7 @@ fn upload_part(
         entries: &[
             slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding()),
             slots::PROXY_PART_BOUND.entry(bound.as_entire_binding()),
+            slots::PROXY_DRAW_ARGS.entry(draw_args.as_entire_binding()),
         ],
     });
     let lrt_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -543,6 +562,7 @@ fn upload_part(
         lrt_bind_group,
         footprints,
         bound,
+        draw_args,
         sizes,
         material,
         culling: BackFaceCulling::for_mesh(&part.mesh),
@@ -629,6 +649,7 @@ impl GpuRenderer {
             objects,
             counter,
             count_fragments: false,
+            indirect_draws: ctx.indirect_draws,
         };
         ctx.take_errors()?;
         Ok(renderer)
@@ -758,8 +779,16 @@ impl GpuRenderer {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
         if method == Method::Lrt {
+            let first_draw = wgpu::util::DrawIndirectArgs {
+                vertex_count: 0,
+                instance_count: 1,
+                first_vertex: 0,
+                first_instance: 0,
+            };
             for part in self.objects.iter().flat_map(|o| &o.parts) {
                 encoder.clear_buffer(&part.bound, 0, None);
+                ctx.queue
+                    .write_buffer(&part.draw_args, 0, first_draw.as_bytes());
             }
             self.encode_proxy_pass(encoder, tone);
         }
@@ -872,7 +901,7 @@ impl GpuRenderer {
                 );
                 pass.set_pipeline(&lrt.visibility);
                 pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-                self.draw_parts(&mut pass, Self::draw_footprints);
+                self.draw_parts(&mut pass, |pass, part| self.draw_footprints(pass, part));
                 drop(pass);
                 let mut pass = self.begin_pass(
                     encoder,
@@ -950,11 +979,18 @@ impl GpuRenderer {
         }
     }
 
-    /// Draws the footprints of `part`, one instance per triangle (group 3: footprints and
-    /// counter).
-    fn draw_footprints(pass: &mut wgpu::RenderPass<'_>, part: &PartResources) {
+    /// Draws the footprints of `part`, `FOOTPRINT_VERTICES` vertices per triangle in one draw
+    /// (not instanced: a 12-vertex instance per triangle leaves most of a software rasteriser's
+    /// vertex batch empty), up to the last triangle on screen where the device has indirect
+    /// draws (the proxy pass wrote the count); group 3: footprints and counter.
+    fn draw_footprints(&self, pass: &mut wgpu::RenderPass<'_>, part: &PartResources) {
         pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
-        pass.draw(0..FOOTPRINT_VERTICES, 0..part.sizes.triangles);
+        if self.indirect_draws {
+            pass.draw_indirect(&part.draw_args, 0);
+        } else {
+            // Checked at upload: FOOTPRINT_VERTICES × triangles fits in u32.
+            pass.draw(0..FOOTPRINT_VERTICES * part.sizes.triangles, 0..1);
+        }
     }
 
     /// Renders one frame of `scene` and reads it back.

@@ -210,8 +210,8 @@ pub struct GpuVertex {
 /// three corners and three tangent intersections.
 pub const FOOTPRINT_HULL_POINTS: usize = 6;
 
-/// Vertices drawn per footprint instance: a fan of `FOOTPRINT_HULL_POINTS − 2` triangles (WGSL
-/// `FOOTPRINT_VERTICES` in lrt.wgsl); spare triangles of smaller hulls are degenerate.
+/// Vertices drawn per footprint: a fan of `FOOTPRINT_HULL_POINTS − 2` triangles (WGSL
+/// `FOOTPRINT_VERTICES` in types.wgsl); spare triangles of smaller hulls are degenerate.
 pub const FOOTPRINT_VERTICES: u32 = 3 * (FOOTPRINT_HULL_POINTS as u32 - 2);
 
 /// Size of the LRT pass's WGSL `fragment_count` (`array<atomic<u32>, 2>`: fragments run, then
@@ -220,6 +220,10 @@ pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
 
 /// Size of WGSL `part_bound` (`array<u32, 4>`: a part's screen bound), one buffer per part.
 pub const PART_BOUND_BYTES: u64 = 16;
+
+/// Size of WGSL `draw_args` (`array<atomic<u32>, 4>`: the arguments of a non-indexed indirect
+/// draw, as `wgpu::util::DrawIndirectArgs`), one buffer per part.
+pub const DRAW_ARGS_BYTES: u64 = 16;
 
 /// Twin of WGSL `Footprint`.
 #[repr(C)]

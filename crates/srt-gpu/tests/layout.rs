@@ -226,14 +226,19 @@ fn rust_twins_match_naga_layouts() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
-/// Buffers the renderer sizes in Rust have the size of their WGSL globals: the fragment counter
-/// and the part bound (in every shader that declares them).
+/// Buffers the renderer sizes in Rust have the size of their WGSL globals: the fragment counter,
+/// the part bound and the indirect draw arguments (in every shader that declares them).
 #[test]
 fn buffers_sized_in_rust_match_their_wgsl_globals() {
     let expected = [
         ("fragment_count", srt_gpu::types::FRAGMENT_COUNTER_BYTES),
         ("part_bound", srt_gpu::types::PART_BOUND_BYTES),
+        ("draw_args", srt_gpu::types::DRAW_ARGS_BYTES),
     ];
+    assert_eq!(
+        srt_gpu::types::DRAW_ARGS_BYTES,
+        size_of::<wgpu::util::DrawIndirectArgs>() as u64
+    );
     for (name, bytes) in expected {
         let mut declared_in = Vec::new();
         for shader in srt_gpu::shaders::all() {

@@ -85,11 +85,8 @@ pub fn run(arguments: &[String]) -> anyhow::Result<()> {
                 .wgpu_render_state
                 .as_ref()
                 .ok_or("the window has no wgpu renderer")?;
-            let ctx = GpuContext::from_device(
-                state.device.clone(),
-                state.queue.clone(),
-                state.adapter.get_info(),
-            );
+            let ctx =
+                GpuContext::from_device(state.device.clone(), state.queue.clone(), &state.adapter);
             Ok(Box::new(ViewerApp::new(
                 editor,
                 Some((ctx, Some(Arc::clone(&state.renderer)))),
