@@ -56,16 +56,21 @@ fn turn(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
     return u.x * v.y - u.y * v.x;
 }
 
-fn whole_screen_footprint() -> Footprint {
+// The footprint whose rectangle and hull are the rectangle from `lo` to `hi`.
+fn rectangle_footprint(lo: vec2<f32>, hi: vec2<f32>) -> Footprint {
     var f: Footprint;
-    let w = frame_uniforms.viewport.x;
-    let h = frame_uniforms.viewport.y;
-    f.hull[0] = vec2<f32>(0.0, 0.0);
-    f.hull[1] = vec2<f32>(w, 0.0);
-    f.hull[2] = vec2<f32>(w, h);
-    f.hull[3] = vec2<f32>(0.0, h);
+    f.rect = vec4<f32>(lo, hi);
+    f.hull[0] = lo;
+    f.hull[1] = vec2<f32>(hi.x, lo.y);
+    f.hull[2] = hi;
+    f.hull[3] = vec2<f32>(lo.x, hi.y);
     f.hull_len = 4u;
-    f.rect = vec4<f32>(0.0, 0.0, w, h);
+    f.whole_screen = 0u;
+    return f;
+}
+
+fn whole_screen_footprint() -> Footprint {
+    var f = rectangle_footprint(vec2<f32>(0.0), frame_uniforms.viewport.xy);
     f.whole_screen = 1u;
     return f;
 }
@@ -120,12 +125,8 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
         all_beyond = all_beyond & (vec4<f32>(c.w - c.x, c.w + c.x, c.w - c.y, c.w + c.y) < vec4<f32>(0.0));
         all_behind = all_behind && c.w < 0.0;
     }
-    var empty: Footprint;
-    empty.hull_len = 0u;
-    empty.whole_screen = 0u;
-    empty.rect = vec4<f32>(0.0);
     if (all_behind || any(all_beyond)) {
-        return empty;
+        return Footprint();
     }
     let clearance = max(max(max(lo.x, -hi.x), max(lo.y, -hi.y)), lo.w);
     if (!(clearance > 0.0 && clearance < 3.0e38)) {
@@ -157,17 +158,9 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
     let rect_lo = max(pixels_lo - FOOTPRINT_MARGIN, vec2<f32>(0.0));
     let rect_hi = min(pixels_hi + FOOTPRINT_MARGIN, screen);
     if (!all(rect_lo < rect_hi)) {
-        return empty;
+        return Footprint();
     }
-    var f: Footprint;
-    f.rect = vec4<f32>(rect_lo, rect_hi);
-    f.hull[0] = rect_lo;
-    f.hull[1] = vec2<f32>(rect_hi.x, rect_lo.y);
-    f.hull[2] = rect_hi;
-    f.hull[3] = vec2<f32>(rect_lo.x, rect_hi.y);
-    f.hull_len = 4u;
-    f.whole_screen = 0u;
-    return f;
+    return rectangle_footprint(rect_lo, rect_hi);
 }
 
 // Stores footprint `f` of triangle `t`, grows the part's screen bound by its rectangle clamped
@@ -199,11 +192,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     // observer's rest-frame position, so a triangle facing away from it is hidden behind the
     // rest of the solid. An empty footprint draws nothing.
     if (part_has(PART_CULL_BACK_FACES) && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
-        var culled: Footprint;
-        culled.hull_len = 0u;
-        culled.whole_screen = 0u;
-        culled.rect = vec4<f32>(0.0);
-        store_footprint(t, culled);
+        store_footprint(t, Footprint());
         return;
     }
     var corners: array<vec3<f32>, 3>;
@@ -283,11 +272,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     let len = min(k - 1u, FOOTPRINT_HULL_POINTS);
     if (len < 3u) {
         // Degenerate in f32: fall back to the (dilated, hence non-empty) rectangle.
-        f.hull[0] = f.rect.xy;
-        f.hull[1] = vec2<f32>(f.rect.z, f.rect.y);
-        f.hull[2] = f.rect.zw;
-        f.hull[3] = vec2<f32>(f.rect.x, f.rect.w);
-        f.hull_len = 4u;
+        f = rectangle_footprint(f.rect.xy, f.rect.zw);
     } else {
         // Dilate: move each vertex along its miter so both adjacent edges shift outward.
         for (var i = 0u; i < len; i++) {

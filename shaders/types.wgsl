@@ -92,7 +92,8 @@ struct Footprint {
     hull: array<vec2<f32>, FOOTPRINT_HULL_POINTS>,
     // Rectangle min.xy, max.xy.
     rect: vec4<f32>,
-    // Valid hull points; 0 for a culled back face.
+    // Valid hull points; 0 (and a zero rect: the zero value Footprint()) for a footprint that
+    // draws nothing: a culled back face, or a triangle nothing of which is on screen.
     hull_len: u32,
     // 1 for a whole-screen footprint.
     whole_screen: u32,

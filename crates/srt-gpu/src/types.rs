@@ -233,7 +233,8 @@ pub struct GpuFootprint {
     pub hull: [[f32; 2]; FOOTPRINT_HULL_POINTS],
     /// Rectangle min x, min y, max x, max y.
     pub rect: [f32; 4],
-    /// Valid hull points (0 for a culled back face).
+    /// Valid hull points (0, with a zero rectangle, for a footprint that draws nothing: a culled
+    /// back face or a triangle nothing of which is on screen).
     pub hull_len: u32,
     /// 1 for a whole-screen footprint.
     pub whole_screen: u32,

@@ -118,6 +118,17 @@ impl Rect {
         }
     }
 
+    /// The four corners, counter-clockwise in pixel coordinates from `min`.
+    #[must_use]
+    pub fn corners(self) -> [DVec2; 4] {
+        [
+            self.min,
+            DVec2::new(self.max.x, self.min.y),
+            self.max,
+            DVec2::new(self.min.x, self.max.y),
+        ]
+    }
+
     /// Area in square pixels (0 when empty).
     #[must_use]
     pub fn area(self) -> f64 {
@@ -173,12 +184,7 @@ impl Footprint {
     fn whole(viewport: Viewport, corners: [DVec2; 3], tangent_points: [DVec2; 3]) -> Self {
         let rect = Rect::screen(viewport);
         let mut hull = [DVec2::ZERO; 6];
-        hull[..4].copy_from_slice(&[
-            rect.min,
-            DVec2::new(rect.max.x, rect.min.y),
-            rect.max,
-            DVec2::new(rect.min.x, rect.max.y),
-        ]);
+        hull[..4].copy_from_slice(&rect.corners());
         Self {
             corners,
             tangent_points,
@@ -202,12 +208,7 @@ impl Footprint {
         let visible = rect.min.cmplt(rect.max).all();
         let mut hull = [DVec2::ZERO; 6];
         if visible {
-            hull[..4].copy_from_slice(&[
-                rect.min,
-                DVec2::new(rect.max.x, rect.min.y),
-                rect.max,
-                DVec2::new(rect.min.x, rect.max.y),
-            ]);
+            hull[..4].copy_from_slice(&rect.corners());
         }
         Self {
             corners,
