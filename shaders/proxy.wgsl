@@ -8,11 +8,13 @@
 // shading pass: (!min x, !min y, max x, max y) so that all four grow by atomicMax from the
 // cleared value 0 (which reads as empty: min > max).
 @group(3) @binding(1) var<storage, read_write> part_bound: array<atomic<u32>, 4>;
-// The arguments of the part's indirect footprint draw (vertex count, instance count, first
-// vertex, first instance): the CPU writes (0, 1, 0, 0) before the pass, and the vertex count
-// grows to the end of the last triangle with a footprint on screen (FOOTPRINT_VERTICES per
-// triangle), so a part wholly off screen or behind the camera draws nothing.
-@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, 4>;
+// The arguments of the part's two indirect draws, each (vertex count, instance count, first
+// vertex, first instance); the CPU writes (0, 1, 0, 0) to both before the pass. [0..4] is the
+// footprint draw of the LRT visibility pass: its vertex count grows to the end of the last
+// triangle with a footprint on screen (FOOTPRINT_VERTICES per triangle). [4..8] is the LRT
+// shading pass's rectangle: 6 vertices once any footprint is on screen. So a part wholly off
+// screen or behind the camera draws nothing in either pass.
+@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, 8>;
 
 // Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
@@ -174,6 +176,7 @@ fn store_footprint(t: u32, f: Footprint) {
         return;
     }
     atomicMax(&draw_args[0], (t + 1u) * FOOTPRINT_VERTICES);
+    atomicMax(&draw_args[4], 6u);
     atomicMax(&part_bound[0], ~u32(lo.x));
     atomicMax(&part_bound[1], ~u32(lo.y));
     atomicMax(&part_bound[2], u32(hi.x));

@@ -25,7 +25,7 @@ use crate::shaders::WORKGROUP_SIZE;
 use crate::types::{
     DRAW_ARGS_BYTES, EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode,
     FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags,
-    PartUniforms, mat4, vec4,
+    PartUniforms, SHADE_DRAW_OFFSET, mat4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -779,16 +779,16 @@ impl GpuRenderer {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
         if method == Method::Lrt {
-            let first_draw = wgpu::util::DrawIndirectArgs {
+            let no_draw = wgpu::util::DrawIndirectArgs {
                 vertex_count: 0,
                 instance_count: 1,
                 first_vertex: 0,
                 first_instance: 0,
             };
+            let both = [no_draw.as_bytes(), no_draw.as_bytes()].concat();
             for part in self.objects.iter().flat_map(|o| &o.parts) {
                 encoder.clear_buffer(&part.bound, 0, None);
-                ctx.queue
-                    .write_buffer(&part.draw_args, 0, first_draw.as_bytes());
+                ctx.queue.write_buffer(&part.draw_args, 0, &both);
             }
             self.encode_proxy_pass(encoder, tone);
         }
@@ -918,9 +918,14 @@ impl GpuRenderer {
                     &[],
                 );
                 self.draw_parts(&mut pass, |pass, part| {
-                    // Group 3 for the part's bound; the shader draws it as two triangles.
+                    // Group 3 for the part's bound; the shader draws it as two triangles, if
+                    // any footprint of the part is on screen (the proxy pass wrote the count).
                     pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
-                    pass.draw(0..6, 0..1);
+                    if self.indirect_draws {
+                        pass.draw_indirect(&part.draw_args, SHADE_DRAW_OFFSET);
+                    } else {
+                        pass.draw(0..6, 0..1);
+                    }
                 });
             }
         }

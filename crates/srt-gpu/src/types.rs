@@ -221,9 +221,13 @@ pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
 /// Size of WGSL `part_bound` (`array<u32, 4>`: a part's screen bound), one buffer per part.
 pub const PART_BOUND_BYTES: u64 = 16;
 
-/// Size of WGSL `draw_args` (`array<atomic<u32>, 4>`: the arguments of a non-indexed indirect
-/// draw, as `wgpu::util::DrawIndirectArgs`), one buffer per part.
-pub const DRAW_ARGS_BYTES: u64 = 16;
+/// Size of WGSL `draw_args` (`array<atomic<u32>, 8>`: the arguments of two non-indexed indirect
+/// draws, each a `wgpu::util::DrawIndirectArgs`: the LRT visibility pass's footprints, then the
+/// shading pass's rectangle), one buffer per part.
+pub const DRAW_ARGS_BYTES: u64 = 32;
+
+/// Byte offset of the LRT shading pass's draw in WGSL `draw_args`.
+pub const SHADE_DRAW_OFFSET: u64 = 16;
 
 /// Twin of WGSL `Footprint`.
 #[repr(C)]

@@ -235,10 +235,9 @@ fn buffers_sized_in_rust_match_their_wgsl_globals() {
         ("part_bound", srt_gpu::types::PART_BOUND_BYTES),
         ("draw_args", srt_gpu::types::DRAW_ARGS_BYTES),
     ];
-    assert_eq!(
-        srt_gpu::types::DRAW_ARGS_BYTES,
-        size_of::<wgpu::util::DrawIndirectArgs>() as u64
-    );
+    let draw = size_of::<wgpu::util::DrawIndirectArgs>() as u64;
+    assert_eq!(srt_gpu::types::SHADE_DRAW_OFFSET, draw);
+    assert_eq!(srt_gpu::types::DRAW_ARGS_BYTES, 2 * draw);
     for (name, bytes) in expected {
         let mut declared_in = Vec::new();
         for shader in srt_gpu::shaders::all() {
