@@ -6,6 +6,8 @@
 //! ([`crate::limits`]), so a scene or image size the adapter cannot serve is a
 //! [`GpuError::ExceedsLimit`] before any GPU object exists.
 
+use std::sync::Arc;
+
 use srt_color::{TemperatureLut, ToneMap, quantize_8bit};
 use srt_scene::mip::{MipChain, MipLevel};
 use srt_scene::{Object, Part, Scene};
@@ -116,7 +118,7 @@ pub struct FragmentCounts {
     pub shaded: u64,
 }
 
-/// One part's buffer sizes and counts, checked against the device's limits before upload.
+/// One batch's buffer sizes and counts, checked against the device's limits before upload.
 struct PartSizes {
     triangles: u32,
     footprint_bytes: u64,
@@ -125,20 +127,18 @@ struct PartSizes {
 }
 
 impl PartSizes {
-    /// The sizes of part `index` of `object`.
+    /// The sizes of a batch of `triangles` triangles and `vertices` vertices, named in messages
+    /// by `describe` (e.g. `parts 0, 3 of object "ship"`).
     fn check(
         limits: &DeviceLimits,
-        object: &Object,
-        index: usize,
-        part: &Part,
+        describe: &dyn Fn() -> String,
+        triangles: u64,
+        vertices: u64,
     ) -> Result<Self, GpuError> {
-        let mesh = &part.mesh;
-        let triangles = mesh.triangles().len() as u64;
-        let vertices = mesh.positions().len() as u64;
         let name = |buffer: &str| {
             format!(
-                "the {buffer} of part {index} of object {:?} ({triangles} triangles, {vertices} vertices)",
-                object.name
+                "the {buffer} of {} ({triangles} triangles, {vertices} vertices)",
+                describe()
             )
         };
         let footprint_bytes = triangles * size_of::<GpuFootprint>() as u64;
@@ -160,15 +160,85 @@ impl PartSizes {
             u64::from(FOOTPRINT_VERTICES) * triangles,
             "vertices",
         )?;
+        limits.check_u32(|| name("index range"), vertices, "vertices")?;
         Ok(Self {
-            triangles: limits.check_u32(|| name("part"), triangles, "triangles")?,
+            triangles: limits.check_u32(|| name("batch"), triangles, "triangles")?,
             footprint_bytes,
             workgroups,
         })
     }
 }
 
-/// Per part: buffers, texture and bind groups.
+/// Parts of one object uploaded and drawn together ([`batches`]), and their sizes.
+struct Batch {
+    /// Indices of the parts in the object, ascending.
+    members: Vec<usize>,
+    sizes: PartSizes,
+}
+
+/// Groups the parts of `object` into batches: parts with the same texture and the same
+/// back-face culling kind are concatenated (their base colours baked into the vertex colours),
+/// as long as the result fits the device's limits. Every draw call costs time of its own — on
+/// lavapipe milliseconds for the LRT shading shader — and models often have many parts (the
+/// 2CylinderEngine has 115, in 2 batches).
+///
+/// # Errors
+/// [`GpuError::ExceedsLimit`] when a single part does not fit.
+fn batches(
+    limits: &DeviceLimits,
+    object: &Object,
+    culling: &[BackFaceCulling],
+) -> Result<Vec<Batch>, GpuError> {
+    let describe = |members: &[usize]| {
+        let list: Vec<String> = members.iter().map(usize::to_string).collect();
+        let noun = if members.len() == 1 { "part" } else { "parts" };
+        format!("{noun} {} of object {:?}", list.join(", "), object.name)
+    };
+    // Open batches, one per key, with their running counts.
+    let mut open: Vec<(BatchKey, Batch, u64, u64)> = Vec::new();
+    let mut closed = Vec::new();
+    for (index, part) in object.parts.iter().enumerate() {
+        let key = BatchKey {
+            texture: part
+                .material
+                .texture
+                .as_ref()
+                .map(|t| Arc::as_ptr(t) as usize),
+            culling: culling[index],
+        };
+        let (triangles, vertices) = (
+            part.mesh.triangles().len() as u64,
+            part.mesh.positions().len() as u64,
+        );
+        if let Some(position) = open.iter().position(|(k, ..)| *k == key) {
+            let (_, batch, batch_triangles, batch_vertices) = &mut open[position];
+            let mut members = batch.members.clone();
+            members.push(index);
+            let (t, v) = (*batch_triangles + triangles, *batch_vertices + vertices);
+            if let Ok(sizes) = PartSizes::check(limits, &|| describe(&members), t, v) {
+                *batch = Batch { members, sizes };
+                (*batch_triangles, *batch_vertices) = (t, v);
+                continue;
+            }
+            closed.push(open.swap_remove(position).1);
+        }
+        let members = vec![index];
+        let sizes = PartSizes::check(limits, &|| describe(&members), triangles, vertices)?;
+        open.push((key, Batch { members, sizes }, triangles, vertices));
+    }
+    closed.extend(open.into_iter().map(|(_, batch, ..)| batch));
+    Ok(closed)
+}
+
+/// What parts must share to be batched.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct BatchKey {
+    /// The texture's address (textures are shared between parts by `Arc`), if any.
+    texture: Option<usize>,
+    culling: BackFaceCulling,
+}
+
+/// Per batch of parts ([`Batch`]): buffers, texture and bind groups.
 struct PartResources {
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
@@ -181,13 +251,16 @@ struct PartResources {
     draw_args: wgpu::Buffer,
     sizes: PartSizes,
     material: PartUniforms,
-    culling: BackFaceCulling,
+    /// The object's parts in this batch, ascending, and their triangle counts (for splitting
+    /// the footprints by part).
+    members: Vec<(usize, u32)>,
 }
 
-/// Per object: its uniform buffer and parts.
+/// Per object: its uniform buffer, the culling rule of each of its parts, and its batches.
 struct ObjectResources {
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    culling: Vec<BackFaceCulling>,
     parts: Vec<PartResources>,
 }
 
@@ -459,33 +532,51 @@ fn part_texture(ctx: &GpuContext, part: &Part) -> wgpu::TextureView {
     texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
-fn vertices(part: &Part) -> Vec<GpuVertex> {
-    let mesh = &part.mesh;
-    (0..mesh.positions().len())
-        .map(|i| GpuVertex {
-            position: vec4(mesh.positions()[i], 1.0),
-            normal: vec4(mesh.normals()[i], 0.0),
-            color: mesh.colors().map_or([1.0; 4], |c| c[i]),
-            uv: [mesh.uvs()[i].x as f32, mesh.uvs()[i].y as f32, 0.0, 0.0],
-        })
-        .collect()
+/// The vertices of `parts`, one after the other, each colour multiplied by its part's base
+/// colour (so the batch's own base colour is white), and their triangles with indices shifted
+/// to match.
+fn batch_geometry(parts: &[&Part]) -> (Vec<GpuVertex>, Vec<[u32; 3]>) {
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+    for part in parts {
+        let mesh = &part.mesh;
+        let base = part.material.base_color;
+        // Checked by PartSizes: the batch's vertex count fits in u32.
+        let first = vertices.len() as u32;
+        vertices.extend((0..mesh.positions().len()).map(|i| {
+            let color = mesh.colors().map_or([1.0; 4], |c| c[i]);
+            GpuVertex {
+                position: vec4(mesh.positions()[i], 1.0),
+                normal: vec4(mesh.normals()[i], 0.0),
+                color: [0, 1, 2, 3].map(|k| base[k] * color[k]),
+                uv: [mesh.uvs()[i].x as f32, mesh.uvs()[i].y as f32, 0.0, 0.0],
+            }
+        }));
+        triangles.extend(mesh.triangles().iter().map(|t| t.map(|v| v + first)));
+    }
+    (vertices, triangles)
 }
 
-/// Uploads one part (sizes already checked): its buffers, texture and bind groups.
-fn upload_part(
+/// Uploads one batch of `object`'s parts (sizes already checked): its buffers, texture and bind
+/// groups.
+fn upload_batch(
     ctx: &GpuContext,
     pipelines: &Pipelines,
     counter: &FragmentCounter,
-    part: &Part,
+    object: &Object,
+    batch: Batch,
     id: u32,
-    sizes: PartSizes,
 ) -> PartResources {
     let device = &ctx.device;
+    let Batch { members, sizes } = batch;
+    let parts: Vec<&Part> = members.iter().map(|&i| &object.parts[i]).collect();
+    let part = parts[0];
+    let (vertices, triangles) = batch_geometry(&parts);
     let material = PartUniforms {
-        base_color: part.material.base_color,
+        // The base colours are in the vertex colours.
+        base_color: [1.0; 4],
         flags: PartFlags::default()
             .with(PartFlags::TEXTURED, part.material.texture.is_some())
-            .with(PartFlags::VERTEX_COLOURS, part.mesh.colors().is_some()),
+            .with(PartFlags::VERTEX_COLOURS, true),
         triangle_count: sizes.triangles,
         id,
         padding: 0,
@@ -497,12 +588,12 @@ fn upload_part(
     });
     let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt vertices"),
-        contents: bytemuck::cast_slice(&vertices(part)),
+        contents: bytemuck::cast_slice(&vertices),
         usage: wgpu::BufferUsages::STORAGE,
     });
     let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt indices"),
-        contents: bytemuck::cast_slice(part.mesh.triangles()),
+        contents: bytemuck::cast_slice(&triangles),
         usage: wgpu::BufferUsages::STORAGE,
     });
     let footprints = device.create_buffer(&wgpu::BufferDescriptor {
@@ -565,19 +656,23 @@ fn upload_part(
         draw_args,
         sizes,
         material,
-        culling: BackFaceCulling::for_mesh(&part.mesh),
+        members: parts
+            .iter()
+            .zip(&members)
+            .map(|(part, &index)| (index, part.mesh.triangles().len() as u32))
+            .collect(),
     }
 }
 
-/// Uploads one object (part sizes already checked): its uniform buffer and parts, numbered from
-/// `first_id`.
+/// Uploads one object (batch sizes already checked): its uniform buffer and batches, numbered
+/// from `first_id`.
 fn upload_object(
     ctx: &GpuContext,
     pipelines: &Pipelines,
     counter: &FragmentCounter,
     object: &Object,
     first_id: u32,
-    sizes: Vec<PartSizes>,
+    (culling, batches): (Vec<BackFaceCulling>, Vec<Batch>),
 ) -> ObjectResources {
     let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("srt object uniforms"),
@@ -590,16 +685,15 @@ fn upload_object(
         layout: &pipelines.object_layout,
         entries: &[slots::OBJECT.entry(uniforms.as_entire_binding())],
     });
-    let parts = object
-        .parts
-        .iter()
-        .zip(sizes)
+    let parts = batches
+        .into_iter()
         .zip(first_id..)
-        .map(|((part, sizes), id)| upload_part(ctx, pipelines, counter, part, id, sizes))
+        .map(|(batch, id)| upload_batch(ctx, pipelines, counter, object, batch, id))
         .collect();
     ObjectResources {
         uniforms,
         bind_group,
+        culling,
         parts,
     }
 }
@@ -617,19 +711,20 @@ impl GpuRenderer {
             .objects
             .iter()
             .map(|object| {
-                object
+                let culling: Vec<BackFaceCulling> = object
                     .parts
                     .iter()
-                    .enumerate()
-                    .map(|(index, part)| PartSizes::check(&limits, object, index, part))
-                    .collect::<Result<Vec<_>, _>>()
+                    .map(|part| BackFaceCulling::for_mesh(&part.mesh))
+                    .collect();
+                let batches = batches(&limits, object, &culling)?;
+                Ok((culling, batches))
             })
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Result<Vec<_>, GpuError>>()?;
         let device = &ctx.device;
         let pipelines = Pipelines::new(device, ctx.color_format);
         let frame = FrameResources::new(ctx, &pipelines)?;
         let counter = FragmentCounter::new(device);
-        // Parts are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
+        // Batches are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
         let mut first_id = 1u32;
         let objects = scene
             .objects
@@ -637,7 +732,7 @@ impl GpuRenderer {
             .zip(sizes)
             .map(|(object, sizes)| {
                 let id = first_id;
-                first_id += sizes.len() as u32;
+                first_id += sizes.1.len() as u32;
                 upload_object(ctx, &pipelines, &counter, object, id, sizes)
             })
             .collect();
@@ -699,7 +794,7 @@ impl GpuRenderer {
                 .objects
                 .iter()
                 .zip(&self.objects)
-                .any(|(o, r)| o.parts.len() != r.parts.len())
+                .any(|(o, r)| o.parts.len() != r.culling.len())
         {
             return Err(GpuError::SceneChanged);
         }
@@ -745,17 +840,20 @@ impl GpuRenderer {
             };
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
-            for (part, part_resources) in object.parts.iter().zip(&resources.parts) {
-                let mut material = part_resources.material;
-                material.base_color = part.material.base_color;
-                material.flags = material.flags.with(
-                    PartFlags::CULL_BACK_FACES,
-                    part_resources
-                        .culling
-                        .applies(&part.mesh, &object.frame, event),
-                );
+            for batch in &resources.parts {
+                // Back faces of a batch of closed solids are hidden when the observer is
+                // outside every one of them.
+                let cull = batch.members.iter().all(|&(index, _)| {
+                    resources.culling[index].applies(
+                        &object.parts[index].mesh,
+                        &object.frame,
+                        event,
+                    )
+                });
+                let mut material = batch.material;
+                material.flags = material.flags.with(PartFlags::CULL_BACK_FACES, cull);
                 ctx.queue
-                    .write_buffer(&part_resources.uniforms, 0, bytemuck::bytes_of(&material));
+                    .write_buffer(&batch.uniforms, 0, bytemuck::bytes_of(&material));
             }
         }
         Ok(tone)
@@ -1061,7 +1159,8 @@ impl GpuRenderer {
         ))
     }
 
-    /// Runs the proxy pass for `scene` and reads back every part's footprints, indexed
+    /// Runs the proxy pass for `scene` and reads back every part's footprints (split out of the
+    /// batches the parts are uploaded in), indexed
     /// `[object][part][triangle]` (for validation against srt-proxy).
     ///
     /// # Errors
@@ -1094,15 +1193,22 @@ impl GpuRenderer {
             readbacks.push(parts);
         }
         ctx.queue.submit([encoder.finish()]);
-        let footprints = readbacks
-            .iter()
-            .map(|parts| {
-                parts
-                    .iter()
-                    .map(|buffer| Ok(bytemuck::pod_collect_to_vec(&ctx.read_buffer(buffer)?)))
-                    .collect::<Result<Vec<_>, GpuError>>()
-            })
-            .collect::<Result<Vec<_>, GpuError>>()?;
+        let mut footprints = Vec::new();
+        for (object, buffers) in self.objects.iter().zip(&readbacks) {
+            // Split each batch's footprints among its parts, back in part order.
+            let mut parts = vec![Vec::new(); object.culling.len()];
+            for (batch, buffer) in object.parts.iter().zip(buffers) {
+                let all: Vec<GpuFootprint> =
+                    bytemuck::pod_collect_to_vec(&ctx.read_buffer(buffer)?);
+                let mut rest = all.as_slice();
+                for &(index, triangles) in &batch.members {
+                    let (mine, others) = rest.split_at(triangles as usize);
+                    parts[index] = mine.to_vec();
+                    rest = others;
+                }
+            }
+            footprints.push(parts);
+        }
         ctx.take_errors()?;
         Ok(footprints)
     }
