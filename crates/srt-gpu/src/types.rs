@@ -153,8 +153,9 @@ impl PartFlags {
     pub const TEXTURED: Self = Self(1);
     /// Its vertices carry colours (WGSL `PART_VERTEX_COLOURS`).
     pub const VERTEX_COLOURS: Self = Self(2);
-    /// Back faces may be culled this frame: the mesh is a closed solid with outward fronts and
-    /// the observer is outside it ([`crate::culling::culls_back_faces`]) (WGSL
+    /// Back faces may be culled this frame: every mesh of the batch is a closed solid with
+    /// outward fronts and the observer is outside it
+    /// ([`BackFaceCulling::applies`](crate::culling::BackFaceCulling::applies); WGSL
     /// `PART_CULL_BACK_FACES`).
     pub const CULL_BACK_FACES: Self = Self(4);
 
