@@ -45,6 +45,19 @@ impl Measurement {
     fn ratio(&self) -> f64 {
         self.lrt_ms / self.polygon_ms
     }
+
+    /// The report's `key=value` fields of the measurement.
+    fn fields(&self) -> String {
+        format!(
+            "lrt_ms={:.2} proxy_ms={:.2} polygon_ms={:.2} ratio={:.2} shaded_per_pixel={:.2} overdraw_hull={:.2}",
+            self.lrt_ms,
+            self.proxy_ms,
+            self.polygon_ms,
+            self.ratio(),
+            self.shaded_per_pixel,
+            self.overdraw_hull
+        )
+    }
 }
 
 fn median(mut values: Vec<f64>) -> f64 {
@@ -127,14 +140,9 @@ fn static_line(case: &Case, (width, height): (u32, u32), m: &Measurement) -> Lin
     let tris = case.scene.triangle_count();
     Line {
         text: format!(
-            "scene={} size={width}x{height} tris={tris} lrt_ms={:.2} proxy_ms={:.2} polygon_ms={:.2} ratio={:.2} shaded_per_pixel={:.2} overdraw_hull={:.2}",
+            "scene={} size={width}x{height} tris={tris} {}",
             case.name,
-            m.lrt_ms,
-            m.proxy_ms,
-            m.polygon_ms,
-            m.ratio(),
-            m.shaded_per_pixel,
-            m.overdraw_hull
+            m.fields()
         ),
         row: format!(
             "| {} | {width}×{height} | {tris} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
@@ -163,16 +171,7 @@ fn sweep(
     for &ct in times {
         let case = at_time(name, scene, ct);
         let m = measure(ctx, &mut renderer, &case.scene, frames)?;
-        println!(
-            "  {} lrt_ms={:.2} proxy_ms={:.2} polygon_ms={:.2} ratio={:.2} shaded_per_pixel={:.2} overdraw_hull={:.2}",
-            case.name,
-            m.lrt_ms,
-            m.proxy_ms,
-            m.polygon_ms,
-            m.ratio(),
-            m.shaded_per_pixel,
-            m.overdraw_hull
-        );
+        println!("  {} {}", case.name, m.fields());
         measured.push((ct, m));
     }
     let worst = measured

@@ -7,7 +7,7 @@ use glam::dcamera::rh::view::look_at_mat4 as look_at;
 use glam::{DMat4, DVec2, DVec3};
 use proptest::prelude::*;
 use srt_physics::{Event, Frame};
-use srt_proxy::{Rect, Viewport, footprint, project};
+use srt_proxy::{Footprint, Rect, Viewport, footprint, project};
 
 const VIEWPORT: Viewport = Viewport {
     width: 640.0,
@@ -92,6 +92,19 @@ fn rest_samples(t: [DVec3; 3]) -> Vec<DVec3> {
     out
 }
 
+impl Setup {
+    /// The footprint of the setup's triangle.
+    fn footprint(&self) -> Footprint {
+        footprint(
+            &self.frame,
+            self.triangle,
+            self.observer,
+            self.view_projection,
+            VIEWPORT,
+        )
+    }
+}
+
 /// A setup whose camera looks anywhere (not at the triangle), from closer: triangles beside,
 /// behind and around the camera, as when objects pass it.
 fn passing_setup() -> impl Strategy<Value = Setup> {
@@ -122,13 +135,7 @@ fn passing_setup() -> impl Strategy<Value = Setup> {
 /// rectangle and hull (samples behind the camera, or off screen for a footprint clamped to it,
 /// are never seen).
 fn assert_conservative(s: &Setup) -> Result<(), TestCaseError> {
-    let fp = footprint(
-        &s.frame,
-        s.triangle,
-        s.observer,
-        s.view_projection,
-        VIEWPORT,
-    );
+    let fp = s.footprint();
     let extent = if fp.whole_screen {
         1.0
     } else {
@@ -185,14 +192,11 @@ fn few_passing_triangles_need_the_whole_screen() {
     let total = 400;
     let (mut whole, mut swept, mut empty) = (0, 0, 0);
     for _ in 0..total {
-        let s = strategy.new_tree(&mut runner).unwrap().current();
-        let fp = footprint(
-            &s.frame,
-            s.triangle,
-            s.observer,
-            s.view_projection,
-            VIEWPORT,
-        );
+        let fp = strategy
+            .new_tree(&mut runner)
+            .unwrap()
+            .current()
+            .footprint();
         whole += usize::from(fp.whole_screen);
         swept += usize::from(fp.swept);
         empty += usize::from(fp.is_empty());
@@ -253,15 +257,12 @@ fn most_random_setups_are_not_whole_screen() {
     let total = 300;
     let whole = (0..total)
         .filter(|_| {
-            let s = strategy.new_tree(&mut runner).unwrap().current();
-            footprint(
-                &s.frame,
-                s.triangle,
-                s.observer,
-                s.view_projection,
-                VIEWPORT,
-            )
-            .whole_screen
+            strategy
+                .new_tree(&mut runner)
+                .unwrap()
+                .current()
+                .footprint()
+                .whole_screen
         })
         .count();
     assert!(
