@@ -1,6 +1,7 @@
 // lrt.wgsl — local ray tracing (§4.2, Algorithm 1) in two passes over the footprints of the
-// proxy pass, drawn instanced (WebGPU has no geometry shader). In both, every fragment traces its
-// own viewing ray in the triangle's rest frame S′ (Eq. 3, 5, 15–16).
+// proxy pass, drawn as FOOTPRINT_VERTICES vertices per triangle (WebGPU has no geometry
+// shader). In both, every fragment traces its own viewing ray in the triangle's rest frame S′
+// (Eq. 3, 5, 15–16).
 //
 // 1. Visibility (`lrt_visibility`): a hit writes the apparent distance (Eq. 7–8) as depth and the
 //    triangle's id (part id, triangle) — the depth test keeps the nearest.

@@ -4,9 +4,10 @@
 //! Passes (WGSL in `shaders/`, each with a CPU mirror of the same name):
 //! - `proxy` — compute pass, one invocation per triangle: the conservative footprint of the
 //!   apparent triangle (mirror: `srt-proxy`);
-//! - `lrt` — draws the footprints instanced; each fragment traces its viewing ray in the
-//!   triangle's rest frame, writes the apparent distance as depth and shades (mirror:
-//!   `srt-trace`);
+//! - `lrt` — two passes: the visibility pass draws the footprints (FOOTPRINT_VERTICES per
+//!   triangle) and each fragment traces its viewing ray in the triangle's rest frame, writing
+//!   the apparent distance as depth and the triangle's id; the shading pass shades the kept
+//!   triangle once per pixel (mirror: `srt-trace`);
 //! - `polygon` — the per-vertex photo-object method of §3.2, for comparison.
 //!
 //! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The

@@ -481,7 +481,7 @@ pub struct GpuRenderer {
     targets: Targets,
     /// Whether the LRT pass counts its fragments.
     count_fragments: bool,
-    /// Whether footprint draws take their instance counts from the proxy pass
+    /// Whether the LRT draws take their vertex counts from the proxy pass
     /// ([`GpuContext::indirect_draws`]).
     indirect_draws: bool,
 }
