@@ -52,10 +52,19 @@ fn tangent_intersection(a: vec3<f32>, ta: vec3<f32>, b: vec3<f32>, tb: vec3<f32>
     return a + s * ta;
 }
 
-fn turn(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
+// Whether a → b → c turns counter-clockwise (y-up reading) by more than rounding: the cross
+// product (b − a) × (c − a) must exceed HULL_COLLINEAR·|b − a|·|c − a|. Tested exactly against
+// 0, a compiler that contracts u.x·v.y − u.y·v.x into a fused multiply-add (NVIDIA's does;
+// llvmpipe's does not) leaves one product's rounding error where the cross product of two
+// equal vectors is 0, so duplicate points stayed in the hull and their zero-length edges made
+// its dilation NaN (seen in `cargo xtask validate` on an H100 for degenerate triangles). The
+// tolerance, four f32 rounding units, is above that error; a point it drops lies within
+// HULL_COLLINEAR·|b − a| of the line a → c, far inside FOOTPRINT_MARGIN.
+const HULL_COLLINEAR: f32 = 2.4e-7;
+fn turns_left(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> bool {
     let u = b - a;
     let v = c - a;
-    return u.x * v.y - u.y * v.x;
+    return u.x * v.y - u.y * v.x > HULL_COLLINEAR * length(u) * length(v);
 }
 
 // The footprint whose rectangle and hull are the rectangle from `lo` to `hi`.
@@ -252,7 +261,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     var k = 0u;
     for (var i = 0u; i < 6u; i++) {
         while (k >= 2u) {
-            if (turn(chain[k - 2u], chain[k - 1u], points[i]) > 0.0) {
+            if (turns_left(chain[k - 2u], chain[k - 1u], points[i])) {
                 break;
             }
             k--;
@@ -264,7 +273,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     for (var n = 0u; n < 5u; n++) {
         let i = 4u - n;
         while (k >= lower) {
-            if (turn(chain[k - 2u], chain[k - 1u], points[i]) > 0.0) {
+            if (turns_left(chain[k - 2u], chain[k - 1u], points[i])) {
                 break;
             }
             k--;
