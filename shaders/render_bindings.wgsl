@@ -12,7 +12,6 @@
 @group(2) @binding(1) var<storage, read> vertices: array<Vertex>;
 @group(2) @binding(2) var<storage, read> indices: array<u32>;
 @group(2) @binding(3) var part_texture: texture_2d<f32>;
-@group(2) @binding(4) var part_sampler: sampler;
 
 // Whether `flag` (one of the PART_* bits of types.wgsl) is set for the current part.
 fn part_has(flag: u32) -> bool {

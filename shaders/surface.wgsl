@@ -45,6 +45,53 @@ fn triangle_uv(t: u32, zeta: f32, xi: f32) -> vec2<f32> {
     return (1.0 - zeta - xi) * a + zeta * b + xi * c;
 }
 
+// Size of mip level `level` of the part's texture: the base size halved `level` times, at least
+// 1 (as srt_scene::mip::MipChain makes them). Derived from the base size rather than asked of
+// the texture per level: llvmpipe answers textureDimensions with a level that differs between
+// the pixels it shades together with one pixel's level.
+fn part_level_size(level: i32) -> vec2<i32> {
+    return vec2<i32>(max(textureDimensions(part_texture) >> vec2<u32>(u32(level)), vec2<u32>(1u)));
+}
+
+// Texel (x, y) of mip level `level` of the part's texture, wrapped (repeat addressing): the
+// mirror of srt_trace::texture::texel.
+fn part_texel(level: i32, size: vec2<i32>, x: i32, y: i32) -> vec4<f32> {
+    let wrapped = (vec2<i32>(x, y) % size + size) % size;
+    return textureLoad(part_texture, wrapped, level);
+}
+
+// Bilinear sample of mip level `level` at `uv`, texel centres at half-integers: the mirror of
+// srt_trace::texture::bilinear.
+fn part_bilinear(level: i32, uv: vec2<f32>) -> vec4<f32> {
+    let size = part_level_size(level);
+    let p = uv * vec2<f32>(size) - 0.5;
+    let p0 = floor(p);
+    let f = p - p0;
+    let i = vec2<i32>(p0);
+    let top = mix(part_texel(level, size, i.x, i.y), part_texel(level, size, i.x + 1, i.y), f.x);
+    let bottom = mix(part_texel(level, size, i.x, i.y + 1), part_texel(level, size, i.x + 1, i.y + 1), f.x);
+    return mix(top, bottom, f.y);
+}
+
+// Trilinear sample of the part's texture at `uv` with the derivatives `ddx`, `ddy` of the
+// texture coordinates per pixel: the mirror of srt_trace::texture::sample_trilinear, filtered
+// here in f32 rather than by the sampler hardware, whose level of detail and weights are
+// implementation-defined (NVIDIA's differ from the reference by up to 12/255 at texel edges).
+fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f32> {
+    let size = vec2<f32>(textureDimensions(part_texture));
+    let rho = max(length(ddx * size), length(ddy * size));
+    var lod = 0.0;
+    if (rho > 0.0 && rho < 3.0e38) {
+        lod = clamp(log2(rho), 0.0, f32(textureNumLevels(part_texture) - 1u));
+    }
+    let lower = floor(lod);
+    let near = part_bilinear(i32(lower), uv);
+    if (lod == lower) {
+        return near;
+    }
+    return mix(near, part_bilinear(i32(lower) + 1, uv), lod - lower);
+}
+
 // Surface colour (texel × base × vertex colour, or the wireframe pattern) of triangle `t` at
 // (ζ, ξ), with texture-coordinate derivatives per pixel.
 fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f32>) -> vec4<f32> {
@@ -64,7 +111,7 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
         albedo *= c;
     }
     if (part_has(PART_TEXTURED)) {
-        albedo *= textureSampleGrad(part_texture, part_sampler, triangle_uv(t, zeta, xi), uv_ddx, uv_ddy);
+        albedo *= sample_part_texture(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy);
     }
     return albedo;
 }

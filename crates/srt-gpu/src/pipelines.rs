@@ -113,19 +113,16 @@ pub const fn storage(read_only: bool) -> wgpu::BindingType {
     }
 }
 
-/// A 2D float texture, read with `textureLoad` (`filterable: false`) or sampled.
-#[must_use]
-pub const fn texture_2d(filterable: bool) -> wgpu::BindingType {
-    wgpu::BindingType::Texture {
-        sample_type: wgpu::TextureSampleType::Float { filterable },
-        view_dimension: wgpu::TextureViewDimension::D2,
-        multisampled: false,
-    }
-}
+/// A 2D float texture read with `textureLoad` (no sampler: every filter is computed in the shader).
+pub const TEXTURE_2D: wgpu::BindingType = wgpu::BindingType::Texture {
+    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+    view_dimension: wgpu::TextureViewDimension::D2,
+    multisampled: false,
+};
 
 /// The bindings of the render passes, by WGSL name.
 pub mod slots {
-    use super::{ALL_STAGES, Slot, UNIFORM, storage, texture_2d};
+    use super::{ALL_STAGES, Slot, TEXTURE_2D, UNIFORM, storage};
     use wgpu::ShaderStages;
 
     /// Group 0: `frame_uniforms`.
@@ -140,7 +137,7 @@ pub mod slots {
         wgsl_name: "lut_table",
         binding: 1,
         visibility: ALL_STAGES,
-        ty: texture_2d(false),
+        ty: TEXTURE_2D,
     };
     /// Group 1: `object`, the object's uniforms.
     pub const OBJECT: Slot = Slot {
@@ -175,14 +172,7 @@ pub mod slots {
         wgsl_name: "part_texture",
         binding: 3,
         visibility: ShaderStages::FRAGMENT,
-        ty: texture_2d(true),
-    };
-    /// Group 2: `part_sampler`.
-    pub const PART_SAMPLER: Slot = Slot {
-        wgsl_name: "part_sampler",
-        binding: 4,
-        visibility: ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        ty: TEXTURE_2D,
     };
     /// Group 3 of the proxy pass: `footprints`, written.
     pub const PROXY_FOOTPRINTS: Slot = Slot {
@@ -258,7 +248,7 @@ pub const OBJECT_GROUP: BindGroupSpec = BindGroupSpec {
     index: 1,
     slots: &[slots::OBJECT],
 };
-/// Group 2: part uniforms, vertices, indices, texture, sampler.
+/// Group 2: part uniforms, vertices, indices, texture (filtered in the shader: surface.wgsl).
 pub const PART_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt part",
     index: 2,
@@ -267,7 +257,6 @@ pub const PART_GROUP: BindGroupSpec = BindGroupSpec {
         slots::VERTICES,
         slots::INDICES,
         slots::PART_TEXTURE,
-        slots::PART_SAMPLER,
     ],
 };
 /// Group 3 of the proxy pass: footprints, the part's screen bound and its draw arguments, written.
@@ -386,8 +375,6 @@ pub struct Pipelines {
     color_format: wgpu::TextureFormat,
     /// The polygon-rendering pipeline.
     pub polygon: wgpu::RenderPipeline,
-    /// Trilinear, repeating sampler for part textures.
-    pub sampler: wgpu::Sampler,
 }
 
 impl Pipelines {
@@ -410,16 +397,6 @@ impl Pipelines {
         });
         let lrt = LrtPipelines::new(device, &specs, color_format);
         let polygon = render_pipeline(device, polygon_spec, POLYGON_ENTRIES, color_format, true);
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("srt texture"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            address_mode_w: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
         Self {
             frame_layout: FRAME_GROUP.create_layout(device),
             object_layout: OBJECT_GROUP.create_layout(device),
@@ -432,7 +409,6 @@ impl Pipelines {
             lrt_counting: std::sync::OnceLock::new(),
             color_format,
             polygon,
-            sampler,
         }
     }
 

@@ -39,7 +39,7 @@ use wgpu::util::DeviceExt;
 use crate::context::{GpuContext, GpuError};
 use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
-use crate::pipelines::{BindGroupSpec, PipelineSpec, Slot, UNIFORM, storage, texture_2d};
+use crate::pipelines::{BindGroupSpec, PipelineSpec, Slot, TEXTURE_2D, UNIFORM, storage};
 use crate::shaders::{self, WORKGROUP_SIZE};
 use crate::types::{GpuFrame, GpuPhysicsProbeInput, GpuPhysicsProbeOutput, event4, vec4};
 
@@ -599,7 +599,7 @@ pub fn compare_physics(
 
 /// The probe's bindings in group 0 (`probe.wgsl`), by WGSL name.
 pub mod slots {
-    use super::{Slot, UNIFORM, storage, texture_2d};
+    use super::{Slot, TEXTURE_2D, UNIFORM, storage};
     use wgpu::ShaderStages;
 
     /// `probe_inputs`: the physics cases.
@@ -635,7 +635,7 @@ pub mod slots {
         wgsl_name: "lut_table",
         binding: 4,
         visibility: ShaderStages::COMPUTE,
-        ty: texture_2d(false),
+        ty: TEXTURE_2D,
     };
     /// `lut_params`: the table's parameters.
     pub const LUT_PARAMS: Slot = Slot {

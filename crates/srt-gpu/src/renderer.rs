@@ -625,7 +625,6 @@ fn upload_batch(
             slots::VERTICES.entry(vertex_buffer.as_entire_binding()),
             slots::INDICES.entry(index_buffer.as_entire_binding()),
             slots::PART_TEXTURE.entry(wgpu::BindingResource::TextureView(&texture)),
-            slots::PART_SAMPLER.entry(wgpu::BindingResource::Sampler(&pipelines.sampler)),
         ],
     });
     let proxy_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {

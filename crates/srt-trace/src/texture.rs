@@ -1,6 +1,8 @@
-//! Trilinear filtering of mipmapped textures with explicit derivatives, defined the way GPU
-//! hardware filters an `Rgba8Unorm` texture with `textureSampleGrad` (repeat addressing, texel
-//! centres at half-integers, LOD = log₂ of the longer footprint axis). The mip levels come from
+//! Trilinear filtering of mipmapped textures with explicit derivatives (repeat addressing, texel
+//! centres at half-integers, LOD = log₂ of the longer footprint axis), the way a GPU's
+//! `textureSampleGrad` is specified. The GPU mirrors it in `shaders/surface.wgsl`
+//! (`sample_part_texture`) with `textureLoad` rather than the sampler hardware, whose level of
+//! detail and weights are implementation-defined. The mip levels come from
 //! [`srt_scene::mip::MipChain`], which the GPU uploads unchanged.
 
 use glam::{DVec2, DVec4};
