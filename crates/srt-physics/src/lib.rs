@@ -9,6 +9,8 @@
 //!   that order;
 //! - S is the observer's frame; every object rests in its own frame S′ that moves with velocity
 //!   β (|β| < 1) relative to S and whose origin is at `offset` (the paper's **a**) at t = t′ = 0;
+//!   an observer moving through a world frame W is brought into this setting by
+//!   [`MovingObserver`] (boosts composed as matrices, Wigner rotation included);
 //! - a light four-vector is k = ω(1, n) with n the *propagation* direction (emitter → receiver);
 //! - a Doppler factor is D = ω_received / ω_emitted, so D > 1 is a blue shift.
 //!
@@ -29,8 +31,10 @@ mod event;
 mod frame;
 mod light;
 mod lorentz;
+mod observer;
 
 pub use event::{Event, minkowski_interval};
 pub use frame::{Frame, FrameError, RestRay};
 pub use light::{LightVector, aberrate, doppler_factor, reflection_doppler};
 pub use lorentz::{compose_velocities, lorentz_factor, lorentz_matrix, rapidity, validate_beta};
+pub use observer::{MovingObserver, Poincare, RelativeFrame, boost_and_rotation};

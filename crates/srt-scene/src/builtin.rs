@@ -1,6 +1,6 @@
-//! Built-in scenes: the paper's test scenes (Fig. 4, 7, 10) and a teaser in the spirit of Fig. 1,
-//! embedded in the program as the TOML files in `crates/srt-scene/assets/scenes/` (which double
-//! as examples of the scene format).
+//! Built-in scenes: the paper's test scenes (Fig. 4, 7, 10), a teaser in the spirit of Fig. 1 and
+//! a world the observer flies through, embedded in the program as the TOML files in
+//! `crates/srt-scene/assets/scenes/` (which double as examples of the scene format).
 
 use std::path::Path;
 
@@ -24,13 +24,19 @@ impl BuiltinScene {
         self.toml
     }
 
+    /// How messages name the scene: `built-in scene "NAME"`.
+    #[must_use]
+    pub fn origin(&self) -> String {
+        format!("built-in scene \"{}\"", self.name)
+    }
+
     /// The parsed scene description.
     ///
     /// # Panics
     /// If the embedded file does not parse, which the crate's tests rule out.
     #[must_use]
     pub fn description(&self) -> SceneDescription {
-        SceneDescription::from_toml_str(self.toml, &format!("built-in scene \"{}\"", self.name))
+        SceneDescription::from_toml_str(self.toml, &self.origin())
             .unwrap_or_else(|e| panic!("built-in scene {} does not parse: {e}", self.name))
     }
 
@@ -39,9 +45,21 @@ impl BuiltinScene {
     /// # Errors
     /// [`SceneError`] if the scene does not build, which the crate's tests rule out.
     pub fn build(&self) -> Result<(Scene, Vec<String>), SceneError> {
-        self.description()
+        self.build_description(&self.description())
+    }
+
+    /// Builds `description` (this scene's, perhaps changed) as this scene is built, with errors
+    /// naming this scene.
+    ///
+    /// # Errors
+    /// [`SceneError`] if the description does not build.
+    pub fn build_description(
+        &self,
+        description: &SceneDescription,
+    ) -> Result<(Scene, Vec<String>), SceneError> {
+        description
             .build(Path::new("."))
-            .map_err(|e| e.with_origin(format!("built-in scene \"{}\"", self.name)))
+            .map_err(|e| e.with_origin(self.origin()))
     }
 }
 
@@ -55,7 +73,7 @@ macro_rules! builtin_scene {
     };
 }
 
-static BUILTIN_SCENES: [BuiltinScene; 7] = [
+static BUILTIN_SCENES: [BuiltinScene; 8] = [
     builtin_scene!(
         "fig4",
         "Fig. 4: a unit cube at 0.95c seen at ct = 5.12, apparently rotated and distorted"
@@ -83,6 +101,10 @@ static BUILTIN_SCENES: [BuiltinScene; 7] = [
     builtin_scene!(
         "spider",
         "The embedded spider model alone, approaching at 0.9c (a default-placed bare model)"
+    ),
+    builtin_scene!(
+        "flythrough",
+        "The observer flies at 0.9c over a ground between columns at rest, past a sphere and a cube"
     ),
 ];
 

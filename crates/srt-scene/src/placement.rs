@@ -73,6 +73,7 @@ impl SceneDescription {
                 position: position.to_array(),
                 look_at: Some([0.0; 3]),
                 direction: None,
+                beta: [0.0; 3],
                 up: [0.0, 0.0, 1.0],
                 fov_y_deg: VIEW_FOV_Y_DEG,
                 ct: 0.0,

@@ -18,7 +18,7 @@ use glam::DVec3;
 
 use crate::builtin::{BuiltinScene, find_builtin};
 pub use crate::description::scene_file_folder;
-use crate::description::{SceneDescription, SceneError, load_scene_file, read_scene_file};
+use crate::description::{SceneDescription, SceneError, build_scene_file, read_scene_file};
 use crate::import::SUPPORTED_EXTENSIONS;
 use crate::placement::approach_velocity;
 use crate::scene::Scene;
@@ -173,25 +173,32 @@ impl SceneSource {
     /// [`SceneError`] naming the file (or the built-in scene) when it cannot be read, parsed or
     /// built.
     pub fn load(&self, model_beta: Option<DVec3>) -> Result<LoadedScene, SceneError> {
-        let (scene, source, warnings) = match self {
+        self.load_observed(model_beta, None)
+    }
+
+    /// [`SceneSource::load`], with the observer moving with `observer_beta` (relative to the
+    /// scene's world frame, replacing the scene's `observer.beta`) when it is given.
+    ///
+    /// # Errors
+    /// As [`SceneSource::load`]; an invalid `observer_beta` is reported as the scene's
+    /// `observer.beta`.
+    pub fn load_observed(
+        &self,
+        model_beta: Option<DVec3>,
+        observer_beta: Option<DVec3>,
+    ) -> Result<LoadedScene, SceneError> {
+        let mut source = self.description(model_beta)?;
+        if let Some(beta) = observer_beta {
+            source.description.observer.beta = beta.to_array();
+        }
+        let (scene, warnings) = match self {
             Self::SceneFile(path) => {
-                let (scene, description, warnings) = load_scene_file(path)?;
-                let base_dir = scene_file_folder(path);
-                let source = LocatedDescription {
-                    description,
-                    base_dir,
-                };
-                (scene, source, warnings)
+                let (scene, description, warnings) = build_scene_file(source.description, path)?;
+                source.description = description;
+                (scene, warnings)
             }
-            Self::Builtin(builtin) => {
-                let (scene, warnings) = builtin.build()?;
-                (scene, self.description(model_beta)?, warnings)
-            }
-            Self::Model(_) => {
-                let source = self.description(model_beta)?;
-                let (scene, warnings) = source.description.build(&source.base_dir)?;
-                (scene, source, warnings)
-            }
+            Self::Builtin(builtin) => builtin.build_description(&source.description)?,
+            Self::Model(_) => source.description.build(&source.base_dir)?,
         };
         Ok(LoadedScene {
             scene,

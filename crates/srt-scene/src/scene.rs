@@ -1,5 +1,7 @@
 //! The scene model: moving objects, the observer and the light (both at rest in S), shading
-//! parameters and the effect mode.
+//! parameters and the effect mode. S is the observer's rest frame: a scene file whose observer
+//! moves through its world frame is brought into S by
+//! [`SceneDescription::build`](crate::SceneDescription::build).
 
 use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;

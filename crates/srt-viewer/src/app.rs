@@ -809,6 +809,18 @@ impl ViewerApp {
             let result = self.editor.set_observer(changed);
             self.edited(result);
         }
+        let mut beta = self.editor.observer_beta();
+        if vector_row(ui, "Velocity (c)", &mut beta, 0.01, Some(-0.999..=0.999)) {
+            let result = self.editor.set_observer_beta(beta);
+            self.edited(result);
+        }
+        ui.label(
+            RichText::new(format!(
+                "|β| = {:.4}: the observer's velocity through the world; objects keep theirs",
+                beta.length()
+            ))
+            .small(),
+        );
         ui.add(
             egui::Slider::new(&mut self.fly_speed, 0.1..=100.0)
                 .logarithmic(true)
@@ -829,9 +841,7 @@ impl ViewerApp {
     }
 
     fn light_section(&mut self, ui: &mut egui::Ui) {
-        let light = self.editor.scene().light;
-        let mut temperature = light.temperature_k;
-        let mut position = light.position;
+        let (mut temperature, mut position) = self.editor.light();
         let mut changed = ui
             .add(
                 egui::Slider::new(&mut temperature, 1000.0..=40000.0)

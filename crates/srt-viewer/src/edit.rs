@@ -17,9 +17,9 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use srt_color::ToneMap;
-use srt_physics::Frame;
+use srt_physics::{Event, Frame, RelativeFrame};
 use srt_scene::assets::BUILTIN_PREFIX;
 use srt_scene::description::FIT_RADIUS;
 use srt_scene::limits::Budget;
@@ -116,7 +116,7 @@ pub struct Editor {
     base_dir: PathBuf,
     scene: Scene,
     /// The geometry ([`geometry_of`]) each runtime object's parts were built from, in order.
-    built_from: Vec<ObjectDescription>,
+    built_from: Vec<Geometry>,
     /// Remembered unit direction of motion of each object (kept when the speed is 0).
     directions: Vec<DVec3>,
     home: Observer,
@@ -126,6 +126,17 @@ pub struct Editor {
 /// Where each object of an edited description gets its parts: `Some(index)` of the runtime
 /// object whose parts it keeps, or `None` when it must be built.
 type PartsPlan = Vec<Option<usize>>;
+
+/// What an object's parts are built from: its description without what edits change cheaply
+/// (velocity, offset, name, wireframe), and the Wigner rotation its rest-frame geometry was
+/// turned by (the identity unless the observer moves).
+#[derive(Debug, Clone, PartialEq)]
+struct Geometry {
+    /// The description, cheap fields cleared.
+    object: ObjectDescription,
+    /// The rotation of the rest-frame geometry ([`RelativeFrame::rotation`]).
+    rotation: DMat3,
+}
 
 impl Editor {
     /// An editor for a scene loaded by the resolver, and the warnings met loading it. Unnamed
@@ -150,9 +161,15 @@ impl Editor {
             .iter()
             .map(|o| default_direction(DVec3::from_array(o.beta), &scene.observer))
             .collect();
+        // The scene was built from this description, so its frames are usable; without them
+        // the first edit rebuilds every object.
+        let built_from = description
+            .relative_frames()
+            .map(|frames| geometries(&description, &frames))
+            .unwrap_or_default();
         let editor = Self {
             home: scene.observer,
-            built_from: description.objects.iter().map(geometry_of).collect(),
+            built_from,
             description,
             base_dir,
             scene,
@@ -310,10 +327,11 @@ impl Editor {
         let mut description = self.description.clone();
         change(&mut description)?;
         description.validate()?;
-        let plan = self.plan(&description);
+        let frames = description.relative_frames()?;
+        let geometry = geometries(&description, &frames);
+        let plan = self.plan(&geometry);
         let (built, warnings) = self.build_new_objects(&description, &plan)?;
-        let frames = frames_of(&description)?;
-        self.commit(description, &plan, built, frames);
+        self.commit(description, &plan, built, &frames, geometry);
         Ok(warnings)
     }
 
@@ -325,16 +343,15 @@ impl Editor {
         self.apply(change).map(|_no_warnings| ())
     }
 
-    /// Which runtime object's parts each object of `description` keeps: the first one not yet
-    /// taken with the same geometry.
-    fn plan(&self, description: &SceneDescription) -> PartsPlan {
+    /// Which runtime object's parts each object of an edited description, of `geometry`,
+    /// keeps: the first one not yet taken with the same geometry.
+    fn plan(&self, geometry: &[Geometry]) -> PartsPlan {
         let mut taken = vec![false; self.built_from.len()];
-        description
-            .objects
+        geometry
             .iter()
-            .map(|object| {
-                let geometry = geometry_of(object);
-                let found = (0..taken.len()).find(|&j| !taken[j] && self.built_from[j] == geometry);
+            .map(|geometry| {
+                let found =
+                    (0..taken.len()).find(|&j| !taken[j] && self.built_from[j] == *geometry);
                 if let Some(j) = found {
                     taken[j] = true;
                 }
@@ -387,7 +404,8 @@ impl Editor {
         description: SceneDescription,
         plan: &PartsPlan,
         built: Scene,
-        frames: Vec<Frame>,
+        frames: &[RelativeFrame],
+        geometry: Vec<Geometry>,
     ) {
         let old_count = self.scene.objects.len();
         let mut kept: Vec<Option<Vec<Part>>> = std::mem::take(&mut self.scene.objects)
@@ -408,7 +426,7 @@ impl Editor {
                     None => new_parts.next(),
                 }
                 .expect("the plan takes each runtime object once and builds the rest"),
-                frame,
+                frame: frame.frame,
                 wireframe: object.wireframe,
             })
             .collect();
@@ -420,7 +438,7 @@ impl Editor {
         if !unchanged {
             self.structure_version += 1;
         }
-        self.built_from = description.objects.iter().map(geometry_of).collect();
+        self.built_from = geometry;
         self.scene = Scene { objects, ..built };
         self.description = description;
     }
@@ -455,13 +473,14 @@ impl Editor {
         &self.scene.objects
     }
 
-    /// Speed |β| of object `index` as a fraction of c (0 for an index out of range).
+    /// Speed |β| of object `index` relative to the scene's world frame, as a fraction of c (0
+    /// for an index out of range).
     #[must_use]
     pub fn speed(&self, index: usize) -> f64 {
-        self.scene
+        self.description
             .objects
             .get(index)
-            .map_or(0.0, |o| o.frame.beta().length())
+            .map_or(0.0, |o| DVec3::from_array(o.beta).length())
     }
 
     /// Unit direction of motion of object `index` (remembered while its speed is 0).
@@ -470,13 +489,29 @@ impl Editor {
         self.directions.get(index).copied().unwrap_or(DVec3::X)
     }
 
-    /// Offset **a** of object `index`: where its S′ origin is in S at t = 0.
+    /// Offset **a** of object `index`: where its S′ origin is in the world frame at t = 0.
     #[must_use]
     pub fn offset(&self, index: usize) -> DVec3 {
-        self.scene
+        self.description
             .objects
             .get(index)
-            .map_or(DVec3::ZERO, |o| o.frame.offset())
+            .map_or(DVec3::ZERO, |o| DVec3::from_array(o.offset))
+    }
+
+    /// The observer's velocity through the scene's world frame, in units of c.
+    #[must_use]
+    pub fn observer_beta(&self) -> DVec3 {
+        DVec3::from_array(self.description.observer.beta)
+    }
+
+    /// The light's temperature (kelvin) and its position in the world frame at the observation
+    /// time (what [`Editor::set_light`] sets; the runtime scene has it in the observer's frame).
+    #[must_use]
+    pub fn light(&self) -> (f64, DVec3) {
+        self.description.light.as_ref().map_or(
+            (self.scene.light.temperature_k, self.scene.light.position),
+            |light| (light.temperature_k, DVec3::from_array(light.position)),
+        )
     }
 
     /// The wireframe line width of object `index` (`None`: textured).
@@ -485,9 +520,10 @@ impl Editor {
         self.scene.objects.get(index).and_then(|o| o.wireframe)
     }
 
-    /// Sets the velocity of object `index` to `speed · direction`. With `keep_apparent`, the
-    /// offset changes too, so that the object's origin stays where the observer sees it now
-    /// (only its shape and colour change); otherwise the offset stays.
+    /// Sets the velocity of object `index` (relative to the scene's world frame) to
+    /// `speed · direction`. With `keep_apparent`, the offset changes too, so that the object's
+    /// origin stays where the observer sees it now (only its shape and colour change);
+    /// otherwise the offset stays.
     ///
     /// # Errors
     /// [`EditError::Direction`] for a zero or non-finite direction, [`EditError::Scene`] for a
@@ -500,18 +536,31 @@ impl Editor {
         direction: DVec3,
         keep_apparent: bool,
     ) -> Result<(), EditError> {
-        let old = self
-            .scene
+        let object = self
+            .description
             .objects
             .get(index)
-            .ok_or(EditError::NoSuchObject(index))?
-            .frame;
+            .ok_or(EditError::NoSuchObject(index))?;
+        // Everything in the world frame: the description's velocity, offset and observation
+        // event (the emission event seen now is the same event in every frame).
+        let old = Frame::new(
+            DVec3::from_array(object.beta),
+            DVec3::from_array(object.offset),
+        )
+        .map_err(|error| {
+            let kind = SceneErrorKind::Frame {
+                object: object.label(index),
+                error,
+            };
+            SceneError::new(self.description.origin(), kind)
+        })?;
         let unit = direction
             .try_normalize()
             .ok_or(EditError::Direction(direction))?;
         let beta = speed * unit;
         let offset = if keep_apparent {
-            let observer = self.scene.observer.event();
+            let observer = &self.description.observer;
+            let observer = Event::new(observer.ct, DVec3::from_array(observer.position));
             let apparent = old.apparent_position(DVec3::ZERO, observer);
             let distance = (apparent - observer.position).length();
             offset_keeping_apparent_position(apparent, distance, observer.ct, beta)
@@ -610,6 +659,7 @@ impl Editor {
                 position: observer.position.to_array(),
                 look_at: None,
                 direction: Some(observer.direction.to_array()),
+                beta: description.observer.beta,
                 up: observer.up.to_array(),
                 fov_y_deg: observer.fov_y_deg,
                 ct: observer.ct,
@@ -618,13 +668,32 @@ impl Editor {
         })
     }
 
-    /// Sets the observation time ct.
+    /// Sets the observation time ct (in the world frame). A moving observer moves along its
+    /// worldline: its position changes by β_o (ct − ct_before).
     ///
     /// # Errors
     /// [`EditError::Scene`] for a time the scene file's rules refuse (not finite, too large).
     pub fn set_time(&mut self, ct: f64) -> Result<(), EditError> {
         self.edit(|description| {
-            description.observer.ct = ct;
+            let observer = &mut description.observer;
+            // A time the rules refuse is refused by its own name, not by a position made from it.
+            if observer.beta != [0.0; 3] && ct.is_finite() {
+                let moved = DVec3::from_array(observer.beta) * (ct - observer.ct);
+                observer.position = (DVec3::from_array(observer.position) + moved).to_array();
+            }
+            observer.ct = ct;
+            Ok(())
+        })
+    }
+
+    /// Sets the observer's velocity through the scene's world frame (units of c); the objects
+    /// keep their velocities relative to the world frame.
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] for a velocity the scene file's rules refuse (|β| ≥ 1, not finite).
+    pub fn set_observer_beta(&mut self, beta: DVec3) -> Result<(), EditError> {
+        self.edit(|description| {
+            description.observer.beta = beta.to_array();
             Ok(())
         })
     }
@@ -671,36 +740,27 @@ impl Editor {
     }
 }
 
-/// What an object's parts are built from: its description without what edits change cheaply
-/// (velocity, offset, name, wireframe).
-fn geometry_of(object: &ObjectDescription) -> ObjectDescription {
-    ObjectDescription {
-        name: None,
-        wireframe: None,
-        beta: [0.0; 3],
-        offset: [0.0; 3],
-        ..object.clone()
+/// The [`Geometry`] of `object`, whose frame relative to the observer is `frame`.
+fn geometry_of(object: &ObjectDescription, frame: &RelativeFrame) -> Geometry {
+    Geometry {
+        object: ObjectDescription {
+            name: None,
+            wireframe: None,
+            beta: [0.0; 3],
+            offset: [0.0; 3],
+            ..object.clone()
+        },
+        rotation: frame.rotation,
     }
 }
 
-/// The rest frame of each object. [`SceneDescription::validate`] has accepted every velocity and
-/// offset, so this fails only if that rule and [`Frame::new`]'s part ways; the message is then
-/// the scene file's.
-fn frames_of(description: &SceneDescription) -> Result<Vec<Frame>, SceneError> {
+/// The [`Geometry`] of every object of `description`, whose relative frames are `frames`.
+fn geometries(description: &SceneDescription, frames: &[RelativeFrame]) -> Vec<Geometry> {
     description
         .objects
         .iter()
-        .enumerate()
-        .map(|(index, object)| {
-            Frame::new(
-                DVec3::from_array(object.beta),
-                DVec3::from_array(object.offset),
-            )
-            .map_err(|error| {
-                let object = object.label(index);
-                SceneError::new("the edited scene", SceneErrorKind::Frame { object, error })
-            })
-        })
+        .zip(frames)
+        .map(|(object, frame)| geometry_of(object, frame))
         .collect()
 }
 
@@ -1165,6 +1225,70 @@ mod tests {
         editor.set_tone_map(None).unwrap();
         editor.set_effects(Effects::Searchlight).unwrap();
         assert_eq!(editor.scene().tone_map, ToneMap::Searchlight);
+    }
+
+    /// The editor's runtime scene is what building its description from scratch gives.
+    fn assert_matches_a_fresh_build(editor: &Editor) {
+        let (fresh, _) = editor.description().build(&editor.base_dir).unwrap();
+        assert_eq!(editor.scene(), &fresh);
+    }
+
+    /// With a moving observer, edits are made in the world frame, and parts turned by the
+    /// Wigner rotation are rebuilt when a velocity changes the rotation.
+    #[test]
+    fn a_moving_observer_is_edited_in_the_world_frame() {
+        let (mut editor, _) = Editor::open("flythrough").unwrap();
+        let beta_o = DVec3::new(0.0, 0.9, 0.0);
+        assert_eq!(editor.observer_beta(), beta_o);
+        assert_matches_a_fresh_build(&editor);
+        // The sphere moves at 0.6c in W (the panel's speed), faster relative to the observer.
+        assert!((editor.speed(0) - 0.6).abs() < 1e-15);
+        assert!(editor.objects()[0].frame.beta().length() > 0.9);
+        editor
+            .set_velocity(0, 0.3, DVec3::new(-1.0, 0.0, 0.2), true)
+            .unwrap();
+        assert!((editor.speed(0) - 0.3).abs() < 1e-15);
+        assert_matches_a_fresh_build(&editor);
+        // Keeping where it is seen: the emission event seen now, in W, is unchanged.
+        editor.set_observer_beta(DVec3::new(0.2, 0.7, 0.0)).unwrap();
+        assert_matches_a_fresh_build(&editor);
+        // Time moves the observer along its worldline through W.
+        let before = editor.description().observer.position;
+        editor.set_time(2.0).unwrap();
+        let after = editor.description().observer.position;
+        let moved = DVec3::from_array(after) - DVec3::from_array(before);
+        assert!(
+            (moved - DVec3::new(0.4, 1.4, 0.0)).length() < 1e-12,
+            "{moved}"
+        );
+        assert_matches_a_fresh_build(&editor);
+        assert!(matches!(
+            editor.set_observer_beta(DVec3::new(0.0, 1.0, 0.0)),
+            Err(EditError::Scene(_))
+        ));
+        // The light is read and written in the world frame.
+        let (temperature, position) = editor.light();
+        editor.set_light(temperature, position).unwrap();
+        assert_eq!(editor.light(), (temperature, position));
+    }
+
+    /// Changing the velocity keeps the object's origin where it is seen, in the world frame
+    /// when the observer moves.
+    #[test]
+    fn keeping_the_apparent_position_works_for_a_moving_observer() {
+        let (mut editor, _) = Editor::open("flythrough").unwrap();
+        let seen = |editor: &Editor| {
+            let object = &editor.objects()[1];
+            object
+                .frame
+                .apparent_position(DVec3::ZERO, editor.scene().observer.event())
+        };
+        let before = seen(&editor);
+        editor
+            .set_velocity(1, 0.8, DVec3::new(0.0, 1.0, 0.0), true)
+            .unwrap();
+        let after = seen(&editor);
+        assert!((after - before).length() < 1e-9, "{before} → {after}");
     }
 
     /// A binary STL file with one tetrahedron (4 triangles), the fixture the UI tests use too.

@@ -11,8 +11,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::{DMat4, DVec3};
-use srt_physics::Frame;
+use glam::{DMat3, DMat4, DVec3};
+use srt_physics::{Event, Frame, FrameError, MovingObserver, RelativeFrame};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
@@ -85,13 +85,17 @@ impl SceneDescription {
             warnings: Vec::new(),
         };
         let observer = self.observer.to_observer();
+        let motion = self.moving_observer().map_err(fail)?;
         let light = self.light.as_ref().map_or(
             Light {
                 position: observer.position,
                 temperature_k: DEFAULT_LIGHT_TEMPERATURE_K,
             },
             |l| Light {
-                position: DVec3::from_array(l.position),
+                // At rest relative to the observer, where W says it is at W's observation time.
+                position: motion
+                    .to_observer(Event::new(observer.ct, DVec3::from_array(l.position)))
+                    .position,
                 temperature_k: l.temperature_k,
             },
         );
@@ -99,7 +103,7 @@ impl SceneDescription {
             .objects
             .iter()
             .enumerate()
-            .map(|(index, object)| object.build(index, &mut builder))
+            .map(|(index, object)| object.build(index, &motion, &mut builder))
             .collect::<Result<Vec<_>, _>>()
             .map_err(fail)?;
         let mut warnings: Vec<String> = builder.warnings.iter().map(|w| one_line(w)).collect();
@@ -125,6 +129,53 @@ impl SceneDescription {
             background: DVec3::from_array(render.background),
         };
         Ok((scene, warnings))
+    }
+}
+
+impl SceneDescription {
+    /// The observer's rest frame S relative to the world frame W: velocity `observer.beta`,
+    /// observation event (`observer.ct`, `observer.position`).
+    ///
+    /// # Errors
+    /// [`SceneErrorKind::Value`] naming `observer.beta` when it is not a velocity (|β| ≥ 1,
+    /// not finite) or the observation event is not finite.
+    pub fn moving_observer(&self) -> Result<MovingObserver, SceneErrorKind> {
+        let observer = &self.observer;
+        let event = Event::new(observer.ct, DVec3::from_array(observer.position));
+        MovingObserver::new(DVec3::from_array(observer.beta), event).map_err(|error| {
+            value_error("observer.beta", format!("is not a valid velocity: {error}"))
+        })
+    }
+
+    /// Each object's frame relative to the observer and the Wigner rotation of its rest-frame
+    /// geometry, in order ([`MovingObserver::relative_frame`]): what [`SceneDescription::build`]
+    /// gives the objects, for editors that change velocities without rebuilding geometry.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the observer or the object whose velocity or offset is not usable.
+    pub fn relative_frames(&self) -> Result<Vec<RelativeFrame>, SceneError> {
+        let fail = |kind| SceneError::new(self.origin(), kind);
+        let observer = self.moving_observer().map_err(fail)?;
+        self.objects
+            .iter()
+            .enumerate()
+            .map(|(index, object)| {
+                object.relative_frame(&observer).map_err(|error| {
+                    fail(SceneErrorKind::Frame {
+                        object: object.label(index),
+                        error,
+                    })
+                })
+            })
+            .collect()
+    }
+}
+
+impl ObjectDescription {
+    /// The object's frame relative to `observer` (its `beta` and `offset` are given in W).
+    fn relative_frame(&self, observer: &MovingObserver) -> Result<RelativeFrame, FrameError> {
+        let world = Frame::new(DVec3::from_array(self.beta), DVec3::from_array(self.offset))?;
+        observer.relative_frame(&world)
     }
 }
 
@@ -157,7 +208,19 @@ pub fn scene_file_folder(path: &Path) -> PathBuf {
 /// # Errors
 /// [`SceneError`] naming the file: as [`read_scene_file`], or [`SceneDescription::build`] fails.
 pub fn load_scene_file(path: &Path) -> Result<(Scene, SceneDescription, Vec<String>), SceneError> {
-    let description = read_scene_file(path)?;
+    build_scene_file(read_scene_file(path)?, path)
+}
+
+/// Builds `description`, read from the scene file at `path` (and perhaps changed since), as
+/// [`load_scene_file`] does: paths relative to the file's folder, errors naming the file, the
+/// scene named after the file stem unless the description gives a name.
+///
+/// # Errors
+/// [`SceneError`] naming the file when [`SceneDescription::build`] fails.
+pub fn build_scene_file(
+    description: SceneDescription,
+    path: &Path,
+) -> Result<(Scene, SceneDescription, Vec<String>), SceneError> {
     let (mut scene, warnings) = description
         .build(&scene_file_folder(path))
         .map_err(|e| e.with_origin(path.display().to_string()))?;
@@ -187,14 +250,21 @@ impl ObserverDescription {
 }
 
 impl ObjectDescription {
-    /// Builds the runtime object, charging it to the scene's budget; only valid after `check`.
-    fn build(&self, index: usize, builder: &mut Builder<'_>) -> Result<Object, SceneErrorKind> {
+    /// Builds the runtime object as `observer` describes it (its frame relative to the
+    /// observer, its rest-frame geometry turned by the Wigner rotation), charging it to the
+    /// scene's budget; only valid after `check`.
+    fn build(
+        &self,
+        index: usize,
+        observer: &MovingObserver,
+        builder: &mut Builder<'_>,
+    ) -> Result<Object, SceneErrorKind> {
         let label = self.label(index);
-        let frame = Frame::new(DVec3::from_array(self.beta), DVec3::from_array(self.offset))
-            .map_err(|error| SceneErrorKind::Frame {
-                object: label.clone(),
-                error,
-            })?;
+        let frame_error = |error| SceneErrorKind::Frame {
+            object: label.clone(),
+            error,
+        };
+        let relative = self.relative_frame(observer).map_err(frame_error)?;
         let too_large = |key: &str, error: OverBudget| {
             value_error(
                 format!("{key} of {label}"),
@@ -262,6 +332,9 @@ impl ObjectDescription {
                 )),
             }
         }
+        if relative.rotation != DMat3::IDENTITY {
+            transform = DMat4::from_mat3(relative.rotation) * transform;
+        }
         let reach = placed_reach(&parts, transform);
         // `reach` is never NaN (`placed_reach` maps non-finite corners to infinity).
         if reach > MAX_COORDINATE {
@@ -286,7 +359,7 @@ impl ObjectDescription {
         Ok(Object {
             name: self.name.clone().unwrap_or(label),
             parts,
-            frame,
+            frame: relative.frame,
             wireframe: self.wireframe,
         })
     }

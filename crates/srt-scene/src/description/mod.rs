@@ -9,8 +9,11 @@
 //! documented with examples in `docs/scene-format.md`.
 //!
 //! Conventions: c = 1, so times are given as ct in the same length unit as positions; β is the
-//! velocity in units of c; the observer and the light rest in S; each object rests in its own
-//! frame S′ whose origin is at `offset` in S at t = t′ = 0. The default up direction is +z.
+//! velocity in units of c; positions, velocities and the observation event are given in the
+//! scene's world frame W, through which the observer moves with `observer.beta` (default at
+//! rest); each object rests in its own frame S′ whose origin is at `offset` in W at t = t′ = 0.
+//! Building the scene expresses everything in the observer's rest frame S
+//! ([`srt_physics::MovingObserver`]), where the light rests. The default up direction is +z.
 //!
 //! The module is split by concern: `error` (what can go wrong), `model` (the serde
 //! model of the file), `validate` (checks that need no file) and `build` (shapes, models,
@@ -21,7 +24,9 @@ mod error;
 mod model;
 mod validate;
 
-pub use build::{fit_transform, load_scene_file, read_scene_file, scene_file_folder};
+pub use build::{
+    build_scene_file, fit_transform, load_scene_file, read_scene_file, scene_file_folder,
+};
 pub use error::{SceneError, SceneErrorKind, line_column};
 pub use model::{
     LightDescription, ObjectDescription, ObserverDescription, RenderDescription, Scale,

@@ -31,10 +31,10 @@ pub struct SceneDescription {
     /// Free text describing the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
-    /// The observer (the camera) at rest in S.
+    /// The observer (the camera), moving with `observer.beta` through the scene's world frame.
     pub observer: ObserverDescription,
-    /// The light at rest in S; without one, a light of [`DEFAULT_LIGHT_TEMPERATURE_K`] sits at
-    /// the observer's position.
+    /// The light, at rest relative to the observer; without one, a light of
+    /// [`DEFAULT_LIGHT_TEMPERATURE_K`] sits at the observer's position.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub light: Option<LightDescription>,
     /// Effect mode, tone map, background and Phong factors.
@@ -45,34 +45,41 @@ pub struct SceneDescription {
     pub objects: Vec<ObjectDescription>,
 }
 
-/// The `[observer]` table: a pinhole camera at rest in S, observing at time `ct`.
+/// The `[observer]` table: a pinhole camera moving with `beta` through the world frame W,
+/// observing at the event (`ct`, `position`) of W; its orientation is given in its own rest
+/// frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObserverDescription {
-    /// Position in S.
+    /// Position in W at the observation event.
     pub position: [f64; 3],
-    /// A point in S the camera looks at (give this or `direction`, not both).
+    /// A point the camera looks at: `look_at − position` is the viewing direction in the
+    /// observer's rest frame (give this or `direction`, not both).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub look_at: Option<[f64; 3]>,
-    /// Viewing direction in S (give this or `look_at`, not both).
+    /// Viewing direction in the observer's rest frame (give this or `look_at`, not both).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<[f64; 3]>,
-    /// Approximate up direction of the image (default +z).
+    /// The observer's velocity relative to W in units of c (|β| < 1; default at rest).
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub beta: [f64; 3],
+    /// Approximate up direction of the image, in the observer's rest frame (default +z).
     #[serde(default = "default_up")]
     pub up: [f64; 3],
     /// Vertical field of view in degrees, in (0, 180).
     #[serde(default = "default_fov")]
     pub fov_y_deg: f64,
-    /// Observation time ct (c = 1, same unit as positions).
+    /// Observation time ct in W (c = 1, same unit as positions).
     #[serde(default)]
     pub ct: f64,
 }
 
-/// The `[light]` table: a point light at rest in S radiating a Planck spectrum.
+/// The `[light]` table: a point light at rest relative to the observer, radiating a Planck
+/// spectrum.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightDescription {
-    /// Position in S.
+    /// Position in W at the observation time `observer.ct` (W's time).
     pub position: [f64; 3],
     /// Black-body temperature in kelvin (> 0).
     #[serde(default = "default_temperature")]
@@ -147,10 +154,10 @@ pub struct ObjectDescription {
     /// Draw triangle edges of this width (in S′ units) instead of the texture.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wireframe: Option<f64>,
-    /// Velocity of S′ relative to S in units of c (|β| < 1).
+    /// Velocity of S′ relative to W in units of c (|β| < 1).
     #[serde(default)]
     pub beta: [f64; 3],
-    /// Position in S of the S′ origin at t = t′ = 0 (the paper's **a**).
+    /// Position in W of the S′ origin at t = t′ = 0 (the paper's **a**).
     #[serde(default)]
     pub offset: [f64; 3],
     /// Rest-frame translation, applied last.

@@ -4,7 +4,7 @@
 //! the key named, rather than in a renderer or a library.
 
 use glam::DVec3;
-use srt_physics::Frame;
+use srt_physics::{Frame, validate_beta};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
@@ -27,7 +27,7 @@ impl SceneDescription {
     }
 
     /// Checks every value that does not need a file: the observer (exactly one of `look_at` and
-    /// `direction`, a non-zero direction, `up` not parallel to it, fov in (0, 180)), the light
+    /// `direction`, a non-zero direction, `up` not parallel to it, fov in (0, 180), |β| < 1), the light
     /// (temperature > 0), the render settings and each object (|β| < 1, sizes and scales > 0,
     /// colours in [0, 1]…). All numbers must be finite, and positions, offsets, lengths, scale
     /// factors and ct at most [`MAX_COORDINATE`] in absolute value.
@@ -187,6 +187,9 @@ impl ObserverDescription {
                 format!("must be in (0, 180) degrees, got {:?}", self.fov_y_deg),
             ));
         }
+        validate_beta(DVec3::from_array(self.beta)).map_err(|error| {
+            value_error("observer.beta", format!("is not a valid velocity: {error}"))
+        })?;
         if !self.ct.is_finite() || self.ct.abs() > MAX_COORDINATE {
             return Err(value_error(
                 "observer.ct",

@@ -1,0 +1,147 @@
+//! `[observer] beta`: parsing, saving, refusing bad velocities with the key named, and what
+//! building a scene with a moving observer gives the renderers (everything in the observer's
+//! rest frame; the physics itself is tested in srt-physics and, image against image, in
+//! srt-trace).
+
+use std::path::Path;
+
+use glam::{DMat3, DVec3};
+use srt_physics::{Event, lorentz_matrix};
+use srt_scene::{SceneDescription, SceneErrorKind};
+
+/// A scene with the observer moving with `beta` (TOML text of the vector), a light, a cube at
+/// rest in W and a sphere moving along x.
+fn scene(beta: &str) -> String {
+    format!(
+        r#"
+[observer]
+position = [0.0, -5.0, 1.0]
+direction = [0.0, 1.0, 0.0]
+beta = {beta}
+ct = 2.0
+[light]
+position = [1.0, -6.0, 4.0]
+[[object]]
+name = "cube"
+shape = {{ type = "cube" }}
+offset = [0.0, 3.0, 0.0]
+[[object]]
+name = "sphere"
+shape = {{ type = "sphere" }}
+beta = [0.6, 0.0, 0.0]
+offset = [-2.0, 1.0, 0.0]
+"#
+    )
+}
+
+fn parse(text: &str) -> SceneDescription {
+    SceneDescription::from_toml_str(text, "moving.toml").expect("parses")
+}
+
+#[test]
+fn observer_beta_is_read_written_and_defaults_to_rest() {
+    let description = parse(&scene("[0.0, 0.8, 0.1]"));
+    assert_eq!(description.observer.beta, [0.0, 0.8, 0.1]);
+    let text = description.to_toml_string();
+    assert!(text.contains("beta = [0.0, 0.8, 0.1]"), "{text}");
+    assert_eq!(parse(&text), description);
+    let at_rest = parse(&scene("[0.0, 0.0, 0.0]"));
+    assert!(
+        !at_rest
+            .to_toml_string()
+            .contains("[observer]\nposition = [0.0, -5.0, 1.0]\ndirection = [0.0, 1.0, 0.0]\nbeta"),
+        "a resting observer's beta is not written"
+    );
+    let without = scene("[0.0, 0.0, 0.0]").replace("beta = [0.0, 0.0, 0.0]\nct", "ct");
+    assert_eq!(parse(&without).observer.beta, [0.0; 3]);
+}
+
+#[test]
+fn bad_observer_velocities_name_the_file_and_the_key() {
+    for (beta, reason) in [
+        ("[0.0, 1.0, 0.0]", "speed of light"),
+        ("[0.8, 0.7, 0.0]", "speed of light"),
+        ("[nan, 0.0, 0.0]", "not a finite number"),
+        ("[0.0, inf, 0.0]", "not a finite number"),
+    ] {
+        let description = parse(&scene(beta));
+        let error = description.validate().expect_err(beta);
+        let built = description
+            .build(Path::new("."))
+            .expect_err(beta)
+            .with_origin("moving.toml");
+        for message in [error.to_string(), built.to_string()] {
+            assert!(message.contains("observer.beta"), "{message}");
+            assert!(message.contains(reason), "{message}");
+        }
+        assert!(built.to_string().starts_with("moving.toml: "), "{built}");
+        assert!(matches!(built.kind(), SceneErrorKind::Value { .. }));
+    }
+}
+
+#[test]
+fn unknown_observer_keys_are_errors() {
+    let text = scene("[0.0, 0.5, 0.0]").replace("beta =", "velocity =");
+    let error = SceneDescription::from_toml_str(&text, "moving.toml").unwrap_err();
+    let message = error.to_string();
+    assert!(
+        message.starts_with("moving.toml: line") && message.contains("velocity"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_moving_observer_gets_the_scene_in_its_rest_frame() {
+    let beta_o = DVec3::new(0.0, 0.8, 0.1);
+    let description = parse(&scene("[0.0, 0.8, 0.1]"));
+    let (moving, warnings) = description.build(Path::new(".")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let (resting, _) = parse(&scene("[0.0, 0.0, 0.0]"))
+        .build(Path::new("."))
+        .unwrap();
+    // The observation event keeps its coordinates, the camera its orientation.
+    assert_eq!(moving.observer, resting.observer);
+    // The cube rests in W: it moves with −β_o; its geometry is not turned.
+    let cube = &moving.objects[0];
+    assert!((cube.frame.beta() + beta_o).length() < 1e-15);
+    let cube_positions = cube.parts[0].mesh.positions();
+    let rest_positions = resting.objects[0].parts[0].mesh.positions();
+    for (a, b) in cube_positions.iter().zip(rest_positions) {
+        assert!((*a - *b).length() < 1e-15);
+    }
+    // The sphere moves obliquely to the observer: composed velocity, geometry turned by the
+    // Wigner rotation (rotations keep lengths, and it is not the identity).
+    let sphere = &moving.objects[1];
+    let relative = description.relative_frames().unwrap()[1];
+    assert_eq!(sphere.frame, relative.frame);
+    assert!(!(relative.rotation - DMat3::IDENTITY).abs_diff_eq(DMat3::ZERO, 1e-3));
+    let turned = sphere.parts[0].mesh.positions();
+    let original = resting.objects[1].parts[0].mesh.positions();
+    for (a, b) in turned.iter().zip(original) {
+        assert!((*a - relative.rotation * *b).length() < 1e-12);
+    }
+    // The light rests relative to the observer, at the S position of the W event (ct, x_light).
+    let light_event = Event::new(2.0, DVec3::new(1.0, -6.0, 4.0));
+    let e = Event::new(2.0, DVec3::new(0.0, -5.0, 1.0));
+    let expected = Event::from_four_vector(
+        lorentz_matrix(-beta_o) * (light_event.to_four_vector() - e.to_four_vector())
+            + e.to_four_vector(),
+    );
+    assert!((moving.light.position - expected.position).length() < 1e-12);
+    assert!((moving.light.position - resting.light.position).length() > 0.1);
+}
+
+#[test]
+fn a_resting_observer_changes_nothing() {
+    let explicit = parse(&scene("[0.0, 0.0, 0.0]"));
+    let mut plain = explicit.clone();
+    plain.observer.beta = [0.0; 3];
+    assert_eq!(
+        explicit.build(Path::new(".")).unwrap().0,
+        plain.build(Path::new(".")).unwrap().0
+    );
+    let (scene, _) = explicit.build(Path::new(".")).unwrap();
+    assert_eq!(scene.objects[1].frame.beta(), DVec3::new(0.6, 0.0, 0.0));
+    assert_eq!(scene.objects[1].frame.offset(), DVec3::new(-2.0, 1.0, 0.0));
+    assert_eq!(scene.light.position, DVec3::new(1.0, -6.0, 4.0));
+}
