@@ -22,6 +22,14 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Join rendered frames (PNG or EXR, in the order given) into a video: .mp4 (H.264) or .gif.
+    Encode(EncodeArgs),
+    /// Print how an image was made: the scene, time, velocities, effects and renderer that srt
+    /// records in every PNG and EXR it writes.
+    Info {
+        /// A PNG or EXR image written by `srt render`.
+        image: PathBuf,
+    },
     /// Open the interactive viewer: SCENE_OR_MODEL... (default `teaser`); further models are
     /// added to the first scene.
     View {
@@ -75,8 +83,9 @@ pub struct RenderArgs {
     /// Built-in scene name (see `srt scenes`), scene file (.toml) or model file.
     #[arg(default_value = "fig10-cube50")]
     pub scene: String,
-    /// Output image: .png (8-bit sRGB) or .exr (linear light, 32-bit float). With --frames, a
-    /// frame number is inserted before the extension. Default: SCENE.png in the current folder.
+    /// Output: .png (8-bit sRGB) or .exr (linear light, 32-bit float) images, or with --frames a
+    /// video, .mp4 (H.264) or .gif. With --frames, a frame number is inserted before an image's
+    /// extension. Default: SCENE.png in the current folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Image width in pixels.
@@ -101,6 +110,10 @@ pub struct RenderArgs {
     /// without it approaches the observer at 0.9c).
     #[arg(long, value_parser = parse_vector, allow_hyphen_values = true)]
     pub beta: Option<DVec3>,
+    /// Velocity X,Y,Z in units of c of the observer through the scene's world frame (overrides
+    /// the scene's `observer.beta`); objects keep their velocities relative to the world.
+    #[arg(long, value_parser = parse_vector, allow_hyphen_values = true)]
+    pub observer_beta: Option<DVec3>,
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub samples: u32,
@@ -113,6 +126,56 @@ pub struct RenderArgs {
     /// Last observation time of an animation (default: first + 10).
     #[arg(long, allow_hyphen_values = true)]
     pub t1: Option<f64>,
+    /// Render only share K of N of the frames (K counts from 1): frames i with i mod N = K − 1,
+    /// as numbered images. Every share's frames are byte for byte those of an unsharded run; see
+    /// docs/cluster.md.
+    #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+    pub shard: Option<ShardArg>,
+    /// Video options.
+    #[command(flatten)]
+    pub video: VideoArgs,
+}
+
+/// `--shard K/N` as typed: two whole numbers (their range is checked by `srt render`, which can
+/// say what is wrong in one line).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShardArg {
+    /// K, the share to render (1-based).
+    pub index: u32,
+    /// N, the number of shares.
+    pub count: u32,
+}
+
+/// Options of the videos `srt render` and `srt encode` write.
+#[derive(Debug, Clone, Copy, Args)]
+pub struct VideoArgs {
+    /// Frames per second of a video (.mp4 or .gif; a GIF stores delays in 1/100 s, so 24 fps
+    /// plays at 25).
+    #[arg(long, default_value_t = DEFAULT_FPS, value_parser = clap::value_parser!(u32).range(1..=120))]
+    pub fps: u32,
+}
+
+impl Default for VideoArgs {
+    fn default() -> Self {
+        Self { fps: DEFAULT_FPS }
+    }
+}
+
+/// The frame rate of videos unless `--fps` says otherwise.
+pub const DEFAULT_FPS: u32 = 24;
+
+/// Options of `srt encode`.
+#[derive(Debug, Clone, Args)]
+pub struct EncodeArgs {
+    /// The frames, in playing order (a shell glob such as frames_*.png sorts numbered frames).
+    #[arg(required = true, value_name = "FRAME")]
+    pub frames: Vec<PathBuf>,
+    /// The video to write: .mp4 (H.264) or .gif.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Video options.
+    #[command(flatten)]
+    pub video: VideoArgs,
 }
 
 impl Default for RenderArgs {
@@ -127,10 +190,13 @@ impl Default for RenderArgs {
             effects: None,
             time: None,
             beta: None,
+            observer_beta: None,
             samples: 1,
             frames: None,
             t0: None,
             t1: None,
+            shard: None,
+            video: VideoArgs::default(),
         }
     }
 }
@@ -154,6 +220,20 @@ fn parse_vector(text: &str) -> Result<DVec3, String> {
     Ok(DVec3::new(number(x)?, number(y)?, number(z)?))
 }
 
+/// Parses "K/N" into two whole numbers.
+fn parse_shard(text: &str) -> Result<ShardArg, String> {
+    let parse = |part: &str| part.trim().parse::<u32>().ok();
+    match text.split_once('/') {
+        Some((index, count)) => match (parse(index), parse(count)) {
+            (Some(index), Some(count)) => Ok(ShardArg { index, count }),
+            _ => Err(format!("expected K/N with two whole numbers, got {text:?}")),
+        },
+        None => Err(format!(
+            "expected K/N (share K of N, e.g. 2/8), got {text:?}"
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use clap::CommandFactory as _;
@@ -175,10 +255,36 @@ mod tests {
         );
     }
 
+    /// `--shard` takes K/N as two whole numbers; their range is `srt render`'s to judge.
+    #[test]
+    fn shard_parses_two_whole_numbers() {
+        let shard = super::parse_shard("2/8").expect("parses");
+        assert_eq!((shard.index, shard.count), (2, 8));
+        let zero = super::parse_shard("0/0").expect("parses; refused later");
+        assert_eq!((zero.index, zero.count), (0, 0));
+        for bad in ["2", "2/", "a/3", "1/-2", "1.5/3"] {
+            assert!(super::parse_shard(bad).is_err(), "{bad} parsed");
+        }
+    }
+
     /// A negative vector is ordinary input for `--beta`.
     #[test]
     fn negative_components_parse() {
         let vector = super::parse_vector("-0.9, 0,-1e-3").expect("parses");
         assert_eq!(vector, glam::DVec3::new(-0.9, 0.0, -1e-3));
+    }
+
+    /// `--observer-beta` takes a vector, negative components included; a non-number is refused.
+    #[test]
+    fn observer_beta_parses_a_vector() {
+        use clap::Parser as _;
+        let parsed =
+            Cli::try_parse_from(["srt", "render", "fig7", "--observer-beta", "-0.5,0,0.1"])
+                .expect("parses");
+        let Some(super::Command::Render(args)) = parsed.command else {
+            panic!("not a render command");
+        };
+        assert_eq!(args.observer_beta, Some(glam::DVec3::new(-0.5, 0.0, 0.1)));
+        assert!(Cli::try_parse_from(["srt", "render", "--observer-beta", "0,nan,0"]).is_err());
     }
 }

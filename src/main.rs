@@ -1,13 +1,19 @@
-//! The `srt` command-line program: render relativistic scenes and models to images, list the
-//! built-in scenes, and open the interactive viewer.
+//! The `srt` command-line program: render relativistic scenes and models to images and videos,
+//! join frames into videos, tell how an image was made, list the built-in scenes, and open the
+//! interactive viewer.
 //!
 //! Every failure the user can cause (bad files, bad numbers, unwritable paths) ends in one clear
 //! message on standard error and exit code 2; nothing is written half-way.
 
 mod cli;
+mod encode;
 mod output;
+mod progress;
+mod provenance;
 mod render;
+mod shard;
 mod source;
+mod video;
 
 use std::process::ExitCode;
 
@@ -67,6 +73,8 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::View { scenes } => view(&scenes),
+        Command::Encode(args) => encode::run(&args),
+        Command::Info { image } => provenance::print_info(&image),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,13 +1,12 @@
 //! `srt render`: resolve the scene, apply command-line overrides, choose the backend, render one
-//! image or an animation, and write it.
+//! image, a share of an animation's numbered frames, or a video, and write it with a record of
+//! how it was made.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_physics::Frame;
 use srt_scene::limits::MAX_COORDINATE;
@@ -15,8 +14,12 @@ use srt_scene::{Effects, Scene};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::cli::{Backend, EffectsArg, MethodArg, RenderArgs};
-use crate::output::{check_writable, numbered, write_image};
-use crate::source::load_scene;
+use crate::output::{OutputFormat, check_writable, display_rgb8, numbered, write_image};
+use crate::progress::DelayedBar;
+use crate::provenance::Provenance;
+use crate::shard::Shard;
+use crate::source::{SceneOrigin, load_scene};
+use crate::video::{VideoWriter, check_size};
 
 /// A renderer ready to produce frames of one scene.
 enum Engine {
@@ -40,23 +43,57 @@ impl Engine {
             } => format!("gpu {} on {}", method.name(), context.adapter_info.name),
         }
     }
+
+    /// The backend, method and adapter entries of the provenance record.
+    fn record_entries(&self) -> [(&'static str, String); 3] {
+        match self {
+            Self::Cpu => [
+                ("backend", "cpu".into()),
+                ("method", "lrt (exact CPU ray tracer)".into()),
+                ("adapter", "none".into()),
+            ],
+            Self::Gpu {
+                context, method, ..
+            } => [
+                ("backend", "gpu".into()),
+                ("method", method.name().into()),
+                (
+                    "adapter",
+                    format!(
+                        "{} ({:?})",
+                        context.adapter_info.name, context.adapter_info.backend
+                    ),
+                ),
+            ],
+        }
+    }
+}
+
+/// What an animation writes: numbered images (this machine's share of them) or one video.
+enum Animation {
+    /// Numbered images of the frames of `shard`.
+    Images(Shard),
+    /// A video of all frames.
+    Video,
 }
 
 /// Runs `srt render`.
 ///
 /// # Errors
-/// Any user-facing failure: unknown scene, bad file, bad override, no GPU for `--backend gpu`,
-/// unwritable output.
+/// Any user-facing failure: unknown scene, bad file, bad override, bad --frames/--shard
+/// combination, no GPU for `--backend gpu`, unwritable output.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
-    // A named output is checked before the scene is even loaded: a typo in -o must not cost a
-    // model import and a render.
+    // A named output and the animation options are checked before the scene is even loaded: a
+    // typo in -o must not cost a model import and a render.
     if let Some(output) = &args.output {
         check_writable(output)?;
     }
-    let (mut scene, warnings) = load_scene(&args.scene, args.beta)?;
-    for warning in &warnings {
+    let animation = check_animation(args)?;
+    let loaded = load_scene(&args.scene, args.beta, args.observer_beta)?;
+    for warning in &loaded.warnings {
         eprintln!("warning: {warning}");
     }
+    let mut scene = loaded.scene;
     apply_overrides(&mut scene, args)?;
     let output = match &args.output {
         Some(output) => output.clone(),
@@ -72,29 +109,183 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         samples: args.samples,
     };
     let mut engine = choose_engine(args, &scene)?;
-    match args.frames {
-        None => render_one(&mut engine, &scene, settings, &output),
-        Some(frames) => {
-            let t0 = observation_time("--t0", args.t0.unwrap_or(scene.observer.ct))?;
-            let t1 = observation_time("--t1", args.t1.unwrap_or(t0 + 10.0))?;
+    let record = base_record(
+        &loaded.origin,
+        loaded.observer_beta,
+        &scene,
+        &engine,
+        settings,
+    );
+    let (Some(frames), Some(animation)) = (args.frames, animation) else {
+        let start = Instant::now();
+        let pixels = render_pixels(&mut engine, &scene, settings, true)?;
+        let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
+        write_image(settings.width, settings.height, &pixels, &record, &output)?;
+        println!("{}", wrote(&output, settings, &engine, start));
+        return Ok(());
+    };
+    let t0 = observation_time("--t0", args.t0.unwrap_or(scene.observer.ct))?;
+    let t1 = observation_time("--t1", args.t1.unwrap_or(t0 + 10.0))?;
+    let time_of = |frame: u32| {
+        let fraction = if frames > 1 {
+            f64::from(frame) / f64::from(frames - 1)
+        } else {
+            0.0
+        };
+        t0 + fraction * (t1 - t0)
+    };
+    let start = Instant::now();
+    match animation {
+        Animation::Images(shard) => {
             let digits = frames.to_string().len().max(4);
-            for frame in 0..frames {
-                let fraction = if frames > 1 {
-                    f64::from(frame) / f64::from(frames - 1)
-                } else {
-                    0.0
-                };
-                scene.observer.ct = t0 + fraction * (t1 - t0);
-                render_one(
-                    &mut engine,
-                    &scene,
-                    settings,
-                    &numbered(&output, frame, digits),
-                )?;
+            let share: Vec<u32> = shard.frames(frames).collect();
+            if share.is_empty() {
+                println!(
+                    "share {}/{} gets none of the {frames} frames; nothing to render",
+                    shard.index(),
+                    shard.count()
+                );
             }
-            Ok(())
+            let bar = DelayedBar::new(
+                share.len() as u64,
+                "frames",
+                format!("rendering {}", scene.name),
+            );
+            for frame in share {
+                let frame_start = Instant::now();
+                scene.observer.ct = time_of(frame);
+                let pixels = render_pixels(&mut engine, &scene, settings, false)?;
+                let record = record.with(&[
+                    ("time", format!("{:?}", scene.observer.ct)),
+                    ("frame", format!("{frame} of 0 to {}", frames - 1)),
+                ]);
+                let path = numbered(&output, frame, digits);
+                write_image(settings.width, settings.height, &pixels, &record, &path)?;
+                bar.println(&wrote(&path, settings, &engine, frame_start));
+                bar.inc();
+            }
+            bar.finish();
+        }
+        Animation::Video => {
+            let mut video =
+                VideoWriter::create(&output, settings.width, settings.height, args.video.fps)?;
+            let bar = DelayedBar::new(
+                u64::from(frames),
+                "frames",
+                format!("rendering {}", scene.name),
+            );
+            for frame in 0..frames {
+                scene.observer.ct = time_of(frame);
+                let pixels = render_pixels(&mut engine, &scene, settings, false)?;
+                video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
+                bar.inc();
+            }
+            bar.finish();
+            video.finish()?;
+            println!(
+                "wrote {} ({frames} frames at {} fps, ct {t0:?} to {t1:?}; {})",
+                output.display(),
+                args.video.fps,
+                details(settings, &engine, start)
+            );
         }
     }
+    Ok(())
+}
+
+/// Checks --frames, --shard and a video output against each other and the picture size, before
+/// anything is loaded; returns what an animation writes (`None` without --frames).
+fn check_animation(args: &RenderArgs) -> anyhow::Result<Option<Animation>> {
+    let format = args
+        .output
+        .as_deref()
+        .map(OutputFormat::for_path)
+        .transpose()?;
+    let shard = args.shard.map(Shard::new).transpose()?;
+    match (&args.output, format) {
+        (Some(output), Some(format)) if format.is_video() => {
+            if args.frames.is_none() {
+                bail!(
+                    "-o {}: a video needs the number of frames, --frames N",
+                    output.display()
+                );
+            }
+            if args.shard.is_some() {
+                bail!(
+                    "--shard renders numbered images, not a video: render the shares to -o \
+                     NAME.png, then join the frames with `srt encode NAME_*.png -o {}`",
+                    output.display()
+                );
+            }
+            check_size(
+                output,
+                format,
+                args.width,
+                args.height,
+                "--width x --height",
+            )?;
+            Ok(Some(Animation::Video))
+        }
+        _ => match (args.frames, shard) {
+            (None, Some(_)) => bail!("--shard shares the frames of an animation: give --frames N"),
+            (None, None) => Ok(None),
+            (Some(_), shard) => Ok(Some(Animation::Images(shard.unwrap_or(Shard::WHOLE)))),
+        },
+    }
+}
+
+/// The provenance entries every frame of this render shares (all but time and frame number).
+/// `origin` and `observer_beta` describe the scene as loaded, `scene` the one rendered
+/// (overrides applied): object velocities are relative to the observer.
+fn base_record(
+    origin: &SceneOrigin,
+    observer_beta: DVec3,
+    scene: &Scene,
+    engine: &Engine,
+    settings: RenderSettings,
+) -> Provenance {
+    let mut record = Provenance::new();
+    record.push("scene", origin.description.clone());
+    if let Some(sha256) = &origin.sha256 {
+        record.push("scene sha256", sha256.clone());
+    }
+    let velocity = |beta: DVec3| format!("({:?}, {:?}, {:?})", beta.x, beta.y, beta.z);
+    record.push("observer velocity", velocity(observer_beta));
+    let velocities: Vec<String> = scene
+        .objects
+        .iter()
+        .map(|object| format!("{} {}", object.name, velocity(object.frame.beta())))
+        .collect();
+    record.push("velocities", velocities.join("; "));
+    record.push("effects", scene.effects.name());
+    for (key, value) in engine.record_entries() {
+        record.push(key, value);
+    }
+    record.push("size", format!("{}x{}", settings.width, settings.height));
+    record.push("samples", settings.samples.to_string());
+    record
+}
+
+/// "wrote PATH (DETAILS)".
+fn wrote(path: &Path, settings: RenderSettings, engine: &Engine, start: Instant) -> String {
+    format!(
+        "wrote {} ({})",
+        path.display(),
+        details(settings, engine, start)
+    )
+}
+
+/// "W×H, N samples per pixel, ENGINE, T s" (T: seconds since `start`).
+fn details(settings: RenderSettings, engine: &Engine, start: Instant) -> String {
+    format!(
+        "{}x{}, {} sample{} per pixel, {}, {:.2} s",
+        settings.width,
+        settings.height,
+        settings.samples,
+        if settings.samples == 1 { "" } else { "s" },
+        engine.name(),
+        start.elapsed().as_secs_f64()
+    )
 }
 
 /// Picks the renderer: `cpu`, `gpu` (an error without an adapter) or `auto` (the GPU when
@@ -205,16 +396,16 @@ fn file_safe(name: &str) -> String {
     }
 }
 
-/// Renders one frame with `engine` and writes it to `output`.
-fn render_one(
+/// Renders one frame with `engine`: display colours, row-major from the top. `show_rows` shows
+/// the CPU renderer's row progress (for single images; animations count frames instead).
+fn render_pixels(
     engine: &mut Engine,
     scene: &Scene,
     settings: RenderSettings,
-    output: &Path,
-) -> anyhow::Result<()> {
-    let start = Instant::now();
-    let pixels = match engine {
-        Engine::Cpu => render_cpu(scene, settings),
+    show_rows: bool,
+) -> anyhow::Result<Vec<DVec3>> {
+    Ok(match engine {
+        Engine::Cpu => render_cpu(scene, settings, show_rows),
         Engine::Gpu {
             context,
             renderer,
@@ -226,45 +417,22 @@ fn render_one(
                 .with_context(|| format!("GPU rendering of {} failed", scene.name))?;
             downsample(&image.pixels, settings.width, settings.height, *scale)
         }
-    };
-    write_image(settings.width, settings.height, &pixels, output)?;
-    println!(
-        "wrote {} ({}x{}, {} sample{} per pixel, {}, {:.2} s)",
-        output.display(),
-        settings.width,
-        settings.height,
-        settings.samples,
-        if settings.samples == 1 { "" } else { "s" },
-        engine.name(),
-        start.elapsed().as_secs_f64()
-    );
-    Ok(())
+    })
 }
 
-/// The exact CPU render, with a progress bar once it takes more than a second.
-fn render_cpu(scene: &Scene, settings: RenderSettings) -> Vec<DVec3> {
-    let start = Instant::now();
+/// The exact CPU render, with a progress bar of rows once it takes more than a second.
+fn render_cpu(scene: &Scene, settings: RenderSettings, show_rows: bool) -> Vec<DVec3> {
     let tracer = Tracer::new(scene);
-    let bar = ProgressBar::with_draw_target(
-        Some(u64::from(settings.height)),
-        ProgressDrawTarget::hidden(),
+    if !show_rows {
+        return tracer.render(settings, &|_| {}).pixels;
+    }
+    let bar = DelayedBar::new(
+        u64::from(settings.height),
+        "rows",
+        format!("rendering {}", scene.name),
     );
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{spinner} rendering {msg} [{bar:40}] {pos}/{len} rows, {eta} left",
-        )
-        .expect("valid progress template")
-        .progress_chars("=> "),
-    );
-    bar.set_message(scene.name.clone());
-    let shown = AtomicBool::new(false);
-    let image = tracer.render(settings, &|rows| {
-        if start.elapsed().as_secs_f64() > 1.0 && !shown.swap(true, Ordering::Relaxed) {
-            bar.set_draw_target(ProgressDrawTarget::stderr());
-        }
-        bar.set_position(u64::from(rows));
-    });
-    bar.finish_and_clear();
+    let image = tracer.render(settings, &|rows| bar.set_position(u64::from(rows)));
+    bar.finish();
     image.pixels
 }
 

@@ -3,17 +3,115 @@
 //! (placed in front of the observer, moving with `--beta` or, by default, approaching at
 //! [`DEFAULT_MODEL_SPEED`](srt_scene::resolve::DEFAULT_MODEL_SPEED)).
 
+use std::fmt::Write as _;
+use std::io::Read as _;
+use std::path::Path;
+
+use anyhow::{Context as _, anyhow, bail};
 use glam::DVec3;
+use sha2::{Digest as _, Sha256};
+use srt_scene::message::io_reason;
 use srt_scene::{Scene, SceneSource, builtin_scenes};
 
+/// A scene ready to render, and where it came from.
+pub struct LoadedScene {
+    /// The scene.
+    pub scene: Scene,
+    /// Non-fatal problems worked around while loading it.
+    pub warnings: Vec<String>,
+    /// What it was loaded from, for the images' provenance record.
+    pub origin: SceneOrigin,
+    /// The observer's velocity through the scene's world frame (zero: at rest).
+    pub observer_beta: DVec3,
+}
+
+/// Where a scene came from, in words that are the same on every machine (no folders).
+pub struct SceneOrigin {
+    /// "NAME (built-in)", "FILE (scene file)" or "FILE (model)": a file by its name alone.
+    pub description: String,
+    /// The SHA-256 of the scene or model file's content, in hex; `None` for a built-in scene.
+    /// (A scene file's own models and textures are not included.)
+    pub sha256: Option<String>,
+}
+
 /// Loads the scene named by `argument`; `beta` is the `--beta` option (used to place a bare
-/// model). Returns the scene and non-fatal warnings.
+/// model), `observer_beta` the `--observer-beta` option (the observer's velocity through the
+/// scene's world frame).
 ///
 /// # Errors
-/// Unknown names, unsupported, unreadable or invalid files, bad values.
-pub fn load_scene(argument: &str, beta: Option<DVec3>) -> anyhow::Result<(Scene, Vec<String>)> {
-    let loaded = SceneSource::resolve(argument)?.load(beta)?;
-    Ok((loaded.scene, loaded.warnings))
+/// Unknown names, unsupported, unreadable or invalid files, bad values; `--observer-beta` that
+/// is not a velocity; `--beta` (a velocity relative to the observer, applied after loading)
+/// with a moving observer.
+pub fn load_scene(
+    argument: &str,
+    beta: Option<DVec3>,
+    observer_beta: Option<DVec3>,
+) -> anyhow::Result<LoadedScene> {
+    if let Some(b) = observer_beta {
+        srt_physics::validate_beta(b).with_context(|| {
+            format!(
+                "--observer-beta {:?},{:?},{:?} is not a valid velocity",
+                b.x, b.y, b.z
+            )
+        })?;
+    }
+    let source = SceneSource::resolve(argument)?;
+    let loaded = source.load_observed(beta, observer_beta)?;
+    if beta.is_some() && loaded.source.description.observer.beta != [0.0; 3] {
+        bail!(
+            "--beta sets every object's velocity relative to a resting observer and cannot be \
+             combined with a moving observer (--observer-beta or observer.beta of {argument}); \
+             give the objects' velocities in the scene file instead"
+        );
+    }
+    let origin = match &source {
+        SceneSource::Builtin(scene) => SceneOrigin {
+            description: format!("{} (built-in)", scene.name),
+            sha256: None,
+        },
+        SceneSource::SceneFile(path) => file_origin(path, "scene file")?,
+        SceneSource::Model(path) => file_origin(path, "model")?,
+    };
+    Ok(LoadedScene {
+        scene: loaded.scene,
+        warnings: loaded.warnings,
+        origin,
+        observer_beta: DVec3::from_array(loaded.source.description.observer.beta),
+    })
+}
+
+/// The origin of a scene read from the file at `path`, with its content hash.
+fn file_origin(path: &Path, kind: &str) -> anyhow::Result<SceneOrigin> {
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    Ok(SceneOrigin {
+        description: format!("{name} ({kind})"),
+        sha256: Some(sha256_hex(path)?),
+    })
+}
+
+/// The SHA-256 of a file's content in lowercase hex, read in blocks.
+fn sha256_hex(path: &Path) -> anyhow::Result<String> {
+    let cannot =
+        |error: &std::io::Error| anyhow!("cannot read {} ({})", path.display(), io_reason(error));
+    let mut file = std::fs::File::open(path).map_err(|e| cannot(&e))?;
+    let mut hasher = Sha256::new();
+    let mut block = vec![0_u8; 1 << 16];
+    loop {
+        match file.read(&mut block) {
+            Ok(0) => break,
+            Ok(n) => hasher.update(&block[..n]),
+            Err(error) if error.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(error) => return Err(cannot(&error)),
+        }
+    }
+    let mut hex = String::with_capacity(64);
+    for byte in hasher.finalize() {
+        let _ = write!(hex, "{byte:02x}");
+    }
+    Ok(hex)
 }
 
 /// Prints the built-in scenes, one per line.
@@ -25,5 +123,20 @@ pub fn print_scenes() {
         .unwrap_or(0);
     for scene in builtin_scenes() {
         println!("{:width$}  {}", scene.name, scene.summary);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The hash of a known input (FIPS 180-2's "abc" example), read from a file.
+    #[test]
+    fn sha256_of_a_file_matches_the_standard_example() {
+        let dir = tempfile::tempdir().expect("temporary folder");
+        let path = dir.path().join("abc.toml");
+        std::fs::write(&path, "abc").expect("written");
+        assert_eq!(
+            super::sha256_hex(&path).expect("hashed"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
     }
 }

@@ -5,47 +5,9 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn srt(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_srt"))
-        .args(args)
-        .current_dir(dir)
-        .env(
-            "WGPU_BACKEND",
-            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
-        )
-        .output()
-        .expect("srt runs")
-}
+mod common;
 
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-/// A fresh temporary folder.
-fn folder() -> tempfile::TempDir {
-    tempfile::tempdir().expect("temporary folder")
-}
-
-/// Asserts a clean user-facing failure: exit code 2, one `error:` line (bounded in length, the
-/// only line besides warnings and notes) mentioning every word of `mentions`, no panic.
-fn assert_clean_failure(output: &Output, mentions: &[&str]) {
-    let err = stderr(output);
-    assert_eq!(output.status.code(), Some(2), "exit code; stderr:\n{err}");
-    assert!(err.contains("error:"), "no error line:\n{err}");
-    assert!(!err.contains("panicked"), "panic:\n{err}");
-    let message: Vec<&str> = err
-        .lines()
-        .filter(|line| !line.starts_with("warning:") && !line.starts_with("note:"))
-        .collect();
-    assert_eq!(message.len(), 1, "the error is not one line:\n{err}");
-    assert!(message[0].len() <= 600, "the error is too long:\n{err}");
-    for word in mentions {
-        assert!(
-            err.contains(word),
-            "message does not mention {word:?}:\n{err}"
-        );
-    }
-}
+use common::{assert_clean_failure, folder, srt, stderr};
 
 #[test]
 fn renders_a_builtin_scene_on_the_cpu_and_says_where() {

@@ -1,0 +1,95 @@
+//! `srt encode`: join rendered frames (PNG, or linear EXR converted to sRGB) into one video,
+//! typically the numbered frames that the shares of a cluster render wrote (docs/cluster.md).
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{anyhow, bail};
+use image::{DynamicImage, RgbImage};
+use srt_color::{quantize_8bit, srgb_encode};
+
+use crate::cli::EncodeArgs;
+use crate::output::{OutputFormat, check_writable};
+use crate::progress::DelayedBar;
+use crate::video::{VideoWriter, check_size};
+
+/// Runs `srt encode FRAME... -o VIDEO`.
+///
+/// # Errors
+/// If the output is not a writable .mp4 or .gif, a frame cannot be read, or the frames differ
+/// in size; nothing is then written.
+pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let output = &args.output;
+    check_writable(output)?;
+    let format = OutputFormat::for_path(output)?;
+    if !format.is_video() {
+        bail!(
+            "cannot write {}: srt encode writes a video; the file name must end in .mp4 or .gif",
+            output.display()
+        );
+    }
+    let Some(first_path) = args.frames.first() else {
+        bail!("srt encode needs at least one frame");
+    };
+    let first = read_frame(first_path)?;
+    let (width, height) = first.dimensions();
+    check_size(
+        output,
+        format,
+        width,
+        height,
+        &first_path.display().to_string(),
+    )?;
+    let mut video = VideoWriter::create(output, width, height, args.video.fps)?;
+    let bar = DelayedBar::new(
+        args.frames.len() as u64,
+        "frames",
+        format!("encoding {}", output.display()),
+    );
+    video.push(&first)?;
+    bar.inc();
+    for path in &args.frames[1..] {
+        let frame = read_frame(path)?;
+        if frame.dimensions() != (width, height) {
+            bail!(
+                "{} is {}x{}, but {} is {width}x{height}: all frames of a video must have one size",
+                path.display(),
+                frame.width(),
+                frame.height(),
+                first_path.display()
+            );
+        }
+        video.push(&frame)?;
+        bar.inc();
+    }
+    bar.finish();
+    let frames = video.finish()?;
+    println!(
+        "wrote {} ({frames} frames, {width}x{height}, {} fps, {:.2} s)",
+        output.display(),
+        args.video.fps,
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Reads a frame as 8-bit display colours: a PNG as it is, a floating-point image (srt's linear
+/// EXR) through the sRGB encoding.
+fn read_frame(path: &Path) -> anyhow::Result<RgbImage> {
+    let image = image::open(path)
+        .map_err(|error| anyhow!("cannot read frame {} ({error})", path.display()))?;
+    Ok(match image {
+        DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_) => {
+            let linear = image.into_rgb32f();
+            let (width, height) = linear.dimensions();
+            let bytes = linear
+                .into_raw()
+                .into_iter()
+                .map(|c| quantize_8bit(srgb_encode(f64::from(c).clamp(0.0, 1.0))))
+                .collect();
+            RgbImage::from_raw(width, height, bytes).expect("three channels per pixel")
+        }
+        other => other.into_rgb8(),
+    })
+}

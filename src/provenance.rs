@@ -1,0 +1,194 @@
+//! How an image was made: the scene (name, or file name and SHA-256 of its content), observation
+//! time, velocities, effects, renderer and srt version, stored in every PNG (an iTXt chunk) and
+//! EXR (a text attribute) that `srt render` writes, and printed by `srt info`.
+//!
+//! The record is one text block of `key: value` lines under the name [`KEY`], so its bytes do not
+//! depend on the order a container keeps its entries in. It holds nothing that differs between
+//! machines or runs (no clock, host or folder), so a frame is byte-identical whichever machine of
+//! a cluster renders it.
+
+use std::fs::File;
+use std::io::{BufReader, Read as _, Seek as _};
+use std::path::Path;
+
+use anyhow::{anyhow, bail};
+use srt_scene::message::io_reason;
+
+/// The PNG keyword and EXR attribute name the record is stored under.
+pub const KEY: &str = "srt";
+
+/// The first bytes of a PNG file.
+const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+/// The first bytes of an OpenEXR file.
+const EXR_MAGIC: &[u8] = &[0x76, 0x2f, 0x31, 0x01];
+
+/// An ordered list of `key: value` entries describing how an image was made.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Provenance {
+    entries: Vec<(String, String)>,
+}
+
+impl Provenance {
+    /// A record that starts with the srt version.
+    #[must_use]
+    pub fn new() -> Self {
+        let mut record = Self::default();
+        record.push("srt version", env!("CARGO_PKG_VERSION"));
+        record
+    }
+
+    /// Appends an entry; line breaks and other control characters in `value` become spaces so
+    /// that every entry stays one line.
+    pub fn push(&mut self, key: &str, value: impl Into<String>) {
+        let value: String = value
+            .into()
+            .chars()
+            .map(|c| if c.is_control() { ' ' } else { c })
+            .collect();
+        self.entries.push((key.to_owned(), value));
+    }
+
+    /// This record followed by `more`'s entries.
+    #[must_use]
+    pub fn with(&self, more: &[(&str, String)]) -> Self {
+        let mut record = self.clone();
+        for (key, value) in more {
+            record.push(key, value.clone());
+        }
+        record
+    }
+
+    /// The entries in order.
+    pub fn entries(&self) -> impl Iterator<Item = (&str, &str)> {
+        self.entries.iter().map(|(k, v)| (k.as_str(), v.as_str()))
+    }
+
+    /// The record as stored: one `key: value` line per entry.
+    #[must_use]
+    pub fn to_text(&self) -> String {
+        self.entries
+            .iter()
+            .map(|(key, value)| format!("{key}: {value}\n"))
+            .collect()
+    }
+
+    /// Parses a stored record; lines without `": "` are ignored.
+    #[must_use]
+    pub fn from_text(text: &str) -> Self {
+        let entries = text
+            .lines()
+            .filter_map(|line| line.split_once(": "))
+            .map(|(key, value)| (key.to_owned(), value.to_owned()))
+            .collect();
+        Self { entries }
+    }
+
+    /// Reads the record from a PNG or EXR file (recognised by its first bytes, not its name).
+    ///
+    /// # Errors
+    /// If the file cannot be read, is neither a PNG nor an EXR image, or holds no srt record;
+    /// the message names the file and the reason.
+    pub fn read(path: &Path) -> anyhow::Result<Self> {
+        let cannot_read = |error: &std::io::Error| {
+            anyhow!("cannot read {} ({})", path.display(), io_reason(error))
+        };
+        let mut start = [0_u8; 8];
+        let mut file = File::open(path).map_err(|e| cannot_read(&e))?;
+        let length = read_up_to(&mut file, &mut start).map_err(|e| cannot_read(&e))?;
+        let start = &start[..length];
+        file.rewind().map_err(|e| cannot_read(&e))?;
+        let text = if start.starts_with(PNG_SIGNATURE) {
+            png_record(file)
+        } else if start.starts_with(EXR_MAGIC) {
+            exr_record(file)
+        } else {
+            bail!("{} is not a PNG or EXR image", path.display());
+        }
+        .map_err(|reason| anyhow!("cannot read {} ({reason})", path.display()))?;
+        match text {
+            Some(text) if !text.trim().is_empty() => Ok(Self::from_text(&text)),
+            _ => bail!(
+                "{} has no srt record of how it was made (it was not written by srt render)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Fills as much of `buffer` as the file has; returns how many bytes were read.
+fn read_up_to(file: &mut File, buffer: &mut [u8]) -> std::io::Result<usize> {
+    let mut filled = 0;
+    while filled < buffer.len() {
+        match file.read(&mut buffer[filled..])? {
+            0 => break,
+            n => filled += n,
+        }
+    }
+    Ok(filled)
+}
+
+/// The text of the PNG's iTXt chunk [`KEY`] (only the chunks before the image data are read).
+fn png_record(file: File) -> Result<Option<String>, String> {
+    let reader = png::Decoder::new(BufReader::new(file))
+        .read_info()
+        .map_err(|error| error.to_string())?;
+    reader
+        .info()
+        .utf8_text
+        .iter()
+        .find(|chunk| chunk.keyword == KEY)
+        .map(|chunk| chunk.get_text().map_err(|error| error.to_string()))
+        .transpose()
+}
+
+/// The text attribute [`KEY`] of the EXR's first header (the pixels are not read).
+fn exr_record(file: File) -> Result<Option<String>, String> {
+    let meta = exr::meta::MetaData::read_from_buffered(BufReader::new(file), false)
+        .map_err(|error| error.to_string())?;
+    let key = exr::prelude::Text::from(KEY);
+    Ok(meta.headers.first().and_then(|header| {
+        [
+            &header.own_attributes.other,
+            &header.shared_attributes.other,
+        ]
+        .into_iter()
+        .find_map(|attributes| match attributes.get(&key) {
+            Some(exr::meta::attribute::AttributeValue::Text(text)) => {
+                Some(String::from_utf8_lossy(text.bytes()).into_owned())
+            }
+            _ => None,
+        })
+    }))
+}
+
+/// Runs `srt info IMAGE`: prints the record, one aligned `key  value` line per entry.
+///
+/// # Errors
+/// As [`Provenance::read`].
+pub fn print_info(path: &Path) -> anyhow::Result<()> {
+    let record = Provenance::read(path)?;
+    let width = record.entries().map(|(k, _)| k.len()).max().unwrap_or(0);
+    for (key, value) in record.entries() {
+        println!("{key:width$}  {value}");
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Provenance;
+
+    /// The stored text parses back to the same entries, values with ": " included.
+    #[test]
+    fn text_round_trips() {
+        let mut record = Provenance::new();
+        record.push("scene", "a: b.toml");
+        record.push("velocities", "cube (0, 0.9, 0)\nsneaky line");
+        let parsed = Provenance::from_text(&record.to_text());
+        assert_eq!(parsed, record);
+        assert_eq!(
+            parsed.entries().nth(2),
+            Some(("velocities", "cube (0, 0.9, 0) sneaky line"))
+        );
+    }
+}
