@@ -9,25 +9,8 @@ use srt_physics::{
     lorentz_matrix, minkowski_interval, rapidity, reflection_doppler,
 };
 
-/// A velocity with |β| ≤ `max_speed`, drawn uniformly in direction and speed.
-fn velocity(max_speed: f64) -> impl Strategy<Value = DVec3> {
-    (unit_vector(), 0.0..max_speed).prop_map(|(n, s)| n * s)
-}
-
-/// A unit vector (rejecting near-zero draws before normalising).
-fn unit_vector() -> impl Strategy<Value = DVec3> {
-    (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64)
-        .prop_filter("not too short", |(x, y, z)| x * x + y * y + z * z > 1e-2)
-        .prop_map(|(x, y, z)| DVec3::new(x, y, z).normalize())
-}
-
-fn point(range: f64) -> impl Strategy<Value = DVec3> {
-    (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| DVec3::new(x, y, z))
-}
-
-fn event(range: f64) -> impl Strategy<Value = Event> {
-    (-range..range, point(range)).prop_map(|(ct, p)| Event::new(ct, p))
-}
+mod common;
+use common::{event, point, unit_vector, velocity};
 
 /// Relative closeness of two scalars, with an absolute floor for values near zero.
 fn close(a: f64, b: f64, rel: f64) -> bool {
