@@ -77,6 +77,19 @@ pub enum EffectsArg {
     Searchlight,
 }
 
+/// Which picture `srt render` draws (mirrors `srt_scene::View`; docs/physics.md, "Three
+/// pictures").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub enum ViewArg {
+    /// What a camera sees: light travel time, aberration, Doppler (the paper's picture).
+    #[default]
+    Seen,
+    /// What is measured: every point where it is at ct_obs in S, Lorentz-contracted, no Doppler.
+    Measured,
+    /// The Newtonian picture: the rest shape, uncontracted, where it is at ct_obs, no Doppler.
+    Newtonian,
+}
+
 /// Options of `srt render`.
 #[derive(Debug, Clone, Args)]
 pub struct RenderArgs {
@@ -103,6 +116,10 @@ pub struct RenderArgs {
     /// Effect mode (overrides the scene's).
     #[arg(long, value_enum)]
     pub effects: Option<EffectsArg>,
+    /// Picture to draw: seen (apparent), measured (contracted, simultaneous in the observer's
+    /// frame) or newtonian (rest shape where it is now); the last two are static, Doppler factor 1.
+    #[arg(long, value_enum, default_value_t = ViewArg::Seen)]
+    pub view: ViewArg,
     /// Observation time ct_obs (overrides the scene's).
     #[arg(long, allow_hyphen_values = true)]
     pub time: Option<f64>,
@@ -188,6 +205,7 @@ impl Default for RenderArgs {
             backend: Backend::Auto,
             method: MethodArg::Lrt,
             effects: None,
+            view: ViewArg::Seen,
             time: None,
             beta: None,
             observer_beta: None,

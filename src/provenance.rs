@@ -1,6 +1,6 @@
 //! How an image was made: the scene (name, or file name and SHA-256 of its content), observation
-//! time, velocities, effects, renderer and srt version, stored in every PNG (an iTXt chunk) and
-//! EXR (a text attribute) that `srt render` writes, and printed by `srt info`.
+//! time, velocities, effects, view, renderer and srt version, stored in every PNG (an iTXt chunk)
+//! and EXR (a text attribute) that `srt render` writes, and printed by `srt info`.
 //!
 //! The record is one text block of `key: value` lines under the name [`KEY`], so its bytes do not
 //! depend on the order a container keeps its entries in. It holds nothing that differs between

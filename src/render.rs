@@ -10,10 +10,10 @@ use glam::DVec3;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_physics::Frame;
 use srt_scene::limits::MAX_COORDINATE;
-use srt_scene::{Effects, Scene};
+use srt_scene::{Effects, Scene, View};
 use srt_trace::{RenderSettings, Tracer};
 
-use crate::cli::{Backend, EffectsArg, MethodArg, RenderArgs};
+use crate::cli::{Backend, EffectsArg, MethodArg, RenderArgs, ViewArg};
 use crate::output::{OutputFormat, check_writable, display_rgb8, numbered, write_image};
 use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
@@ -108,17 +108,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         height: args.height,
         samples: args.samples,
     };
-    let mut engine = choose_engine(args, &scene)?;
+    let view = view_of(args.view);
+    // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
+    // do), so the scene viewed at its own time serves every frame.
+    let mut engine = choose_engine(args, &viewed(view, &scene)?)?;
     let record = base_record(
         &loaded.origin,
         loaded.observer_beta,
         &scene,
         &engine,
         settings,
+        view,
     );
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
-        let pixels = render_pixels(&mut engine, &scene, settings, true)?;
+        let pixels = render_pixels(&mut engine, &viewed(view, &scene)?, settings, true)?;
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         write_image(settings.width, settings.height, &pixels, &record, &output)?;
         println!("{}", wrote(&output, settings, &engine, start));
@@ -154,7 +158,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             for frame in share {
                 let frame_start = Instant::now();
                 scene.observer.ct = time_of(frame);
-                let pixels = render_pixels(&mut engine, &scene, settings, false)?;
+                let pixels = render_pixels(&mut engine, &viewed(view, &scene)?, settings, false)?;
                 let record = record.with(&[
                     ("time", format!("{:?}", scene.observer.ct)),
                     ("frame", format!("{frame} of 0 to {}", frames - 1)),
@@ -176,7 +180,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             );
             for frame in 0..frames {
                 scene.observer.ct = time_of(frame);
-                let pixels = render_pixels(&mut engine, &scene, settings, false)?;
+                let pixels = render_pixels(&mut engine, &viewed(view, &scene)?, settings, false)?;
                 video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
                 bar.inc();
             }
@@ -243,6 +247,7 @@ fn base_record(
     scene: &Scene,
     engine: &Engine,
     settings: RenderSettings,
+    view: View,
 ) -> Provenance {
     let mut record = Provenance::new();
     record.push("scene", origin.description.clone());
@@ -258,6 +263,7 @@ fn base_record(
         .collect();
     record.push("velocities", velocities.join("; "));
     record.push("effects", scene.effects.name());
+    record.push("view", view.name());
     for (key, value) in engine.record_entries() {
         record.push(key, value);
     }
@@ -340,6 +346,27 @@ fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
         renderer: Box::new(renderer),
         scale,
         method,
+    })
+}
+
+/// The scene-model view for --view.
+const fn view_of(view: ViewArg) -> View {
+    match view {
+        ViewArg::Seen => View::Seen,
+        ViewArg::Measured => View::Measured,
+        ViewArg::Newtonian => View::Newtonian,
+    }
+}
+
+/// `scene` as `view` shows it at its current observation time (applied per frame, after the
+/// frame's time is set: the measured and Newtonian positions depend on ct_obs).
+fn viewed(view: View, scene: &Scene) -> anyhow::Result<Scene> {
+    view.apply(scene).with_context(|| {
+        format!(
+            "cannot draw scene {} in the {} view",
+            scene.name,
+            view.name()
+        )
     })
 }
 

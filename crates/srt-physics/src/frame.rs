@@ -133,6 +133,16 @@ impl Frame {
         )
     }
 
+    /// The event, in S, at which the material point `point` (at rest in S′) is at S time `ct`:
+    /// Eq. 1–2 give ct = γ(ct′ + β·x′), so ct′ = ct/γ − β·x′, and (ct′, x′) is mapped to S with
+    /// Eq. 1. Its position is where the point is *measured* at that time (Lorentz-contracted
+    /// along β, simultaneous in S).
+    #[must_use]
+    pub fn event_at_time(&self, point: DVec3, ct: f64) -> Event {
+        let ct_rest = ct / self.gamma - self.beta.dot(point);
+        self.to_observer(Event::new(ct_rest, point))
+    }
+
     /// The event, in S′, at which light must leave the point `point` (at rest in S′) to reach the
     /// observer at the observation event `observer` (given in S): the intersection of the point's
     /// worldline with the observer's backward light cone (Eq. 5–7),

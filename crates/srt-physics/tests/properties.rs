@@ -146,6 +146,35 @@ proptest! {
     }
 
     #[test]
+    fn measured_positions_are_simultaneous_in_s_and_on_the_worldline(beta in velocity(0.99),
+            offset in point(10.0), p in point(5.0), ct in -10.0..10.0f64) {
+        let frame = Frame::new(beta, offset).unwrap();
+        let event = frame.event_at_time(p, ct);
+        prop_assert!(close(event.ct, ct, 1e-12), "{} vs {ct}", event.ct);
+        // Independently: the point moves with β through its position at t = 0 in S.
+        let at_zero = frame.event_at_time(p, 0.0).position;
+        prop_assert!(close_vec(event.position, at_zero + beta * ct, 1e-10));
+        // And it is the rest point: back in S′ it sits at p.
+        prop_assert!(close_vec(frame.to_rest(event).position, p, 1e-10));
+    }
+
+    #[test]
+    fn a_rod_along_beta_is_measured_contracted_by_gamma(n in unit_vector(), speed in 0.0..0.99f64,
+            offset in point(10.0), start in point(5.0), length in 0.1..10.0f64,
+            ct in -10.0..10.0f64) {
+        let frame = Frame::new(n * speed, offset).unwrap();
+        let a = frame.event_at_time(start, ct).position;
+        let b = frame.event_at_time(start + length * n, ct).position;
+        let gamma = 1.0 / (1.0 - speed * speed).sqrt();
+        prop_assert!(close((b - a).length(), length / gamma, 1e-10));
+        prop_assert!(close_vec(b - a, (length / gamma) * n, 1e-10), "along β");
+        // A rod across β keeps its length.
+        let across = n.any_orthonormal_vector();
+        let c = frame.event_at_time(start + length * across, ct).position;
+        prop_assert!(close((c - a).length(), length, 1e-10));
+    }
+
+    #[test]
     fn collinear_boosts_add_rapidities(n in unit_vector(), a in 0.0..0.99f64, b in 0.0..0.99f64) {
         let composed = compose_velocities(n * a, n * b);
         prop_assert!(close(rapidity(composed), a.atanh() + b.atanh(), 1e-9));

@@ -16,6 +16,7 @@ pub mod resolve;
 pub mod scene;
 pub mod shapes;
 pub mod textures;
+pub mod view;
 
 pub use builtin::{BuiltinScene, builtin, builtin_scenes};
 pub use description::{
@@ -27,3 +28,4 @@ pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{Effects, Light, Object, Observer, Scene, Shading};
+pub use view::{View, ViewError};

@@ -1,0 +1,115 @@
+//! The three pictures of a moving object (docs/physics.md, "Three pictures"): what is *seen*
+//! (the apparent picture of light travel time and aberration, Eq. 5–8), what is *measured*
+//! (every material point where it is at the observer's time ct_obs in S: Lorentz-contracted) and
+//! the *Newtonian* picture (the rest shape, uncontracted, where its origin is at ct_obs).
+//!
+//! The measured and Newtonian pictures are exact transformations of a [`Scene`] into a scene of
+//! objects at rest in S (β = 0), which every renderer draws without light-travel distortion and
+//! with Doppler factor 1. The geometry of both is independent of ct_obs; only each object's
+//! offset moves with it.
+
+use glam::{DMat3, DMat4, DVec3};
+use srt_physics::{Frame, FrameError};
+
+use crate::mesh::MeshError;
+use crate::scene::{Object, Scene};
+
+/// Which picture of the scene to render.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum View {
+    /// The apparent picture: what a camera records (the scene unchanged).
+    #[default]
+    Seen,
+    /// Every point where it is at S time ct_obs: Lorentz-contracted along β, at rest.
+    Measured,
+    /// The rest shape, uncontracted, translated to where its origin is at S time ct_obs.
+    Newtonian,
+}
+
+/// Why a scene could not be brought into a view.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ViewError {
+    /// The object's new frame is invalid (a non-finite offset).
+    #[error("object {object}: {source}")]
+    Frame {
+        /// The object's name.
+        object: String,
+        /// What was wrong.
+        source: FrameError,
+    },
+    /// The transformed mesh is invalid (non-finite positions).
+    #[error("object {object}: {source}")]
+    Mesh {
+        /// The object's name.
+        object: String,
+        /// What was wrong.
+        source: MeshError,
+    },
+}
+
+impl View {
+    /// All views, default first.
+    pub const ALL: [Self; 3] = [Self::Seen, Self::Measured, Self::Newtonian];
+
+    /// The name used on the command line and in provenance records.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Seen => "seen",
+            Self::Measured => "measured",
+            Self::Newtonian => "newtonian",
+        }
+    }
+
+    /// `scene` as this view shows it at its observation time `scene.observer.ct`: unchanged for
+    /// [`View::Seen`], otherwise every object replaced by one at rest in S (see the module doc).
+    ///
+    /// # Errors
+    /// [`ViewError`] if a transformed position or offset is not finite.
+    pub fn apply(self, scene: &Scene) -> Result<Scene, ViewError> {
+        let mut viewed = scene.clone();
+        if self == Self::Seen {
+            return Ok(viewed);
+        }
+        let ct = scene.observer.ct;
+        for object in &mut viewed.objects {
+            self.apply_to_object(object, ct)?;
+        }
+        Ok(viewed)
+    }
+
+    /// Replaces `object` by its static picture at S time `ct` (not [`View::Seen`]).
+    fn apply_to_object(self, object: &mut Object, ct: f64) -> Result<(), ViewError> {
+        let frame = object.frame;
+        let origin_now = frame.event_at_time(DVec3::ZERO, ct).position;
+        if self == Self::Measured {
+            let shape = DMat4::from_mat3(measured_shape(&frame, ct));
+            for part in &mut object.parts {
+                part.mesh =
+                    part.mesh
+                        .clone()
+                        .transformed(shape)
+                        .map_err(|source| ViewError::Mesh {
+                            object: object.name.clone(),
+                            source,
+                        })?;
+            }
+        }
+        object.frame = Frame::new(DVec3::ZERO, origin_now).map_err(|source| ViewError::Frame {
+            object: object.name.clone(),
+            source,
+        })?;
+        Ok(())
+    }
+}
+
+/// The linear map L taking a rest-frame offset x′ (from the S′ origin) to the offset, in S, of the
+/// measured positions at S time `ct`: x(x′) − x(0) with x from
+/// [`Frame::event_at_time`]. The map is affine, so its columns are the images of the unit
+/// vectors; it equals I + (1/γ − 1) β̂β̂ᵀ, a contraction by 1/γ along β. Normals transform with
+/// L^{−T} ([`Mesh::transformed`](crate::Mesh::transformed)).
+fn measured_shape(frame: &Frame, ct: f64) -> DMat3 {
+    let origin = frame.event_at_time(DVec3::ZERO, ct).position;
+    let image = |axis: DVec3| frame.event_at_time(axis, ct).position - origin;
+    DMat3::from_cols(image(DVec3::X), image(DVec3::Y), image(DVec3::Z))
+}
