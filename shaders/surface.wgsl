@@ -53,23 +53,26 @@ fn part_level_size(level: i32) -> vec2<i32> {
     return vec2<i32>(max(textureDimensions(part_texture) >> vec2<u32>(u32(level)), vec2<u32>(1u)));
 }
 
-// Texel (x, y) of mip level `level` of the part's texture, wrapped (repeat addressing): the
-// mirror of srt_trace::texture::texel.
-fn part_texel(level: i32, size: vec2<i32>, x: i32, y: i32) -> vec4<f32> {
-    let wrapped = (vec2<i32>(x, y) % size + size) % size;
-    return textureLoad(part_texture, wrapped, level);
+// Texel `texel` (non-negative) of mip level `level` of the part's texture, `size` texels large,
+// wrapped (repeat addressing): the mirror of srt_trace::texture::texel. Only non-negative
+// coordinates reach `%`: GLSL, which wgpu's GL backend runs, leaves `%` of a negative number
+// undefined (llvmpipe's GL returned wrong texels for them).
+fn part_texel(level: i32, size: vec2<i32>, texel: vec2<i32>) -> vec4<f32> {
+    return textureLoad(part_texture, texel % size, level);
 }
 
 // Bilinear sample of mip level `level` at `uv`, texel centres at half-integers: the mirror of
-// srt_trace::texture::bilinear.
+// srt_trace::texture::bilinear. The lower texel is wrapped into the texture while still a float.
 fn part_bilinear(level: i32, uv: vec2<f32>) -> vec4<f32> {
     let size = part_level_size(level);
-    let p = uv * vec2<f32>(size) - 0.5;
+    let extent = vec2<f32>(size);
+    let p = uv * extent - 0.5;
     let p0 = floor(p);
     let f = p - p0;
-    let i = vec2<i32>(p0);
-    let top = mix(part_texel(level, size, i.x, i.y), part_texel(level, size, i.x + 1, i.y), f.x);
-    let bottom = mix(part_texel(level, size, i.x, i.y + 1), part_texel(level, size, i.x + 1, i.y + 1), f.x);
+    let i = vec2<i32>(p0 - extent * floor(p0 / extent));
+    let j = i + 1;
+    let top = mix(part_texel(level, size, i), part_texel(level, size, vec2<i32>(j.x, i.y)), f.x);
+    let bottom = mix(part_texel(level, size, vec2<i32>(i.x, j.y)), part_texel(level, size, j), f.x);
     return mix(top, bottom, f.y);
 }
 
@@ -84,12 +87,20 @@ fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f3
     if (rho > 0.0 && rho < 3.0e38) {
         lod = clamp(log2(rho), 0.0, f32(textureNumLevels(part_texture) - 1u));
     }
-    let lower = floor(lod);
-    let near = part_bilinear(i32(lower), uv);
-    if (lod == lower) {
-        return near;
+    let lower = i32(floor(lod));
+    let fraction = lod - floor(lod);
+    // The two levels are visited in a loop whose counter is the same for every pixel shaded
+    // together, so each texel fetch asks one level for all of them: llvmpipe (Vulkan and GL)
+    // fetched some pixels' texels from a neighbouring pixel's level when each asked its own.
+    var colour = vec4<f32>(0.0);
+    for (var level = 0; level <= lower + 1; level++) {
+        if (level == lower) {
+            colour += (1.0 - fraction) * part_bilinear(level, uv);
+        } else if (level == lower + 1 && fraction > 0.0) {
+            colour += fraction * part_bilinear(level, uv);
+        }
     }
-    return mix(near, part_bilinear(i32(lower) + 1, uv), lod - lower);
+    return colour;
 }
 
 // Surface colour (texel × base × vertex colour, or the wireframe pattern) of triangle `t` at
