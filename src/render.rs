@@ -254,7 +254,11 @@ fn base_record(
     if let Some(sha256) = &origin.sha256 {
         record.push("scene sha256", sha256.clone());
     }
-    let velocity = |beta: DVec3| format!("({:?}, {:?}, {:?})", beta.x, beta.y, beta.z);
+    // Exact (round-trip) components; + 0.0 turns a negative zero into 0.0.
+    let velocity = |beta: DVec3| {
+        let beta = beta + DVec3::ZERO;
+        format!("({:?}, {:?}, {:?})", beta.x, beta.y, beta.z)
+    };
     record.push("observer velocity", velocity(observer_beta));
     let velocities: Vec<String> = scene
         .objects
