@@ -2,6 +2,7 @@
 //! image, a share of an animation's numbered frames, or a video, and write it with a record of
 //! how it was made.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -111,7 +112,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let view = view_of(args.view);
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
-    let mut engine = choose_engine(args, &viewed(view, &scene)?)?;
+    let first = viewed(view, &scene)?;
+    let mut engine = choose_engine(args, &first)?;
     let record = base_record(
         &loaded.origin,
         loaded.observer_beta,
@@ -122,7 +124,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     );
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
-        let pixels = render_pixels(&mut engine, &viewed(view, &scene)?, settings, true)?;
+        let pixels = render_pixels(&mut engine, &first, settings, true)?;
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         write_image(settings.width, settings.height, &pixels, &record, &output)?;
         println!("{}", wrote(&output, settings, &engine, start));
@@ -158,7 +160,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             for frame in share {
                 let frame_start = Instant::now();
                 scene.observer.ct = time_of(frame);
-                let pixels = render_pixels(&mut engine, &viewed(view, &scene)?, settings, false)?;
+                let pixels = render_pixels(&mut engine, &*viewed(view, &scene)?, settings, false)?;
                 let record = record.with(&[
                     ("time", format!("{:?}", scene.observer.ct)),
                     ("frame", format!("{frame} of 0 to {}", frames - 1)),
@@ -180,7 +182,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             );
             for frame in 0..frames {
                 scene.observer.ct = time_of(frame);
-                let pixels = render_pixels(&mut engine, &viewed(view, &scene)?, settings, false)?;
+                let pixels = render_pixels(&mut engine, &*viewed(view, &scene)?, settings, false)?;
                 video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
                 bar.inc();
             }
@@ -364,14 +366,19 @@ const fn view_of(view: ViewArg) -> View {
 
 /// `scene` as `view` shows it at its current observation time (applied per frame, after the
 /// frame's time is set: the measured and Newtonian positions depend on ct_obs).
-fn viewed(view: View, scene: &Scene) -> anyhow::Result<Scene> {
-    view.apply(scene).with_context(|| {
+fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
+    if view == View::Seen {
+        // The picture srt renders anyway: no copy of the meshes per frame.
+        return Ok(Cow::Borrowed(scene));
+    }
+    let viewed = view.apply(scene).with_context(|| {
         format!(
             "cannot draw scene {} in the {} view",
             scene.name,
             view.name()
         )
-    })
+    })?;
+    Ok(Cow::Owned(viewed))
 }
 
 /// Applies --effects, --time and --beta.
