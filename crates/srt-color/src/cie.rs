@@ -55,34 +55,41 @@ static CIE_1931: LazyLock<Vec<CmfSample>> = LazyLock::new(|| parse_cmf_csv(CIE_1
 /// The input is compiled in and checked by tests, so a malformed line is a build defect and
 /// panics with the offending line.
 fn parse_cmf_csv(text: &str) -> Vec<CmfSample> {
+    parse_csv_table::<4>(text, "wavelength_nm,xbar,ybar,zbar")
+        .into_iter()
+        .map(|[wavelength_nm, xbar, ybar, zbar]| CmfSample {
+            wavelength_nm,
+            xbar,
+            ybar,
+            zbar,
+        })
+        .collect()
+}
+
+/// Parses an embedded numeric CSV table: `#` comment lines, the header line `header`, then rows
+/// of `N` numbers.
+///
+/// Only for tables compiled into the crate and covered by tests: a malformed line is a build
+/// defect and panics with the offending line.
+pub(crate) fn parse_csv_table<const N: usize>(text: &str, header: &str) -> Vec<[f64; N]> {
     let mut rows = text
         .lines()
         .map(str::trim)
         .filter(|line| !line.is_empty() && !line.starts_with('#'));
-    let header = rows.next();
-    assert_eq!(
-        header,
-        Some("wavelength_nm,xbar,ybar,zbar"),
-        "unexpected CIE table header"
-    );
+    let found = rows.next();
+    assert_eq!(found, Some(header), "unexpected embedded table header");
     rows.map(|line| {
         let fields: Vec<f64> = line
             .split(',')
             .map(|field| {
                 field.trim().parse().unwrap_or_else(|e| {
-                    panic!("bad number {field:?} in CIE table line {line:?}: {e}")
+                    panic!("bad number {field:?} in embedded table line {line:?}: {e}")
                 })
             })
             .collect();
-        let [wavelength_nm, xbar, ybar, zbar] = fields[..] else {
-            panic!("CIE table line {line:?} does not have four fields");
-        };
-        CmfSample {
-            wavelength_nm,
-            xbar,
-            ybar,
-            zbar,
-        }
+        fields
+            .try_into()
+            .unwrap_or_else(|_| panic!("embedded table line {line:?} does not have {N} fields"))
     })
     .collect()
 }
@@ -110,29 +117,80 @@ pub fn blackbody_xyz(temperature_k: f64) -> DVec3 {
     relative * ln_scale.exp()
 }
 
+/// A CIE XYZ tristimulus value stored as `relative · exp(ln_scale)`, so that the light of any
+/// positive finite temperature, however faint or bright, is representable without overflow or
+/// underflow (the tone maps only need ratios, Fig. 6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScaledXyz {
+    /// XYZ up to the common factor `exp(ln_scale)`.
+    pub relative: DVec3,
+    /// Natural logarithm of the factor that turns `relative` into absolute XYZ (W·sr⁻¹·m⁻²).
+    pub ln_scale: f64,
+}
+
+impl ScaledXyz {
+    /// Black: zero XYZ.
+    pub const BLACK: Self = Self {
+        relative: DVec3::ZERO,
+        ln_scale: 0.0,
+    };
+
+    /// The absolute XYZ, `relative · exp(ln_scale)` (0 or ∞ where that leaves `f64`'s range).
+    #[must_use]
+    pub fn xyz(&self) -> DVec3 {
+        self.relative * self.ln_scale.exp()
+    }
+
+    /// Natural logarithm of the absolute luminance Y, `-inf` for black.
+    #[must_use]
+    pub fn ln_y(&self) -> f64 {
+        self.relative.y.ln() + self.ln_scale
+    }
+}
+
+/// The Planck radiance of Eq. 10 at the wavelengths of [`cie_1931`], relative to its largest
+/// value there, with the logarithm of that largest value: `L(λᵢ, T) = wᵢ · exp(ln_max)`.
+///
+/// `None` for a non-positive or non-finite temperature. Every weight lies in [0, 1] and the
+/// largest is exactly 1, so sums against the table neither overflow nor underflow.
+pub(crate) fn planck_weights(temperature_k: f64) -> Option<(Vec<f64>, f64)> {
+    if !(temperature_k.is_finite() && temperature_k > 0.0) {
+        return None;
+    }
+    let mut weights: Vec<f64> = cie_1931()
+        .iter()
+        .map(|s| ln_planck_radiance(s.wavelength_m(), temperature_k))
+        .collect();
+    let ln_max = weights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if !ln_max.is_finite() {
+        return None;
+    }
+    for w in &mut weights {
+        *w = (*w - ln_max).exp();
+    }
+    Some((weights, ln_max))
+}
+
+/// [`blackbody_xyz`] as a [`ScaledXyz`], with the largest spectral term of `relative` equal to 1
+/// (Eq. 11 without overflow or underflow). Invalid temperatures give [`ScaledXyz::BLACK`] with
+/// `ln_scale = -inf`.
+#[must_use]
+pub fn blackbody_xyz_scaled(temperature_k: f64) -> ScaledXyz {
+    let (relative, ln_scale) = blackbody_xyz_relative(temperature_k);
+    ScaledXyz { relative, ln_scale }
+}
+
 /// [`blackbody_xyz`] split as `relative · exp(ln_scale)`, with the largest spectral term of
 /// `relative` equal to 1, so that ratios such as X/Y are available at any positive finite
 /// temperature (Eq. 11 without overflow or underflow). Returns `(ZERO, -inf)` for invalid input.
 pub(crate) fn blackbody_xyz_relative(temperature_k: f64) -> (DVec3, f64) {
-    if !(temperature_k.is_finite() && temperature_k > 0.0) {
+    let Some((weights, ln_max)) = planck_weights(temperature_k) else {
         return (DVec3::ZERO, f64::NEG_INFINITY);
-    }
-    let table = cie_1931();
-    let ln_radiance: Vec<f64> = table
+    };
+    let relative = cie_1931()
         .iter()
-        .map(|s| ln_planck_radiance(s.wavelength_m(), temperature_k))
-        .collect();
-    let ln_max = ln_radiance
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
-    if !ln_max.is_finite() {
-        return (DVec3::ZERO, f64::NEG_INFINITY);
-    }
-    let relative = table
-        .iter()
-        .zip(&ln_radiance)
-        .map(|(s, &ln_l)| (ln_l - ln_max).exp() * s.tristimulus())
+        .zip(&weights)
+        .map(|(s, &w)| w * s.tristimulus())
         .sum::<DVec3>();
     (relative, ln_max + CIE_1931_STEP_M.ln())
 }

@@ -14,6 +14,10 @@
 //! 5. [`ToneMap`] — the paper's two tone maps (Fig. 6), [`ToneMap::display_rgb`] running the
 //!    whole pipeline; [`colour_table`] draws Fig. 6.
 //! 6. [`TemperatureLut`] — the 1D table over ln T that the GPU samples, with its exact CPU mirror.
+//! 7. [`spectral`] — surface colour from spectra instead of the paper's grey-value shortcut:
+//!    RGB → reflectance spectra (Jakob & Hanika 2019), light reflected under two Doppler factors
+//!    ([`reflected_display_rgb`]), emitters ([`emitted_display_rgb`]); [`ToneMap::display_rgb_xyz`]
+//!    tone-maps any light with an exposure.
 //!
 //! ```
 //! use srt_color::{TemperatureLut, ToneMap};
@@ -30,15 +34,18 @@
 //! ```
 
 mod cie;
+mod error;
 mod lut;
 mod planck;
 mod rgb;
+pub mod spectral;
 mod tonemap;
 
 pub use cie::{
-    CIE_1931_MAX_NM, CIE_1931_MIN_NM, CIE_1931_STEP_M, CmfSample, blackbody_xyz, chromaticity,
-    cie_1931,
+    CIE_1931_MAX_NM, CIE_1931_MIN_NM, CIE_1931_STEP_M, CmfSample, ScaledXyz, blackbody_xyz,
+    blackbody_xyz_scaled, chromaticity, cie_1931,
 };
+pub use error::ColourError;
 pub use lut::{LutError, TemperatureLut};
 pub use planck::{
     BOLTZMANN_CONSTANT, PLANCK_CONSTANT, SECOND_RADIATION_CONSTANT, SPEED_OF_LIGHT, planck_radiance,
@@ -46,5 +53,9 @@ pub use planck::{
 pub use rgb::{
     SRGB_LINEAR_THRESHOLD, SRGB_OFFSET, XYZ_TO_LINEAR_BT709, quantize_8bit, srgb_decode,
     srgb_encode, xyz_to_linear_rgb,
+};
+pub use spectral::{
+    CoefficientTable, Reflectance, ReflectedLight, SigmoidPolynomial, emitted_display_rgb,
+    emitted_light, fit_rgb, reflected_display_rgb, reflected_light, srgb_coefficient_table,
 };
 pub use tonemap::{SEARCHLIGHT_REFERENCE_K, ToneMap, colour_table};

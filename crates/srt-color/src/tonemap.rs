@@ -13,7 +13,8 @@ use std::sync::LazyLock;
 
 use glam::DVec3;
 
-use crate::cie::blackbody_xyz_relative;
+use crate::cie::{ScaledXyz, blackbody_xyz_relative, blackbody_xyz_scaled};
+use crate::error::{ColourError, positive_finite};
 use crate::rgb::{srgb_encode, xyz_to_linear_rgb};
 
 /// Reference temperature of the searchlight tone map, whose luminance Y scales all XYZ (§3.3).
@@ -25,8 +26,9 @@ static LN_SEARCHLIGHT_REFERENCE_Y: LazyLock<f64> = LazyLock::new(|| {
     relative.y.ln() + ln_scale
 });
 
-/// Largest natural-log factor applied to XYZ / Y(1500 K). Far beyond it every channel saturates
-/// anyway; the cap keeps absurd temperatures from producing ∞ − ∞ in Eq. 12.
+/// Largest natural-log factor applied to relative XYZ (by either tone map, exposure included). Far
+/// beyond it every channel saturates anyway; the cap keeps absurd temperatures and exposures from
+/// producing ∞ − ∞ in Eq. 12.
 const MAX_LN_SEARCHLIGHT_GAIN: f64 = 600.0;
 
 /// How black-body XYZ becomes display sRGB: the two colour tables of the paper's Fig. 6.
@@ -54,15 +56,81 @@ impl ToneMap {
     /// colour of the 830 nm end of the table.
     #[must_use]
     pub fn display_rgb(self, temperature_k: f64) -> DVec3 {
-        let (relative, ln_scale) = blackbody_xyz_relative(temperature_k);
-        if relative.y <= 0.0 || !relative.is_finite() {
+        let light = blackbody_xyz_scaled(temperature_k);
+        if light.relative.y <= 0.0 || !light.relative.is_finite() {
             return DVec3::ZERO;
         }
+        self.map(light, light, 0.0)
+    }
+
+    /// [`ToneMap::display_rgb`] with an exposure: XYZ is multiplied by `exposure` before the tone
+    /// map (so with [`ToneMap::Luminance`] an exposure above 1 saturates, below 1 darkens).
+    ///
+    /// Any positive finite exposure works, from far above 10⁶ to far below 10⁻²⁰, without
+    /// overflow, NaN or ∞: the product is formed in the logarithmic domain.
+    ///
+    /// # Errors
+    ///
+    /// [`ColourError::InvalidTemperature`] unless the temperature is positive and finite,
+    /// [`ColourError::InvalidExposure`] unless the exposure is.
+    pub fn display_rgb_exposed(
+        self,
+        temperature_k: f64,
+        exposure: f64,
+    ) -> Result<DVec3, ColourError> {
+        positive_finite(temperature_k, ColourError::InvalidTemperature)?;
+        let light = blackbody_xyz_scaled(temperature_k);
+        self.display_rgb_xyz(light, light, exposure)
+    }
+
+    /// Display sRGB in [0, 1] of arbitrary light `light`, given as [`ScaledXyz`], through this
+    /// tone map with an exposure multiplier on XYZ.
+    ///
+    /// `white` is the light a perfect white reflector (or the emitter itself) would send: the
+    /// luminance tone map divides by its Y, as Fig. 6 left divides a black body by its own Y; the
+    /// searchlight tone map ignores it and divides by Y(1500 K), as Fig. 6 right. So
+    /// `display_rgb_xyz(b, b, 1)` of a black body `b` is [`ToneMap::display_rgb`], and a grey
+    /// reflector ρ under it gives linear RGB ρ times that black body's before Eq. 13.
+    ///
+    /// # Errors
+    ///
+    /// [`ColourError::InvalidExposure`] unless `exposure` is positive and finite. Black or
+    /// invalid light (zero, negative or non-finite `white` luminance for the luminance map,
+    /// non-finite `light`) gives black, not an error.
+    pub fn display_rgb_xyz(
+        self,
+        light: ScaledXyz,
+        white: ScaledXyz,
+        exposure: f64,
+    ) -> Result<DVec3, ColourError> {
+        let ln_exposure = positive_finite(exposure, ColourError::InvalidExposure)?.ln();
+        if !light.relative.is_finite() || light.ln_scale.is_nan() {
+            return Ok(DVec3::ZERO);
+        }
+        let valid_white =
+            white.relative.y > 0.0 && white.relative.is_finite() && !white.ln_scale.is_nan();
+        if self == Self::Luminance && !valid_white {
+            return Ok(DVec3::ZERO);
+        }
+        Ok(self.map(light, white, ln_exposure))
+    }
+
+    /// The tone map proper: XYZ = `light` scaled (by the white's Y or by Y(1500 K)) and by
+    /// exp(`ln_exposure`) → Eq. 12 → clamp negatives → Eq. 13 → (searchlight: 0.6 · log₁₀(C + 1))
+    /// → clamp to [0, 1]. `light` must be finite; for the luminance map `white.relative.y > 0`.
+    fn map(self, light: ScaledXyz, white: ScaledXyz, ln_exposure: f64) -> DVec3 {
         let xyz = match self {
-            Self::Luminance => relative / relative.y,
+            // With `light == white` and no exposure the factor is exp(0) = 1 exactly, so a black
+            // body comes out as relative / Y, bit for bit.
+            Self::Luminance => {
+                let ln_gain =
+                    (light.ln_scale - white.ln_scale + ln_exposure).min(MAX_LN_SEARCHLIGHT_GAIN);
+                light.relative / white.relative.y * ln_gain.exp()
+            }
             Self::Searchlight => {
-                let ln_gain = (ln_scale - *LN_SEARCHLIGHT_REFERENCE_Y).min(MAX_LN_SEARCHLIGHT_GAIN);
-                relative * ln_gain.exp()
+                let ln_gain = (light.ln_scale - *LN_SEARCHLIGHT_REFERENCE_Y + ln_exposure)
+                    .min(MAX_LN_SEARCHLIGHT_GAIN);
+                light.relative * ln_gain.exp()
             }
         };
         let linear = xyz_to_linear_rgb(xyz).max(DVec3::ZERO);
@@ -71,6 +139,7 @@ impl ToneMap {
             Self::Luminance => encoded,
             Self::Searchlight => encoded.map(|c| 0.6 * (c + 1.0).log10()),
         };
+        // NaN cannot arise (finite inputs, capped gain); `max`/`min` would map it to 0 anyway.
         mapped.clamp(DVec3::ZERO, DVec3::ONE)
     }
 

@@ -1,5 +1,6 @@
 //! The documentation figures, each reproducing one of the paper's figures from the library crates.
 
+mod colorchecker;
 mod fig4;
 mod fig5;
 mod fig6;
@@ -14,5 +15,6 @@ pub fn write_all(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     written.extend(fig5::write(out_dir)?);
     written.extend(fig6::write(out_dir)?);
     written.extend(fig8::write(out_dir)?);
+    written.extend(colorchecker::write(out_dir)?);
     Ok(written)
 }
