@@ -58,6 +58,13 @@ fn doppler_factor(beta: vec3<f32>, propagation: vec3<f32>) -> f32 {
     return 1.0 / (lorentz_factor(beta) * (1.0 - dot(beta, propagation)));
 }
 
+// Doppler factor with which a receiver moving with `beta` through S sees light propagating along
+// `propagation` (in S) from a source at rest in S (Eq. 3, time-like part): D = γ (1 − β·n); the
+// first factor of Eq. 17. Mirror of srt_physics::receiver_doppler.
+fn receiver_doppler(beta: vec3<f32>, propagation: vec3<f32>) -> f32 {
+    return lorentz_factor(beta) * (1.0 - dot(beta, propagation));
+}
+
 // Aberration (Eq. 4, space-like part): direction in S of light propagating along
 // `direction_rest` in S′ moving with `beta`.
 fn aberrate(beta: vec3<f32>, direction_rest: vec3<f32>) -> vec3<f32> {
@@ -65,6 +72,19 @@ fn aberrate(beta: vec3<f32>, direction_rest: vec3<f32>) -> vec3<f32> {
     let b_dot_n = dot(beta, direction_rest);
     let spatial = gamma * beta + direction_rest + (gamma * gamma / (gamma + 1.0)) * b_dot_n * beta;
     return spatial / (gamma * (1.0 + b_dot_n));
+}
+
+// Where a star at infinity is seen from S and its Doppler factor: a source at rest in a frame
+// moving with `beta`, in the unit direction `direction_rest` there (observer → star). Mirror of
+// srt_physics::distant_source_image (Eq. 4).
+struct DistantSourceImage {
+    direction: vec3<f32>,
+    doppler: f32,
+}
+
+fn distant_source_image(beta: vec3<f32>, direction_rest: vec3<f32>) -> DistantSourceImage {
+    let propagation = normalize(aberrate(beta, -direction_rest));
+    return DistantSourceImage(-propagation, doppler_factor(beta, propagation));
 }
 
 // Combined reflection Doppler factor (Eq. 17 in our convention): D = (1 − β·n_in)/(1 − β·n_out).

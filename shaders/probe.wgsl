@@ -2,10 +2,9 @@
 // `cargo xtask validate` can measure each f32 kernel against its f64 CPU original
 // (crates/srt-gpu/src/probe.rs runs it and does the comparing).
 //
-// Composed after physics.wgsl, types.wgsl (PhysicsProbeInput, PhysicsProbeOutput) and
-// colour.wgsl.
+// Composed after physics.wgsl, types.wgsl (the probe structs), colour.wgsl and spectral.wgsl.
 
-// Invocations per workgroup of both entry points: set at pipeline creation from
+// Invocations per workgroup of every entry point: set at pipeline creation from
 // srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
 
@@ -52,4 +51,24 @@ fn lut_probe(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     lut_colours[index] = lut_sample(lut_table, lut_params, lut_temperatures[index]);
+}
+
+@group(0) @binding(6) var<storage, read> spectral_inputs: array<SpectralProbeInput>;
+@group(0) @binding(7) var<storage, read_write> spectral_outputs: array<SpectralProbeOutput>;
+// ln Y(1500 K) (srt_color::searchlight_reference_ln_y) in x; yzw unused.
+@group(0) @binding(11) var<uniform> spectral_params: vec4<f32>;
+
+// The spectral kernels of spectral.wgsl (its tables in group 0, bindings 8–10).
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn spectral_probe(@builtin(global_invocation_id) id: vec3<u32>) {
+    let index = id.x;
+    if index >= arrayLength(&spectral_inputs) {
+        return;
+    }
+    let c = spectral_inputs[index];
+    let view = SpectralView(u32(c.factors.w), c.factors.z, spectral_params.x);
+    var out: SpectralProbeOutput;
+    out.reflected = vec4<f32>(spectral_reflected_display(c.rgb_temperature.xyz, c.bands.x, c.bands.y, c.rgb_temperature.w, c.factors.x, c.factors.y, view), 0.0);
+    out.emitted = vec4<f32>(spectral_emitted_display(c.rgb_temperature.w, c.bands.z, c.factors.y, view), 0.0);
+    spectral_outputs[index] = out;
 }

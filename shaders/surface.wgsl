@@ -127,15 +127,33 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
     return albedo;
 }
 
-// Display colour of a surface point (§4.2): Phong in S′ with aberrated directions, combined
-// Doppler factor (Eq. 17), colour table at D·T_light, C = f_ar · C_sRGB (Eq. 18).
+// Display colour of a surface point (§4.2): Phong in S′ with aberrated directions and the
+// Doppler factors of Eq. 17 — D_in light → surface, D_out surface → observer (both 1 for
+// geometry only). The paper's colour: colour table at D_in·D_out·T_light, C = f_ar · C_sRGB
+// (Eq. 18); spectral colour (spectral.wgsl): the albedo's reflectance spectrum under the black
+// body at D_in·T_light, shifted by D_out, with exposure × (f_amb + f_diff + f_spec). An emitting
+// object shows its black body at D_out·T_e instead. Mirror of srt_trace::shade.
 fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> vec3<f32> {
     let beta = object.frame.beta_gamma.xyz;
     let incident = normalize(apparent - frame_uniforms.light.xyz);
     let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
-    var doppler = 1.0;
+    var d_in = 1.0;
+    var d_out = 1.0;
+    // D_in · D_out in one expression (Eq. 17), as the paper's colour always used it.
+    var combined = 1.0;
     if (frame_uniforms.effects != EFFECTS_GEOMETRY) {
-        doppler = reflection_doppler(beta, incident, outgoing);
+        d_in = receiver_doppler(beta, incident);
+        d_out = doppler_factor(beta, outgoing);
+        combined = reflection_doppler(beta, incident, outgoing);
+    }
+    let spectral = frame_uniforms.colour == SURFACE_COLOUR_SPECTRAL;
+    let optics = object.optics;
+    if (optics.z > 0.0) {
+        if (spectral) {
+            return spectral_emitted_display(optics.z, optics.w, d_out, spectral_view(frame_uniforms.exposure));
+        }
+        let glow = optics.w * lut_sample(lut_table, frame_uniforms.lut, d_out * optics.z).xyz;
+        return clamp(glow, vec3<f32>(0.0), vec3<f32>(1.0));
     }
     let to_light = -normalize(aberrate(-beta, incident));
     let to_observer = normalize(aberrate(-beta, outgoing));
@@ -154,7 +172,17 @@ fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> 
         diffuse = s.y * cos_light;
         specular = s.z * pow(max(dot(reflected, to_observer), 0.0), s.w);
     }
-    let f_ar = 0.5 * (grey_value(albedo) + 1.0) * (s.x + diffuse + specular);
-    let c = lut_sample(lut_table, frame_uniforms.lut, doppler * frame_uniforms.light.w).xyz;
+    let geometry = s.x + diffuse + specular;
+    if (spectral) {
+        let view = spectral_view(frame_uniforms.exposure * geometry);
+        return spectral_reflected_display(albedo.xyz, optics.x, optics.y, frame_uniforms.light.w, d_in, d_out, view);
+    }
+    let f_ar = 0.5 * (grey_value(albedo) + 1.0) * geometry;
+    let c = lut_sample(lut_table, frame_uniforms.lut, combined * frame_uniforms.light.w).xyz;
     return clamp(f_ar * c, vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// The frame's tone map for spectral colour, with `exposure`.
+fn spectral_view(exposure: f32) -> SpectralView {
+    return SpectralView(frame_uniforms.tone_map, exposure, frame_uniforms.searchlight_ln_y);
 }

@@ -7,6 +7,14 @@ const EFFECTS_GEOMETRY: u32 = 0u;
 const EFFECTS_DOPPLER: u32 = 1u;
 const EFFECTS_SEARCHLIGHT: u32 = 2u;
 
+// FrameUniforms.colour (srt_gpu::types::SurfaceColourCode): how lit surfaces are coloured.
+const SURFACE_COLOUR_PAPER: u32 = 0u;
+const SURFACE_COLOUR_SPECTRAL: u32 = 1u;
+
+// FrameUniforms.tone_map (srt_gpu::types::ToneMapCode): the tone map of spectral colour.
+const TONE_MAP_LUMINANCE: u32 = 0u;
+const TONE_MAP_SEARCHLIGHT: u32 = 1u;
+
 // FrameUniforms.footprint_shape (srt_gpu::types::FootprintCode).
 const FOOTPRINT_HULL: u32 = 0u;
 const FOOTPRINT_RECTANGLE: u32 = 1u;
@@ -56,6 +64,14 @@ struct FrameUniforms {
     footprint_shape: u32,
     // Depth written per LRT fragment is apparent distance × depth_scale.
     depth_scale: f32,
+    // One of SURFACE_COLOUR_*.
+    colour: u32,
+    // One of TONE_MAP_* (spectral colour; the paper's colour uses the colour table).
+    tone_map: u32,
+    // Multiplier on the light before the tone map (spectral colour).
+    exposure: f32,
+    // ln Y(1500 K), the searchlight tone map's divisor (srt_color::searchlight_reference_ln_y).
+    searchlight_ln_y: f32,
     padding: u32,
 }
 
@@ -64,6 +80,9 @@ struct ObjectUniforms {
     frame: Frame,
     // x: wireframe edge width in S′ units (≤ 0: draw the surface); yzw unused.
     style: vec4<f32>,
+    // Spectral colour (srt_scene::SurfaceOptics): ultraviolet and infrared reflectances (< 0:
+    // none), emission temperature in kelvin (≤ 0: the object does not glow) and brightness.
+    optics: vec4<f32>,
 }
 
 // Per mesh part: its material.
@@ -98,6 +117,23 @@ struct Footprint {
     // 1 for a whole-screen footprint.
     whole_screen: u32,
     padding: vec2<u32>,
+}
+
+// One star of the sky (srt_scene::Star), at rest in the world frame W.
+struct Star {
+    // Unit direction observer → star in W (xyz) and black-body temperature in kelvin (w).
+    direction_temperature: vec4<f32>,
+    // Visual magnitude at rest (x); yzw unused.
+    magnitude: vec4<f32>,
+}
+
+// Per image: how the sky moves and how bright its stars are.
+struct SkyUniforms {
+    // Velocity of W relative to S (xyz); the saturation magnitude (w): a star of it at rest fills
+    // one pixel with its full colour.
+    beta_saturation: vec4<f32>,
+    // Number of stars (x); yzw unused.
+    counts: vec4<u32>,
 }
 
 // The kernel probes of probe.wgsl (srt_gpu::probe).
@@ -144,4 +180,23 @@ struct PhysicsProbeOutput {
     // doppler_factor, reflection_doppler, apparent_distance (along the ray above at s),
     // lorentz_factor.
     scalars: vec4<f32>,
+}
+
+// One set of arguments of the spectral kernels (spectral.wgsl).
+struct SpectralProbeInput {
+    // sRGB-encoded surface colour (xyz), as shading hands it over; light temperature in kelvin
+    // (w), also the emitter's temperature.
+    rgb_temperature: vec4<f32>,
+    // D_in, D_out, exposure, TONE_MAP_* as a float.
+    factors: vec4<f32>,
+    // Ultraviolet and infrared reflectances (< 0: none); emission brightness (z); unused (w).
+    bands: vec4<f32>,
+}
+
+// The spectral kernels' results for one SpectralProbeInput.
+struct SpectralProbeOutput {
+    // spectral_reflected_display (xyz), w = 0.
+    reflected: vec4<f32>,
+    // spectral_emitted_display at temperature rgb_temperature.w, D_out, brightness (xyz), w = 0.
+    emitted: vec4<f32>,
 }

@@ -77,6 +77,15 @@ pub enum EffectsArg {
     Searchlight,
 }
 
+/// How lit surfaces are coloured on the command line (mirrors `srt_scene::SurfaceColour`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColourArg {
+    /// The paper's shortcut: the light's colour at D·T scaled by the surface's grey value.
+    Paper,
+    /// Reflectance spectra (Jakob & Hanika 2019) under the shifted black body: colours move.
+    Spectral,
+}
+
 /// Which picture `srt render` draws (mirrors `srt_scene::View`; docs/physics.md, "Three
 /// pictures").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
@@ -116,6 +125,13 @@ pub struct RenderArgs {
     /// Effect mode (overrides the scene's).
     #[arg(long, value_enum)]
     pub effects: Option<EffectsArg>,
+    /// How lit surfaces are coloured (overrides the scene's `render.colour`).
+    #[arg(long, value_enum)]
+    pub colour: Option<ColourArg>,
+    /// Multiplier on the light before the tone map, > 0 (spectral colour only; overrides the
+    /// scene's `render.exposure`).
+    #[arg(long)]
+    pub exposure: Option<f64>,
     /// Picture to draw: seen (apparent), measured (contracted, simultaneous in the observer's
     /// frame) or newtonian (rest shape where it is now); the last two are static, Doppler factor 1.
     #[arg(long, value_enum, default_value_t = ViewArg::Seen)]
@@ -205,6 +221,8 @@ impl Default for RenderArgs {
             backend: Backend::Auto,
             method: MethodArg::Lrt,
             effects: None,
+            colour: None,
+            exposure: None,
             view: ViewArg::Seen,
             time: None,
             beta: None,

@@ -11,7 +11,7 @@ use srt_color::{quantize_8bit, srgb_encode};
 use crate::cli::EncodeArgs;
 use crate::output::{OutputFormat, check_writable};
 use crate::progress::DelayedBar;
-use crate::video::{VideoWriter, check_size};
+use srt_video::{VideoWriter, check_size};
 
 /// Runs `srt encode FRAME... -o VIDEO`.
 ///
@@ -22,13 +22,12 @@ pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let output = &args.output;
     check_writable(output)?;
-    let format = OutputFormat::for_path(output)?;
-    if !format.is_video() {
+    let Some(format) = OutputFormat::for_path(output)?.video() else {
         bail!(
             "cannot write {}: srt encode writes a video; the file name must end in .mp4 or .gif",
             output.display()
         );
-    }
+    };
     let Some(first_path) = args.frames.first() else {
         bail!("srt encode needs at least one frame");
     };

@@ -13,7 +13,6 @@ mod provenance;
 mod render;
 mod shard;
 mod source;
-mod video;
 
 use std::process::ExitCode;
 

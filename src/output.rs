@@ -6,12 +6,15 @@ use std::fs::File;
 use std::io::{BufWriter, ErrorKind};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context as _, anyhow, bail};
+use anyhow::{Context as _, bail};
 use glam::DVec3;
 use image::RgbImage;
 use srt_color::{quantize_8bit, srgb_decode};
 use srt_scene::message::io_reason;
-use tempfile::NamedTempFile;
+
+use srt_video::{
+    AtomicFile, VideoFormat, lowercase_extension, parent_folder, temporary_file_beside,
+};
 
 use crate::provenance::{self, Provenance};
 
@@ -34,12 +37,7 @@ impl OutputFormat {
     /// # Errors
     /// If the extension is none of `.png`, `.exr`, `.mp4` and `.gif`.
     pub fn for_path(path: &Path) -> anyhow::Result<Self> {
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
+        match lowercase_extension(path).as_deref() {
             Some("png") => Ok(Self::Png),
             Some("exr") => Ok(Self::Exr),
             Some("mp4") => Ok(Self::Mp4),
@@ -52,9 +50,13 @@ impl OutputFormat {
         }
     }
 
-    /// Whether this is a video format (many frames in one file).
-    pub const fn is_video(self) -> bool {
-        matches!(self, Self::Mp4 | Self::Gif)
+    /// The video format, for the formats that hold many frames in one file.
+    pub const fn video(self) -> Option<VideoFormat> {
+        match self {
+            Self::Mp4 => Some(VideoFormat::Mp4),
+            Self::Gif => Some(VideoFormat::Gif),
+            Self::Png | Self::Exr => None,
+        }
     }
 }
 
@@ -112,105 +114,6 @@ pub fn check_writable(path: &Path) -> anyhow::Result<()> {
     }
     temporary_file_beside(path)?;
     Ok(())
-}
-
-/// A new, empty temporary file in `path`'s folder (removed when dropped), created with the
-/// permissions any new file gets there: 0o666 less the umask on Unix, not `tempfile`'s private
-/// 0o600, which would otherwise survive the rename into place.
-fn temporary_file_beside(path: &Path) -> anyhow::Result<NamedTempFile> {
-    let folder = parent_folder(path);
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".srt-").suffix(".partial");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    builder.tempfile_in(folder).map_err(|error| {
-        anyhow!(
-            "cannot write {}: cannot create a file in folder {} ({})",
-            path.display(),
-            folder.display(),
-            io_reason(&error)
-        )
-    })
-}
-
-fn parent_folder(path: &Path) -> &Path {
-    match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    }
-}
-
-/// A file being written in its destination's folder: [`AtomicFile::commit`] renames it into
-/// place; dropped before that (an error, a panic), it is removed and the destination is
-/// untouched.
-pub struct AtomicFile {
-    temp: NamedTempFile,
-    path: PathBuf,
-}
-
-impl AtomicFile {
-    /// Starts writing `path`.
-    ///
-    /// # Errors
-    /// If no file can be created in `path`'s folder.
-    pub fn create(path: &Path) -> anyhow::Result<Self> {
-        Ok(Self {
-            temp: temporary_file_beside(path)?,
-            path: path.to_owned(),
-        })
-    }
-
-    /// A buffered writer to the temporary file; finish it with [`AtomicFile::flush`].
-    ///
-    /// # Errors
-    /// If the file handle cannot be duplicated.
-    pub fn writer(&self) -> anyhow::Result<BufWriter<File>> {
-        let file = self
-            .temp
-            .as_file()
-            .try_clone()
-            .map_err(|error| self.io_error(&error))?;
-        Ok(BufWriter::new(file))
-    }
-
-    /// Flushes what an encoder left in `writer`.
-    ///
-    /// # Errors
-    /// If writing fails (a full disk, say).
-    pub fn flush(&self, writer: BufWriter<File>) -> anyhow::Result<()> {
-        writer
-            .into_inner()
-            .map(drop)
-            .map_err(|error| self.io_error(error.error()))
-    }
-
-    /// Renames the finished file into place.
-    ///
-    /// # Errors
-    /// If the rename fails; the temporary file is then removed.
-    pub fn commit(self) -> anyhow::Result<()> {
-        let path = self.path;
-        self.temp.persist(&path).map_err(|error| {
-            anyhow!(
-                "cannot write {} ({})",
-                path.display(),
-                io_reason(&error.error)
-            )
-        })?;
-        Ok(())
-    }
-
-    /// "cannot write PATH (reason)".
-    fn io_error(&self, error: &std::io::Error) -> anyhow::Error {
-        anyhow!(
-            "cannot write {} ({})",
-            self.path.display(),
-            io_reason(error)
-        )
-    }
 }
 
 /// Display colours (sRGB-encoded, [0, 1], row-major from the top) as an 8-bit image.

@@ -11,16 +11,16 @@ use glam::DVec3;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_physics::Frame;
 use srt_scene::limits::MAX_COORDINATE;
-use srt_scene::{Effects, Scene, View};
+use srt_scene::{Effects, Scene, SurfaceColour, View};
 use srt_trace::{RenderSettings, Tracer};
 
-use crate::cli::{Backend, EffectsArg, MethodArg, RenderArgs, ViewArg};
+use crate::cli::{Backend, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
 use crate::output::{OutputFormat, check_writable, display_rgb8, numbered, write_image};
 use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
 use crate::shard::Shard;
 use crate::source::{SceneOrigin, load_scene};
-use crate::video::{VideoWriter, check_size};
+use srt_video::{VideoWriter, check_size};
 
 /// A renderer ready to produce frames of one scene.
 enum Engine {
@@ -209,7 +209,7 @@ fn check_animation(args: &RenderArgs) -> anyhow::Result<Option<Animation>> {
         .transpose()?;
     let shard = args.shard.map(Shard::new).transpose()?;
     match (&args.output, format) {
-        (Some(output), Some(format)) if format.is_video() => {
+        (Some(output), Some(format)) if let Some(video) = format.video() => {
             if args.frames.is_none() {
                 bail!(
                     "-o {}: a video needs the number of frames, --frames N",
@@ -223,13 +223,7 @@ fn check_animation(args: &RenderArgs) -> anyhow::Result<Option<Animation>> {
                     output.display()
                 );
             }
-            check_size(
-                output,
-                format,
-                args.width,
-                args.height,
-                "--width x --height",
-            )?;
+            check_size(output, video, args.width, args.height, "--width x --height")?;
             Ok(Some(Animation::Video))
         }
         _ => match (args.frames, shard) {
@@ -269,6 +263,8 @@ fn base_record(
         .collect();
     record.push("velocities", velocities.join("; "));
     record.push("effects", scene.effects.name());
+    record.push("colour", scene.colour.name());
+    record.push("exposure", format!("{:?}", scene.exposure));
     record.push("view", view.name());
     for (key, value) in engine.record_entries() {
         record.push(key, value);
@@ -381,7 +377,7 @@ fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
     Ok(Cow::Owned(viewed))
 }
 
-/// Applies --effects, --time and --beta.
+/// Applies --effects, --colour, --exposure, --time and --beta.
 fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(effects) = args.effects {
         scene.set_effects(match effects {
@@ -389,6 +385,25 @@ fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> anyhow::Result<()> {
             EffectsArg::Doppler => Effects::Doppler,
             EffectsArg::Searchlight => Effects::Searchlight,
         });
+    }
+    if let Some(colour) = args.colour {
+        scene.colour = match colour {
+            ColourArg::Paper => SurfaceColour::Paper,
+            ColourArg::Spectral => SurfaceColour::Spectral,
+        };
+    }
+    if let Some(exposure) = args.exposure {
+        if !(exposure.is_finite() && exposure > 0.0) {
+            bail!("--exposure must be a positive number, got {exposure:?}");
+        }
+        scene.exposure = exposure;
+    }
+    if scene.exposure != 1.0 && scene.colour == SurfaceColour::Paper {
+        bail!(
+            "an exposure of {:?} needs spectral colour (--colour spectral): the paper's colour \
+             tables have no exposure",
+            scene.exposure
+        );
     }
     if let Some(ct) = args.time {
         scene.observer.ct = observation_time("--time", ct)?;

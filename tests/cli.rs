@@ -163,6 +163,42 @@ fn scene_file_errors_name_the_file_line_and_key() {
 }
 
 #[test]
+fn bad_star_files_name_the_file_line_and_reason() {
+    let dir = folder();
+    let scene =
+        "[observer]\nposition = [0, 0, 0]\nlook_at = [0, 1, 0]\n[sky]\nstars = \"stars.csv\"\n";
+    std::fs::write(dir.path().join("sky.toml"), scene).unwrap();
+    let render = || {
+        srt(
+            &["render", "sky.toml", "--backend", "cpu", "-o", "o.png"],
+            dir.path(),
+        )
+    };
+    assert_clean_failure(&render(), &["stars.csv", "sky.toml"]);
+    std::fs::write(
+        dir.path().join("stars.csv"),
+        "x,y,z,temperature_k,magnitude\n0,1,0,5800,1\n0,1,0,-3,1\n",
+    )
+    .unwrap();
+    assert_clean_failure(&render(), &["stars.csv", "line 3", "temperature_k"]);
+    std::fs::write(
+        dir.path().join("stars.csv"),
+        "ra,dec,temperature_k,magnitude\n1,2,3,4\n",
+    )
+    .unwrap();
+    assert_clean_failure(&render(), &["stars.csv", "ra_deg,dec_deg"]);
+    assert!(!dir.path().join("o.png").exists());
+    std::fs::write(
+        dir.path().join("stars.csv"),
+        "name,ra_deg,dec_deg,temperature_k,magnitude\nSirius,90,0,9940,-1.46\n",
+    )
+    .unwrap();
+    let output = render();
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(dir.path().join("o.png").exists());
+}
+
+#[test]
 fn unwritable_output_fails_before_rendering_and_keeps_existing_files() {
     let dir = folder();
     assert_clean_failure(

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use srt_physics::Frame;
 use srt_scene::placement::approach_velocity;
-use srt_scene::{Scene, SceneDescription, builtin_scenes};
+use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, builtin_scenes};
 
 /// Where Debian's assimp-testmodels package puts its models.
 pub const ASSIMP_MODELS: &str = "/usr/share/assimp/models";
@@ -182,5 +182,113 @@ pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
         cases.push(at_time("engine-beside", &beside, ct));
     }
     cases.push(enclosing_case()?);
+    cases.extend(sky_cases()?);
+    cases.extend(spectral_cases()?);
     Ok(cases)
+}
+
+/// Spectral surface colour (docs/colour.md): the teaser; Fig. 7 (D_out up to 20, so the
+/// visible light comes from far beyond the fitted 360–830 nm) with exposure 2 under the luminance
+/// tone map and 0.5 under the searchlight tone map; and [`spectral_emitter_case`].
+///
+/// # Errors
+/// If a scene does not build (a bug).
+pub fn spectral_cases() -> anyhow::Result<Vec<Case>> {
+    let builtins = builtin_cases()?;
+    let builtin = |name: &str| {
+        builtins
+            .iter()
+            .find(|c| c.name == name)
+            .with_context(|| format!("{name} is a built-in scene"))
+    };
+    let spectral = |name: &str, effects: Effects, exposure: f64| -> anyhow::Result<Case> {
+        let mut scene = builtin(name)?.scene.clone();
+        scene.set_effects(effects);
+        scene.colour = SurfaceColour::Spectral;
+        scene.exposure = exposure;
+        Ok(Case {
+            name: format!("{name}-spectral-{}-x{exposure}", effects.name()),
+            scene,
+        })
+    };
+    Ok(vec![
+        spectral("teaser", Effects::Doppler, 1.0)?,
+        spectral("fig7", Effects::Doppler, 2.0)?,
+        spectral("fig7", Effects::Searchlight, 0.5)?,
+        spectral_emitter_case()?,
+    ])
+}
+
+/// Spectral colour with the per-object optics: a glowing sphere (3000 K) passing at 0.6c, a
+/// red-and-blue checkered cube approaching at 0.7c (the visible light it sends back comes from
+/// 0.9–2 µm, where its `infrared` reflectance 0.9 holds) and one receding at 0.7c (seen in its
+/// ultraviolet, `ultraviolet` 0.1), exposure 2. Each offset puts the object's S′ origin where it
+/// is seen at ct = 0: offset = A + β·|A − observer|.
+///
+/// # Errors
+/// If the scene does not build (a bug).
+pub fn spectral_emitter_case() -> anyhow::Result<Case> {
+    let text = r#"
+        name = "spectral-emitter"
+        [observer]
+        position = [0.0, -10.0, 1.0]
+        look_at = [0.0, 0.0, 0.5]
+        up = [0.0, 0.0, 1.0]
+        fov_y_deg = 40.0
+        [light]
+        position = [4.0, -9.0, 6.0]
+        temperature_k = 5000.0
+        [render]
+        colour = "spectral"
+        exposure = 2.0
+        [[object]]
+        shape = { type = "sphere", radius = 1.0, segments = 32 }
+        emission = { temperature_k = 3000, brightness = 1.0 }
+        beta = [0.6, 0.0, 0.0]
+        offset = [4.15, 0.0, 0.0]
+        [[object]]
+        shape = { type = "cube", size = 1.6, subdivisions = 2 }
+        texture = { type = "checker", squares = 4, colors = [[0.9, 0.1, 0.1], [0.1, 0.2, 0.9]] }
+        infrared = 0.9
+        ultraviolet = 0.1
+        beta = [0.0, -0.7, 0.0]
+        offset = [2.0, -7.17, 0.0]
+        [[object]]
+        shape = { type = "cube", size = 1.6, subdivisions = 2 }
+        texture = { type = "checker", squares = 4, colors = [[0.9, 0.1, 0.1], [0.1, 0.2, 0.9]] }
+        infrared = 0.9
+        ultraviolet = 0.1
+        beta = [0.0, 0.7, 0.0]
+        offset = [0.0, 12.1, 1.5]
+    "#;
+    let (scene, _) =
+        SceneDescription::from_toml_str(text, "spectral-emitter")?.build(Path::new("/"))?;
+    Ok(Case {
+        name: "spectral-emitter".to_owned(),
+        scene,
+    })
+}
+
+/// The stars of the `flythrough` scene (observer at 0.9c through a star field) with the effect
+/// modes its file does not use: geometry only (no Doppler) and the searchlight (stars ahead
+/// brightened by D², behind dimmed).
+///
+/// # Errors
+/// If the built-in scene does not build (a bug).
+pub fn sky_cases() -> anyhow::Result<Vec<Case>> {
+    let flythrough = builtin_cases()?
+        .into_iter()
+        .find(|c| c.name == "flythrough")
+        .context("flythrough is a built-in scene")?;
+    Ok([Effects::Geometry, Effects::Searchlight]
+        .into_iter()
+        .map(|effects| {
+            let mut scene = flythrough.scene.clone();
+            scene.set_effects(effects);
+            Case {
+                name: format!("flythrough-{}", effects.name()),
+                scene,
+            }
+        })
+        .collect())
 }

@@ -1,13 +1,14 @@
 //! `cargo xtask validate`: every GPU pass against its CPU mirror on the current adapter.
 //!
-//! 1. physics kernels and colour-table sampling (`srt-gpu` probe pass vs `srt-physics` /
-//!    `srt-color`, f32 vs f64): worst relative error per kernel against its tolerance;
+//! 1. physics kernels, colour-table sampling and spectral colour (`srt-gpu` probe pass vs
+//!    `srt-physics` / `srt-color`, f32 vs f64): worst error per kernel against its tolerance;
 //! 2. the proxy pass against `srt-proxy`: every GPU footprint must contain the on-screen part of
 //!    its apparent triangle, computed in f64 (edges and interior sampled densely), and culled
 //!    back faces must be back faces of closed solids seen from outside;
 //! 3. images: every built-in scene and three assimp models at 0.5c, 0.9c and 0.99c, and scenes
 //!    in motion (the teaser while the spider passes the camera, the engine passing through and
-//!    beside the camera, the camera inside a sphere), GPU local ray tracing and the polygon
+//!    beside the camera, the camera inside a sphere, spectral colour with exposures and
+//!    emitters), GPU local ray tracing and the polygon
 //!    method against the exact CPU reference. The metric is the fraction
 //!    of pixels differing by more than 2/255 in any channel, not counting pixels within 1 px of a
 //!    silhouette edge of the CPU image. PNGs go to `target/validate/`.
@@ -22,7 +23,8 @@ use glam::DVec2;
 use image::RgbImage;
 use srt_gpu::culling::BackFaceCulling;
 use srt_gpu::probe::{
-    compare_physics, lut_tolerance, run_lut_probe, run_physics_probe, seeded_cases,
+    SPECTRAL_TOLERANCE, compare_physics, compare_spectral, lut_tolerance, run_lut_probe,
+    run_physics_probe, run_spectral_probe, seeded_cases, spectral_seeded_cases,
 };
 use srt_gpu::projection::view_projection;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
@@ -111,7 +113,7 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
     }
 }
 
-/// Physics kernels and colour-table sampling.
+/// Physics kernels, colour-table sampling and spectral colour.
 fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
     let mut failures = Vec::new();
     let cases = seeded_cases(0x5eed, 16_384);
@@ -161,6 +163,25 @@ fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
             failures.push(format!(
                 "colour table {} error {worst:.3e} > {tolerance:.1e}",
                 tone_map.name()
+            ));
+        }
+    }
+    let cases = spectral_seeded_cases(0x5eed, 4096);
+    let results = run_spectral_probe(ctx, &cases)?;
+    let [reflected, emitted] = compare_spectral(&cases, &results);
+    for (kernel, (worst, case)) in [
+        ("spectral_reflected_display", reflected),
+        ("spectral_emitted_display", emitted),
+    ] {
+        let ok = worst <= SPECTRAL_TOLERANCE;
+        println!(
+            "kernel={kernel} worst_absolute={worst:.3e} tolerance={SPECTRAL_TOLERANCE:.1e} {}",
+            if ok { "ok" } else { "FAIL" }
+        );
+        if !ok {
+            failures.push(format!(
+                "kernel {kernel} error {worst:.3e} > {SPECTRAL_TOLERANCE:.1e} (case {case}: {:?})",
+                cases[case]
             ));
         }
     }

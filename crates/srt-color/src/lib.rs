@@ -58,4 +58,4 @@ pub use spectral::{
     CoefficientTable, Reflectance, ReflectedLight, SigmoidPolynomial, emitted_display_rgb,
     emitted_light, fit_rgb, reflected_display_rgb, reflected_light, srgb_coefficient_table,
 };
-pub use tonemap::{SEARCHLIGHT_REFERENCE_K, ToneMap, colour_table};
+pub use tonemap::{SEARCHLIGHT_REFERENCE_K, ToneMap, colour_table, searchlight_reference_ln_y};

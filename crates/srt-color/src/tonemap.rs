@@ -26,6 +26,13 @@ static LN_SEARCHLIGHT_REFERENCE_Y: LazyLock<f64> = LazyLock::new(|| {
     relative.y.ln() + ln_scale
 });
 
+/// ln Y(1500 K), the logarithm (of Y in W·sr⁻¹·m⁻², Eq. 11) by which the searchlight tone map
+/// divides XYZ, for mirrors of [`ToneMap::display_rgb_xyz`] (srt-gpu's spectral shading).
+#[must_use]
+pub fn searchlight_reference_ln_y() -> f64 {
+    *LN_SEARCHLIGHT_REFERENCE_Y
+}
+
 /// Largest natural-log factor applied to relative XYZ (by either tone map, exposure included). Far
 /// beyond it every channel saturates anyway; the cap keeps absurd temperatures and exposures from
 /// producing ∞ − ∞ in Eq. 12.

@@ -8,7 +8,14 @@
 //!   triangle) and each fragment traces its viewing ray in the triangle's rest frame, writing
 //!   the apparent distance as depth and the triangle's id; the shading pass shades the kept
 //!   triangle once per pixel (mirror: `srt-trace`);
-//! - `polygon` — the per-vertex photo-object method of §3.2, for comparison.
+//! - `polygon` — the per-vertex photo-object method of §3.2, for comparison;
+//! - `sky` — the stars of a scene's sky: a compute pass splats each aberrated, Doppler-shifted
+//!   star into a per-pixel buffer, a full-screen pass writes background and stars before the
+//!   objects are drawn (mirror: `srt-trace`'s sky).
+//!
+//! The shading passes colour surfaces with the paper's colour table or, for scenes with spectral
+//! colour, with `spectral.wgsl`, the mirror of `srt-color`'s reflectance spectra (tables uploaded
+//! by [`spectral`]).
 //!
 //! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The
 //! production modules never depend on [`probe`], the validation harness.
@@ -17,12 +24,15 @@ pub mod context;
 pub mod culling;
 pub mod limits;
 pub mod lut;
+pub mod passes;
 pub mod pipelines;
 pub mod probe;
 pub mod projection;
 pub mod readback;
 pub mod renderer;
 pub mod shaders;
+pub mod sky;
+pub mod spectral;
 pub mod types;
 
 pub use context::{GpuContext, GpuError, context_or_skip};

@@ -220,6 +220,56 @@ pub mod slots {
             multisampled: false,
         },
     };
+    /// Group 1 of the sky passes: `sky`, the sky's uniforms.
+    pub const SKY: Slot = Slot {
+        wgsl_name: "sky",
+        binding: 0,
+        visibility: ShaderStages::COMPUTE,
+        ty: UNIFORM,
+    };
+    /// Group 1 of the sky's star pass: `stars`.
+    pub const STARS: Slot = Slot {
+        wgsl_name: "stars",
+        binding: 1,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(true),
+    };
+    /// Group 1 of the sky's star pass: `star_light`, the star light per pixel, added to.
+    pub const STAR_LIGHT: Slot = Slot {
+        wgsl_name: "star_light",
+        binding: 2,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
+    /// Group 1 of the sky's compose pass: `star_light_total`, the same buffer, read.
+    pub const STAR_LIGHT_TOTAL: Slot = Slot {
+        wgsl_name: "star_light_total",
+        binding: 3,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
+    /// Group 0 of the shading passes: `cie_table`, the CIE 1931 table (spectral colour).
+    pub const CIE_TABLE: Slot = Slot {
+        wgsl_name: "cie_table",
+        binding: 8,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
+    /// Group 0 of the shading passes: `coefficient_scale`, the coefficient table's brightness
+    /// scale.
+    pub const COEFFICIENT_SCALE: Slot = Slot {
+        wgsl_name: "coefficient_scale",
+        binding: 9,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
+    /// Group 0 of the shading passes: `coefficient_table`, the Jakob–Hanika coefficients.
+    pub const COEFFICIENT_TABLE: Slot = Slot {
+        wgsl_name: "coefficient_table",
+        binding: 10,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
     /// Group 3 of the LRT pass: `fragment_count`.
     pub const FRAGMENT_COUNT: Slot = Slot {
         wgsl_name: "fragment_count",
@@ -235,12 +285,32 @@ pub const FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     index: 0,
     slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE],
 };
-/// Group 0 of the LRT shading pass: the frame group and the visibility pass's ids (a separate
-/// layout, because the visibility pass renders into the ids while group 0 is bound).
+/// Group 0 of the LRT shading pass: the frame group, the visibility pass's ids (a separate
+/// layout, because the visibility pass renders into the ids while group 0 is bound) and the
+/// spectral tables.
 pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt frame (shading)",
     index: 0,
-    slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE, slots::VISIBLE_IDS],
+    slots: &[
+        slots::FRAME_UNIFORMS,
+        slots::LUT_TABLE,
+        slots::VISIBLE_IDS,
+        slots::CIE_TABLE,
+        slots::COEFFICIENT_SCALE,
+        slots::COEFFICIENT_TABLE,
+    ],
+};
+/// Group 0 of the polygon pass: the frame group and the spectral tables.
+pub const POLYGON_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt frame (polygon)",
+    index: 0,
+    slots: &[
+        slots::FRAME_UNIFORMS,
+        slots::LUT_TABLE,
+        slots::CIE_TABLE,
+        slots::COEFFICIENT_SCALE,
+        slots::COEFFICIENT_TABLE,
+    ],
 };
 /// Group 1: object uniforms.
 pub const OBJECT_GROUP: BindGroupSpec = BindGroupSpec {
@@ -281,6 +351,44 @@ pub const LRT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
     ],
 };
 
+/// Group 1 of the sky's star pass: the sky's uniforms, its stars and the star light, written.
+pub const SKY_STARS_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt sky stars",
+    index: 1,
+    slots: &[slots::SKY, slots::STARS, slots::STAR_LIGHT],
+};
+/// Group 1 of the sky's compose pass: the star light, read.
+pub const SKY_COMPOSE_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt sky compose",
+    index: 1,
+    slots: &[slots::STAR_LIGHT_TOTAL],
+};
+
+/// Entry point of the sky's star pass.
+pub const SKY_STARS_ENTRY: &str = "sky_stars";
+/// Entry points of the sky's compose pass (vertex, fragment).
+pub const SKY_COMPOSE_ENTRIES: [&str; 2] = ["sky_compose_vertex", "sky_compose"];
+
+/// The sky's two pipelines as their bindings see them: the stars' compute pass and the
+/// background pass.
+#[must_use]
+pub fn sky_specs() -> [PipelineSpec; 2] {
+    [
+        PipelineSpec {
+            label: "srt sky stars",
+            shader: shaders::sky(),
+            entry_points: &[SKY_STARS_ENTRY],
+            groups: vec![FRAME_GROUP, SKY_STARS_GROUP],
+        },
+        PipelineSpec {
+            label: "srt sky compose",
+            shader: shaders::sky(),
+            entry_points: &SKY_COMPOSE_ENTRIES,
+            groups: vec![FRAME_GROUP, SKY_COMPOSE_GROUP],
+        },
+    ]
+}
+
 /// Entry point of the proxy pass.
 const PROXY_ENTRY: &str = "footprint_main";
 /// Entry points of the LRT visibility pass (vertex, fragment).
@@ -318,7 +426,7 @@ pub fn specs(counting: bool) -> [PipelineSpec; 4] {
             label: "srt polygon",
             shader: shaders::polygon(),
             entry_points: &POLYGON_ENTRIES,
-            groups: base.to_vec(),
+            groups: vec![POLYGON_FRAME_GROUP, OBJECT_GROUP, PART_GROUP],
         },
     ]
 }
@@ -364,6 +472,8 @@ pub struct Pipelines {
     pub lrt_input_layout: wgpu::BindGroupLayout,
     /// Layout of [`SHADE_FRAME_GROUP`].
     pub shade_frame_layout: wgpu::BindGroupLayout,
+    /// Layout of [`POLYGON_FRAME_GROUP`].
+    pub polygon_frame_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
     /// The local ray tracing pipelines.
@@ -404,6 +514,7 @@ impl Pipelines {
             proxy_output_layout: PROXY_OUTPUT_GROUP.create_layout(device),
             lrt_input_layout: LRT_INPUT_GROUP.create_layout(device),
             shade_frame_layout: SHADE_FRAME_GROUP.create_layout(device),
+            polygon_frame_layout: POLYGON_FRAME_GROUP.create_layout(device),
             proxy,
             lrt,
             lrt_counting: std::sync::OnceLock::new(),
@@ -421,7 +532,7 @@ impl Pipelines {
 }
 
 /// The pipeline layout of `spec`: one bind group layout per group, in index order.
-fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgpu::PipelineLayout {
+pub(crate) fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgpu::PipelineLayout {
     let layouts: Vec<wgpu::BindGroupLayout> = spec
         .groups
         .iter()
@@ -437,7 +548,7 @@ fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgpu::Pipeline
 
 /// The render pipeline of `spec` with its `vertex` and `fragment` entry points, drawing into
 /// `color_format`, with a depth test (nearer wins, depth written) when `depth`.
-fn render_pipeline(
+pub(crate) fn render_pipeline(
     device: &wgpu::Device,
     spec: &PipelineSpec,
     [vertex, fragment]: [&str; 2],

@@ -1,10 +1,13 @@
-//! Kernel probes: run the shared WGSL functions (`physics.wgsl`, `colour.wgsl`) on arrays of
-//! inputs and compare every result with its `f64` CPU original (`srt-physics`, `srt-color`).
+//! Kernel probes: run the shared WGSL functions (`physics.wgsl`, `colour.wgsl`, `spectral.wgsl`)
+//! on arrays of inputs and compare every result with its `f64` CPU original (`srt-physics`,
+//! `srt-color`).
 //!
-//! The WGSL side is `shaders/probe.wgsl` (entry points `physics_probe` and `lut_probe`). Tests
-//! and `cargo xtask validate` use [`run_physics_probe`] with [`seeded_cases`] and
-//! [`compare_physics`] to report the worst relative error of each physics kernel against its
-//! tolerance, and [`run_lut_probe`] with [`lut_tolerance`] for the colour table.
+//! The WGSL side is `shaders/probe.wgsl` (entry points `physics_probe`, `lut_probe` and
+//! `spectral_probe`). Tests and `cargo xtask validate` use [`run_physics_probe`] with
+//! [`seeded_cases`] and [`compare_physics`] to report the worst relative error of each physics
+//! kernel against its tolerance, [`run_lut_probe`] with [`lut_tolerance`] for the colour table,
+//! and [`run_spectral_probe`] with [`spectral_seeded_cases`], [`compare_spectral`] and
+//! [`SPECTRAL_TOLERANCE`] for spectral colour.
 //!
 //! # How errors are measured
 //!
@@ -32,7 +35,10 @@
 //! (`apparent_tangent`) to 0.34 (`emission_event`) of them.
 
 use glam::{DVec3, DVec4};
-use srt_color::TemperatureLut;
+use srt_color::{
+    Reflectance, TemperatureLut, ToneMap, emitted_display_rgb, reflected_display_rgb,
+    searchlight_reference_ln_y, srgb_coefficient_table, srgb_decode,
+};
 use srt_physics::{Event, Frame, RestRay};
 use wgpu::util::DeviceExt;
 
@@ -41,7 +47,11 @@ use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{BindGroupSpec, PipelineSpec, Slot, TEXTURE_2D, UNIFORM, storage};
 use crate::shaders::{self, WORKGROUP_SIZE};
-use crate::types::{GpuFrame, GpuPhysicsProbeInput, GpuPhysicsProbeOutput, event4, vec4};
+use crate::spectral::SpectralTables;
+use crate::types::{
+    GpuFrame, GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuSpectralProbeInput,
+    GpuSpectralProbeOutput, ToneMapCode, event4, vec4,
+};
 
 /// The `f32` unit roundoff u = 2⁻²⁴.
 pub const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
@@ -644,6 +654,42 @@ pub mod slots {
         visibility: ShaderStages::COMPUTE,
         ty: UNIFORM,
     };
+    /// `spectral_inputs`: the spectral cases.
+    pub const SPECTRAL_INPUTS: Slot = Slot {
+        wgsl_name: "spectral_inputs",
+        binding: 6,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(true),
+    };
+    /// `spectral_outputs`: the spectral results.
+    pub const SPECTRAL_OUTPUTS: Slot = Slot {
+        wgsl_name: "spectral_outputs",
+        binding: 7,
+        visibility: ShaderStages::COMPUTE,
+        ty: storage(false),
+    };
+    /// `spectral_params`: ln Y(1500 K).
+    pub const SPECTRAL_PARAMS: Slot = Slot {
+        wgsl_name: "spectral_params",
+        binding: 11,
+        visibility: ShaderStages::COMPUTE,
+        ty: UNIFORM,
+    };
+    /// `cie_table`, as the render passes bind it, for the compute stage.
+    pub const CIE_TABLE: Slot = Slot {
+        visibility: ShaderStages::COMPUTE,
+        ..crate::pipelines::slots::CIE_TABLE
+    };
+    /// `coefficient_scale`, as the render passes bind it, for the compute stage.
+    pub const COEFFICIENT_SCALE: Slot = Slot {
+        visibility: ShaderStages::COMPUTE,
+        ..crate::pipelines::slots::COEFFICIENT_SCALE
+    };
+    /// `coefficient_table`, as the render passes bind it, for the compute stage.
+    pub const COEFFICIENT_TABLE: Slot = Slot {
+        visibility: ShaderStages::COMPUTE,
+        ..crate::pipelines::slots::COEFFICIENT_TABLE
+    };
 }
 
 /// The bind group of the `physics_probe` entry point.
@@ -665,9 +711,24 @@ pub const LUT_PROBE_GROUP: BindGroupSpec = BindGroupSpec {
     ],
 };
 
-/// The two probe pipelines (`physics_probe`, `lut_probe`) as their bindings see them.
+/// The bind group of the `spectral_probe` entry point.
+pub const SPECTRAL_PROBE_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "spectral probe",
+    index: 0,
+    slots: &[
+        slots::SPECTRAL_INPUTS,
+        slots::SPECTRAL_OUTPUTS,
+        slots::CIE_TABLE,
+        slots::COEFFICIENT_SCALE,
+        slots::COEFFICIENT_TABLE,
+        slots::SPECTRAL_PARAMS,
+    ],
+};
+
+/// The three probe pipelines (`physics_probe`, `lut_probe`, `spectral_probe`) as their bindings
+/// see them.
 #[must_use]
-pub fn specs() -> [PipelineSpec; 2] {
+pub fn specs() -> [PipelineSpec; 3] {
     [
         PipelineSpec {
             label: "physics_probe",
@@ -680,6 +741,12 @@ pub fn specs() -> [PipelineSpec; 2] {
             shader: shaders::probe(),
             entry_points: &["lut_probe"],
             groups: vec![LUT_PROBE_GROUP],
+        },
+        PipelineSpec {
+            label: "spectral_probe",
+            shader: shaders::probe(),
+            entry_points: &["spectral_probe"],
+            groups: vec![SPECTRAL_PROBE_GROUP],
         },
     ]
 }
@@ -790,7 +857,7 @@ pub fn run_physics_probe(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let [physics, _] = specs();
+    let [physics, _, _] = specs();
     let bytes = dispatch(
         ctx,
         &physics,
@@ -841,7 +908,7 @@ pub fn run_lut_probe(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let [_, lut_spec] = specs();
+    let [_, lut_spec, _] = specs();
     let bytes = dispatch(
         ctx,
         &lut_spec,
@@ -896,4 +963,213 @@ pub fn lut_max_step(lut: &TemperatureLut) -> f32 {
 #[must_use]
 pub fn lut_tolerance(lut: &TemperatureLut) -> f32 {
     (lut_position_tolerance(lut) * f64::from(lut_max_step(lut)) + 2.0 * F32_UNIT_ROUNDOFF) as f32
+}
+
+/// One case of the spectral kernels (`spectral.wgsl`): a surface colour and the light, Doppler
+/// factors and tone map it is seen with, every number already an `f32` value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpectralProbeCase {
+    /// sRGB-encoded surface colour in [0, 1]³ (texel × base × vertex colour).
+    pub albedo: DVec3,
+    /// Light temperature in kelvin, also the emitter's.
+    pub temperature_k: f64,
+    /// Doppler factor light → surface.
+    pub d_in: f64,
+    /// Doppler factor surface → observer.
+    pub d_out: f64,
+    /// Exposure (the renderer's times the Phong factor).
+    pub exposure: f64,
+    /// The tone map.
+    pub tone_map: ToneMap,
+    /// Reflectance below 380 nm, if the material has one.
+    pub ultraviolet: Option<f64>,
+    /// Reflectance above 780 nm, if the material has one.
+    pub infrared: Option<f64>,
+    /// The emitter's brightness.
+    pub brightness: f64,
+}
+
+impl SpectralProbeCase {
+    /// The WGSL input.
+    #[must_use]
+    pub fn to_gpu(&self) -> GpuSpectralProbeInput {
+        let code = f64::from(ToneMapCode::from(self.tone_map).0);
+        GpuSpectralProbeInput {
+            rgb_temperature: vec4(self.albedo, self.temperature_k),
+            factors: [self.d_in, self.d_out, self.exposure, code].map(|v| v as f32),
+            bands: [
+                self.ultraviolet.unwrap_or(-1.0),
+                self.infrared.unwrap_or(-1.0),
+                self.brightness,
+                0.0,
+            ]
+            .map(|v| v as f32),
+        }
+    }
+
+    /// The CPU's display colours in `f64`: reflected (as srt-trace's shade: decode, clamp,
+    /// table lookup, bands, [`reflected_display_rgb`]) and emitted ([`emitted_display_rgb`]),
+    /// black where the CPU reports an error.
+    #[must_use]
+    pub fn reference(&self) -> [DVec3; 2] {
+        let linear = self.albedo.map(srgb_decode).clamp(DVec3::ZERO, DVec3::ONE);
+        let reflected = srgb_coefficient_table()
+            .lookup(linear)
+            .and_then(|p| Reflectance::with_bands(p, self.ultraviolet, self.infrared))
+            .and_then(|r| {
+                reflected_display_rgb(
+                    self.tone_map,
+                    &r,
+                    self.temperature_k,
+                    self.d_in,
+                    self.d_out,
+                    self.exposure,
+                )
+            })
+            .unwrap_or(DVec3::ZERO);
+        let emitted = emitted_display_rgb(
+            self.tone_map,
+            self.temperature_k,
+            self.brightness,
+            self.d_out,
+            self.exposure,
+        )
+        .unwrap_or(DVec3::ZERO);
+        [reflected, emitted]
+    }
+}
+
+/// `count` reproducible spectral cases from `seed`: colours uniform in the cube, every fourth a
+/// grey (the table's special case) and every eighth on the cube's edge; temperatures
+/// log-uniform in 1000–20 000 K; D_in and D_out log-uniform within 1/D … D for
+/// D = [`SEEDED_MAX_DOPPLER`] (|β| ≤ 0.99); exposures log-uniform in 0.05–20; both tone maps;
+/// band constants on half the cases; brightness in [0, 4].
+#[must_use]
+pub fn spectral_seeded_cases(seed: u64, count: usize) -> Vec<SpectralProbeCase> {
+    let mut rng = SplitMix64(seed);
+    let f32_value = |v: f64| f64::from(v as f32);
+    let log_uniform = |rng: &mut SplitMix64, lo: f64, hi: f64| {
+        f32_value((lo.ln() + rng.unit() * (hi.ln() - lo.ln())).exp())
+    };
+    (0..count)
+        .map(|i| {
+            let mut albedo = DVec3::new(rng.unit(), rng.unit(), rng.unit()).map(f32_value);
+            if i % 4 == 1 {
+                albedo = DVec3::splat(albedo.x);
+            } else if i % 8 == 2 {
+                albedo.y = if rng.unit() < 0.5 { 0.0 } else { 1.0 };
+            }
+            let band = |rng: &mut SplitMix64| (rng.unit() < 0.5).then(|| f32_value(rng.unit()));
+            SpectralProbeCase {
+                albedo,
+                temperature_k: log_uniform(&mut rng, 1000.0, 20_000.0),
+                d_in: log_uniform(&mut rng, 1.0 / SEEDED_MAX_DOPPLER, SEEDED_MAX_DOPPLER),
+                d_out: log_uniform(&mut rng, 1.0 / SEEDED_MAX_DOPPLER, SEEDED_MAX_DOPPLER),
+                exposure: log_uniform(&mut rng, 0.05, 20.0),
+                tone_map: ToneMap::ALL[i % 2],
+                ultraviolet: band(&mut rng),
+                infrared: band(&mut rng),
+                brightness: f32_value(4.0 * rng.unit()),
+            }
+        })
+        .collect()
+}
+
+/// Largest difference per display channel (values in [0, 1]) accepted between
+/// [`run_spectral_probe`] and [`SpectralProbeCase::reference`]: a quarter of the image metric's
+/// 2/255, so that the kernel alone cannot move a pixel across it. Not derived from a rounding
+/// analysis: the sum's own `f32` error is small (relative errors of order 10⁻⁵ in XYZ, amplified
+/// at most 12.92× by the sRGB curve), but the trilinear interpolation and the sigmoid polynomial
+/// cancel terms of the coefficients' size, and a driver's `exp`/`log` may be less accurate than
+/// lavapipe's; on Mesa lavapipe the worst over 4096 seeded cases is 6.0 × 10⁻⁵ (reflected) and
+/// 1.3 × 10⁻⁵ (emitted), 33× inside it.
+pub const SPECTRAL_TOLERANCE: f64 = 0.5 / 255.0;
+
+/// Evaluates `spectral_reflected_display` and `spectral_emitted_display` on the GPU for each
+/// case: [reflected, emitted] display sRGB.
+///
+/// # Errors
+/// [`GpuError::ExceedsLimit`] when the cases exceed the device's buffer or dispatch limits,
+/// [`GpuError::Wgpu`] for wgpu validation errors, [`GpuError::Readback`] when reading fails.
+pub fn run_spectral_probe(
+    ctx: &GpuContext,
+    cases: &[SpectralProbeCase],
+) -> Result<Vec<[DVec3; 2]>, GpuError> {
+    if cases.is_empty() {
+        return Ok(Vec::new());
+    }
+    let inputs: Vec<GpuSpectralProbeInput> = cases.iter().map(SpectralProbeCase::to_gpu).collect();
+    let output_size = cases.len() * size_of::<GpuSpectralProbeOutput>();
+    check_storage(ctx, "spectral input", size_of_val(inputs.as_slice()))?;
+    check_storage(ctx, "spectral output", output_size)?;
+    let tables = SpectralTables::new(ctx)?;
+    let device = &ctx.device;
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("spectral probe inputs"),
+        contents: bytemuck::cast_slice(&inputs),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("spectral probe parameters"),
+        contents: bytemuck::cast_slice(&[searchlight_reference_ln_y() as f32, 0.0, 0.0, 0.0]),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("spectral probe outputs"),
+        size: output_size as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let [_, _, spectral] = specs();
+    let [cie, scale, coefficients] = tables.entries();
+    let bytes = dispatch(
+        ctx,
+        &spectral,
+        SPECTRAL_PROBE_GROUP,
+        &[
+            slots::SPECTRAL_INPUTS.entry(input.as_entire_binding()),
+            slots::SPECTRAL_OUTPUTS.entry(output.as_entire_binding()),
+            cie,
+            scale,
+            coefficients,
+            slots::SPECTRAL_PARAMS.entry(params.as_entire_binding()),
+        ],
+        cases.len(),
+        &output,
+    )?;
+    let outputs: Vec<GpuSpectralProbeOutput> = bytemuck::pod_collect_to_vec(&bytes);
+    let rgb = |v: [f32; 4]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
+    Ok(outputs
+        .into_iter()
+        .map(|o| [rgb(o.reflected), rgb(o.emitted)])
+        .collect())
+}
+
+/// The worst per-channel difference of the GPU's spectral `results` from the CPU's
+/// ([`SpectralProbeCase::reference`]): (reflected, emitted), each with the index of its case.
+///
+/// # Panics
+/// If `cases` and `results` differ in length.
+#[must_use]
+pub fn compare_spectral(cases: &[SpectralProbeCase], results: &[[DVec3; 2]]) -> [(f64, usize); 2] {
+    assert_eq!(cases.len(), results.len(), "one result per case");
+    let mut worst = [(0.0, 0); 2];
+    for (index, (case, gpu)) in cases.iter().zip(results).enumerate() {
+        let cpu = case.reference();
+        for (w, (g, c)) in worst.iter_mut().zip(gpu.iter().zip(cpu)) {
+            let difference = (*g - c).abs().max_element();
+            // NaN counts as the worst.
+            if difference.is_nan() || difference > w.0 {
+                *w = (
+                    if difference.is_nan() {
+                        f64::INFINITY
+                    } else {
+                        difference
+                    },
+                    index,
+                );
+            }
+        }
+    }
+    worst
 }

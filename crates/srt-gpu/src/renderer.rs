@@ -8,7 +8,7 @@
 
 use std::sync::Arc;
 
-use srt_color::{TemperatureLut, ToneMap, quantize_8bit};
+use srt_color::{TemperatureLut, ToneMap, quantize_8bit, searchlight_reference_ln_y};
 use srt_scene::mip::{MipChain, MipLevel};
 use srt_scene::{Object, Part, Scene};
 use wgpu::util::DeviceExt as _;
@@ -18,16 +18,18 @@ use crate::culling::BackFaceCulling;
 use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{
-    DEPTH_FORMAT, FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, PROXY_OUTPUT_GROUP,
-    Pipelines, SHADE_FRAME_GROUP, VISIBLE_ID_FORMAT, slots,
+    DEPTH_FORMAT, FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
+    PROXY_OUTPUT_GROUP, Pipelines, SHADE_FRAME_GROUP, VISIBLE_ID_FORMAT, slots,
 };
 use crate::projection::view_projection;
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
+use crate::sky::SkyResources;
+use crate::spectral::SpectralTables;
 use crate::types::{
     DRAW_ARGS_BYTES, EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode,
     FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags,
-    PartUniforms, SHADE_DRAW_OFFSET, mat4, vec4,
+    PartUniforms, SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, mat4, optics4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -315,6 +317,7 @@ impl Targets {
             .lut_views
             .iter()
             .map(|lut| {
+                let [cie, scale, coefficients] = frame.spectral.entries();
                 ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(SHADE_FRAME_GROUP.label),
                     layout: &pipelines.shade_frame_layout,
@@ -322,6 +325,9 @@ impl Targets {
                         slots::FRAME_UNIFORMS.entry(frame.uniforms.as_entire_binding()),
                         slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(lut)),
                         slots::VISIBLE_IDS.entry(wgpu::BindingResource::TextureView(&ids_view)),
+                        cie,
+                        scale,
+                        coefficients,
                     ],
                 })
             })
@@ -348,11 +354,15 @@ impl Targets {
     }
 }
 
-/// The frame uniforms and, per tone map, the colour table bound with them.
+/// The frame uniforms and, per tone map, the colour table bound with them; the spectral tables.
 struct FrameResources {
     uniforms: wgpu::Buffer,
     /// One bind group per tone map, indexed as [`ToneMap::ALL`] (the colour tables differ).
     bind_groups: Vec<wgpu::BindGroup>,
+    /// [`POLYGON_FRAME_GROUP`] per tone map, indexed as [`ToneMap::ALL`].
+    polygon_groups: Vec<wgpu::BindGroup>,
+    /// The tables of spectral colour (also bound by [`SHADE_FRAME_GROUP`]).
+    spectral: SpectralTables,
     /// The colour-table parameters, indexed as [`ToneMap::ALL`].
     lut_params: Vec<[f32; 4]>,
     /// The colour tables, indexed as [`ToneMap::ALL`] (also bound by [`SHADE_FRAME_GROUP`]).
@@ -367,7 +377,9 @@ impl FrameResources {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let spectral = SpectralTables::new(ctx)?;
         let mut bind_groups = Vec::new();
+        let mut polygon_groups = Vec::new();
         let mut params = Vec::new();
         let mut lut_views = Vec::new();
         for tone_map in ToneMap::ALL {
@@ -382,11 +394,25 @@ impl FrameResources {
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
                 ],
             }));
+            let [cie, scale, coefficients] = spectral.entries();
+            polygon_groups.push(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(POLYGON_FRAME_GROUP.label),
+                layout: &pipelines.polygon_frame_layout,
+                entries: &[
+                    slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
+                    slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
+                    cie,
+                    scale,
+                    coefficients,
+                ],
+            }));
             lut_views.push(view);
         }
         Ok(Self {
             uniforms,
             bind_groups,
+            polygon_groups,
+            spectral,
             lut_params: params,
             lut_views,
         })
@@ -479,6 +505,8 @@ pub struct GpuRenderer {
     counter: FragmentCounter,
     timestamps: Option<Timestamps>,
     targets: Targets,
+    /// The stars, if the scene has a sky.
+    sky: Option<SkyResources>,
     /// Whether the LRT pass counts its fragments.
     count_fragments: bool,
     /// Whether the LRT draws take their vertex counts from the proxy pass
@@ -738,6 +766,7 @@ impl GpuRenderer {
         let renderer = Self {
             timestamps: ctx.timestamps.then(|| Timestamps::new(device)),
             targets: Targets::new(ctx, width, height, &pipelines, &frame)?,
+            sky: SkyResources::new(ctx, scene, width, height)?,
             pipelines,
             frame,
             objects,
@@ -769,7 +798,11 @@ impl GpuRenderer {
     /// keeps its previous size.
     pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
         if (width, height) != self.size() {
-            self.targets = Targets::new(ctx, width, height, &self.pipelines, &self.frame)?;
+            let targets = Targets::new(ctx, width, height, &self.pipelines, &self.frame)?;
+            if let Some(sky) = &mut self.sky {
+                sky.resize(ctx, width, height)?;
+            }
+            self.targets = targets;
         }
         Ok(())
     }
@@ -796,6 +829,13 @@ impl GpuRenderer {
                 .any(|(o, r)| o.parts.len() != r.culling.len())
         {
             return Err(GpuError::SceneChanged);
+        }
+        let uploaded_stars = self.sky.as_ref().map_or(0, SkyResources::star_count);
+        if scene.sky.stars.len() != uploaded_stars as usize {
+            return Err(GpuError::SceneChanged);
+        }
+        if let Some(sky) = &self.sky {
+            sky.write_uniforms(ctx, scene);
         }
         let (width, height) = self.size();
         let aspect = f64::from(width) / f64::from(height);
@@ -827,6 +867,10 @@ impl GpuRenderer {
             effects: EffectsCode::from(scene.effects),
             footprint_shape: FootprintCode::from(footprint),
             depth_scale: LRT_DEPTH_SCALE,
+            colour: SurfaceColourCode::from(scene.colour),
+            tone_map: ToneMapCode::from(scene.tone_map),
+            exposure: scene.exposure as f32,
+            searchlight_ln_y: searchlight_reference_ln_y() as f32,
             padding: 0,
         };
         ctx.queue
@@ -836,6 +880,7 @@ impl GpuRenderer {
             let uniforms = ObjectUniforms {
                 frame: GpuFrame::new(&object.frame, event),
                 style: [object.wireframe.unwrap_or(0.0) as f32, 0.0, 0.0, 0.0],
+                optics: optics4(&object.optics),
             };
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
@@ -949,12 +994,22 @@ impl GpuRenderer {
             view(&self.targets.depth),
             view(&self.targets.ids),
         );
-        let b = scene.background;
-        let background = wgpu::Color {
-            r: b.x,
-            g: b.y,
-            b: b.z,
-            a: 1.0,
+        // Without stars the object passes clear to the background; with them, the sky's passes
+        // draw background and stars first and the object passes draw over them.
+        let background = match &self.sky {
+            Some(sky) => {
+                sky.encode(encoder, &self.frame.bind_groups[tone], &color_view);
+                wgpu::LoadOp::Load
+            }
+            None => {
+                let b = scene.background;
+                wgpu::LoadOp::Clear(wgpu::Color {
+                    r: b.x,
+                    g: b.y,
+                    b: b.z,
+                    a: 1.0,
+                })
+            }
         };
         let depth = wgpu::RenderPassDepthStencilAttachment {
             view: &depth_view,
@@ -980,14 +1035,18 @@ impl GpuRenderer {
                     [Some(2), Some(3)],
                 );
                 pass.set_pipeline(&self.pipelines.polygon);
-                pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+                pass.set_bind_group(
+                    POLYGON_FRAME_GROUP.index,
+                    &self.frame.polygon_groups[tone],
+                    &[],
+                );
                 self.draw_parts(&mut pass, |pass, part| {
                     // Checked at upload: 3 × triangles fits in u32.
                     pass.draw(0..3 * part.sizes.triangles, 0..1);
                 });
             }
             Method::Lrt => {
-                let none = wgpu::Color::TRANSPARENT;
+                let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
                 let mut pass = self.begin_pass(
                     encoder,
                     "srt lrt visibility",
@@ -1028,14 +1087,14 @@ impl GpuRenderer {
         }
     }
 
-    /// Begins a render pass into `target` (cleared to `clear`) and `depth`, writing timestamps
-    /// at the indices `[beginning, end]` given.
+    /// Begins a render pass into `target` (loaded as `load` says) and `depth`, writing
+    /// timestamps at the indices `[beginning, end]` given.
     fn begin_pass<'a>(
         &self,
         encoder: &'a mut wgpu::CommandEncoder,
         label: &str,
         target: &wgpu::TextureView,
-        clear: wgpu::Color,
+        load: wgpu::LoadOp<wgpu::Color>,
         depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
         [beginning, end]: [Option<u32>; 2],
     ) -> wgpu::RenderPass<'a> {
@@ -1047,7 +1106,7 @@ impl GpuRenderer {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear),
+                        load,
                         store: wgpu::StoreOp::Store,
                     },
                 })],
@@ -1232,6 +1291,7 @@ fn decode_pixel(bytes: &[u8]) -> [f32; 4] {
 
 #[cfg(test)]
 mod tests {
+    use srt_scene::SurfaceOptics;
     use std::sync::Arc;
 
     use glam::DVec3;
@@ -1285,6 +1345,7 @@ mod tests {
             ],
             frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
             wireframe: None,
+            optics: SurfaceOptics::default(),
         };
         let culling: Vec<BackFaceCulling> = object
             .parts
@@ -1311,6 +1372,7 @@ mod tests {
             parts: (0..3).map(|_| part(cube(1.0, 4), None)).collect(),
             frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
             wireframe: None,
+            optics: SurfaceOptics::default(),
         };
         let culling = vec![BackFaceCulling::for_mesh(&object.parts[0].mesh); 3];
         let vertex_bytes = object.parts[0].mesh.positions().len() * 64;

@@ -10,6 +10,8 @@ pub const TYPES: &str = include_str!("../../../shaders/types.wgsl");
 pub const PROBE: &str = include_str!("../../../shaders/probe.wgsl");
 /// Colour-table sampling (mirror of `TemperatureLut::sample`).
 pub const COLOUR: &str = include_str!("../../../shaders/colour.wgsl");
+/// Spectral surface colour (mirror of srt-color's spectral path).
+pub const SPECTRAL: &str = include_str!("../../../shaders/spectral.wgsl");
 /// Bindings and helpers shared by the render passes.
 pub const RENDER_BINDINGS: &str = include_str!("../../../shaders/render_bindings.wgsl");
 /// Intersection and shading (mirror of srt-trace).
@@ -20,6 +22,8 @@ pub const PROXY: &str = include_str!("../../../shaders/proxy.wgsl");
 pub const LRT: &str = include_str!("../../../shaders/lrt.wgsl");
 /// The polygon-rendering baseline pass.
 pub const POLYGON: &str = include_str!("../../../shaders/polygon.wgsl");
+/// The stars of the sky.
+pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
 
 /// Invocations per workgroup of every compute entry point (WGSL `override WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;
@@ -30,12 +34,42 @@ const PROXY_OVERRIDES: &[(&str, f64)] = &[
     ("MAX_TANGENT_REACH", srt_proxy::MAX_TANGENT_REACH),
 ];
 
+/// The overrides of spectral.wgsl: the constants of Planck's law (Eq. 10: c₂ = hc/k and 2hc²),
+/// the CIE table's step (Eq. 11) and the band edges of the reflectance policy.
+const SPECTRAL_OVERRIDES: [(&str, f64); 5] = [
+    (
+        "SECOND_RADIATION_CONSTANT",
+        srt_color::SECOND_RADIATION_CONSTANT,
+    ),
+    (
+        "RADIANCE_CONSTANT",
+        2.0 * srt_color::PLANCK_CONSTANT * srt_color::SPEED_OF_LIGHT * srt_color::SPEED_OF_LIGHT,
+    ),
+    ("CIE_1931_STEP_M", srt_color::CIE_1931_STEP_M),
+    (
+        "ULTRAVIOLET_BELOW_NM",
+        srt_color::spectral::ULTRAVIOLET_BELOW_NM,
+    ),
+    ("INFRARED_ABOVE_NM", srt_color::spectral::INFRARED_ABOVE_NM),
+];
+
+/// [`SPECTRAL_OVERRIDES`] after one more override.
+const fn with_spectral(first: (&'static str, f64)) -> [(&'static str, f64); 6] {
+    let s = SPECTRAL_OVERRIDES;
+    [first, s[0], s[1], s[2], s[3], s[4]]
+}
+
 /// The overrides of the LRT shader: without and with the fragment counter.
-const LRT_OVERRIDES: [&[(&str, f64)]; 2] =
-    [&[("COUNT_FRAGMENTS", 0.0)], &[("COUNT_FRAGMENTS", 1.0)]];
+const LRT_OVERRIDES: [&[(&str, f64)]; 2] = [
+    &with_spectral(("COUNT_FRAGMENTS", 0.0)),
+    &with_spectral(("COUNT_FRAGMENTS", 1.0)),
+];
+
+/// The overrides of the sky shader.
+const WORKGROUP_OVERRIDES: &[(&str, f64)] = &[("WORKGROUP_SIZE", WORKGROUP_SIZE as f64)];
 
 /// The overrides of the probe shader.
-const PROBE_OVERRIDES: &[(&str, f64)] = &[("WORKGROUP_SIZE", WORKGROUP_SIZE as f64)];
+const PROBE_OVERRIDES: &[(&str, f64)] = &with_spectral(("WORKGROUP_SIZE", WORKGROUP_SIZE as f64));
 
 /// A composed shader and the values of its pipeline-overridable constants.
 #[derive(Debug, Clone)]
@@ -93,6 +127,7 @@ pub fn lrt(counting: bool) -> Shader {
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
+            ("spectral.wgsl", SPECTRAL),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("surface.wgsl", SURFACE),
             ("lrt.wgsl", LRT),
@@ -110,11 +145,27 @@ pub fn polygon() -> Shader {
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
+            ("spectral.wgsl", SPECTRAL),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("surface.wgsl", SURFACE),
             ("polygon.wgsl", POLYGON),
         ]),
-        overrides: &[],
+        overrides: &SPECTRAL_OVERRIDES,
+    }
+}
+
+/// The sky shader: the stars' compute pass and the background pass.
+#[must_use]
+pub fn sky() -> Shader {
+    Shader {
+        name: "sky",
+        source: compose(&[
+            ("physics.wgsl", PHYSICS),
+            ("types.wgsl", TYPES),
+            ("colour.wgsl", COLOUR),
+            ("sky.wgsl", SKY),
+        ]),
+        overrides: WORKGROUP_OVERRIDES,
     }
 }
 
@@ -127,6 +178,7 @@ pub fn probe() -> Shader {
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
+            ("spectral.wgsl", SPECTRAL),
             ("probe.wgsl", PROBE),
         ]),
         overrides: PROBE_OVERRIDES,
@@ -155,6 +207,7 @@ pub fn all() -> Vec<Shader> {
         lrt(false),
         lrt(true),
         polygon(),
+        sky(),
         Shader {
             name: "colour",
             source: compose(&[("colour.wgsl", COLOUR)]),

@@ -6,8 +6,9 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3};
+use srt_color::ToneMap;
 use srt_physics::{Event, Frame};
-use srt_scene::Effects;
+use srt_scene::{Effects, SurfaceColour, SurfaceOptics};
 
 /// Converts an f64 matrix to the column-major f32 array WGSL expects.
 #[must_use]
@@ -86,6 +87,63 @@ impl From<Effects> for EffectsCode {
     }
 }
 
+/// `FrameUniforms::colour`: how lit surfaces are coloured (WGSL `SURFACE_COLOUR_*`).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct SurfaceColourCode(pub u32);
+
+impl SurfaceColourCode {
+    /// The paper's colour table at D·T (WGSL `SURFACE_COLOUR_PAPER`).
+    pub const PAPER: Self = Self(0);
+    /// Reflectance spectra (WGSL `SURFACE_COLOUR_SPECTRAL`).
+    pub const SPECTRAL: Self = Self(1);
+}
+
+impl From<SurfaceColour> for SurfaceColourCode {
+    fn from(colour: SurfaceColour) -> Self {
+        match colour {
+            SurfaceColour::Paper => Self::PAPER,
+            SurfaceColour::Spectral => Self::SPECTRAL,
+        }
+    }
+}
+
+/// `FrameUniforms::tone_map`: the tone map of spectral colour (WGSL `TONE_MAP_*`).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct ToneMapCode(pub u32);
+
+impl ToneMapCode {
+    /// Fig. 6 left (WGSL `TONE_MAP_LUMINANCE`).
+    pub const LUMINANCE: Self = Self(0);
+    /// Fig. 6 right (WGSL `TONE_MAP_SEARCHLIGHT`).
+    pub const SEARCHLIGHT: Self = Self(1);
+}
+
+impl From<ToneMap> for ToneMapCode {
+    fn from(tone_map: ToneMap) -> Self {
+        match tone_map {
+            ToneMap::Luminance => Self::LUMINANCE,
+            ToneMap::Searchlight => Self::SEARCHLIGHT,
+        }
+    }
+}
+
+/// `ObjectUniforms::optics` of `optics`: ultraviolet and infrared reflectances (−1 for none),
+/// emission temperature (0 for none) and brightness.
+#[must_use]
+pub fn optics4(optics: &SurfaceOptics) -> [f32; 4] {
+    let (temperature, brightness) = optics
+        .emission
+        .map_or((0.0, 0.0), |e| (e.temperature_k, e.brightness));
+    [
+        optics.ultraviolet.unwrap_or(-1.0) as f32,
+        optics.infrared.unwrap_or(-1.0) as f32,
+        temperature as f32,
+        brightness as f32,
+    ]
+}
+
 /// `FrameUniforms::footprint_shape`: what the LRT pass draws per triangle (WGSL `FOOTPRINT_*`).
 #[repr(transparent)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
@@ -128,6 +186,14 @@ pub struct FrameUniforms {
     pub footprint_shape: FootprintCode,
     /// LRT depth = apparent distance × this.
     pub depth_scale: f32,
+    /// How lit surfaces are coloured.
+    pub colour: SurfaceColourCode,
+    /// The tone map of spectral colour.
+    pub tone_map: ToneMapCode,
+    /// Multiplier on the light before the tone map (spectral colour).
+    pub exposure: f32,
+    /// ln Y(1500 K), the searchlight tone map's divisor.
+    pub searchlight_ln_y: f32,
     /// Padding to the WGSL size.
     pub padding: u32,
 }
@@ -140,6 +206,8 @@ pub struct ObjectUniforms {
     pub frame: GpuFrame,
     /// Wireframe width (x, ≤ 0 for none).
     pub style: [f32; 4],
+    /// Spectral optics ([`optics4`]).
+    pub optics: [f32; 4],
 }
 
 /// `PartUniforms::flags`: one bit per yes/no property of a mesh part (WGSL `PART_*` in
@@ -205,6 +273,35 @@ pub struct GpuVertex {
     pub color: [f32; 4],
     /// Texture coordinates (xy).
     pub uv: [f32; 4],
+}
+
+/// Twin of WGSL `Star` (types.wgsl): one star of the sky.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuStar {
+    /// Unit direction observer → star in the world frame (xyz), temperature in kelvin (w).
+    pub direction_temperature: [f32; 4],
+    /// Visual magnitude at rest (x).
+    pub magnitude: [f32; 4],
+}
+
+impl From<&srt_scene::Star> for GpuStar {
+    fn from(star: &srt_scene::Star) -> Self {
+        Self {
+            direction_temperature: vec4(star.direction, star.temperature_k),
+            magnitude: [star.magnitude as f32, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// Twin of WGSL `SkyUniforms` (types.wgsl): the sky's motion and brightness for one image.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct SkyUniforms {
+    /// Velocity of the world frame relative to S (xyz), saturation magnitude (w).
+    pub beta_saturation: [f32; 4],
+    /// Number of stars (x); yzw unused.
+    pub counts: [u32; 4],
 }
 
 /// Most points of a footprint's convex hull (WGSL `FOOTPRINT_HULL_POINTS`): the hull of the
@@ -299,6 +396,29 @@ pub struct GpuPhysicsProbeOutput {
     pub scalars: [f32; 4],
 }
 
+/// Twin of WGSL `SpectralProbeInput`: one set of arguments of the spectral kernels
+/// ([`crate::probe`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuSpectralProbeInput {
+    /// sRGB-encoded surface colour (xyz), light (and emitter) temperature in kelvin (w).
+    pub rgb_temperature: [f32; 4],
+    /// D_in, D_out, exposure, tone map code as a float.
+    pub factors: [f32; 4],
+    /// Ultraviolet and infrared reflectances (< 0: none), emission brightness, unused.
+    pub bands: [f32; 4],
+}
+
+/// Twin of WGSL `SpectralProbeOutput`: the spectral kernels' display colours.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuSpectralProbeOutput {
+    /// Reflected light's display sRGB (xyz).
+    pub reflected: [f32; 4],
+    /// Emitted light's display sRGB (xyz).
+    pub emitted: [f32; 4],
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -338,5 +458,31 @@ mod tests {
                 EffectsCode::SEARCHLIGHT
             ]
         );
+    }
+
+    #[test]
+    fn colours_and_tone_maps_map_to_distinct_codes() {
+        assert_eq!(
+            SurfaceColour::ALL.map(SurfaceColourCode::from),
+            [SurfaceColourCode::PAPER, SurfaceColourCode::SPECTRAL]
+        );
+        assert_eq!(
+            ToneMap::ALL.map(ToneMapCode::from),
+            [ToneMapCode::LUMINANCE, ToneMapCode::SEARCHLIGHT]
+        );
+    }
+
+    #[test]
+    fn optics_mark_what_is_absent() {
+        assert_eq!(optics4(&SurfaceOptics::default()), [-1.0, -1.0, 0.0, 0.0]);
+        let optics = SurfaceOptics {
+            ultraviolet: Some(0.1),
+            infrared: Some(0.9),
+            emission: Some(srt_scene::Emission {
+                temperature_k: 3000.0,
+                brightness: 2.0,
+            }),
+        };
+        assert_eq!(optics4(&optics), [0.1, 0.9, 3000.0, 2.0]);
     }
 }

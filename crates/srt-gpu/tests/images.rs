@@ -1,8 +1,9 @@
 //! GPU images against the exact CPU reference: every built-in scene with local ray tracing (must
-//! agree) and the polygon baseline (reported, expected to differ).
+//! agree) and the polygon baseline (reported, expected to differ), with the paper's colour and
+//! with spectral colour.
 
 use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip};
-use srt_scene::builtin_scenes;
+use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, builtin_scenes};
 use srt_trace::compare::compare;
 use srt_trace::{RenderSettings, Tracer};
 
@@ -48,6 +49,78 @@ fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
         }
         println!("{line}");
     }
+    ctx.take_errors().unwrap();
+}
+
+/// LRT with spectral colour agrees with the CPU: `scene`'s mismatch (2/255, 1 px edge margin).
+fn assert_spectral_lrt_agrees(ctx: &srt_gpu::GpuContext, name: &str, scene: &Scene) {
+    let reference = Tracer::new(scene).render(
+        RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            samples: 1,
+        },
+        &|_| {},
+    );
+    let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT).unwrap();
+    let (image, _) = renderer
+        .render(ctx, scene, Method::Lrt, FootprintShape::Hull)
+        .unwrap();
+    let rgb = image.to_rgb8();
+    let mismatch = compare(&reference, &rgb, 2, 1);
+    println!(
+        "scene={name} spectral mismatch={:.5} max={}",
+        mismatch.fraction(),
+        mismatch.max_difference
+    );
+    assert!(mismatch.fraction() <= 0.001, "{name}: {mismatch:?}");
+    // Not vacuous: the objects are lit (or glow), not black.
+    let lit = rgb.iter().filter(|p| p.iter().any(|&c| c > 40)).count();
+    assert!(lit > rgb.len() / 100, "{name}: only {lit} lit pixels");
+}
+
+#[test]
+fn lrt_matches_the_cpu_reference_with_spectral_colour() {
+    let Some(ctx) = context_or_skip("lrt_matches_the_cpu_reference_with_spectral_colour") else {
+        return;
+    };
+    for (builtin, effects) in builtin_scenes()
+        .iter()
+        .zip([Effects::Doppler, Effects::Searchlight].into_iter().cycle())
+    {
+        let (mut scene, _) = builtin.build().unwrap();
+        scene.set_effects(effects);
+        scene.colour = SurfaceColour::Spectral;
+        scene.exposure = 1.5;
+        assert_spectral_lrt_agrees(&ctx, builtin.name, &scene);
+    }
+    // An emitter beside a surface with band constants, both moving.
+    let text = r#"
+        name = "glow"
+        [observer]
+        position = [0.0, -6.0, 0.5]
+        look_at = [0.0, 0.0, 0.0]
+        [render]
+        colour = "spectral"
+        exposure = 2.0
+        [[object]]
+        shape = { type = "sphere", radius = 1.0, segments = 24 }
+        emission = { temperature_k = 3000, brightness = 0.7 }
+        beta = [0.0, -0.6, 0.0]
+        offset = [-1.5, -3.7, 0.0]
+        [[object]]
+        shape = { type = "cube", size = 1.5 }
+        texture = { type = "checker", squares = 4, colors = [[0.9, 0.1, 0.1], [0.1, 0.2, 0.9]] }
+        infrared = 0.9
+        ultraviolet = 0.1
+        beta = [0.0, -0.5, 0.0]
+        offset = [1.5, -3.1, 0.0]
+    "#;
+    let (scene, _) = SceneDescription::from_toml_str(text, "glow")
+        .unwrap()
+        .build(std::path::Path::new("/"))
+        .unwrap();
+    assert_spectral_lrt_agrees(&ctx, "glow", &scene);
     ctx.take_errors().unwrap();
 }
 

@@ -10,7 +10,8 @@ use naga::proc::Layouter;
 use naga::{Module, ScalarKind, TypeInner};
 use srt_gpu::types::{
     EffectsCode, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuPhysicsProbeInput,
-    GpuPhysicsProbeOutput, GpuVertex, ObjectUniforms, PartFlags, PartUniforms,
+    GpuPhysicsProbeOutput, GpuSpectralProbeInput, GpuSpectralProbeOutput, GpuStar, GpuVertex,
+    ObjectUniforms, PartFlags, PartUniforms, SkyUniforms, SurfaceColourCode, ToneMapCode,
 };
 
 /// What a member's components are, as both sides can tell.
@@ -45,6 +46,12 @@ impl HasLeaf for EffectsCode {
     const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for FootprintCode {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for SurfaceColourCode {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for ToneMapCode {
     const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for PartFlags {
@@ -95,13 +102,17 @@ macro_rules! twin {
 fn table() -> Vec<Twin> {
     vec![
         twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
-        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, effects, footprint_shape, depth_scale, padding }),
-        twin!(ObjectUniforms => "ObjectUniforms" { frame, style }),
+        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, padding }),
+        twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
         twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, padding }),
+        twin!(GpuStar => "Star" { direction_temperature, magnitude }),
+        twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
         twin!(GpuPhysicsProbeOutput => "PhysicsProbeOutput" { to_observer, to_rest, emission_event, apparent_position, apparent_tangent, aberrate, ray_origin, ray_direction, scalars }),
+        twin!(GpuSpectralProbeInput => "SpectralProbeInput" { rgb_temperature, factors, bands }),
+        twin!(GpuSpectralProbeOutput => "SpectralProbeOutput" { reflected, emitted }),
     ]
 }
 

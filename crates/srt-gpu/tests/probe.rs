@@ -237,3 +237,28 @@ fn lut_sample_matches_the_cpu_table() {
     }
     ctx.take_errors().unwrap();
 }
+
+#[test]
+fn spectral_kernels_match_the_cpu() {
+    let Some(ctx) = srt_gpu::context_or_skip("spectral_kernels_match_the_cpu") else {
+        return;
+    };
+    let cases = probe::spectral_seeded_cases(0x5eed, 512);
+    let results = probe::run_spectral_probe(&ctx, &cases).unwrap();
+    let [reflected, emitted] = probe::compare_spectral(&cases, &results);
+    println!("spectral: reflected {reflected:?}, emitted {emitted:?}");
+    for (what, (worst, case)) in [("reflected", reflected), ("emitted", emitted)] {
+        assert!(
+            worst <= probe::SPECTRAL_TOLERANCE,
+            "{what}: {worst:.3e} at {:?}: GPU {:?}, CPU {:?}",
+            cases[case],
+            results[case],
+            cases[case].reference()
+        );
+    }
+    // The cases are not all black: the comparison is not vacuous.
+    let lit = results.iter().filter(|r| r[0].max_element() > 0.1).count();
+    assert!(lit > cases.len() / 4, "only {lit} lit cases");
+    assert!(probe::run_spectral_probe(&ctx, &[]).unwrap().is_empty());
+    ctx.take_errors().unwrap();
+}

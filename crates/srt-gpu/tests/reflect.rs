@@ -15,6 +15,7 @@ use srt_gpu::pipelines::{BindGroupSpec, PipelineSpec, Slot};
 use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
     EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode, PartFlags,
+    SurfaceColourCode, ToneMapCode,
 };
 
 /// Every WGSL const with a Rust twin, and the twin's value.
@@ -23,6 +24,10 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("EFFECTS_GEOMETRY", EffectsCode::GEOMETRY.0),
         ("EFFECTS_DOPPLER", EffectsCode::DOPPLER.0),
         ("EFFECTS_SEARCHLIGHT", EffectsCode::SEARCHLIGHT.0),
+        ("SURFACE_COLOUR_PAPER", SurfaceColourCode::PAPER.0),
+        ("SURFACE_COLOUR_SPECTRAL", SurfaceColourCode::SPECTRAL.0),
+        ("TONE_MAP_LUMINANCE", ToneMapCode::LUMINANCE.0),
+        ("TONE_MAP_SEARCHLIGHT", ToneMapCode::SEARCHLIGHT.0),
         ("FOOTPRINT_HULL", FootprintCode::HULL.0),
         ("FOOTPRINT_RECTANGLE", FootprintCode::RECTANGLE.0),
         ("PART_TEXTURED", PartFlags::TEXTURED.0),
@@ -34,7 +39,13 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 3] = ["EFFECTS_", "FOOTPRINT_", "PART_"];
+const SHARED_FAMILIES: [&str; 5] = [
+    "EFFECTS_",
+    "FOOTPRINT_",
+    "PART_",
+    "SURFACE_COLOUR_",
+    "TONE_MAP_",
+];
 
 fn parse(name: &str, source: &str) -> (Module, ModuleInfo) {
     let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| {
@@ -255,7 +266,7 @@ fn overrides_get_their_values_from_rust_and_are_used() {
         }
         println!("{}: overrides {:?}", shader.name, shader.overrides);
     }
-    assert_eq!(compute_shaders, 2, "proxy and probe");
+    assert_eq!(compute_shaders, 3, "proxy, probe and sky");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -425,6 +436,7 @@ fn all_specs() -> Vec<PipelineSpec> {
     let mut specs = srt_gpu::pipelines::specs(false).to_vec();
     specs.extend(srt_gpu::pipelines::specs(true));
     specs.extend(srt_gpu::probe::specs());
+    specs.extend(srt_gpu::pipelines::sky_specs());
     specs
 }
 
@@ -433,8 +445,9 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        10,
-        "proxy, lrt visibility, lrt shading, polygon (twice: without and with counting) and two probes"
+        13,
+        "proxy, lrt visibility, lrt shading, polygon (twice: without and with counting), three \
+         probes and the sky's two passes"
     );
     let mut failures = Vec::new();
     for spec in &specs {

@@ -35,6 +35,9 @@ mod observer;
 
 pub use event::{Event, minkowski_interval};
 pub use frame::{Frame, FrameError, RestRay};
-pub use light::{LightVector, aberrate, doppler_factor, reflection_doppler};
+pub use light::{
+    LightVector, aberrate, distant_source_image, doppler_factor, receiver_doppler,
+    reflection_doppler,
+};
 pub use lorentz::{compose_velocities, lorentz_factor, lorentz_matrix, rapidity, validate_beta};
 pub use observer::{MovingObserver, Poincare, RelativeFrame, boost_and_rotation};

@@ -72,6 +72,30 @@ pub fn aberrate(beta: DVec3, direction_rest: DVec3) -> DVec3 {
     spatial / (gamma * (1.0 + b_dot_n))
 }
 
+/// Doppler factor D = ω_R / ω_S = γ (1 − β·n) with which a receiver moving with `beta` through
+/// S sees light that propagates along the unit vector `propagation` (given in S) from a source
+/// at rest in S: the time-like part of Eq. 3, ω′ = γ ω (1 − β·n). It is the first factor of
+/// Eq. 17 ([`reflection_doppler`] = this × [`doppler_factor`]`(beta, outgoing)`).
+#[must_use]
+pub fn receiver_doppler(beta: DVec3, propagation: DVec3) -> f64 {
+    lorentz_factor(beta) * (1.0 - beta.dot(propagation))
+}
+
+/// Where a source at infinity is seen from S, and with which Doppler factor: a star of a sky at
+/// rest in a frame S′ that moves with `beta` relative to S, in the unit direction
+/// `direction_rest` (observer → star, in S′).
+///
+/// Its light propagates along −`direction_rest` in S′; Eq. 4 ([`aberrate`]) gives the
+/// propagation direction n in S, the star is seen in the direction −n, and
+/// D = [`doppler_factor`]`(beta, n)`. For an observer moving with speed b through the sky's frame
+/// (β = −b·û) and a star at angle θ from û, the star is seen at θ′ with
+/// cos θ′ = (cos θ + b)/(1 + b cos θ) and D = γ(1 + b cos θ).
+#[must_use]
+pub fn distant_source_image(beta: DVec3, direction_rest: DVec3) -> (DVec3, f64) {
+    let propagation = aberrate(beta, -direction_rest).normalize();
+    (-propagation, doppler_factor(beta, propagation))
+}
+
 /// Combined Doppler factor of light from a source at rest in S that is reflected by a surface
 /// moving with `beta` and then received by an observer at rest in S (Eq. 17).
 ///
@@ -97,6 +121,29 @@ mod tests {
         // Source moves along -x towards an observer at the origin; light travels along -x too.
         let d = doppler_factor(DVec3::new(-b, 0.0, 0.0), DVec3::new(-1.0, 0.0, 0.0));
         assert_relative_eq!(d, ((1.0 + b) / (1.0 - b)).sqrt(), epsilon = 1e-15);
+    }
+
+    #[test]
+    fn eq_17_is_the_product_of_the_receiver_and_source_factors() {
+        let beta = DVec3::new(0.3, -0.5, 0.2);
+        let incident = DVec3::new(1.0, 2.0, -0.5).normalize();
+        let outgoing = DVec3::new(-0.2, 0.4, 1.0).normalize();
+        assert_relative_eq!(
+            receiver_doppler(beta, incident) * doppler_factor(beta, outgoing),
+            reflection_doppler(beta, incident, outgoing),
+            epsilon = 1e-14
+        );
+    }
+
+    #[test]
+    fn stars_crowd_ahead_of_a_moving_observer() {
+        // Observer moving along +x at b through the sky: a star at 90° is seen ahead, at
+        // cos θ′ = b, with D = γ.
+        let b = 0.6;
+        let (seen, d) = distant_source_image(DVec3::new(-b, 0.0, 0.0), DVec3::Y);
+        assert_relative_eq!(seen.x, b, epsilon = 1e-15);
+        assert_relative_eq!(seen.length(), 1.0, epsilon = 1e-15);
+        assert_relative_eq!(d, 1.25, epsilon = 1e-15);
     }
 
     #[test]

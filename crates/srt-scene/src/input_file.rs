@@ -23,6 +23,9 @@ pub const MAX_MODEL_FILE_BYTES: u64 = 256 * MIB;
 /// The largest texture image file.
 pub const MAX_IMAGE_FILE_BYTES: u64 = 64 * MIB;
 
+/// The most bytes a star file may have (room for a million stars of 60 characters).
+pub const MAX_STAR_FILE_BYTES: u64 = 64 * MIB;
+
 /// What a file is read as; decides its size cap and what messages call it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FileKind {
@@ -32,6 +35,8 @@ pub enum FileKind {
     Model,
     /// A texture image ([`MAX_IMAGE_FILE_BYTES`]).
     Image,
+    /// A CSV file of stars ([`MAX_STAR_FILE_BYTES`]).
+    Stars,
 }
 
 impl FileKind {
@@ -42,6 +47,7 @@ impl FileKind {
             Self::Scene => MAX_SCENE_FILE_BYTES,
             Self::Model => MAX_MODEL_FILE_BYTES,
             Self::Image => MAX_IMAGE_FILE_BYTES,
+            Self::Stars => MAX_STAR_FILE_BYTES,
         }
     }
 
@@ -52,6 +58,7 @@ impl FileKind {
             Self::Scene => "scene file",
             Self::Model => "model file",
             Self::Image => "texture image",
+            Self::Stars => "star file",
         }
     }
 }

@@ -15,6 +15,7 @@ pub mod placement;
 pub mod resolve;
 pub mod scene;
 pub mod shapes;
+pub mod sky;
 pub mod textures;
 pub mod view;
 
@@ -27,5 +28,8 @@ pub use description::{
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
-pub use scene::{Effects, Light, Object, Observer, Scene, Shading};
+pub use scene::{
+    Effects, Emission, Light, Object, Observer, Scene, Shading, SurfaceColour, SurfaceOptics,
+};
+pub use sky::{Sky, SkyError, Star};
 pub use view::{View, ViewError};

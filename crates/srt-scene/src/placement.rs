@@ -84,6 +84,7 @@ impl SceneDescription {
             }),
             render: RenderDescription::default(),
             objects: vec![object],
+            sky: None,
         }
     }
 }

@@ -3,6 +3,7 @@
 //! moves through its world frame is brought into S by
 //! [`SceneDescription::build`](crate::SceneDescription::build).
 
+use crate::sky::Sky;
 use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
 use glam::{DMat4, DVec2, DVec3};
@@ -51,6 +52,58 @@ impl Effects {
             Self::Searchlight => ToneMap::Searchlight,
         }
     }
+}
+
+/// How the colour of a lit surface is computed (docs/colour.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SurfaceColour {
+    /// The paper's shortcut (§4.2, Eq. 18): the light's colour at D·T, scaled by the surface's
+    /// grey value: a red and a blue surface shift alike.
+    #[default]
+    Paper,
+    /// Every reflectance is a spectrum (Jakob & Hanika 2019), lit by the black body the surface
+    /// sees (D_in·T) and shifted to the observer (D_out): colours move through the spectrum.
+    Spectral,
+}
+
+impl SurfaceColour {
+    /// Both ways, the default first.
+    pub const ALL: [Self; 2] = [Self::Paper, Self::Spectral];
+
+    /// The name used in scene files and on the command line.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Paper => "paper",
+            Self::Spectral => "spectral",
+        }
+    }
+
+    /// The way called `name`, if any.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == name)
+    }
+}
+
+/// A surface that glows as a black body, at rest in its object's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Emission {
+    /// Black-body temperature in kelvin (> 0).
+    pub temperature_k: f64,
+    /// Brightness relative to the luminance tone map's white (≥ 0).
+    pub brightness: f64,
+}
+
+/// What an object's surfaces do beyond their reflectance colour.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SurfaceOptics {
+    /// Reflectance below 380 nm (in [0, 1]), replacing the spectral model's extrapolation there.
+    pub ultraviolet: Option<f64>,
+    /// Reflectance above 780 nm (in [0, 1]), replacing the spectral model's extrapolation there.
+    pub infrared: Option<f64>,
+    /// The surfaces glow instead of reflecting the light.
+    pub emission: Option<Emission>,
 }
 
 /// The observer: a pinhole camera at rest in S, observing at time `ct`.
@@ -147,6 +200,8 @@ pub struct Object {
     pub frame: Frame,
     /// Draw triangle edges of this width (in S′ units) instead of the texture (Fig. 10 bottom).
     pub wireframe: Option<f64>,
+    /// Ultraviolet and infrared reflectances, emission.
+    pub optics: SurfaceOptics,
 }
 
 impl Object {
@@ -176,6 +231,12 @@ pub struct Scene {
     pub tone_map: ToneMap,
     /// Display colour (sRGB-encoded, [0, 1]) where no object is hit.
     pub background: DVec3,
+    /// Stars at infinity, drawn where no object is hit (none by default).
+    pub sky: Sky,
+    /// How lit surfaces are coloured.
+    pub colour: SurfaceColour,
+    /// Multiplier on the light before the tone map (spectral colour; 1 for the paper's).
+    pub exposure: f64,
 }
 
 impl Scene {

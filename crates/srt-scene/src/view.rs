@@ -13,6 +13,7 @@ use srt_physics::{Frame, FrameError};
 
 use crate::mesh::MeshError;
 use crate::scene::{Object, Scene};
+use crate::sky::Sky;
 
 /// Which picture of the scene to render.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -75,7 +76,23 @@ impl View {
         for object in &mut viewed.objects {
             self.apply_to_object(object, ct)?;
         }
+        self.apply_to_sky(&mut viewed.sky);
         Ok(viewed)
+    }
+
+    /// Brings the stars into this view (not [`View::Seen`]): at rest in S, so without
+    /// aberration and Doppler shift; a star at infinity is where its direction in W points
+    /// (Newtonian) or, measured, where the contraction by 1/γ along W's velocity takes it.
+    fn apply_to_sky(self, sky: &mut Sky) {
+        if self == Self::Measured
+            && let Ok(world) = Frame::new(sky.beta, DVec3::ZERO)
+        {
+            let shape = measured_shape(&world, 0.0);
+            for star in &mut sky.stars {
+                star.direction = (shape * star.direction).normalize();
+            }
+        }
+        sky.beta = DVec3::ZERO;
     }
 
     /// Replaces `object` by its static picture at S time `ct` (not [`View::Seen`]).

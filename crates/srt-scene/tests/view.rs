@@ -144,3 +144,32 @@ fn measured_normals_stay_perpendicular_to_the_contracted_faces() {
     }
     assert!(checked > 100, "the cube's faces are flat: {checked}");
 }
+
+#[test]
+fn the_sky_is_at_rest_in_the_static_views_and_contracted_when_measured() {
+    let flythrough = find_builtin("flythrough").unwrap().build().unwrap().0;
+    let beta = flythrough.sky.beta;
+    assert!(beta.length() > 0.8, "the observer flies through the stars");
+    let gamma = 1.0 / (1.0 - beta.length_squared()).sqrt();
+    let along = beta.normalize();
+    assert_eq!(View::Seen.apply(&flythrough).unwrap().sky, flythrough.sky);
+    let newtonian = View::Newtonian.apply(&flythrough).unwrap().sky;
+    let measured = View::Measured.apply(&flythrough).unwrap().sky;
+    assert_eq!((newtonian.beta, measured.beta), (DVec3::ZERO, DVec3::ZERO));
+    for ((star, n), m) in flythrough
+        .sky
+        .stars
+        .iter()
+        .zip(&newtonian.stars)
+        .zip(&measured.stars)
+    {
+        assert_eq!(n.direction, star.direction);
+        // Measured: the component along W's velocity shrinks by 1/γ, the rest stays.
+        let contracted = star.direction - (1.0 - 1.0 / gamma) * star.direction.dot(along) * along;
+        assert!((m.direction - contracted.normalize()).length() < 1e-12);
+        assert_eq!(
+            (m.temperature_k, m.magnitude),
+            (star.temperature_k, star.magnitude)
+        );
+    }
+}

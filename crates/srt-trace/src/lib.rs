@@ -21,9 +21,11 @@ pub mod compare;
 mod intersect;
 mod render;
 mod shade;
+mod sky;
 mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
 pub use shade::{Illumination, SurfacePoint, grey_value, shade};
+pub use sky::{StarImage, project, star_colour, star_image, star_layer, tent_splat};
 pub use texture::sample_trilinear;

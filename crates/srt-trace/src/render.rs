@@ -18,6 +18,7 @@ use srt_scene::{Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::shade::{Illumination, SurfacePoint, shade};
+use crate::sky::star_layer;
 use crate::texture::sample_trilinear;
 use srt_scene::mip::MipChain;
 
@@ -248,6 +249,19 @@ impl<'a> Tracer<'a> {
         best
     }
 
+    /// The closest surface seen through the centre of pixel (`x`, `y`) (0-based, from the
+    /// top-left corner) of a `width` × `height` image: the viewing ray [`Tracer::render`] casts
+    /// for the pixel's first sample. `None` for the background or a pixel outside the image.
+    #[must_use]
+    pub fn hit_at_pixel(&self, width: u32, height: u32, x: u32, y: u32) -> Option<Hit> {
+        if x >= width || y >= height {
+            return None;
+        }
+        let centre = sample_offsets(1)[0];
+        let (sx, sy) = (f64::from(x) + centre.x, f64::from(y) + centre.y);
+        self.trace(pixel_direction(self.scene, width, height, sx, sy))
+    }
+
     /// Display colour of a hit. `neighbour_directions` are the viewing directions one pixel to
     /// the right and one pixel down, for texture filtering (ray differentials).
     #[must_use]
@@ -308,12 +322,15 @@ impl<'a> Tracer<'a> {
             shading: self.scene.shading,
             effects: self.scene.effects,
             lut: &self.lut,
+            colour: self.scene.colour,
+            exposure: self.scene.exposure,
         };
         let point = SurfacePoint {
             beta: object.frame.beta(),
             normal_rest,
             apparent_position: hit.emission.position,
             albedo,
+            optics: self.scene.objects[hit.object].optics,
         };
         shade(&point, &illumination)
     }
@@ -332,16 +349,9 @@ impl<'a> Tracer<'a> {
             height,
             samples,
         } = settings;
-        let aspect = f64::from(width) / f64::from(height);
-        let observer = &self.scene.observer;
-        let direction_at = |x: f64, y: f64| {
-            let ndc = DVec2::new(
-                2.0 * x / f64::from(width) - 1.0,
-                1.0 - 2.0 * y / f64::from(height),
-            );
-            observer.view_direction(ndc, aspect)
-        };
+        let direction_at = |x: f64, y: f64| pixel_direction(self.scene, width, height, x, y);
         let offsets = sample_offsets(samples.max(1));
+        let stars = star_layer(self.scene, &self.lut, width, height);
         let finished = AtomicU32::new(0);
         let rows: Vec<(Vec<DVec3>, Vec<u32>)> = (0..height)
             .into_par_iter()
@@ -357,9 +367,19 @@ impl<'a> Tracer<'a> {
                         if k == 0 {
                             first_object = hit.map_or(0, |h| h.object as u32 + 1);
                         }
-                        sum += hit.map_or(self.scene.background, |h| {
-                            self.shade(&h, [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)])
-                        });
+                        sum += hit.map_or_else(
+                            || {
+                                (self.scene.background
+                                    + stars[y as usize * width as usize + x as usize])
+                                    .clamp(DVec3::ZERO, DVec3::ONE)
+                            },
+                            |h| {
+                                self.shade(
+                                    &h,
+                                    [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)],
+                                )
+                            },
+                        );
                     }
                     colours.push(sum / offsets.len() as f64);
                     coverage.push(first_object);
@@ -384,6 +404,17 @@ impl<'a> Tracer<'a> {
     }
 }
 
+/// The viewing direction (in S, unnormalised) through the point (`x`, `y`) of a `width` ×
+/// `height` image of `scene`, in pixels from the top-left corner (pixel centres at +0.5).
+fn pixel_direction(scene: &Scene, width: u32, height: u32, x: f64, y: f64) -> DVec3 {
+    let aspect = f64::from(width) / f64::from(height);
+    let ndc = DVec2::new(
+        2.0 * x / f64::from(width) - 1.0,
+        1.0 - 2.0 * y / f64::from(height),
+    );
+    scene.observer.view_direction(ndc, aspect)
+}
+
 /// Sub-pixel sample positions in [0, 1)²: the pixel centre first, then the R2 low-discrepancy
 /// sequence (Roberts 2018), which is deterministic and well spread for any count.
 #[must_use]
@@ -393,4 +424,45 @@ pub fn sample_offsets(count: u32) -> Vec<DVec2> {
     (0..count)
         .map(|k| (DVec2::splat(0.5) + f64::from(k) * A).fract())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The probe's ray is the render's: every pixel's hit is the object the render covers it
+    /// with (its first sample is the pixel centre), and pixels outside the image hit nothing.
+    #[test]
+    fn a_pixel_hits_what_the_render_shows_there() {
+        let (scene, _) = srt_scene::builtin::find_builtin("fig7")
+            .unwrap()
+            .build()
+            .unwrap();
+        let tracer = Tracer::new(&scene);
+        let (width, height) = (24, 16);
+        let image = tracer.render(
+            RenderSettings {
+                width,
+                height,
+                samples: 1,
+            },
+            &|_| {},
+        );
+        let mut hits = 0;
+        for y in 0..height {
+            for x in 0..width {
+                let hit = tracer.hit_at_pixel(width, height, x, y);
+                let covered = image.coverage[(y * width + x) as usize];
+                assert_eq!(
+                    hit.map_or(0, |h| h.object as u32 + 1),
+                    covered,
+                    "({x}, {y})"
+                );
+                hits += u32::from(hit.is_some());
+            }
+        }
+        assert!(hits > 0 && hits < width * height, "{hits} pixels hit");
+        assert!(tracer.hit_at_pixel(width, height, width, 0).is_none());
+        assert!(tracer.hit_at_pixel(0, 0, 0, 0).is_none());
+    }
 }

@@ -1,14 +1,25 @@
 //! Relativistic Phong shading of one surface point (§4.2, Eq. 17–18, Fig. 9).
 //!
 //! All vectors handed in are unit vectors. The light and the observer rest in S; the surface
-//! rests in S′ and moves with β. Directions are aberrated into S′ (Eq. 3–4) for the Phong terms,
-//! the combined Doppler factor (Eq. 17) shifts the light's Planck temperature, and the colour is
-//! C = f_ar · C_sRGB(D·T_light) with f_ar = ½(G + 1)(f_amb + f_diff + f_spec) (Eq. 18).
+//! rests in S′ and moves with β. Directions are aberrated into S′ (Eq. 3–4) for the Phong terms.
+//! Two ways to colour (docs/colour.md):
+//! - the paper's (`SurfaceColour::Paper`): the combined Doppler factor (Eq. 17) shifts the
+//!   light's Planck temperature, and C = f_ar · C_sRGB(D·T_light) with
+//!   f_ar = ½(G + 1)(f_amb + f_diff + f_spec) (Eq. 18);
+//! - spectral (`SurfaceColour::Spectral`): the surface colour becomes a reflectance spectrum
+//!   (Jakob & Hanika 2019), lit by the black body at D_in·T the surface sees and shifted by D_out
+//!   to the observer (Eq. 17 split into its two factors), with f_amb + f_diff + f_spec as the
+//!   exposure of `srt_color::reflected_display_rgb`.
+//!
+//! An emitting surface shows the black body at D_out·T_e instead.
 
 use glam::{DVec3, DVec4};
-use srt_color::TemperatureLut;
-use srt_physics::{aberrate, reflection_doppler};
-use srt_scene::{Effects, Shading};
+use srt_color::{
+    Reflectance, TemperatureLut, emitted_display_rgb, reflected_display_rgb,
+    srgb_coefficient_table, srgb_decode,
+};
+use srt_physics::{aberrate, doppler_factor, receiver_doppler};
+use srt_scene::{Effects, Emission, Shading, SurfaceColour, SurfaceOptics};
 
 /// What the shading of one point needs to know about the surface there.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -21,6 +32,8 @@ pub struct SurfacePoint {
     pub apparent_position: DVec3,
     /// Surface colour (texel × base colour × vertex colour), RGBA in [0, 1].
     pub albedo: DVec4,
+    /// The object's ultraviolet and infrared reflectances and emission.
+    pub optics: SurfaceOptics,
 }
 
 /// The light and observer side of shading, fixed per image.
@@ -38,6 +51,10 @@ pub struct Illumination<'a> {
     pub effects: Effects,
     /// Colour table C_sRGB(T) (already chosen for the tone map).
     pub lut: &'a TemperatureLut,
+    /// How surfaces are coloured.
+    pub colour: SurfaceColour,
+    /// Multiplier on the light before the tone map (spectral colour).
+    pub exposure: f64,
 }
 
 /// Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.
@@ -51,12 +68,17 @@ pub fn grey_value(colour: DVec4) -> f64 {
 pub fn shade(point: &SurfacePoint, light: &Illumination<'_>) -> DVec3 {
     let incident = (point.apparent_position - light.light_position).normalize();
     let outgoing = (light.observer - point.apparent_position).normalize();
-    let doppler = match light.effects {
-        Effects::Geometry => 1.0,
-        Effects::Doppler | Effects::Searchlight => {
-            reflection_doppler(point.beta, incident, outgoing)
-        }
+    // Eq. 17 in its two factors: light → surface and surface → observer.
+    let (d_in, d_out) = match light.effects {
+        Effects::Geometry => (1.0, 1.0),
+        Effects::Doppler | Effects::Searchlight => (
+            receiver_doppler(point.beta, incident),
+            doppler_factor(point.beta, outgoing),
+        ),
     };
+    if let Some(emission) = point.optics.emission {
+        return emitted(emission, d_out, light);
+    }
     // Phong in S′: directions towards the light and towards the observer, aberrated (Eq. 4).
     let to_light = -aberrate(-point.beta, incident).normalize();
     let to_observer = aberrate(-point.beta, outgoing).normalize();
@@ -77,8 +99,63 @@ pub fn shade(point: &SurfacePoint, light: &Illumination<'_>) -> DVec3 {
     } else {
         (0.0, 0.0)
     };
-    let f_ar =
-        0.5 * (grey_value(point.albedo) + 1.0) * (light.shading.ambient + diffuse + specular);
-    let [r, g, b, _] = light.lut.sample(doppler * light.light_temperature_k);
-    (f_ar * DVec3::new(f64::from(r), f64::from(g), f64::from(b))).clamp(DVec3::ZERO, DVec3::ONE)
+    let geometry = light.shading.ambient + diffuse + specular;
+    match light.colour {
+        SurfaceColour::Paper => {
+            let f_ar = 0.5 * (grey_value(point.albedo) + 1.0) * geometry;
+            f_ar * lut_colour(light.lut, d_in * d_out * light.light_temperature_k)
+        }
+        SurfaceColour::Spectral => {
+            let linear = point.albedo.truncate().map(srgb_decode);
+            let reflectance = srgb_coefficient_table()
+                .lookup(linear.clamp(DVec3::ZERO, DVec3::ONE))
+                .and_then(|polynomial| {
+                    Reflectance::with_bands(
+                        polynomial,
+                        point.optics.ultraviolet,
+                        point.optics.infrared,
+                    )
+                });
+            // A surface that reflects nothing (no light on it, a zero exposure), or a
+            // temperature no table reaches, is black.
+            reflectance
+                .and_then(|r| {
+                    reflected_display_rgb(
+                        light.lut.tone_map(),
+                        &r,
+                        light.light_temperature_k,
+                        d_in,
+                        d_out,
+                        light.exposure * geometry,
+                    )
+                })
+                .unwrap_or(DVec3::ZERO)
+        }
+    }
+    .clamp(DVec3::ZERO, DVec3::ONE)
+}
+
+/// The colour of an emitting surface seen with Doppler factor `d_out`: the black body at
+/// D_out·T_e, `brightness` times the luminance tone map's white — through the colour table with
+/// the paper's colour, computed from the spectrum with spectral colour.
+fn emitted(emission: Emission, d_out: f64, light: &Illumination<'_>) -> DVec3 {
+    let apparent = d_out * emission.temperature_k;
+    match light.colour {
+        SurfaceColour::Paper => emission.brightness * lut_colour(light.lut, apparent),
+        SurfaceColour::Spectral => emitted_display_rgb(
+            light.lut.tone_map(),
+            emission.temperature_k,
+            emission.brightness,
+            d_out,
+            light.exposure,
+        )
+        .unwrap_or(DVec3::ZERO),
+    }
+    .clamp(DVec3::ZERO, DVec3::ONE)
+}
+
+/// The colour table's colour C_sRGB(T).
+pub(crate) fn lut_colour(lut: &TemperatureLut, temperature_k: f64) -> DVec3 {
+    let [r, g, b, _] = lut.sample(temperature_k);
+    DVec3::new(f64::from(r), f64::from(g), f64::from(b))
 }

@@ -6,7 +6,10 @@ use glam::{DVec2, DVec3};
 use srt_color::ToneMap;
 use srt_physics::{Event, Frame, aberrate};
 use srt_scene::shapes::{cube, uv_sphere};
-use srt_scene::{Effects, Light, Material, Mesh, Object, Observer, Part, Scene, Shading};
+use srt_scene::{
+    Effects, Light, Material, Mesh, Object, Observer, Part, Scene, Shading, Sky, SurfaceColour,
+    SurfaceOptics,
+};
 use srt_trace::{RenderSettings, Tracer, grey_value};
 
 fn scene(objects: Vec<Object>, observer: Observer) -> Scene {
@@ -22,6 +25,9 @@ fn scene(objects: Vec<Object>, observer: Observer) -> Scene {
         effects: Effects::Geometry,
         tone_map: ToneMap::Luminance,
         background: DVec3::ZERO,
+        sky: Sky::default(),
+        colour: SurfaceColour::Paper,
+        exposure: 1.0,
     }
 }
 
@@ -37,6 +43,7 @@ fn object(mesh: Mesh, beta: DVec3, offset: DVec3, base_color: [f32; 4]) -> Objec
         }],
         frame: Frame::new(beta, offset).unwrap(),
         wireframe: None,
+        optics: SurfaceOptics::default(),
     }
 }
 

@@ -5,6 +5,7 @@ mod fig4;
 mod fig5;
 mod fig6;
 mod fig8;
+mod sky;
 
 use std::path::{Path, PathBuf};
 
@@ -16,5 +17,6 @@ pub fn write_all(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     written.extend(fig6::write(out_dir)?);
     written.extend(fig8::write(out_dir)?);
     written.extend(colorchecker::write(out_dir)?);
+    written.extend(sky::write(out_dir)?);
     Ok(written)
 }

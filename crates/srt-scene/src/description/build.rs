@@ -16,7 +16,8 @@ use srt_physics::{Event, Frame, FrameError, MovingObserver, RelativeFrame};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
-    ObjectDescription, ObserverDescription, SceneDescription, ShapeDescription, TextureDescription,
+    ObjectDescription, ObserverDescription, SceneDescription, ShapeDescription, SkyDescription,
+    TextureDescription,
 };
 use super::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
 use crate::assets;
@@ -24,7 +25,8 @@ use crate::input_file::{self, FileKind};
 use crate::limits::{Budget, MAX_COORDINATE, OverBudget};
 use crate::mesh::{Material, Mesh, MeshError, Part, Texture};
 use crate::message::one_line;
-use crate::scene::{Light, Object, Observer, Scene, Shading};
+use crate::scene::{Emission, Light, Object, Observer, Scene, Shading, SurfaceOptics};
+use crate::sky::{self, Sky};
 use crate::{shapes, textures};
 
 /// What building one scene carries from object to object.
@@ -106,6 +108,11 @@ impl SceneDescription {
             .map(|(index, object)| object.build(index, &motion, &mut builder))
             .collect::<Result<Vec<_>, _>>()
             .map_err(fail)?;
+        let sky = self
+            .sky
+            .as_ref()
+            .map_or_else(|| Ok(Sky::default()), |d| d.build(base_dir, &motion))
+            .map_err(fail)?;
         let mut warnings: Vec<String> = builder.warnings.iter().map(|w| one_line(w)).collect();
         if objects.is_empty() {
             warnings.push("the scene has no objects".to_owned());
@@ -127,6 +134,9 @@ impl SceneDescription {
                 .tone_map
                 .unwrap_or_else(|| render.effects.default_tone_map()),
             background: DVec3::from_array(render.background),
+            sky,
+            colour: render.colour,
+            exposure: render.exposure,
         };
         Ok((scene, warnings))
     }
@@ -171,7 +181,57 @@ impl SceneDescription {
     }
 }
 
+impl SkyDescription {
+    /// The stars, seen from the observer's frame: the built-in field's and the file's, resting
+    /// in W, which moves relative to the observer as an object at rest in W does
+    /// ([`MovingObserver::relative_frame`]: velocity −β_o, no rotation).
+    fn build(&self, base_dir: &Path, observer: &MovingObserver) -> Result<Sky, SceneErrorKind> {
+        let mut stars = sky::star_field(self.star_field);
+        if let Some(path) = &self.stars {
+            let file = match assets::resolve(base_dir, path) {
+                Ok(assets::Resolved::File(file)) => file,
+                Ok(assets::Resolved::Embedded { .. }) | Err(_) => {
+                    return Err(value_error(
+                        "sky.stars",
+                        format!("\"{path}\" is not a star file on disk"),
+                    ));
+                }
+            };
+            stars.extend(sky::read_star_file(&file).map_err(SceneErrorKind::Sky)?);
+            if stars.len() > sky::MAX_STARS {
+                return Err(value_error(
+                    "sky",
+                    format!("has more than {} stars", sky::MAX_STARS),
+                ));
+            }
+        }
+        let world = observer
+            .relative_frame(&Frame::new(DVec3::ZERO, DVec3::ZERO).expect("a frame at rest"))
+            .map_err(|error| {
+                value_error("observer.beta", format!("is not a valid velocity: {error}"))
+            })?;
+        Ok(Sky {
+            beta: world.frame.beta(),
+            stars,
+            saturation_magnitude: self.saturation_magnitude,
+        })
+    }
+}
+
 impl ObjectDescription {
+    /// The object's ultraviolet and infrared reflectances and emission.
+    #[must_use]
+    pub fn optics(&self) -> SurfaceOptics {
+        SurfaceOptics {
+            ultraviolet: self.ultraviolet,
+            infrared: self.infrared,
+            emission: self.emission.map(|e| Emission {
+                temperature_k: e.temperature_k,
+                brightness: e.brightness,
+            }),
+        }
+    }
+
     /// The object's frame relative to `observer` (its `beta` and `offset` are given in W).
     fn relative_frame(&self, observer: &MovingObserver) -> Result<RelativeFrame, FrameError> {
         let world = Frame::new(DVec3::from_array(self.beta), DVec3::from_array(self.offset))?;
@@ -361,6 +421,7 @@ impl ObjectDescription {
             parts,
             frame: relative.frame,
             wireframe: self.wireframe,
+            optics: self.optics(),
         })
     }
 

@@ -120,6 +120,9 @@ pub enum SceneErrorKind {
         /// The largest absolute coordinate (infinite if one is not finite).
         reach: f64,
     },
+    /// The sky's star file could not be read or is not a valid star file (the message names it).
+    #[error("{0}")]
+    Sky(crate::sky::SkyError),
     /// Placing an object's geometry produced an invalid mesh (a transform with huge values).
     #[error("{object}: {error}")]
     Mesh {

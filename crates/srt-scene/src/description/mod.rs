@@ -29,8 +29,9 @@ pub use build::{
 };
 pub use error::{SceneError, SceneErrorKind, line_column};
 pub use model::{
-    LightDescription, ObjectDescription, ObserverDescription, RenderDescription, Scale,
-    SceneDescription, ShapeDescription, TextureDescription,
+    EmissionDescription, LightDescription, ObjectDescription, ObserverDescription,
+    RenderDescription, Scale, SceneDescription, ShapeDescription, SkyDescription,
+    TextureDescription,
 };
 
 /// Up direction of the observer's camera when a scene file gives none: +z.

@@ -16,7 +16,7 @@ use super::{
     DEFAULT_CUBE_SIZE, DEFAULT_CUBE_SUBDIVISIONS, DEFAULT_FOV_Y_DEG, DEFAULT_LIGHT_TEMPERATURE_K,
     DEFAULT_SPHERE_RADIUS, DEFAULT_SPHERE_SEGMENTS, DEFAULT_UP,
 };
-use crate::scene::{Effects, Shading};
+use crate::scene::{Effects, Shading, SurfaceColour};
 #[cfg(doc)]
 use crate::shapes;
 use crate::textures::{DEFAULT_CHECKER_COLORS, DEFAULT_CHECKER_SQUARES};
@@ -43,6 +43,37 @@ pub struct SceneDescription {
     /// The moving objects (`[[object]]` tables).
     #[serde(default, rename = "object", skip_serializing_if = "Vec::is_empty")]
     pub objects: Vec<ObjectDescription>,
+    /// Stars at infinity, at rest in the world frame (`[sky]`); none without it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky: Option<SkyDescription>,
+}
+
+/// An object's `emission`: a black body of `temperature_k`, `brightness` times the luminance
+/// tone map's white.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EmissionDescription {
+    /// Black-body temperature in kelvin (> 0).
+    pub temperature_k: f64,
+    /// Brightness (≥ 0; 1 = the white of the luminance tone map).
+    #[serde(default = "default_brightness")]
+    pub brightness: f64,
+}
+
+/// The `[sky]` table: stars at infinity at rest in the world frame W — the built-in star field,
+/// stars from a CSV file, or both.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SkyDescription {
+    /// Stars of the built-in synthetic star field (0: none).
+    #[serde(default, skip_serializing_if = "is_zero_count")]
+    pub star_field: usize,
+    /// A CSV file of stars (path relative to the scene file; docs/scene-format.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stars: Option<String>,
+    /// A star of this visual magnitude at rest fills one pixel with its full colour.
+    #[serde(default = "default_saturation_magnitude")]
+    pub saturation_magnitude: f64,
 }
 
 /// The `[observer]` table: a pinhole camera moving with `beta` through the world frame W,
@@ -115,6 +146,12 @@ pub struct RenderDescription {
     /// Phong exponent.
     #[serde(default = "default_shininess")]
     pub shininess: f64,
+    /// How lit surfaces are coloured: the paper's shortcut or spectral reflectance.
+    #[serde(default, with = "surface_colour_name")]
+    pub colour: SurfaceColour,
+    /// Multiplier on the light before the tone map (> 0; only with spectral colour).
+    #[serde(default = "default_exposure")]
+    pub exposure: f64,
 }
 
 impl Default for RenderDescription {
@@ -128,6 +165,8 @@ impl Default for RenderDescription {
             diffuse: shading.diffuse,
             specular: shading.specular,
             shininess: shading.shininess,
+            colour: SurfaceColour::default(),
+            exposure: 1.0,
         }
     }
 }
@@ -170,6 +209,15 @@ pub struct ObjectDescription {
     /// Rest-frame scale (a number or one factor per axis, all > 0), applied first.
     #[serde(default, skip_serializing_if = "Scale::is_one")]
     pub scale: Scale,
+    /// Reflectance below 380 nm, in [0, 1] (spectral colour; default: the model's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ultraviolet: Option<f64>,
+    /// Reflectance above 780 nm, in [0, 1] (spectral colour; default: the model's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub infrared: Option<f64>,
+    /// The object glows as a black body instead of reflecting the light.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub emission: Option<EmissionDescription>,
 }
 
 /// The `shape` of an object.
@@ -407,6 +455,29 @@ mod effects_name {
     }
 }
 
+mod surface_colour_name {
+    //! Serde for [`SurfaceColour`] by its scene-file name.
+    use serde::{Deserialize, Deserializer, Serializer, de};
+
+    use crate::scene::SurfaceColour;
+
+    pub(super) fn serialize<S: Serializer>(
+        colour: &SurfaceColour,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        s.serialize_str(colour.name())
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<SurfaceColour, D::Error> {
+        let name = String::deserialize(d)?;
+        SurfaceColour::from_name(&name).ok_or_else(|| {
+            de::Error::custom(format!(
+                "unknown surface colour \"{name}\"; expected \"paper\" or \"spectral\""
+            ))
+        })
+    }
+}
+
 mod tone_map_name {
     //! Serde for an optional [`ToneMap`] by its name.
     use serde::{Deserialize, Deserializer, Serializer, de};
@@ -488,6 +559,19 @@ fn default_checker_colors() -> [[f64; 3]; 2] {
 fn is_false(value: &bool) -> bool {
     !*value
 }
+fn default_exposure() -> f64 {
+    1.0
+}
+fn default_brightness() -> f64 {
+    1.0
+}
+fn default_saturation_magnitude() -> f64 {
+    crate::sky::DEFAULT_SATURATION_MAGNITUDE
+}
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_zero_count(value: &usize) -> bool {
+    *value == 0
+}
 fn is_zero3(value: &[f64; 3]) -> bool {
     *value == [0.0; 3]
 }
@@ -508,6 +592,9 @@ impl ObjectDescription {
             translate: [0.0; 3],
             rotate_deg: [0.0; 3],
             scale: Scale::default(),
+            ultraviolet: None,
+            infrared: None,
+            emission: None,
         }
     }
 

@@ -12,6 +12,7 @@ use super::model::{
     TextureDescription,
 };
 use crate::limits::{MAX_COORDINATE, MAX_SCENE_TRIANGLES};
+use crate::scene::SurfaceColour;
 use crate::shapes::{MAX_CUBE_SUBDIVISIONS, MAX_SPHERE_SEGMENTS, MIN_SPHERE_SEGMENTS};
 use crate::textures::MAX_CHECKER_SQUARES;
 
@@ -54,6 +55,27 @@ impl SceneDescription {
             }
         }
         self.render.check()?;
+        if let Some(sky) = &self.sky {
+            if sky.star_field > crate::sky::MAX_STARS {
+                return Err(value_error(
+                    "sky.star_field",
+                    format!(
+                        "must be at most {} stars, got {}",
+                        crate::sky::MAX_STARS,
+                        sky.star_field
+                    ),
+                ));
+            }
+            if !(sky.saturation_magnitude.is_finite() && sky.saturation_magnitude.abs() <= 100.0) {
+                return Err(value_error(
+                    "sky.saturation_magnitude",
+                    format!(
+                        "must be a magnitude between -100 and 100, got {:?}",
+                        sky.saturation_magnitude
+                    ),
+                ));
+            }
+        }
         for (index, object) in self.objects.iter().enumerate() {
             object.check(&object.label(index))?;
         }
@@ -209,7 +231,20 @@ impl RenderDescription {
         non_negative("render.ambient", self.ambient)?;
         non_negative("render.diffuse", self.diffuse)?;
         non_negative("render.specular", self.specular)?;
-        non_negative("render.shininess", self.shininess)
+        non_negative("render.shininess", self.shininess)?;
+        if !(self.exposure.is_finite() && self.exposure > 0.0) {
+            return Err(value_error(
+                "render.exposure",
+                format!("must be a positive number, got {:?}", self.exposure),
+            ));
+        }
+        if self.exposure != 1.0 && self.colour == SurfaceColour::Paper {
+            return Err(value_error(
+                "render.exposure",
+                "needs colour = \"spectral\" (the paper's colour tables have no exposure)",
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -223,6 +258,31 @@ impl ObjectDescription {
             },
         )?;
         coordinates3(&field("offset"), self.offset)?;
+        for (name, value) in [
+            ("ultraviolet", self.ultraviolet),
+            ("infrared", self.infrared),
+        ] {
+            if let Some(value) = value
+                && !(0.0..=1.0).contains(&value)
+            {
+                return Err(value_error(
+                    field(name),
+                    format!("must be a reflectance in [0, 1], got {value:?}"),
+                ));
+            }
+        }
+        if let Some(emission) = &self.emission {
+            if !(emission.temperature_k.is_finite() && emission.temperature_k > 0.0) {
+                return Err(value_error(
+                    field("emission.temperature_k"),
+                    format!(
+                        "must be a positive number of kelvin, got {:?}",
+                        emission.temperature_k
+                    ),
+                ));
+            }
+            non_negative(&field("emission.brightness"), emission.brightness)?;
+        }
         match &self.shape {
             ShapeDescription::Cube { size, subdivisions } => {
                 length(&field("shape.size"), *size)?;

@@ -17,7 +17,7 @@ use openh264::encoder::{
 };
 use openh264::formats::{RgbSliceU8, YUVBuffer};
 
-use crate::output::{AtomicFile, OutputFormat};
+use crate::atomic::AtomicFile;
 
 /// Bits per pixel and frame the H.264 encoder's buffer model is set up for (about 5.5 Mbit/s at
 /// 1280×720 and 24 fps).
@@ -26,6 +26,35 @@ const BITS_PER_PIXEL: f64 = 0.25;
 const KEY_FRAME_SECONDS: u32 = 2;
 /// The GIF colour quantiser's speed (1 best and slowest, 30 fastest).
 const GIF_QUANTISER_SPEED: i32 = 10;
+
+/// The video formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VideoFormat {
+    /// H.264 video in an MP4 container.
+    Mp4,
+    /// Animated GIF.
+    Gif,
+}
+
+impl VideoFormat {
+    /// The format for `path`'s extension (`.mp4` or `.gif`, any case), if it is a video's.
+    #[must_use]
+    pub fn for_path(path: &Path) -> Option<Self> {
+        match lowercase_extension(path).as_deref() {
+            Some("mp4") => Some(Self::Mp4),
+            Some("gif") => Some(Self::Gif),
+            _ => None,
+        }
+    }
+}
+
+/// `path`'s extension in lower case, if it has one that is UTF-8.
+#[must_use]
+pub fn lowercase_extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
 
 /// OpenH264's largest picture, longer side by shorter side (its encoder refuses more).
 const MAX_H264_SIZE: (u32, u32) = (3840, 2160);
@@ -38,18 +67,18 @@ const MAX_H264_SIZE: (u32, u32) = (3840, 2160);
 /// If it cannot; the message names `path`, the size and `origin`.
 pub fn check_size(
     path: &Path,
-    format: OutputFormat,
+    format: VideoFormat,
     width: u32,
     height: u32,
     origin: &str,
 ) -> anyhow::Result<()> {
     match format {
-        OutputFormat::Mp4 if width % 2 == 1 || height % 2 == 1 => bail!(
+        VideoFormat::Mp4 if width % 2 == 1 || height % 2 == 1 => bail!(
             "cannot write {}: H.264 video needs an even width and height, and {origin} is \
              {width}x{height}",
             path.display()
         ),
-        OutputFormat::Mp4
+        VideoFormat::Mp4
             if width.max(height) > MAX_H264_SIZE.0 || width.min(height) > MAX_H264_SIZE.1 =>
         {
             bail!(
@@ -62,7 +91,7 @@ pub fn check_size(
                 MAX_H264_SIZE.0
             )
         }
-        OutputFormat::Gif if width > u32::from(u16::MAX) || height > u32::from(u16::MAX) => bail!(
+        VideoFormat::Gif if width > u32::from(u16::MAX) || height > u32::from(u16::MAX) => bail!(
             "cannot write {}: a GIF is at most 65535 pixels a side, and {origin} is \
              {width}x{height}",
             path.display()
@@ -105,13 +134,18 @@ impl VideoWriter {
     /// If `path` is not a video format or the size does not fit it ([`check_size`]), or the
     /// file or encoder cannot be set up.
     pub fn create(path: &Path, width: u32, height: u32, fps: u32) -> anyhow::Result<Self> {
-        let format = OutputFormat::for_path(path)?;
+        let Some(format) = VideoFormat::for_path(path) else {
+            bail!(
+                "cannot write {}: a video must end in .mp4 or .gif",
+                path.display()
+            );
+        };
         check_size(path, format, width, height, "the picture")?;
         let file = AtomicFile::create(path)?;
         let writer = file.writer()?;
         let cannot = || format!("cannot write {}", path.display());
         let encoder = match format {
-            OutputFormat::Mp4 => {
+            VideoFormat::Mp4 => {
                 let rate = f64::from(width) * f64::from(height) * f64::from(fps) * BITS_PER_PIXEL;
                 let config = EncoderConfig::new()
                     .bitrate(BitRate::from_bps(rate as u32))
@@ -136,7 +170,7 @@ impl VideoWriter {
                     fps,
                 }
             }
-            OutputFormat::Gif => {
+            VideoFormat::Gif => {
                 // `check_size` has bounded the size to 16 bits.
                 let mut encoder = gif::Encoder::new(writer, width as u16, height as u16, &[])
                     .with_context(cannot)?;
@@ -148,10 +182,6 @@ impl VideoWriter {
                     delay: (100.0 / f64::from(fps)).round().max(2.0) as u16,
                 }
             }
-            OutputFormat::Png | OutputFormat::Exr => bail!(
-                "cannot write {}: a video must end in .mp4 or .gif",
-                path.display()
-            ),
         };
         Ok(Self {
             file,

@@ -1,0 +1,328 @@
+//! The sky: stars at infinity, at rest in the scene's world frame W, each a black body of a
+//! given temperature and brightness (docs/physics.md, "The sky"). A built-in synthetic star field
+//! or stars read from a CSV file of directions, temperatures and magnitudes.
+//!
+//! A star is drawn like a light source of the scene: seen in the direction and with the Doppler
+//! factor of [`srt_physics::distant_source_image`], coloured as a black body at D·T, and (with
+//! the searchlight effect) its flux scales as D² — the D⁴ of the black body's radiance at D·T
+//! over the 1/D² by which aberration shrinks the solid angle it covers.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::input_file::{self, FileKind, InputFileError};
+
+/// The most stars a sky may hold (a built-in field or a CSV file).
+pub const MAX_STARS: usize = 1_000_000;
+
+/// Default magnitude at which a star's light fills one pixel's colour completely.
+pub const DEFAULT_SATURATION_MAGNITUDE: f64 = 3.0;
+
+/// Seed of the built-in star field: the same field on every machine and in every version.
+pub const STAR_FIELD_SEED: u64 = 0x5eed_57a5;
+
+/// One star: a black body at infinity, at rest in W.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Star {
+    /// Unit direction from the observer to the star, in W.
+    pub direction: DVec3,
+    /// Black-body temperature in kelvin (> 0).
+    pub temperature_k: f64,
+    /// Apparent visual magnitude at rest (smaller is brighter; 5 magnitudes = a factor 100).
+    pub magnitude: f64,
+}
+
+/// The stars of a scene, seen from the observer's frame S.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sky {
+    /// Velocity of the stars' rest frame W relative to S (−β of a moving observer; zero for an
+    /// observer at rest, and in the measured and Newtonian views).
+    pub beta: DVec3,
+    /// The stars (directions in W).
+    pub stars: Vec<Star>,
+    /// A star of this magnitude at rest fills one pixel with its full colour.
+    pub saturation_magnitude: f64,
+}
+
+impl Default for Sky {
+    fn default() -> Self {
+        Self {
+            beta: DVec3::ZERO,
+            stars: Vec::new(),
+            saturation_magnitude: DEFAULT_SATURATION_MAGNITUDE,
+        }
+    }
+}
+
+impl Sky {
+    /// Whether there is nothing to draw.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.stars.is_empty()
+    }
+
+    /// The colour weight of a star of `magnitude` at rest: 10^(−0.4 (m − m_sat)), so that a star
+    /// of the saturation magnitude has weight 1 (Pogson's ratio: 5 magnitudes = 100×).
+    #[must_use]
+    pub fn weight(&self, magnitude: f64) -> f64 {
+        10f64.powf(-0.4 * (magnitude - self.saturation_magnitude))
+    }
+}
+
+/// Why a star file could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum SkyError {
+    /// The file could not be read.
+    #[error("star file {}: {error}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        error: InputFileError,
+    },
+    /// A line is not a valid star.
+    #[error("star file {}, line {line}: {reason}", path.display())]
+    Line {
+        /// The file.
+        path: PathBuf,
+        /// The line (from 1).
+        line: u64,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The header names no usable set of columns, or the file has no stars or too many.
+    #[error("star file {}: {reason}", path.display())]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// A synthetic star field of `count` stars (at most [`MAX_STARS`]), the same on every machine:
+/// directions uniform over the sphere, magnitudes from −1.5 to 6.5 with the number of stars
+/// brighter than m growing as 10^(0.4 m) (faint stars are many), temperatures log-uniform from
+/// 3 000 K to 30 000 K (red to blue-white).
+#[must_use]
+pub fn star_field(count: usize) -> Vec<Star> {
+    let mut rng = ChaCha8Rng::seed_from_u64(STAR_FIELD_SEED);
+    (0..count.min(MAX_STARS))
+        .map(|_| {
+            let z: f64 = rng.random_range(-1.0..=1.0);
+            let phi: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let u: f64 = rng.random_range(f64::MIN_POSITIVE..=1.0);
+            let magnitude = (6.5 + 2.5 * u.log10()).max(-1.5);
+            let temperature_k = 10f64.powf(rng.random_range(3000f64.log10()..30000f64.log10()));
+            Star {
+                direction: DVec3::new(r * phi.cos(), r * phi.sin(), z),
+                temperature_k,
+                magnitude,
+            }
+        })
+        .collect()
+}
+
+/// The columns a star file may have: a direction as `x,y,z` (any length, in W) or as right
+/// ascension and declination in degrees (`ra_deg,dec_deg`: +z is the pole, ra = 0 is +x), plus
+/// `temperature_k` and `magnitude`. Other columns are ignored.
+const DIRECTION_COLUMNS: [&[&str]; 2] = [&["x", "y", "z"], &["ra_deg", "dec_deg"]];
+
+/// Reads stars from the CSV file at `path` (a header line naming the columns, see
+/// docs/scene-format.md; `#` starts a comment line).
+///
+/// # Errors
+/// [`SkyError`] naming the file (and line): it cannot be read, lacks a column, has a value that
+/// is not a finite number, a zero direction, a non-positive temperature, no stars or more than
+/// [`MAX_STARS`].
+pub fn read_star_file(path: &Path) -> Result<Vec<Star>, SkyError> {
+    let text = input_file::read_text(path, FileKind::Stars).map_err(|error| SkyError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    parse_stars(&text, path)
+}
+
+/// Parses the text of a star file; `path` names it in messages.
+///
+/// # Errors
+/// As [`read_star_file`].
+pub fn parse_stars(text: &str, path: &Path) -> Result<Vec<Star>, SkyError> {
+    let file_error = |reason: String| SkyError::File {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(false)
+        .from_reader(text.as_bytes());
+    let headers = reader
+        .headers()
+        .map_err(|e| file_error(format!("cannot read the header line: {e}")))?
+        .clone();
+    let column = |name: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(name));
+    let direction = DIRECTION_COLUMNS
+        .iter()
+        .find_map(|names| names.iter().map(|n| column(n)).collect::<Option<Vec<_>>>())
+        .ok_or_else(|| {
+            file_error(format!(
+                "the header line needs the columns x,y,z or ra_deg,dec_deg (found {})",
+                headers.iter().collect::<Vec<_>>().join(",")
+            ))
+        })?;
+    let [temperature, magnitude] = ["temperature_k", "magnitude"].map(column);
+    let (Some(temperature), Some(magnitude)) = (temperature, magnitude) else {
+        return Err(file_error(
+            "the header line needs the columns temperature_k and magnitude".to_owned(),
+        ));
+    };
+    let mut stars = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, csv::Position::line);
+            SkyError::Line {
+                path: path.to_path_buf(),
+                line,
+                reason: e.to_string(),
+            }
+        })?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let line_error = |reason: String| SkyError::Line {
+            path: path.to_path_buf(),
+            line,
+            reason,
+        };
+        let number = |index: usize| -> Result<f64, SkyError> {
+            let name = &headers[index];
+            let text = &record[index];
+            match text.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(line_error(format!(
+                    "{name} = \"{text}\" is not a finite number"
+                ))),
+            }
+        };
+        if stars.len() == MAX_STARS {
+            return Err(file_error(format!("more than {MAX_STARS} stars")));
+        }
+        let values = direction
+            .iter()
+            .map(|&i| number(i))
+            .collect::<Result<Vec<_>, _>>()?;
+        let direction = if let [x, y, z] = values[..] {
+            let v = DVec3::new(x, y, z);
+            let length = v.length();
+            if !(length > 0.0 && length.is_finite()) {
+                return Err(line_error(format!(
+                    "the direction ({x}, {y}, {z}) has no length"
+                )));
+            }
+            v / length
+        } else {
+            let (ra, dec) = (values[0].to_radians(), values[1].to_radians());
+            DVec3::new(dec.cos() * ra.cos(), dec.cos() * ra.sin(), dec.sin())
+        };
+        let temperature_k = number(temperature)?;
+        if temperature_k <= 0.0 {
+            return Err(line_error(format!(
+                "temperature_k = {temperature_k} must be positive (kelvin)"
+            )));
+        }
+        stars.push(Star {
+            direction,
+            temperature_k,
+            magnitude: number(magnitude)?,
+        });
+    }
+    if stars.is_empty() {
+        return Err(file_error("it holds no stars".to_owned()));
+    }
+    Ok(stars)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Vec<Star>, String> {
+        parse_stars(text, Path::new("stars.csv")).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn reads_both_direction_forms() {
+        let stars =
+            parse("# a comment\nx, y, z, temperature_k, magnitude\n0, 0, 2, 5800, 1.5\n").unwrap();
+        assert_eq!(stars[0].direction, DVec3::Z);
+        assert_eq!(stars[0].temperature_k, 5800.0);
+        let stars = parse("name,ra_deg,dec_deg,temperature_k,magnitude\nA,90,0,9600,0\n").unwrap();
+        assert!((stars[0].direction - DVec3::Y).length() < 1e-15);
+    }
+
+    #[test]
+    fn bad_files_name_the_file_line_and_reason() {
+        let e = parse("x,y,temperature_k,magnitude\n1,2,3,4\n").unwrap_err();
+        assert!(
+            e.contains("stars.csv") && e.contains("x,y,z or ra_deg,dec_deg"),
+            "{e}"
+        );
+        let e = parse("x,y,z,temperature_k,magnitude\n1,0,0,5000,1\n1,0,0,-5,1\n").unwrap_err();
+        assert!(
+            e.contains("line 3") && e.contains("must be positive"),
+            "{e}"
+        );
+        let e = parse("x,y,z,temperature_k,magnitude\n0,0,0,5000,1\n").unwrap_err();
+        assert!(e.contains("line 2") && e.contains("no length"), "{e}");
+        let e = parse("x,y,z,temperature_k,magnitude\n1,0,0,NaN,1\n").unwrap_err();
+        assert!(e.contains("not a finite number"), "{e}");
+        let e = parse("x,y,z,temperature_k,magnitude\n1,0,0,5000\n").unwrap_err();
+        assert!(e.contains("line 2"), "{e}");
+        let e = parse("x,y,z,temperature_k,magnitude\n").unwrap_err();
+        assert!(e.contains("no stars"), "{e}");
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_text_is_stars_or_a_message_never_a_panic(
+            body in "[-0-9a-z.,#eE\n ]{0,200}",
+            header in proptest::sample::select(vec![
+                "x,y,z,temperature_k,magnitude",
+                "ra_deg,dec_deg,temperature_k,magnitude",
+                "name,x,y,z,temperature_k,magnitude,extra",
+            ]),
+        ) {
+            match parse_stars(&format!("{header}\n{body}"), Path::new("s.csv")) {
+                Ok(stars) => {
+                    for star in stars {
+                        proptest::prop_assert!((star.direction.length() - 1.0).abs() < 1e-9);
+                        proptest::prop_assert!(star.temperature_k > 0.0);
+                        proptest::prop_assert!(star.magnitude.is_finite());
+                    }
+                }
+                Err(e) => proptest::prop_assert!(e.to_string().starts_with("star file s.csv")),
+            }
+        }
+    }
+
+    #[test]
+    fn the_star_field_is_fixed_and_plausible() {
+        let field = star_field(2000);
+        assert_eq!(field, star_field(2000));
+        assert_eq!(field.len(), 2000);
+        for star in &field {
+            assert!((star.direction.length() - 1.0).abs() < 1e-12);
+            assert!((3000.0..=30000.0).contains(&star.temperature_k));
+            assert!((-1.5..=6.5).contains(&star.magnitude));
+        }
+        // Uniform over the sphere: the mean direction is near zero.
+        let mean = field.iter().map(|s| s.direction).sum::<DVec3>() / 2000.0;
+        assert!(mean.length() < 0.1, "{mean}");
+        // Faint stars outnumber bright ones.
+        let faint = field.iter().filter(|s| s.magnitude > 5.0).count();
+        assert!(faint > 1000, "{faint}");
+    }
+}

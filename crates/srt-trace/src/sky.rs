@@ -1,0 +1,125 @@
+//! The stars of the sky in the reference renderer: each star is seen in its aberrated direction
+//! with its Doppler factor ([`srt_physics::distant_source_image`]), coloured like a light of the
+//! scene, and splatted into the image with a tent filter over the four pixels around its exact
+//! position, so that its light never falls between pixels and the weighted centroid of its
+//! splat is its position. Stars show where no object is hit.
+
+use glam::{DVec2, DVec3};
+use srt_color::TemperatureLut;
+use srt_physics::distant_source_image;
+use srt_scene::{Effects, Observer, Scene, Sky, Star};
+
+use crate::shade::lut_colour;
+
+/// Where one star lands in an image and with what colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StarImage {
+    /// Position in pixels (x right, y down; pixel centres at half-integers).
+    pub pixel: DVec2,
+    /// Display colour (sRGB-encoded) the star adds, spread over the four pixels around `pixel`.
+    pub colour: DVec3,
+    /// Doppler factor of its light.
+    pub doppler: f64,
+}
+
+/// The display colour a star adds to the image: its colour weight ([`Sky::weight`]) times the
+/// colour table at D·T, the colour a surface lit by a black body at D·T gets (§4.2). With
+/// [`Effects::Geometry`] D is 1; with [`Effects::Searchlight`] the weight is divided by D², the
+/// factor by which aberration shrinks the solid angle of the star, so that its flux grows as
+/// D⁴/D² = D² (the table's brightness carries the D⁴ of the radiance at D·T).
+#[must_use]
+pub fn star_colour(
+    star: &Star,
+    doppler: f64,
+    sky: &Sky,
+    effects: Effects,
+    lut: &TemperatureLut,
+) -> DVec3 {
+    let (doppler, solid_angle) = match effects {
+        Effects::Geometry => (1.0, 1.0),
+        Effects::Doppler => (doppler, 1.0),
+        Effects::Searchlight => (doppler, 1.0 / (doppler * doppler)),
+    };
+    sky.weight(star.magnitude) * solid_angle * lut_colour(lut, doppler * star.temperature_k)
+}
+
+/// Where `star` is seen from `observer` in an image of `width` × `height` pixels (`None` when it
+/// is behind the camera), with its colour.
+#[must_use]
+pub fn star_image(
+    star: &Star,
+    scene: &Scene,
+    lut: &TemperatureLut,
+    width: u32,
+    height: u32,
+) -> Option<StarImage> {
+    let (direction, doppler) = distant_source_image(scene.sky.beta, star.direction);
+    let pixel = project(&scene.observer, direction, width, height)?;
+    Some(StarImage {
+        pixel,
+        colour: star_colour(star, doppler, &scene.sky, scene.effects, lut),
+        doppler,
+    })
+}
+
+/// The pixel position of the direction `direction` (in S) in the image of `observer`: the inverse
+/// of [`Observer::view_direction`]; `None` behind the camera.
+#[must_use]
+pub fn project(observer: &Observer, direction: DVec3, width: u32, height: u32) -> Option<DVec2> {
+    let (forward, right, up) = observer.basis();
+    let depth = direction.dot(forward);
+    if depth <= 0.0 {
+        return None;
+    }
+    let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
+    let aspect = f64::from(width) / f64::from(height);
+    let ndc = DVec2::new(
+        direction.dot(right) / (depth * tan_half * aspect),
+        direction.dot(up) / (depth * tan_half),
+    );
+    Some(DVec2::new(
+        0.5 * (ndc.x + 1.0) * f64::from(width),
+        0.5 * (1.0 - ndc.y) * f64::from(height),
+    ))
+}
+
+/// The four pixels around `pixel` (centres at half-integers) and their tent weights, which sum
+/// to 1 and whose weighted mean of pixel centres is `pixel`; pixels outside the image are left
+/// out.
+pub fn tent_splat(pixel: DVec2, width: u32, height: u32) -> impl Iterator<Item = (usize, f64)> {
+    let corner = pixel - DVec2::splat(0.5);
+    let base = corner.floor();
+    let fraction = corner - base;
+    [(0, 0), (1, 0), (0, 1), (1, 1)]
+        .into_iter()
+        .filter_map(move |(dx, dy)| {
+            let x = base.x + f64::from(dx);
+            let y = base.y + f64::from(dy);
+            let inside = x >= 0.0 && y >= 0.0 && x < f64::from(width) && y < f64::from(height);
+            let weight = (if dx == 0 {
+                1.0 - fraction.x
+            } else {
+                fraction.x
+            }) * (if dy == 0 {
+                1.0 - fraction.y
+            } else {
+                fraction.y
+            });
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // inside
+            inside.then(|| ((y as usize) * width as usize + x as usize, weight))
+        })
+}
+
+/// The light the stars add to every pixel (display sRGB, not clamped), row-major from the top.
+#[must_use]
+pub fn star_layer(scene: &Scene, lut: &TemperatureLut, width: u32, height: u32) -> Vec<DVec3> {
+    let mut layer = vec![DVec3::ZERO; width as usize * height as usize];
+    for star in &scene.sky.stars {
+        if let Some(image) = star_image(star, scene, lut, width, height) {
+            for (index, weight) in tent_splat(image.pixel, width, height) {
+                layer[index] += weight * image.colour;
+            }
+        }
+    }
+    layer
+}
