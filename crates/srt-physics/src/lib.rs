@@ -28,6 +28,7 @@
 //! ```
 
 mod event;
+pub mod flight;
 mod frame;
 mod light;
 mod lorentz;

@@ -7,8 +7,9 @@
 
 use std::time::Instant;
 
-use srt_viewer::view::SceneView;
-use srt_viewer::{Editor, ViewMethod};
+use srt_scene::View;
+use srt_viewer::view::{PaneScene, SceneView, UploadKey};
+use srt_viewer::{Editor, Pane, ViewMethod};
 
 fn main() -> anyhow::Result<()> {
     let mut arguments = std::env::args().skip(1);
@@ -36,8 +37,18 @@ fn main() -> anyhow::Result<()> {
     view.upload(&ctx, editor.scene(), editor.structure_version())?;
     for ct in times {
         editor.set_time(ct)?;
+        let scene = editor.scene();
+        let key = UploadKey::new(View::Seen, scene, editor.structure_version());
+        let panes: Vec<PaneScene<'_>> = Pane::row(&[View::Seen], method)
+            .iter()
+            .map(|pane| PaneScene {
+                scene,
+                key: &key,
+                method: pane.method,
+            })
+            .collect();
         let start = Instant::now();
-        view.render(&ctx, None, editor.scene(), method, size)?;
+        view.render(&ctx, None, &panes, size)?;
         ctx.wait()?;
         println!("ct = {ct}: {:.0} ms", start.elapsed().as_secs_f64() * 1e3);
     }

@@ -2,6 +2,7 @@
 //! keyboard and mouse controls. [`ViewerApp::show`] draws everything into any [`egui::Ui`], so
 //! the same code runs in the real window (through [`eframe::App`]) and in headless tests.
 
+use std::borrow::Cow;
 use std::collections::VecDeque;
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
@@ -17,11 +18,14 @@ use srt_gpu::GpuContext;
 use srt_physics::{Frame, doppler_factor};
 use srt_scene::import::SUPPORTED_EXTENSIONS;
 use srt_scene::resolve::{PathKind, SCENE_FILE_EXTENSION, model_extension_list, path_kind};
-use srt_scene::{Effects, Observer, ResolveError};
+use srt_scene::{Effects, Observer, ResolveError, Scene, SurfaceColour, View};
 
 use crate::camera::{self, Movement};
 use crate::edit::{EditError, Editor, MAX_SLIDER_SPEED, parse_speed};
-use crate::view::{SceneView, ViewMethod};
+use crate::pilot::{DEFAULT_ACCELERATION, Engine, Flight, MotionReadout};
+use crate::probe::{Probe, probe};
+use crate::record::{FRAME_RATES, Recorder};
+use crate::view::{Pane, PaneScene, SceneView, UploadKey, ViewMethod, view_label};
 
 /// The egui renderer the display textures are registered with.
 pub type EguiRenderer = Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>;
@@ -55,6 +59,21 @@ pub struct Status {
     pub text: String,
 }
 
+/// The last probe: which pixel of which pane was clicked, and what is there.
+#[derive(Debug, Clone, PartialEq)]
+struct ProbeShown {
+    /// The pane clicked, and the point clicked in it as fractions of its width and height.
+    pane: Pane,
+    at: egui::Vec2,
+    /// The pixel in the pane's picture, and the picture's size.
+    pixel: (u32, u32),
+    size: (u32, u32),
+    /// The observer of the picture probed (time and camera).
+    observer: Observer,
+    /// What is there (`None`: the background).
+    found: Option<Probe>,
+}
+
 /// What a file dialog was opened for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Purpose {
@@ -62,6 +81,7 @@ enum Purpose {
     OpenScene,
     SaveScene,
     SaveImage,
+    Record,
 }
 
 /// The GPU side: the device (shared with egui in the window), the uploaded scene and the
@@ -99,6 +119,23 @@ pub struct ViewerApp {
     /// Print frame statistics to stderr once a second (`SRT_VIEW_STATS=1`).
     stats: Option<Instant>,
     gpu_failed: bool,
+    /// The view on the left (or alone), and the one on its right, if the screen is split.
+    left_view: View,
+    right_view: Option<View>,
+    /// The panes last rendered, left to right.
+    panes: Vec<Pane>,
+    /// The flight in progress (throttle or brake pressed since the last "End flight").
+    flight: Option<Flight>,
+    /// The engine's proper acceleration α, in c per unit of ct.
+    acceleration: f64,
+    /// The engine command from the panel's buttons this frame (keys add to it).
+    engine_button: Option<Engine>,
+    probe: Option<ProbeShown>,
+    /// The video being recorded: while it runs, every drawn frame is one video frame and the
+    /// clock advances by one frame period per frame.
+    recorder: Option<Recorder>,
+    /// The frame rate of the next recording (one of [`FRAME_RATES`]).
+    record_fps: u32,
 }
 
 impl ViewerApp {
@@ -154,7 +191,78 @@ impl ViewerApp {
             resolution: 1.0,
             stats: std::env::var_os("SRT_VIEW_STATS").map(|_| Instant::now()),
             gpu_failed: false,
+            left_view: View::Seen,
+            right_view: None,
+            panes: Vec::new(),
+            flight: None,
+            acceleration: DEFAULT_ACCELERATION,
+            engine_button: None,
+            probe: None,
+            recorder: None,
+            record_fps: FRAME_RATES[0],
         }
+    }
+
+    /// The views shown, left to right (one, or two side by side).
+    #[must_use]
+    pub fn views(&self) -> Vec<View> {
+        std::iter::once(self.left_view)
+            .chain(self.right_view.filter(|&right| right != self.left_view))
+            .collect()
+    }
+
+    /// Shows `left` alone (`right` = `None`) or `left` and `right` side by side.
+    pub fn set_views(&mut self, left: View, right: Option<View>) {
+        self.left_view = left;
+        self.right_view = right;
+        self.needs_render = true;
+    }
+
+    /// The flight in progress, if any.
+    #[must_use]
+    pub const fn flight(&self) -> Option<&Flight> {
+        self.flight.as_ref()
+    }
+
+    /// The probe's finding at the last pixel clicked: `None` before any click, `Some(None)` for
+    /// the background.
+    #[must_use]
+    pub fn probed(&self) -> Option<Option<&Probe>> {
+        self.probe.as_ref().map(|p| p.found.as_ref())
+    }
+
+    /// Probes the point `at` (fractions of the width and height, from the top-left) of pane
+    /// `pane` (left to right, as last rendered) whose picture is `size` pixels: what is seen
+    /// there, computed by the CPU reference tracer for that pixel's viewing ray.
+    pub fn probe_at(&mut self, pane: usize, at: egui::Vec2, size: (u32, u32)) {
+        let Some(&shown) = self.panes.get(pane) else {
+            return;
+        };
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "a pixel inside the picture"
+        )]
+        let pixel = (
+            ((at.x.clamp(0.0, 1.0) * size.0 as f32) as u32).min(size.0.saturating_sub(1)),
+            ((at.y.clamp(0.0, 1.0) * size.1 as f32) as u32).min(size.1.saturating_sub(1)),
+        );
+        let scene = self.editor.scene();
+        let found = match view_scene(shown.view, scene) {
+            Ok(viewed) => probe(viewed.as_ref(), size.0, size.1, pixel.0, pixel.1),
+            Err(error) => {
+                self.error(error);
+                return;
+            }
+        };
+        self.probe = Some(ProbeShown {
+            pane: shown,
+            at,
+            pixel,
+            size,
+            observer: scene.observer,
+            found,
+        });
     }
 
     /// The scene editor (the scene as it is now).
@@ -309,20 +417,22 @@ impl ViewerApp {
 
     /// Draws the whole viewer into `ui` and handles its input.
     pub fn show(&mut self, ui: &mut egui::Ui) {
-        let dt = f64::from(ui.input(|i| i.unstable_dt)).clamp(0.0, 0.5);
+        // While recording, the clock advances by exactly one video frame per drawn frame, however
+        // long the frame took to draw.
+        let dt = match &self.recorder {
+            Some(recorder) => recorder.frame_period(),
+            None => f64::from(ui.input(|i| i.unstable_dt)).clamp(0.0, 0.5),
+        };
         self.poll_dialog(ui.ctx());
         self.handle_drops(ui.ctx());
         self.handle_keys(ui.ctx(), dt);
-        if self.playing {
+        let engine = self.engine_button.take();
+        self.fly(engine, dt);
+        if self.playing && self.flight.is_none() {
             let ct = self.editor.scene().observer.ct + self.playback_speed * dt;
             let result = self.editor.set_time(ct);
             self.edited(result);
-            if ct > self.time_range.1 {
-                self.time_range.1 = ct;
-            }
-            if ct < self.time_range.0 {
-                self.time_range.0 = ct;
-            }
+            self.extend_time_range(ct);
         }
         egui::Panel::bottom("srt-status").show(ui, |ui| self.status_line(ui));
         egui::Panel::left("srt-panel")
@@ -331,8 +441,96 @@ impl ViewerApp {
                 egui::ScrollArea::vertical().show(ui, |ui| self.side_panel(ui));
             });
         egui::CentralPanel::no_frame().show(ui, |ui| self.central(ui));
-        if self.playing {
+        self.record_frame();
+        if self.playing || self.recorder.is_some() {
             ui.ctx().request_repaint();
+        }
+    }
+
+    /// Whether a video is being recorded.
+    #[must_use]
+    pub fn is_recording(&self) -> bool {
+        self.recorder.is_some()
+    }
+
+    /// Starts recording what the viewer shows into `path` (.mp4 or .gif) at the chosen frame
+    /// rate (see [`crate::record`]).
+    ///
+    /// # Errors
+    /// A message naming the file when it cannot be recorded (extension, folder, size), or a
+    /// recording is already running.
+    pub fn start_recording(&mut self, path: &Path) -> Result<(), String> {
+        if self.recorder.is_some() {
+            return Err("a recording is already running: stop it first".to_owned());
+        }
+        let image = self.read_image()?;
+        let recorder = Recorder::start(path, image.width(), image.height(), self.record_fps)?;
+        self.recorder = Some(recorder);
+        self.needs_render = true;
+        Ok(())
+    }
+
+    /// Stops recording and finishes the video; returns its path and frame count.
+    ///
+    /// # Errors
+    /// A message naming the file when it cannot be completed (nothing is left at its path), or
+    /// when nothing is being recorded.
+    pub fn stop_recording(&mut self) -> Result<(PathBuf, u32), String> {
+        self.recorder
+            .take()
+            .ok_or_else(|| "nothing is being recorded".to_owned())?
+            .finish()
+    }
+
+    /// Adds the image shown to the recording, if one runs; a failure stops it with a message.
+    fn record_frame(&mut self) {
+        if self.recorder.is_none() {
+            return;
+        }
+        let pushed = self
+            .read_image()
+            .and_then(|image| match &mut self.recorder {
+                Some(recorder) => recorder.push(&image),
+                None => Ok(()),
+            });
+        if let Err(error) = pushed {
+            // Dropping the recorder removes the unfinished file.
+            self.recorder = None;
+            self.error(format!("recording stopped: {error}"));
+        }
+    }
+
+    /// Widens the time slider's range to include `ct`.
+    fn extend_time_range(&mut self, ct: f64) {
+        self.time_range.0 = self.time_range.0.min(ct);
+        self.time_range.1 = self.time_range.1.max(ct);
+    }
+
+    /// One frame of flight: `engine` (from keys or buttons) starts a flight if none is in
+    /// progress (and starts the clock); while the clock runs, the observer flies `dt` seconds
+    /// times the playback speed of proper time.
+    fn fly(&mut self, engine: Option<Engine>, dt: f64) {
+        if engine.is_some() {
+            if self.flight.is_none() {
+                self.flight = Some(Flight::start(&self.editor));
+            }
+            self.playing = true;
+        }
+        let (Some(mut flight), true) = (self.flight, self.playing) else {
+            return;
+        };
+        let dtau = self.playback_speed * dt;
+        let engine = engine.unwrap_or(Engine::Coast);
+        match flight.step(&mut self.editor, engine, self.acceleration, dtau) {
+            Ok(()) => {
+                self.flight = Some(flight);
+                self.needs_render = true;
+                self.extend_time_range(self.editor.observer_event().ct);
+            }
+            Err(error) => {
+                self.playing = false;
+                self.error(format!("the flight stopped: {error}"));
+            }
         }
     }
 
@@ -389,6 +587,14 @@ impl ViewerApp {
                 Ok(()) => self.info(format!("saved the image to {}", path.display())),
                 Err(error) => self.error(error),
             },
+            Purpose::Record => match self.start_recording(path) {
+                Ok(()) => self.info(format!(
+                    "recording {} at {} frames per second: press Stop recording to finish",
+                    path.display(),
+                    self.record_fps
+                )),
+                Err(error) => self.error(error),
+            },
         }
     }
 
@@ -431,6 +637,11 @@ impl ViewerApp {
                     .add_filter("PNG images", &["png"])
                     .set_file_name(format!("{name}.png"))
                     .save_file(),
+                Purpose::Record => dialog
+                    .set_title("Record a video")
+                    .add_filter("H.264 video or animated GIF", &["mp4", "gif"])
+                    .set_file_name(format!("{name}.mp4"))
+                    .save_file(),
             };
             let _ = sender.send(result);
         });
@@ -454,10 +665,9 @@ impl ViewerApp {
         if ctx.egui_wants_keyboard_input() {
             return;
         }
-        let (movement, reset, toggle, fast) = ctx.input(|i| {
-            let axis = |plus: Key, minus: Key| {
-                f64::from(u8::from(i.key_down(plus))) - f64::from(u8::from(i.key_down(minus)))
-            };
+        let (movement, reset, toggle, fast, thrust, brake) = ctx.input(|i| {
+            let down = |keys: [Key; 2]| f64::from(u8::from(keys.iter().any(|&k| i.key_down(k))));
+            let axis = |plus: Key, minus: Key| down([plus, plus]) - down([minus, minus]);
             (
                 Movement {
                     right: axis(Key::D, Key::A),
@@ -467,8 +677,18 @@ impl ViewerApp {
                 i.key_pressed(Key::R),
                 i.key_pressed(Key::Space),
                 i.modifiers.shift,
+                down([Key::PageUp, Key::T]) - down([Key::PageDown, Key::G]),
+                i.key_pressed(Key::B) || i.key_down(Key::B),
             )
         });
+        if thrust != 0.0 {
+            self.engine_button = Some(Engine::Thrust(thrust));
+        } else if brake {
+            self.engine_button = Some(Engine::Brake);
+        }
+        if self.flight.is_some() && (thrust != 0.0 || brake) {
+            ctx.request_repaint();
+        }
         if toggle {
             self.playing = !self.playing;
         }
@@ -508,6 +728,9 @@ impl ViewerApp {
     fn side_panel(&mut self, ui: &mut egui::Ui) {
         ui.heading("srt view");
         self.readout(ui);
+        egui::CollapsingHeader::new("Probe")
+            .default_open(true)
+            .show(ui, |ui| self.probe_section(ui));
         egui::CollapsingHeader::new("Objects")
             .default_open(true)
             .show(ui, |ui| self.objects_section(ui));
@@ -520,9 +743,15 @@ impl ViewerApp {
         egui::CollapsingHeader::new("Observer")
             .default_open(true)
             .show(ui, |ui| self.observer_section(ui));
+        egui::CollapsingHeader::new("Flight")
+            .default_open(true)
+            .show(ui, |ui| self.flight_section(ui));
         egui::CollapsingHeader::new("Light")
             .default_open(false)
             .show(ui, |ui| self.light_section(ui));
+        egui::CollapsingHeader::new("Views")
+            .default_open(true)
+            .show(ui, |ui| self.views_section(ui));
         egui::CollapsingHeader::new("Method")
             .default_open(true)
             .show(ui, |ui| self.method_section(ui));
@@ -763,6 +992,32 @@ impl ViewerApp {
             let result = self.editor.set_tone_map(tone);
             self.edited(result);
         }
+        let mut colour = self.editor.scene().colour;
+        ui.radio_value(&mut colour, SurfaceColour::Paper, "Paper's colour")
+            .on_hover_text(
+                "the paper's shortcut: the light's colour at D·T, scaled by the surface's \
+                 grey value; red and blue surfaces shift alike",
+            );
+        ui.radio_value(&mut colour, SurfaceColour::Spectral, "Spectral colour")
+            .on_hover_text(
+                "every colour is a reflectance spectrum that really shifts: a red surface \
+                 approaching turns orange, then yellow; what was infrared comes into view",
+            );
+        if colour != self.editor.scene().colour {
+            let result = self.editor.set_colour(colour);
+            self.edited(result);
+        }
+        let mut exposure = self.editor.scene().exposure;
+        let slider = ui.add_enabled(
+            colour == SurfaceColour::Spectral,
+            egui::Slider::new(&mut exposure, 1e-3..=1e3)
+                .logarithmic(true)
+                .text("exposure"),
+        );
+        if slider.changed() {
+            let result = self.editor.set_exposure(exposure);
+            self.edited(result);
+        }
     }
 
     fn time_section(&mut self, ui: &mut egui::Ui) {
@@ -782,7 +1037,9 @@ impl ViewerApp {
             .add(
                 egui::Slider::new(&mut ct, lo..=hi)
                     .text("observation time ct")
-                    .max_decimals(2),
+                    // Shown to 2 decimals; `max_decimals` would also round the value itself
+                    // every frame, so that playback advanced ct in steps of 0.01.
+                    .custom_formatter(|value, _| format!("{value:.2}")),
             )
             .changed()
         {
@@ -838,6 +1095,143 @@ impl ViewerApp {
                 .small(),
             );
         });
+    }
+
+    /// The probe's last finding (click the picture to probe a pixel).
+    fn probe_section(&mut self, ui: &mut egui::Ui) {
+        let Some(shown) = &self.probe else {
+            ui.label(
+                RichText::new(
+                    "Click the picture: the probe tells what is there, computed exactly on the CPU.",
+                )
+                .small(),
+            );
+            return;
+        };
+        ui.label(
+            RichText::new(format!(
+                "pixel ({}, {}) of {}×{}, {}, at ct = {:.3}",
+                shown.pixel.0,
+                shown.pixel.1,
+                shown.size.0,
+                shown.size.1,
+                view_label(shown.pane.view),
+                shown.observer.ct
+            ))
+            .small(),
+        );
+        if shown.observer != self.editor.scene().observer {
+            ui.label(
+                RichText::new("(the picture has changed since: click it again to update)").small(),
+            );
+        }
+        match &shown.found {
+            None => {
+                ui.label("the background: no object is seen here");
+            }
+            Some(found) => {
+                for line in found.lines() {
+                    ui.label(line);
+                }
+            }
+        }
+    }
+
+    /// The engine: throttle, brake, proper acceleration, and the motion readouts.
+    fn flight_section(&mut self, ui: &mut egui::Ui) {
+        ui.add(
+            egui::Slider::new(&mut self.acceleration, 0.01..=10.0)
+                .logarithmic(true)
+                .text("proper acceleration α (c per unit ct)"),
+        );
+        ui.horizontal_wrapped(|ui| {
+            // Thrust lasts while the button is held, as with the keys.
+            for (label, keys, throttle) in [
+                ("Thrust", "hold PageUp or T", 1.0),
+                ("Reverse", "hold PageDown or G", -1.0),
+            ] {
+                if ui
+                    .button(label)
+                    .on_hover_text(keys)
+                    .is_pointer_button_down_on()
+                {
+                    self.engine_button = Some(Engine::Thrust(throttle));
+                    ui.ctx().request_repaint();
+                }
+            }
+            if ui.button("Brake to rest").on_hover_text("B").clicked() {
+                self.engine_button = Some(Engine::Brake);
+            }
+            if self.flight.is_some() && ui.button("End flight").clicked() {
+                self.flight = None;
+                self.playing = false;
+            }
+        });
+        let readout = MotionReadout::of(&self.editor);
+        ui.label(format!(
+            "|β| = {:.6}, γ = {:.4}",
+            readout.speed, readout.gamma
+        ));
+        ui.label(format!(
+            "Doppler factor ahead {:.4}, behind {:.4} (along your motion, for light from things \
+             at rest in the world)",
+            readout.doppler_ahead, readout.doppler_behind
+        ));
+        match &self.flight {
+            Some(flight) => {
+                let state = if flight.braking {
+                    "braking"
+                } else if self.playing {
+                    "flying (coasting when no thrust is given)"
+                } else {
+                    "paused (Space)"
+                };
+                ui.label(format!(
+                    "{state}: your clock τ = {:.3}, world clock ct = {:.3} since the start",
+                    flight.proper_time,
+                    flight.world_time(&self.editor)
+                ));
+            }
+            None => {
+                ui.label(
+                    RichText::new(
+                        "Hold PageUp / T to accelerate along your look direction, PageDown / G \
+                         backwards, B to brake; the clock (playback speed) runs your proper time.",
+                    )
+                    .small(),
+                );
+            }
+        }
+    }
+
+    /// The view on the left and, for a split screen, the one on the right.
+    fn views_section(&mut self, ui: &mut egui::Ui) {
+        let (mut left, mut right) = (self.left_view, self.right_view);
+        egui::ComboBox::from_label("left (or only) view")
+            .selected_text(view_label(left))
+            .show_ui(ui, |ui| {
+                for view in View::ALL {
+                    ui.selectable_value(&mut left, view, view_label(view));
+                }
+            });
+        egui::ComboBox::from_label("right view")
+            .selected_text(right.map_or("none (one view)", view_label))
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut right, None, "none (one view)");
+                for view in View::ALL {
+                    ui.selectable_value(&mut right, Some(view), view_label(view));
+                }
+            });
+        if (left, right) != (self.left_view, self.right_view) {
+            self.set_views(left, right);
+        }
+        ui.label(
+            RichText::new(
+                "measured and Newtonian show everything at rest where it is now, as \
+                 `srt render --view` does",
+            )
+            .small(),
+        );
     }
 
     fn light_section(&mut self, ui: &mut egui::Ui) {
@@ -903,11 +1297,12 @@ impl ViewerApp {
                 self.start_dialog(Purpose::SaveImage);
             }
         });
+        self.recording_controls(ui);
         ui.horizontal(|ui| {
             let label = ui.label("Path:");
             ui.add(
                 egui::TextEdit::singleline(&mut self.path_text)
-                    .hint_text("a model, .toml or .png path")
+                    .hint_text("a model, .toml, .png, .mp4 or .gif path")
                     .desired_width(220.0),
             )
             .labelled_by(label.id);
@@ -920,6 +1315,7 @@ impl ViewerApp {
                 ("Open scene", Purpose::OpenScene),
                 ("Save scene", Purpose::SaveScene),
                 ("Save PNG", Purpose::SaveImage),
+                ("Record", Purpose::Record),
             ] {
                 if ui.add_enabled(!empty, egui::Button::new(label)).clicked() {
                     self.file_action(purpose, &path);
@@ -932,6 +1328,43 @@ impl ViewerApp {
                 model_extension_list()
             ))
             .small(),
+        );
+    }
+
+    /// Record / Stop and the frame rate.
+    fn recording_controls(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            if let Some(recorder) = &self.recorder {
+                let text = format!("Stop recording ({})", recorder.path().display());
+                if ui
+                    .button(RichText::new(text).color(Color32::from_rgb(240, 90, 80)))
+                    .clicked()
+                {
+                    match self.stop_recording() {
+                        Ok((path, frames)) => {
+                            self.info(format!("recorded {frames} frames into {}", path.display()));
+                        }
+                        Err(error) => self.error(error),
+                    }
+                }
+            } else {
+                if ui.button("Record video…").clicked() {
+                    self.start_dialog(Purpose::Record);
+                }
+                egui::ComboBox::from_label("frame rate")
+                    .selected_text(format!("{} fps", self.record_fps))
+                    .show_ui(ui, |ui| {
+                        for fps in FRAME_RATES {
+                            ui.selectable_value(&mut self.record_fps, fps, format!("{fps} fps"));
+                        }
+                    });
+            }
+        })
+        .response
+        .on_hover_text(
+            "Every frame drawn while recording is one video frame, and time (playback, flight) \
+             advances by exactly one frame period per frame: the video is smooth even where the \
+             window draws slowly.",
         );
     }
 
@@ -962,36 +1395,54 @@ impl ViewerApp {
             );
             return;
         };
-        // Each view gets an equal share of the width (the textures may be smaller than the
+        // Each pane gets an equal share of the width (the textures may be smaller than the
         // rectangle when rendering at a reduced resolution: they are stretched).
         let textures: Vec<_> = gpu.view.textures().collect();
-        #[expect(clippy::cast_precision_loss, reason = "one or two views")]
+        #[expect(clippy::cast_precision_loss, reason = "a few panes")]
         let width = rect.width() / textures.len().max(1) as f32;
-        for (index, (id, _)) in textures.into_iter().enumerate() {
-            #[expect(clippy::cast_precision_loss, reason = "one or two views")]
-            let part = egui::Rect::from_min_size(
-                egui::pos2(rect.left() + index as f32 * width, rect.top()),
+        let part = |index: usize| {
+            #[expect(clippy::cast_precision_loss, reason = "a few panes")]
+            let left = rect.left() + index as f32 * width;
+            egui::Rect::from_min_size(
+                egui::pos2(left, rect.top()),
                 egui::vec2(width, rect.height()),
-            );
-            egui::Image::new(egui::load::SizedTexture::new(id, part.size())).paint_at(ui, part);
+            )
+        };
+        for (index, (id, _)) in textures.iter().enumerate() {
+            let part = part(index);
+            egui::Image::new(egui::load::SizedTexture::new(*id, part.size())).paint_at(ui, part);
+            if let Some(label) = Pane::label(&self.panes, index) {
+                ui.painter().text(
+                    part.left_top() + egui::vec2(8.0, 6.0),
+                    egui::Align2::LEFT_TOP,
+                    label,
+                    egui::FontId::proportional(14.0),
+                    Color32::WHITE,
+                );
+            }
         }
-        if self.method == ViewMethod::Split {
-            let painter = ui.painter();
-            let font = egui::FontId::proportional(14.0);
-            painter.text(
-                rect.left_top() + egui::vec2(8.0, 6.0),
-                egui::Align2::LEFT_TOP,
-                "local ray tracing",
-                font.clone(),
-                Color32::WHITE,
-            );
-            painter.text(
-                egui::pos2(rect.center().x + 8.0, rect.top() + 6.0),
-                egui::Align2::LEFT_TOP,
-                "polygon",
-                font,
-                Color32::WHITE,
-            );
+        // A click (not a drag) probes the pixel under the pointer.
+        let clicked = response
+            .clicked()
+            .then(|| response.interact_pointer_pos())
+            .flatten();
+        if let Some(position) = clicked
+            && let Some(index) = (0..textures.len()).find(|&i| part(i).contains(position))
+        {
+            let part = part(index);
+            let at = (position - part.left_top()) / part.size();
+            let [w, h] = textures[index].1;
+            self.probe_at(index, at, (w, h));
+        }
+        if let Some(shown) = &self.probe
+            && shown.observer == self.editor.scene().observer
+            && let Some(index) = self.panes.iter().position(|p| *p == shown.pane)
+            && index < textures.len()
+        {
+            let part = part(index);
+            let centre = part.left_top() + shown.at * part.size();
+            let stroke = egui::Stroke::new(1.5, Color32::from_rgb(255, 220, 0));
+            ui.painter().circle_stroke(centre, 6.0, stroke);
         }
     }
 
@@ -1025,21 +1476,52 @@ impl ViewerApp {
     fn render(&mut self, size: (u32, u32)) {
         self.last_size = size;
         self.needs_render = false;
+        self.panes = Pane::row(&self.views(), self.method);
         let Some(gpu) = &mut self.gpu else { return };
         let scene = self.editor.scene();
+        let version = self.editor.structure_version();
+        // Each view's scene once (the seen one is the editor's own), with the key of its meshes.
+        let mut viewed: Vec<(View, Cow<'_, Scene>, UploadKey)> = Vec::new();
+        for pane in &self.panes {
+            if viewed.iter().all(|(view, _, _)| *view != pane.view) {
+                match view_scene(pane.view, scene) {
+                    Ok(picture) => {
+                        let key = UploadKey::new(pane.view, scene, version);
+                        viewed.push((pane.view, picture, key));
+                    }
+                    Err(error) => {
+                        self.status = Status {
+                            level: Level::Error,
+                            text: error,
+                        };
+                        return;
+                    }
+                }
+            }
+        }
+        let panes: Vec<PaneScene<'_>> = self
+            .panes
+            .iter()
+            .filter_map(|pane| {
+                let (_, picture, key) = viewed.iter().find(|(view, _, _)| *view == pane.view)?;
+                Some(PaneScene {
+                    scene: picture.as_ref(),
+                    key,
+                    method: pane.method,
+                })
+            })
+            .collect();
         let start = Instant::now();
         let mut egui = gpu.egui.as_ref().map(|r| r.write());
         let result = gpu
             .view
-            .upload(&gpu.ctx, scene, self.editor.structure_version())
-            .and_then(|()| {
-                gpu.view
-                    .render(&gpu.ctx, egui.as_deref_mut(), scene, self.method, size)
-            })
+            .render(&gpu.ctx, egui.as_deref_mut(), &panes, size)
             // Waiting for the frame keeps slow (software) adapters from queueing frames behind
             // the user's input, and measures what a frame costs.
             .and_then(|()| gpu.ctx.wait());
         drop(egui);
+        drop(panes);
+        drop(viewed);
         match result {
             Ok(()) => {
                 let now = Instant::now();
@@ -1088,6 +1570,17 @@ impl ViewerApp {
                 self.gpu_failed = true;
             }
         }
+    }
+}
+
+/// `scene` as `view` shows it (borrowed for the seen view), or the message why it cannot be.
+fn view_scene(view: View, scene: &Scene) -> Result<Cow<'_, Scene>, String> {
+    match view {
+        View::Seen => Ok(Cow::Borrowed(scene)),
+        _ => view
+            .apply(scene)
+            .map(Cow::Owned)
+            .map_err(|error| format!("the {} view cannot be drawn: {error}", view.name())),
     }
 }
 
@@ -1146,7 +1639,8 @@ fn intro(editor: &Editor) -> String {
     let count = editor.object_count();
     format!(
         "{}: {count} object{}. Pick one on the left and change its speed; W A S D Q E and mouse \
-         drag fly; drop a 3D model on the window to add it.",
+         drag fly, PageUp accelerates you, B brakes; click the picture to probe it; drop a 3D \
+         model on the window to add it.",
         editor.scene().name,
         if count == 1 { "" } else { "s" },
     )

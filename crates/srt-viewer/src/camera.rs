@@ -1,5 +1,6 @@
-//! The fly camera: moving and turning the observer (who stays at rest in S — flying only
-//! changes where the observation happens, it never gives the observer a velocity).
+//! The fly camera: moving and turning the observer. Flying with the camera only changes where
+//! the observation happens and where the camera looks, never the observer's velocity (the
+//! throttle of [`crate::pilot`] does that).
 
 use glam::{DQuat, DVec3};
 use srt_scene::Observer;

@@ -27,7 +27,7 @@ use srt_scene::resolve::{LocatedDescription, PathKind, path_kind};
 use srt_scene::{
     Effects, LightDescription, LoadedScene, Object, ObjectDescription, Observer,
     ObserverDescription, Part, ResolveError, Scene, SceneDescription, SceneError, SceneErrorKind,
-    SceneSource, ShapeDescription, TextureDescription,
+    SceneSource, ShapeDescription, SurfaceColour, TextureDescription,
 };
 
 /// The scene opened when `srt view` is given no argument.
@@ -428,6 +428,7 @@ impl Editor {
                 .expect("the plan takes each runtime object once and builds the rest"),
                 frame: frame.frame,
                 wireframe: object.wireframe,
+                optics: object.optics(),
             })
             .collect();
         let unchanged = plan.len() == old_count
@@ -615,6 +616,33 @@ impl Editor {
         })
     }
 
+    /// Chooses how lit surfaces are coloured; going back to the paper's colour resets the
+    /// exposure to 1 (its colour tables have none).
+    ///
+    /// # Errors
+    /// None in practice, as [`Editor::set_effects`].
+    pub fn set_colour(&mut self, colour: SurfaceColour) -> Result<(), EditError> {
+        self.edit(|description| {
+            description.render.colour = colour;
+            if colour == SurfaceColour::Paper {
+                description.render.exposure = 1.0;
+            }
+            Ok(())
+        })
+    }
+
+    /// Sets the exposure of spectral colour.
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] for an exposure the scene file's rules refuse (not positive, or
+    /// with the paper's colour).
+    pub fn set_exposure(&mut self, exposure: f64) -> Result<(), EditError> {
+        self.edit(|description| {
+            description.render.exposure = exposure;
+            Ok(())
+        })
+    }
+
     /// The tone map chosen explicitly (`None`: the effect mode's).
     #[must_use]
     pub fn tone_map_choice(&self) -> Option<ToneMap> {
@@ -694,6 +722,33 @@ impl Editor {
     pub fn set_observer_beta(&mut self, beta: DVec3) -> Result<(), EditError> {
         self.edit(|description| {
             description.observer.beta = beta.to_array();
+            Ok(())
+        })
+    }
+
+    /// The observation event in the world frame W (the description's observer position and ct).
+    #[must_use]
+    pub fn observer_event(&self) -> Event {
+        let observer = &self.description.observer;
+        Event::new(observer.ct, DVec3::from_array(observer.position))
+    }
+
+    /// Moves the observer to the event `event` (in W) with velocity `beta` through W, in one
+    /// edit: one step of a flight (the camera's direction, up and field of view stay).
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] for values the scene file's rules refuse (|β| ≥ 1, a position or
+    /// time that is not finite or too large); the observer is then unchanged.
+    pub fn set_observer_motion(&mut self, event: Event, beta: DVec3) -> Result<(), EditError> {
+        let direction = self.scene.observer.direction;
+        self.edit(|description| {
+            let observer = &mut description.observer;
+            // A point looked at would turn the camera as it moves: keep today's direction.
+            observer.look_at = None;
+            observer.direction = Some(direction.to_array());
+            observer.position = event.position.to_array();
+            observer.ct = event.ct;
+            observer.beta = beta.to_array();
             Ok(())
         })
     }
@@ -839,6 +894,24 @@ mod tests {
         let model = dir.path().join("tetra.stl");
         std::fs::write(&model, tetrahedron_stl()).unwrap();
         (dir, model)
+    }
+
+    #[test]
+    fn spectral_colour_and_exposure_are_edits_checked_like_the_scene_file() {
+        let (mut editor, _) = Editor::open("teaser").unwrap();
+        assert_eq!(editor.scene().colour, SurfaceColour::Paper);
+        // The paper's colour tables have no exposure.
+        assert!(editor.set_exposure(2.0).is_err());
+        assert_eq!(editor.scene().exposure, 1.0);
+        editor.set_colour(SurfaceColour::Spectral).unwrap();
+        editor.set_exposure(2.0).unwrap();
+        assert_eq!(editor.scene().exposure, 2.0);
+        assert!(editor.set_exposure(-1.0).is_err());
+        assert!(editor.set_exposure(f64::NAN).is_err());
+        assert_eq!(editor.scene().exposure, 2.0);
+        // Back to the paper's colour: the exposure goes back to 1.
+        editor.set_colour(SurfaceColour::Paper).unwrap();
+        assert_eq!(editor.scene().exposure, 1.0);
     }
 
     #[test]

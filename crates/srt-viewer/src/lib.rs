@@ -9,7 +9,11 @@
 //!   files are resolved by [`srt_scene::resolve`], every edit is checked by the scene file's
 //!   rules);
 //! - [`camera`]: the fly camera;
-//! - [`view`]: rendering into textures the UI shows;
+//! - [`pilot`]: relativistic flight — throttle, coasting and braking under a proper
+//!   acceleration, integrated exactly by `srt_physics::flight`;
+//! - [`probe`]: what one pixel shows, computed exactly by the CPU reference tracer;
+//! - [`view`]: rendering panes (seen, measured or Newtonian; side by side) into textures the UI
+//!   shows;
 //! - [`app`]: the panel, the status line and the input handling ([`ViewerApp`]);
 //! - [`run`]: opens the window (eframe on winit, egui drawn with egui-wgpu on the same wgpu
 //!   device the scene is rendered with).
@@ -20,6 +24,9 @@
 pub mod app;
 pub mod camera;
 pub mod edit;
+pub mod pilot;
+pub mod probe;
+pub mod record;
 pub mod view;
 
 use std::sync::Arc;
@@ -30,7 +37,7 @@ use srt_gpu::GpuContext;
 
 pub use app::{Level, Status, ViewerApp};
 pub use edit::{EditError, Editor, parse_speed};
-pub use view::ViewMethod;
+pub use view::{Pane, ViewMethod};
 
 /// Initial size of the window in points.
 pub const WINDOW_SIZE: [f32; 2] = [1600.0, 900.0];

@@ -3,13 +3,17 @@
 //! `Rgba8Unorm` texture registered with egui. The values are already display-encoded (sRGB), and
 //! egui expects exactly that of a non-sRGB texture, so the blit only clamps.
 //!
-//! For the split screen the one uploaded scene is rendered twice, once per method, each into its
-//! own display texture; a queue submission between the two keeps their uniforms apart.
+//! The screen is a row of [`Pane`]s: a view of the scene (seen, measured or Newtonian, made by
+//! [`View::apply`] as `srt render --view` makes it) drawn with a method (local ray tracing or
+//! polygons). Each pane is rendered into its own display texture, by a renderer holding the
+//! meshes of its view — the seen and Newtonian pictures share the scene's meshes, the measured
+//! one has contracted meshes of its own ([`UploadKey`]); a queue submission between panes keeps
+//! their uniforms apart.
 
 use eframe::egui;
 use eframe::egui_wgpu;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
-use srt_scene::Scene;
+use srt_scene::{Scene, View};
 
 /// Format of the textures egui shows.
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -49,6 +53,100 @@ impl ViewMethod {
             Self::Split => "Split screen (both)",
         }
     }
+}
+
+/// One picture on the screen: a view of the scene drawn with a method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Pane {
+    /// Which picture of the scene ([`View::apply`]).
+    pub view: View,
+    /// How it is drawn.
+    pub method: Method,
+}
+
+impl Pane {
+    /// The panes shown, left to right: each of `views` (one, or two side by side) with each of
+    /// `method`'s methods.
+    #[must_use]
+    pub fn row(views: &[View], method: ViewMethod) -> Vec<Self> {
+        views
+            .iter()
+            .flat_map(|&view| {
+                method
+                    .methods()
+                    .iter()
+                    .map(move |&method| Self { view, method })
+            })
+            .collect()
+    }
+
+    /// The label drawn on the pane; `None` for today's single picture (seen, one method).
+    #[must_use]
+    pub fn label(panes: &[Self], index: usize) -> Option<String> {
+        let pane = panes.get(index)?;
+        let several_views = panes.iter().any(|p| p.view != pane.view);
+        let several_methods = panes.iter().any(|p| p.method != pane.method);
+        let view = (several_views || pane.view != View::Seen).then(|| view_label(pane.view));
+        let method = several_methods.then_some(match pane.method {
+            Method::Lrt => "local ray tracing",
+            Method::Polygon => "polygon",
+        });
+        match (view, method) {
+            (Some(view), Some(method)) => Some(format!("{view} · {method}")),
+            (Some(view), None) => Some(view.to_owned()),
+            (None, Some(method)) => Some(method.to_owned()),
+            (None, None) => None,
+        }
+    }
+}
+
+/// The name of a view in the panel and on its pane.
+#[must_use]
+pub const fn view_label(view: View) -> &'static str {
+    match view {
+        View::Seen => "seen (what a camera records)",
+        View::Measured => "measured (where everything is now, contracted)",
+        View::Newtonian => "Newtonian (rest shapes where they are now)",
+    }
+}
+
+/// Which meshes a renderer holds: those of the editor's scene at a structure version, or for
+/// the measured view also the velocities the meshes were contracted with (their bits).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UploadKey {
+    version: u64,
+    contracted_for: Option<Vec<[u64; 3]>>,
+}
+
+impl UploadKey {
+    /// The key of `view` of `scene`, the editor's scene at structure version `version`: the
+    /// seen and Newtonian views draw the scene's own meshes, the measured view meshes
+    /// contracted along each object's velocity (which the key therefore includes).
+    #[must_use]
+    pub fn new(view: View, scene: &Scene, version: u64) -> Self {
+        let contracted_for = (view == View::Measured).then(|| {
+            scene
+                .objects
+                .iter()
+                .map(|o| o.frame.beta().to_array().map(f64::to_bits))
+                .collect()
+        });
+        Self {
+            version,
+            contracted_for,
+        }
+    }
+}
+
+/// One pane to render: the scene of its view, the meshes that scene has, and the method.
+#[derive(Debug, Clone, Copy)]
+pub struct PaneScene<'a> {
+    /// The scene as the pane's view shows it.
+    pub scene: &'a Scene,
+    /// Which meshes it has.
+    pub key: &'a UploadKey,
+    /// How it is drawn.
+    pub method: Method,
 }
 
 const BLIT_WGSL: &str = r"
@@ -142,22 +240,12 @@ impl Blit {
                 resource: wgpu::BindingResource::TextureView(&source_view),
             }],
         });
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("srt-viewer blit"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = srt_gpu::passes::begin_colour_pass(
+            encoder,
+            "srt-viewer blit",
+            target,
+            wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+        );
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
         pass.draw(0..3, 0..1);
@@ -203,14 +291,14 @@ impl Display {
     }
 }
 
-/// The uploaded scene and the textures the UI shows.
+/// The uploaded scenes and the textures the UI shows.
 pub struct SceneView {
     blit: Blit,
-    /// The uploaded scene and the structure version it was uploaded at.
-    renderer: Option<(u64, GpuRenderer)>,
+    /// One renderer per set of meshes the panes need, with the key of those meshes.
+    renderers: Vec<(UploadKey, GpuRenderer)>,
     displays: Vec<Display>,
-    /// egui ids of displays no longer shown (split screen switched off), reused before new ones
-    /// are registered.
+    /// egui ids of displays no longer shown (a pane fewer), reused before new ones are
+    /// registered.
     spare_ids: Vec<egui::TextureId>,
     triangles: usize,
 }
@@ -221,33 +309,54 @@ impl SceneView {
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
             blit: Blit::new(&ctx.device),
-            renderer: None,
+            renderers: Vec::new(),
             displays: Vec::new(),
             spare_ids: Vec::new(),
             triangles: 0,
         }
     }
 
-    /// Uploads `scene` unless the scene of structure `version` is already uploaded.
+    /// Uploads `scene` (the seen view) unless the scene of structure `version` is already
+    /// uploaded.
     ///
     /// # Errors
     /// [`GpuError`] when the upload fails (a model too large for the device…); the previously
-    /// uploaded scene is then dropped.
+    /// uploaded scenes are then dropped.
     pub fn upload(
         &mut self,
         ctx: &GpuContext,
         scene: &Scene,
         version: u64,
     ) -> Result<(), GpuError> {
-        if self.renderer.as_ref().is_some_and(|(v, _)| *v == version) {
-            return Ok(());
+        let key = UploadKey::new(View::Seen, scene, version);
+        self.ensure(ctx, scene, &key).map(|_| ())
+    }
+
+    /// The index of the renderer holding `key`'s meshes, uploading `scene` (which has them) if
+    /// there is none; renderers of older structure versions are dropped first.
+    fn ensure(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        key: &UploadKey,
+    ) -> Result<usize, GpuError> {
+        if let Some(index) = self.renderers.iter().position(|(k, _)| k == key) {
+            return Ok(index);
         }
-        let size = self.renderer.as_ref().map_or((64, 64), |(_, r)| r.size());
-        self.renderer = None;
-        let renderer = GpuRenderer::new(ctx, scene, size.0, size.1)?;
-        self.triangles = scene.triangle_count();
-        self.renderer = Some((version, renderer));
-        Ok(())
+        let size = self.renderers.first().map_or((64, 64), |(_, r)| r.size());
+        self.renderers.retain(|(k, _)| k.version == key.version);
+        if key.contracted_for.is_some() {
+            // One set of contracted meshes at a time: the velocities changed.
+            self.renderers.retain(|(k, _)| k.contracted_for.is_none());
+        }
+        let renderer = GpuRenderer::new(ctx, scene, size.0, size.1).inspect_err(|_| {
+            self.renderers.clear();
+        })?;
+        if key.contracted_for.is_none() {
+            self.triangles = scene.triangle_count();
+        }
+        self.renderers.push((key.clone(), renderer));
+        Ok(self.renderers.len() - 1)
     }
 
     /// Triangles in the uploaded scene.
@@ -256,35 +365,36 @@ impl SceneView {
         self.triangles
     }
 
-    /// Renders `scene` (which must have the structure last uploaded) with `method` into display
-    /// textures filling `size` pixels in all; with `egui_renderer`, (re-)registers them with egui.
+    /// Renders `panes` side by side into display textures filling `size` pixels in all (each
+    /// pane an equal share of the width), uploading the meshes a pane's view needs when no
+    /// renderer holds them; with `egui_renderer`, (re-)registers the textures with egui.
     ///
     /// # Errors
-    /// [`GpuError`] when nothing was uploaded, the scene's structure changed, or wgpu reports an
-    /// error.
+    /// [`GpuError`] when an upload fails, a scene's structure differs from its key's, or wgpu
+    /// reports an error.
     pub fn render(
         &mut self,
         ctx: &GpuContext,
         egui_renderer: Option<&mut egui_wgpu::Renderer>,
-        scene: &Scene,
-        method: ViewMethod,
+        panes: &[PaneScene<'_>],
         size: (u32, u32),
     ) -> Result<(), GpuError> {
-        let Some((_, renderer)) = &mut self.renderer else {
-            return Err(GpuError::NotReady("no scene has been uploaded"));
-        };
-        let methods = method.methods();
-        let count = u32::try_from(methods.len()).unwrap_or(1);
+        if panes.is_empty() {
+            return Err(GpuError::NotReady("no view to render"));
+        }
+        let count = u32::try_from(panes.len()).unwrap_or(1);
         let limit = ctx.device.limits().max_texture_dimension_2d;
         let each = ((size.0 / count).clamp(1, limit), size.1.clamp(1, limit));
-        renderer.resize(ctx, each.0, each.1)?;
+        // Renderers no pane needs any more are dropped (their meshes are stale or unused).
+        self.renderers
+            .retain(|(key, _)| panes.iter().any(|pane| pane.key == key));
         // Displays no longer needed keep their egui ids for later reuse.
-        while self.displays.len() > methods.len() {
+        while self.displays.len() > panes.len() {
             if let Some(display) = self.displays.pop() {
                 self.spare_ids.extend(display.id);
             }
         }
-        for (index, method) in methods.iter().enumerate() {
+        for (index, pane) in panes.iter().enumerate() {
             match self.displays.get(index) {
                 Some(display) if display.size == each => {}
                 Some(display) => {
@@ -296,12 +406,21 @@ impl SceneView {
                     self.displays.push(Display::new(&ctx.device, each, id));
                 }
             }
+            let renderer_index = self.ensure(ctx, pane.scene, pane.key)?;
+            let renderer = &mut self.renderers[renderer_index].1;
+            renderer.resize(ctx, each.0, each.1)?;
             let mut encoder = ctx
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("srt-viewer frame"),
                 });
-            renderer.encode(ctx, &mut encoder, scene, *method, FootprintShape::Hull)?;
+            renderer.encode(
+                ctx,
+                &mut encoder,
+                pane.scene,
+                pane.method,
+                FootprintShape::Hull,
+            )?;
             self.blit.encode(
                 &ctx.device,
                 &mut encoder,
@@ -374,5 +493,59 @@ impl SceneView {
         }
         ctx.take_errors()?;
         Ok(image)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use srt_scene::builtin::find_builtin;
+
+    use super::*;
+
+    #[test]
+    fn panes_are_each_view_with_each_method() {
+        let lrt = |view| Pane {
+            view,
+            method: Method::Lrt,
+        };
+        assert_eq!(
+            Pane::row(&[View::Seen], ViewMethod::Lrt),
+            vec![lrt(View::Seen)]
+        );
+        let split = Pane::row(&[View::Seen, View::Measured], ViewMethod::Lrt);
+        assert_eq!(split, vec![lrt(View::Seen), lrt(View::Measured)]);
+        assert_eq!(
+            Pane::label(&Pane::row(&[View::Seen], ViewMethod::Lrt), 0),
+            None
+        );
+        assert_eq!(
+            Pane::label(&split, 1).as_deref(),
+            Some(view_label(View::Measured))
+        );
+        let both = Pane::row(&[View::Newtonian], ViewMethod::Split);
+        assert_eq!(both.len(), 2);
+        assert_eq!(
+            Pane::label(&both, 1),
+            Some(format!("{} · polygon", view_label(View::Newtonian)))
+        );
+        assert_eq!(Pane::label(&both, 2), None);
+    }
+
+    #[test]
+    fn only_the_measured_view_needs_meshes_of_its_own() {
+        let (mut scene, _) = find_builtin("fig7").unwrap().build().unwrap();
+        let seen = UploadKey::new(View::Seen, &scene, 3);
+        assert_eq!(UploadKey::new(View::Newtonian, &scene, 3), seen);
+        assert_ne!(UploadKey::new(View::Seen, &scene, 4), seen);
+        let measured = UploadKey::new(View::Measured, &scene, 3);
+        assert_ne!(measured, seen);
+        // The contracted meshes depend on the velocities, not on the time.
+        scene.observer.ct += 1.0;
+        assert_eq!(UploadKey::new(View::Measured, &scene, 3), measured);
+        let object = &mut scene.objects[0];
+        object.frame =
+            srt_physics::Frame::new(DVec3::new(0.0, 0.5, 0.0), object.frame.offset()).unwrap();
+        assert_ne!(UploadKey::new(View::Measured, &scene, 3), measured);
     }
 }

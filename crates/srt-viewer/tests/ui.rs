@@ -13,7 +13,7 @@ use eframe::egui_wgpu;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use srt_gpu::GpuContext;
-use srt_scene::Effects;
+use srt_scene::{Effects, View};
 use srt_viewer::view::DISPLAY_FORMAT;
 use srt_viewer::{Editor, Level, ViewerApp};
 
@@ -369,7 +369,167 @@ fn keyboard_flies_and_resets_the_camera() {
     );
 }
 
+#[test]
+fn the_throttle_accelerates_releasing_it_coasts_and_b_brakes_to_rest() {
+    // No GPU needed: the flight changes the observer, which the panel shows.
+    let mut harness = harness(app("flythrough", None));
+    let start = harness.state().editor().observer_beta().length();
+    assert!(harness.state().flight().is_none());
+    harness.key_down(Key::PageUp);
+    harness.run_steps(20);
+    harness.key_up(Key::PageUp);
+    harness.run_steps(1);
+    let flying = harness.state().editor().observer_beta().length();
+    assert!(flying > start, "PageUp accelerates: {start} → {flying}");
+    let flight = *harness.state().flight().expect("a flight started");
+    assert!(flight.proper_time > 0.0);
+    assert!(flight.world_time(harness.state().editor()) > flight.proper_time);
+    // Released: the velocity stays, the clocks run.
+    harness.run_steps(10);
+    let coasting = harness.state().editor().observer_beta().length();
+    assert!((coasting - flying).abs() < 1e-12, "{flying} → {coasting}");
+    assert!(harness.state().flight().unwrap().proper_time > flight.proper_time);
+    // B brakes to rest (at α = 0.5 from above 0.9c: some hundreds of frames).
+    harness.key_press(Key::B);
+    for _ in 0..2000 {
+        harness.run_steps(10);
+        if harness.state().editor().observer_beta() == glam::DVec3::ZERO {
+            break;
+        }
+    }
+    assert_eq!(harness.state().editor().observer_beta(), glam::DVec3::ZERO);
+    assert_ne!(harness.state().status().level, Level::Error);
+}
+
+#[test]
+fn two_views_side_by_side_and_the_probe_tells_what_a_pixel_shows() {
+    let Some(ctx) = srt_gpu::context_or_skip("viewer_views_and_probe") else {
+        return;
+    };
+    let mut harness = harness(app("fig7", Some(ctx)));
+    let one = image(&harness);
+    harness
+        .state_mut()
+        .set_views(View::Seen, Some(View::Newtonian));
+    harness.run_steps(2);
+    let two = image(&harness);
+    assert!(two.width().abs_diff(one.width()) <= 1);
+    let half = two.width() / 2;
+    let left = image::imageops::crop_imm(&two, 0, 0, half, two.height()).to_image();
+    let right = image::imageops::crop_imm(&two, half, 0, half, two.height()).to_image();
+    // The seen cube (approaching at 0.95c) and the Newtonian cube (at rest where it is now,
+    // rest colours) look different.
+    assert!(changed_pixels(&left, &right) > 100);
+    assert!(!harness.state().status().text.contains("failed"));
+
+    // The probe: the centre of the left (seen) pane is on the cube, a corner is background.
+    harness
+        .state_mut()
+        .probe_at(0, egui::vec2(0.5, 0.5), left.dimensions());
+    let found = harness
+        .state()
+        .probed()
+        .flatten()
+        .expect("the cube is at the centre")
+        .clone();
+    assert_eq!(found.object, "cube");
+    assert!(found.doppler > 5.0, "{}", found.doppler);
+    // At ct = 0 the Newtonian cube is at the origin, straight ahead, at rest: D = 1.
+    click(&mut harness, "ct = 0");
+    harness
+        .state_mut()
+        .probe_at(1, egui::vec2(0.5, 0.5), right.dimensions());
+    let rest = harness
+        .state()
+        .probed()
+        .flatten()
+        .expect("the cube")
+        .clone();
+    assert!(
+        (rest.doppler - 1.0).abs() < 1e-12,
+        "at rest: {}",
+        rest.doppler
+    );
+    harness
+        .state_mut()
+        .probe_at(0, egui::vec2(0.01, 0.01), left.dimensions());
+    assert_eq!(harness.state().probed(), Some(None));
+
+    // A click on the picture probes too (the picture fills the window right of the panel).
+    harness.input_mut().events.extend([
+        egui::Event::PointerMoved(egui::pos2(SIZE[0] - 5.0, 60.0)),
+        egui::Event::PointerButton {
+            pos: egui::pos2(SIZE[0] - 5.0, 60.0),
+            button: egui::PointerButton::Primary,
+            pressed: true,
+            modifiers: Modifiers::NONE,
+        },
+    ]);
+    harness.run_steps(1);
+    harness.input_mut().events.push(egui::Event::PointerButton {
+        pos: egui::pos2(SIZE[0] - 5.0, 60.0),
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().probed(),
+        Some(None),
+        "a click at the edge: background"
+    );
+}
+
 /// A binary STL file with one tetrahedron (4 triangles), shared with the unit tests.
 fn tetrahedron_stl() -> Vec<u8> {
     include_bytes!("fixtures/tetrahedron.stl").to_vec()
+}
+
+#[test]
+fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
+    let Some(ctx) = srt_gpu::context_or_skip("recording_writes_one_video_frame_per_drawn_frame")
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("teaser flight.gif");
+    let mut harness = harness(app("teaser", Some(ctx)));
+    type_into(&mut harness, "Path:", &path.display().to_string());
+    click(&mut harness, "Record");
+    assert!(
+        harness.state().is_recording(),
+        "{}",
+        harness.state().status().text
+    );
+    click(&mut harness, "Play");
+    let ct_start = harness.state().editor().scene().observer.ct;
+    harness.run_steps(12);
+    let ct_end = harness.state().editor().scene().observer.ct;
+    // 12 frames at 24 fps of playback at 1 ct per second: exactly 0.5, whatever the frames took.
+    assert!(
+        (ct_end - ct_start - 0.5).abs() < 1e-9,
+        "ct advanced by {} in 12 recorded frames",
+        ct_end - ct_start
+    );
+    assert!(!path.exists(), "the video appears before it is finished");
+    let (written, frames) = harness.state_mut().stop_recording().unwrap();
+    assert_eq!(written, path);
+    // Frames drawn since Record was clicked: the clicks' steps and the twelve.
+    assert!(frames >= 12, "{frames} frames");
+    let mut decoder = gif::DecodeOptions::new()
+        .read_info(std::fs::File::open(&path).unwrap())
+        .unwrap();
+    let mut decoded = 0;
+    let mut first: Option<Vec<u8>> = None;
+    let mut changed = false;
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        decoded += 1;
+        match &first {
+            None => first = Some(frame.buffer.to_vec()),
+            Some(f) => changed |= *f != frame.buffer.to_vec(),
+        }
+    }
+    assert_eq!(decoded, frames);
+    assert!(changed, "the objects move while the video plays");
+    assert!(!harness.state().is_recording());
 }
