@@ -9,7 +9,9 @@
 //! - fly-by sweeps at 1280×720: the teaser while the spider passes the camera, and the engine
 //!   passing beside, above and behind it, 12 frames each; one line per sweep with the worst
 //!   frame's ratio (`worst_ratio`) and the slowest LRT frame;
-//! - a large scene: three engines side by side (364 488 triangles).
+//! - a large scene: three engines side by side (364 488 triangles);
+//! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
+//!   `flythrough` (a moving observer under 6 000 stars).
 //!
 //! Prints one line per case and rewrites the tables in `docs/performance.md`.
 
@@ -18,7 +20,7 @@ use std::time::Instant;
 
 use anyhow::Context as _;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
-use srt_scene::Scene;
+use srt_scene::{Scene, SurfaceColour};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::cases::{
@@ -217,6 +219,16 @@ fn three_engines() -> anyhow::Result<Case> {
     })
 }
 
+/// `case` with spectral surface colour, named `NAME-spectral`.
+fn with_spectral_colour(case: Case) -> Case {
+    let mut scene = case.scene;
+    scene.colour = SurfaceColour::Spectral;
+    Case {
+        name: format!("{}-spectral", case.name),
+        scene,
+    }
+}
+
 /// Runs the benchmark with `frames` timed frames per measurement and updates
 /// `docs/performance.md`; with `only`, runs the cases whose name contains it and leaves the
 /// document alone.
@@ -247,6 +259,8 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
         model_case(ENGINE, 0.9)?,
         builtin("teaser")?,
         three_engines()?,
+        with_spectral_colour(builtin("teaser")?),
+        builtin("flythrough")?,
     ];
     let mut lines = Vec::new();
     for size in SIZES {

@@ -688,3 +688,55 @@ fn the_complete_example_of_the_format_documentation_builds() {
     assert_eq!(scene.objects[0].triangle_count(), 300);
     assert_eq!(scene.objects[1].triangle_count(), 1368);
 }
+
+#[test]
+fn spectral_colour_and_sky_values_are_checked() {
+    let scene = |tables: &str| {
+        format!("[observer]\nposition = [0.0, 0.0, 0.0]\ndirection = [1.0, 0.0, 0.0]\n{tables}\n")
+    };
+    for t in ["0.0", "-1.0", "nan", "inf"] {
+        let message = value_error(&scene(&format!(
+            "[render]\ncolour = \"spectral\"\nexposure = {t}"
+        )));
+        assert!(message.contains("render.exposure"), "{message}");
+    }
+    let message = value_error(&scene("[render]\nexposure = 2.0"));
+    assert!(
+        message.contains("render.exposure") && message.contains("spectral"),
+        "{message}"
+    );
+    for key in ["infrared", "ultraviolet"] {
+        for v in ["-0.1", "1.5", "nan"] {
+            let message = value_error(&with_object(&format!("{key} = {v}")));
+            assert!(
+                message.contains(key) && message.contains("probe"),
+                "{message}"
+            );
+        }
+    }
+    for t in ["0.0", "-5.0", "nan"] {
+        let message = value_error(&with_object(&format!(
+            "emission = {{ temperature_k = {t} }}"
+        )));
+        assert!(message.contains("emission.temperature_k"), "{message}");
+    }
+    let message = value_error(&with_object(
+        "emission = { temperature_k = 3000.0, brightness = -1.0 }",
+    ));
+    assert!(message.contains("emission.brightness"), "{message}");
+    let message = value_error(&scene("[sky]\nstar_field = 2000000"));
+    assert!(message.contains("sky.star_field"), "{message}");
+    let message = value_error(&scene("[sky]\nstar_field = 10\nsaturation_magnitude = nan"));
+    assert!(message.contains("sky.saturation_magnitude"), "{message}");
+    let error = parse(&scene("[render]\ncolour = \"rainbow\""))
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("unknown surface colour"), "{error}");
+    // Valid values build, and reach the scene.
+    let (built, _) = build(&scene(
+        "[render]\ncolour = \"spectral\"\nexposure = 0.5\n[sky]\nstar_field = 7",
+    ))
+    .unwrap();
+    assert_eq!(built.exposure, 0.5);
+    assert_eq!(built.sky.stars.len(), 7);
+}
