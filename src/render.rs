@@ -321,7 +321,7 @@ fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
     // Supersampling on the GPU: render at ⌈√N⌉× the size and average.
     let scale = f64::from(args.samples).sqrt().ceil() as u32;
     let (width, height) = (args.width * scale, args.height * scale);
-    let renderer = match GpuRenderer::new(&context, scene, width, height) {
+    let mut renderer = match GpuRenderer::new(&context, scene, width, height) {
         Ok(renderer) => renderer,
         Err(error @ GpuError::ExceedsLimit { .. })
             if args.backend == Backend::Auto && method == Method::Lrt =>
@@ -343,6 +343,8 @@ fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
             });
         }
     };
+    // Each output pixel averages scale² rendered pixels; a star lands in one of them.
+    renderer.set_star_light_scale(f64::from(scale * scale));
     Ok(Engine::Gpu {
         context: Box::new(context),
         renderer: Box::new(renderer),

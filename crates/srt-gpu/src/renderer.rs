@@ -507,6 +507,8 @@ pub struct GpuRenderer {
     targets: Targets,
     /// The stars, if the scene has a sky.
     sky: Option<SkyResources>,
+    /// Factor on every star's light ([`GpuRenderer::set_star_light_scale`]).
+    star_light_scale: f64,
     /// Whether the LRT pass counts its fragments.
     count_fragments: bool,
     /// Whether the LRT draws take their vertex counts from the proxy pass
@@ -767,6 +769,7 @@ impl GpuRenderer {
             timestamps: ctx.timestamps.then(|| Timestamps::new(device)),
             targets: Targets::new(ctx, width, height, &pipelines, &frame)?,
             sky: SkyResources::new(ctx, scene, width, height)?,
+            star_light_scale: 1.0,
             pipelines,
             frame,
             objects,
@@ -776,6 +779,14 @@ impl GpuRenderer {
         };
         ctx.take_errors()?;
         Ok(renderer)
+    }
+
+    /// Multiplies every star's light by `scale` (default 1). A caller that renders at k× the
+    /// output size and box-filters down (supersampling) sets k², so that each star brings the
+    /// same light to the output pixels as in the CPU reference, where it lands in one output
+    /// pixel's samples.
+    pub fn set_star_light_scale(&mut self, scale: f64) {
+        self.star_light_scale = scale;
     }
 
     /// Makes the LRT passes count the fragments they run and shade
@@ -835,7 +846,7 @@ impl GpuRenderer {
             return Err(GpuError::SceneChanged);
         }
         if let Some(sky) = &self.sky {
-            sky.write_uniforms(ctx, scene);
+            sky.write_uniforms(ctx, scene, self.star_light_scale);
         }
         let (width, height) = self.size();
         let aspect = f64::from(width) / f64::from(height);

@@ -142,10 +142,13 @@ impl SkyResources {
         Ok(())
     }
 
-    /// Writes the sky's uniforms for `scene` (its motion relative to the observer now).
-    pub fn write_uniforms(&self, ctx: &GpuContext, scene: &Scene) {
+    /// Writes the sky's uniforms for `scene` (its motion relative to the observer now), each
+    /// star's light multiplied by `light_scale` (see [`crate::GpuRenderer::set_star_light_scale`]):
+    /// the saturation magnitude moves by 2.5 log₁₀ of it (Pogson).
+    pub fn write_uniforms(&self, ctx: &GpuContext, scene: &Scene, light_scale: f64) {
+        let saturation = scene.sky.saturation_magnitude + 2.5 * light_scale.log10();
         let uniforms = SkyUniforms {
-            beta_saturation: vec4(scene.sky.beta, scene.sky.saturation_magnitude),
+            beta_saturation: vec4(scene.sky.beta, saturation),
             counts: [self.star_count, 0, 0, 0],
         };
         ctx.queue
