@@ -1,13 +1,15 @@
 //! Small helpers for recording passes that several modules (and the viewer) share.
 
-/// Begins a render pass into the colour target `target` alone (no depth, no timestamps),
-/// loading it as `load` says.
-pub fn begin_colour_pass(
-    encoder: &mut wgpu::CommandEncoder,
+/// Begins a render pass into the colour target `target` (loaded as `load` says, stored) and the
+/// optional `depth` attachment, with the optional timestamp writes.
+pub fn begin_pass<'a>(
+    encoder: &'a mut wgpu::CommandEncoder,
     label: &str,
     target: &wgpu::TextureView,
     load: wgpu::LoadOp<wgpu::Color>,
-) -> wgpu::RenderPass<'static> {
+    depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> wgpu::RenderPass<'a> {
     encoder
         .begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(label),
@@ -20,10 +22,20 @@ pub fn begin_colour_pass(
                     store: wgpu::StoreOp::Store,
                 },
             })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
+            depth_stencil_attachment: depth,
+            timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
         })
         .forget_lifetime()
+}
+
+/// [`begin_pass`] into the colour target alone: no depth, no timestamps.
+pub fn begin_colour_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) -> wgpu::RenderPass<'static> {
+    begin_pass(encoder, label, target, load, None, None).forget_lifetime()
 }

@@ -1109,30 +1109,15 @@ impl GpuRenderer {
         depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
         [beginning, end]: [Option<u32>; 2],
     ) -> wgpu::RenderPass<'a> {
-        encoder
-            .begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(label),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: depth,
-                timestamp_writes: self.timestamps.as_ref().map(|t| {
-                    wgpu::RenderPassTimestampWrites {
-                        query_set: &t.set,
-                        beginning_of_pass_write_index: beginning,
-                        end_of_pass_write_index: end,
-                    }
-                }),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            })
-            .forget_lifetime()
+        let timestamps = self
+            .timestamps
+            .as_ref()
+            .map(|t| wgpu::RenderPassTimestampWrites {
+                query_set: &t.set,
+                beginning_of_pass_write_index: beginning,
+                end_of_pass_write_index: end,
+            });
+        crate::passes::begin_pass(encoder, label, target, load, depth, timestamps)
     }
 
     /// Binds each object's and part's groups in `pass` (groups 1 and 2) and lets `draw` draw the
