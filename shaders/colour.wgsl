@@ -42,3 +42,8 @@ fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
     let b = textureLoad(table, vec2<i32>(min(i + 1, last), 0), 0);
     return (1.0 - f) * a + f * b;
 }
+
+// Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.
+fn grey_value(c: vec4<f32>) -> f32 {
+    return 0.3 * c.x + 0.59 * c.y + 0.11 * c.z;
+}

@@ -26,14 +26,3 @@ fn triangle_corners(t: u32) -> array<vec3<f32>, 3> {
         vertices[indices[3u * t + 2u]].position.xyz,
     );
 }
-
-// Viewing direction in S through the framebuffer position `pixel` (x right, y down, pixel
-// centres at half-integers); mirrors srt_scene::Observer::view_direction.
-fn view_direction(pixel: vec2<f32>) -> vec3<f32> {
-    let ndc = vec2<f32>(
-        2.0 * pixel.x * frame_uniforms.viewport.z - 1.0,
-        1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w,
-    );
-    return frame_uniforms.camera_forward.xyz + ndc.x * frame_uniforms.camera_right.xyz
-        + ndc.y * frame_uniforms.camera_up.xyz;
-}

@@ -264,16 +264,28 @@ fn spectral_reflected_display(
     d_out: f32,
     view: SpectralView,
 ) -> vec3<f32> {
-    if (!(view.exposure > 0.0)) {
-        return vec3<f32>(0.0);
-    }
     let decoded = vec3<f32>(
         spectral_srgb_decode(albedo.x),
         spectral_srgb_decode(albedo.y),
         spectral_srgb_decode(albedo.z),
     );
-    let linear = clamp(decoded, vec3<f32>(0.0), vec3<f32>(1.0));
-    let r = coefficient_lookup(linear, ultraviolet, infrared);
+    return spectral_linear_reflected_display(decoded, ultraviolet, infrared, temperature_k, d_in, d_out, view);
+}
+
+// spectral_reflected_display of a linear-light colour `linear` (clamped to [0, 1]³).
+fn spectral_linear_reflected_display(
+    linear: vec3<f32>,
+    ultraviolet: f32,
+    infrared: f32,
+    temperature_k: f32,
+    d_in: f32,
+    d_out: f32,
+    view: SpectralView,
+) -> vec3<f32> {
+    if (!(view.exposure > 0.0)) {
+        return vec3<f32>(0.0);
+    }
+    let r = coefficient_lookup(clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0)), ultraviolet, infrared);
     return spectral_tone_map(reflected_light(r, temperature_k, d_in, d_out), view, log(view.exposure));
 }
 

@@ -32,11 +32,6 @@ fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32
     return h;
 }
 
-// Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.
-fn grey_value(c: vec4<f32>) -> f32 {
-    return 0.3 * c.x + 0.59 * c.y + 0.11 * c.z;
-}
-
 // Interpolated texture coordinates of triangle `t` at barycentric (ζ, ξ).
 fn triangle_uv(t: u32, zeta: f32, xi: f32) -> vec2<f32> {
     let a = vertices[indices[3u * t]].uv.xy;

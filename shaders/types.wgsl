@@ -132,8 +132,14 @@ struct SkyUniforms {
     // Velocity of W relative to S (xyz); the saturation magnitude (w): a star of it at rest fills
     // one pixel with its full colour.
     beta_saturation: vec4<f32>,
-    // Number of stars (x); yzw unused.
+    // Number of stars (x), the sky image's width (y) and height (z), 1 if there is an image (w).
     counts: vec4<u32>,
+    // Directions at rest in W → directions in S before aberration (the identity except in the
+    // measured view), and its inverse.
+    direction_map: mat3x3<f32>,
+    direction_unmap: mat3x3<f32>,
+    // The sky image's brightness factor (x); yzw unused.
+    image: vec4<f32>,
 }
 
 // The kernel probes of probe.wgsl (srt_gpu::probe).

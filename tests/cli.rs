@@ -163,6 +163,43 @@ fn scene_file_errors_name_the_file_line_and_key() {
 }
 
 #[test]
+fn sky_images_are_read_or_refused_by_name() {
+    let dir = folder();
+    let scene =
+        "[observer]\nposition = [0, 0, 0]\nlook_at = [0, 1, 0]\n[sky]\nimage = \"sky.exr\"\n";
+    std::fs::write(dir.path().join("sky.toml"), scene).unwrap();
+    let render = || {
+        srt(
+            &[
+                "render",
+                "sky.toml",
+                "--backend",
+                "cpu",
+                "-o",
+                "o.png",
+                "--width",
+                "64",
+                "--height",
+                "32",
+            ],
+            dir.path(),
+        )
+    };
+    assert_clean_failure(&render(), &["sky.exr", "sky.toml"]);
+    std::fs::write(dir.path().join("sky.exr"), b"not an image at all").unwrap();
+    assert_clean_failure(&render(), &["sky.exr"]);
+    assert!(!dir.path().join("o.png").exists());
+    let sky = image::Rgb32FImage::from_fn(32, 16, |x, _| image::Rgb([x as f32 / 32.0, 0.5, 0.25]));
+    image::DynamicImage::ImageRgb32F(sky)
+        .save(dir.path().join("sky.exr"))
+        .unwrap();
+    let output = render();
+    assert!(output.status.success(), "{}", stderr(&output));
+    let shown = image::open(dir.path().join("o.png")).unwrap().into_rgb8();
+    assert!(shown.pixels().any(|p| p.0[1] > 100), "the sky image shows");
+}
+
+#[test]
 fn bad_star_files_name_the_file_line_and_reason() {
     let dir = folder();
     let scene =

@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use srt_physics::Frame;
 use srt_scene::placement::approach_velocity;
-use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, builtin_scenes};
+use srt_scene::sky::SkyImage;
+use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, View, builtin_scenes};
 
 /// Where Debian's assimp-testmodels package puts its models.
 pub const ASSIMP_MODELS: &str = "/usr/share/assimp/models";
@@ -269,9 +270,10 @@ pub fn spectral_emitter_case() -> anyhow::Result<Case> {
     })
 }
 
-/// The stars of the `flythrough` scene (observer at 0.9c through a star field) with the effect
-/// modes its file does not use: geometry only (no Doppler) and the searchlight (stars ahead
-/// brightened by D², behind dimmed).
+/// The sky of the `flythrough` scene (observer at 0.9c through a star field): its stars with the
+/// effect modes its file does not use (geometry only; the searchlight: stars ahead brightened by
+/// D², behind dimmed), and with a sky image behind them ([`test_sky_image`]) in the paper's and
+/// in spectral colour, and in the measured view (the sky at rest, contracted).
 ///
 /// # Errors
 /// If the built-in scene does not build (a bug).
@@ -280,15 +282,76 @@ pub fn sky_cases() -> anyhow::Result<Vec<Case>> {
         .into_iter()
         .find(|c| c.name == "flythrough")
         .context("flythrough is a built-in scene")?;
-    Ok([Effects::Geometry, Effects::Searchlight]
-        .into_iter()
-        .map(|effects| {
-            let mut scene = flythrough.scene.clone();
-            scene.set_effects(effects);
-            Case {
-                name: format!("flythrough-{}", effects.name()),
-                scene,
-            }
+    let variant = |name: &str, effects: Effects, colour: SurfaceColour, image: bool| {
+        let mut scene = flythrough.scene.clone();
+        scene.set_effects(effects);
+        scene.colour = colour;
+        if image {
+            scene.sky.image = Some(test_sky_image());
+        }
+        Case {
+            name: format!("flythrough-{name}"),
+            scene,
+        }
+    };
+    let mut cases = vec![
+        variant("geometry", Effects::Geometry, SurfaceColour::Paper, false),
+        variant(
+            "searchlight",
+            Effects::Searchlight,
+            SurfaceColour::Paper,
+            false,
+        ),
+        variant("image", Effects::Doppler, SurfaceColour::Paper, true),
+        variant(
+            "image-spectral",
+            Effects::Searchlight,
+            SurfaceColour::Spectral,
+            true,
+        ),
+    ];
+    let mut measured = variant(
+        "image-measured",
+        Effects::Doppler,
+        SurfaceColour::Paper,
+        true,
+    );
+    measured.scene = View::Measured.apply(&measured.scene)?;
+    cases.push(measured);
+    Ok(cases)
+}
+
+/// A 256 × 128 equirectangular test sky: hues that turn with longitude, brighter towards the
+/// zenith, a grey horizon band and a small bright sun (radiance 20) ahead of the flythrough's
+/// observer (+y).
+#[must_use]
+pub fn test_sky_image() -> SkyImage {
+    let (width, height) = (256u32, 128u32);
+    let texels: Vec<[f32; 3]> = (0..height)
+        .flat_map(|row| (0..width).map(move |column| (row, column)))
+        .map(|(row, column)| {
+            let longitude = (f64::from(column) + 0.5) / f64::from(width) * std::f64::consts::TAU;
+            let latitude = 0.5 - (f64::from(row) + 0.5) / f64::from(height);
+            let sun = (column as i64 - 192).abs() <= 2 && (row as i64 - 60).abs() <= 2;
+            let colour = if sun {
+                [20.0; 3]
+            } else if latitude.abs() < 0.03 {
+                [0.4; 3]
+            } else {
+                let level = 0.2 + latitude.max(0.0);
+                [
+                    level * (0.5 + 0.5 * longitude.sin()),
+                    level * (0.5 + 0.5 * (2.0 * longitude).cos()),
+                    level * 0.8,
+                ]
+            };
+            colour.map(|c| c as f32)
         })
-        .collect())
+        .collect();
+    SkyImage {
+        width,
+        height,
+        texels: texels.into(),
+        source: "test sky".to_owned(),
+    }
 }

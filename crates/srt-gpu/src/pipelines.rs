@@ -224,8 +224,15 @@ pub mod slots {
     pub const SKY: Slot = Slot {
         wgsl_name: "sky",
         binding: 0,
-        visibility: ShaderStages::COMPUTE,
+        visibility: ShaderStages::COMPUTE.union(ShaderStages::FRAGMENT),
         ty: UNIFORM,
+    };
+    /// Group 1 of the sky's compose pass: `sky_image`, the equirectangular sky image.
+    pub const SKY_IMAGE: Slot = Slot {
+        wgsl_name: "sky_image",
+        binding: 4,
+        visibility: ShaderStages::FRAGMENT,
+        ty: TEXTURE_2D,
     };
     /// Group 1 of the sky's star pass: `stars`.
     pub const STARS: Slot = Slot {
@@ -357,11 +364,12 @@ pub const SKY_STARS_GROUP: BindGroupSpec = BindGroupSpec {
     index: 1,
     slots: &[slots::SKY, slots::STARS, slots::STAR_LIGHT],
 };
-/// Group 1 of the sky's compose pass: the star light, read.
+/// Group 1 of the sky's compose pass: the sky's uniforms, the star light (read) and the sky
+/// image.
 pub const SKY_COMPOSE_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt sky compose",
     index: 1,
-    slots: &[slots::STAR_LIGHT_TOTAL],
+    slots: &[slots::SKY, slots::STAR_LIGHT_TOTAL, slots::SKY_IMAGE],
 };
 
 /// Entry point of the sky's star pass.
@@ -370,7 +378,7 @@ pub const SKY_STARS_ENTRY: &str = "sky_stars";
 pub const SKY_COMPOSE_ENTRIES: [&str; 2] = ["sky_compose_vertex", "sky_compose"];
 
 /// The sky's two pipelines as their bindings see them: the stars' compute pass and the
-/// background pass.
+/// background pass (whose group 0 carries the spectral tables, as the polygon pass's does).
 #[must_use]
 pub fn sky_specs() -> [PipelineSpec; 2] {
     [
@@ -384,7 +392,7 @@ pub fn sky_specs() -> [PipelineSpec; 2] {
             label: "srt sky compose",
             shader: shaders::sky(),
             entry_points: &SKY_COMPOSE_ENTRIES,
-            groups: vec![FRAME_GROUP, SKY_COMPOSE_GROUP],
+            groups: vec![POLYGON_FRAME_GROUP, SKY_COMPOSE_GROUP],
         },
     ]
 }

@@ -24,7 +24,7 @@ use crate::pipelines::{
 use crate::projection::view_projection;
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
-use crate::sky::SkyResources;
+use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
 use crate::types::{
     DRAW_ARGS_BYTES, EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode,
@@ -841,8 +841,8 @@ impl GpuRenderer {
         {
             return Err(GpuError::SceneChanged);
         }
-        let uploaded_stars = self.sky.as_ref().map_or(0, SkyResources::star_count);
-        if scene.sky.stars.len() != uploaded_stars as usize {
+        let uploaded_sky = self.sky.as_ref().map_or((0, None), SkyResources::shape);
+        if sky_shape(&scene.sky) != uploaded_sky {
             return Err(GpuError::SceneChanged);
         }
         if let Some(sky) = &self.sky {
@@ -1009,7 +1009,12 @@ impl GpuRenderer {
         // draw background and stars first and the object passes draw over them.
         let background = match &self.sky {
             Some(sky) => {
-                sky.encode(encoder, &self.frame.bind_groups[tone], &color_view);
+                sky.encode(
+                    encoder,
+                    &self.frame.bind_groups[tone],
+                    &self.frame.polygon_groups[tone],
+                    &color_view,
+                );
                 wgpu::LoadOp::Load
             }
             None => {

@@ -22,8 +22,10 @@ pub const PROXY: &str = include_str!("../../../shaders/proxy.wgsl");
 pub const LRT: &str = include_str!("../../../shaders/lrt.wgsl");
 /// The polygon-rendering baseline pass.
 pub const POLYGON: &str = include_str!("../../../shaders/polygon.wgsl");
-/// The stars of the sky.
+/// The stars and the image of the sky.
 pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
+/// The pinhole camera: viewing directions through pixels and back.
+pub const CAMERA: &str = include_str!("../../../shaders/camera.wgsl");
 
 /// Invocations per workgroup of every compute entry point (WGSL `override WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;
@@ -65,8 +67,20 @@ const LRT_OVERRIDES: [&[(&str, f64)]; 2] = [
     &with_spectral(("COUNT_FRAGMENTS", 1.0)),
 ];
 
-/// The overrides of the sky shader.
-const WORKGROUP_OVERRIDES: &[(&str, f64)] = &[("WORKGROUP_SIZE", WORKGROUP_SIZE as f64)];
+/// The overrides of the sky shader: its workgroup size, the colour temperature of a sky
+/// image's light, and spectral.wgsl's.
+const SKY_OVERRIDES: [(&str, f64); 7] = {
+    let s = SPECTRAL_OVERRIDES;
+    [
+        ("WORKGROUP_SIZE", WORKGROUP_SIZE as f64),
+        ("SKY_IMAGE_WHITE_K", srt_scene::sky::SKY_IMAGE_WHITE_K),
+        s[0],
+        s[1],
+        s[2],
+        s[3],
+        s[4],
+    ]
+};
 
 /// The overrides of the probe shader.
 const PROBE_OVERRIDES: &[(&str, f64)] = &with_spectral(("WORKGROUP_SIZE", WORKGROUP_SIZE as f64));
@@ -129,6 +143,7 @@ pub fn lrt(counting: bool) -> Shader {
             ("colour.wgsl", COLOUR),
             ("spectral.wgsl", SPECTRAL),
             ("render_bindings.wgsl", RENDER_BINDINGS),
+            ("camera.wgsl", CAMERA),
             ("surface.wgsl", SURFACE),
             ("lrt.wgsl", LRT),
         ]),
@@ -163,9 +178,11 @@ pub fn sky() -> Shader {
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
+            ("spectral.wgsl", SPECTRAL),
+            ("camera.wgsl", CAMERA),
             ("sky.wgsl", SKY),
         ]),
-        overrides: WORKGROUP_OVERRIDES,
+        overrides: &SKY_OVERRIDES,
     }
 }
 

@@ -1,10 +1,13 @@
-//! The sky's GPU passes (`shaders/sky.wgsl`, mirror of srt-trace's `sky.rs`): the stars are
-//! uploaded once; per frame a compute pass splats each star's light into a per-pixel buffer and
-//! a full-screen pass writes background + star light into the colour target, which the object
-//! passes then draw over. A scene without stars has none of this: its passes clear to the
-//! background as before.
+//! The sky's GPU passes (`shaders/sky.wgsl`, mirror of srt-trace's `sky.rs`): the stars and the
+//! sky image are uploaded once; per frame a compute pass splats each star's light into a
+//! per-pixel buffer and a full-screen pass writes background + sky image + star light into the
+//! colour target, which the object passes then draw over. A scene without a sky has none of
+//! this: its passes clear to the background as before. Like meshes, the stars and the image are
+//! uploaded with the scene; per frame only the sky's velocity, direction map and brightness
+//! change.
 
-use srt_scene::Scene;
+use srt_scene::sky::SkyImage;
+use srt_scene::{Scene, Sky};
 use wgpu::util::DeviceExt as _;
 
 use crate::context::{GpuContext, GpuError};
@@ -15,10 +18,19 @@ use crate::pipelines::{
     pipeline_layout, render_pipeline, sky_specs, slots,
 };
 use crate::shaders::WORKGROUP_SIZE;
-use crate::types::{GpuStar, SkyUniforms, vec4};
+use crate::types::{GpuStar, SkyUniforms, mat3, vec4};
 
 /// Bytes of star light per pixel: three u32 channels.
 const STAR_LIGHT_BYTES_PER_PIXEL: u64 = 12;
+
+/// What is uploaded once per scene and bound with every image size.
+struct Uploaded {
+    stars: wgpu::Buffer,
+    uniforms: wgpu::Buffer,
+    image: wgpu::TextureView,
+    stars_layout: wgpu::BindGroupLayout,
+    compose_layout: wgpu::BindGroupLayout,
+}
 
 /// The per-pixel star light buffer and the bind groups that use it, for one image size.
 struct StarLight {
@@ -27,26 +39,34 @@ struct StarLight {
     compose_group: wgpu::BindGroup,
 }
 
-/// The uploaded stars and the sky's pipelines.
+/// The uploaded sky and its pipelines.
 pub struct SkyResources {
-    stars: wgpu::Buffer,
+    uploaded: Uploaded,
     star_count: u32,
-    uniforms: wgpu::Buffer,
+    image_size: Option<(u32, u32)>,
     stars_pipeline: wgpu::ComputePipeline,
     compose_pipeline: wgpu::RenderPipeline,
-    stars_layout: wgpu::BindGroupLayout,
-    compose_layout: wgpu::BindGroupLayout,
     workgroups: (u32, u32),
     light: StarLight,
 }
 
+/// The shape of a sky as the GPU holds it: star count and image size. A scene whose sky has
+/// another shape needs a new renderer.
+#[must_use]
+pub fn sky_shape(sky: &Sky) -> (usize, Option<(u32, u32)>) {
+    (
+        sky.stars.len(),
+        sky.image.as_ref().map(|i| (i.width, i.height)),
+    )
+}
+
 impl SkyResources {
-    /// Uploads the stars of `scene` for images of `width` × `height` rendered into
-    /// `color_format`; `None` for a scene without stars.
+    /// Uploads the sky of `scene` for images of `width` × `height`; `None` for a scene without
+    /// one.
     ///
     /// # Errors
-    /// [`GpuError::ExceedsLimit`] when the stars or the star-light buffer exceed the device's
-    /// limits.
+    /// [`GpuError::ExceedsLimit`] when the stars, the image or the star-light buffer exceed the
+    /// device's limits.
     pub fn new(
         ctx: &GpuContext,
         scene: &Scene,
@@ -57,15 +77,30 @@ impl SkyResources {
             return Ok(None);
         }
         let limits = DeviceLimits::of(ctx);
-        let stars: Vec<GpuStar> = scene.sky.stars.iter().map(GpuStar::from).collect();
+        let mut stars: Vec<GpuStar> = scene.sky.stars.iter().map(GpuStar::from).collect();
+        let star_count = limits.check_u32(|| "the sky".to_owned(), stars.len() as u64, "stars")?;
+        // A storage buffer may not be empty: a sky of an image alone gets one unused star.
+        if stars.is_empty() {
+            stars.push(GpuStar::from(&srt_scene::Star {
+                direction: glam::DVec3::Z,
+                temperature_k: 1.0,
+                magnitude: 0.0,
+            }));
+        }
         let star_bytes = (stars.len() * size_of::<GpuStar>()) as u64;
         limits.check_storage_buffer(|| format!("the sky's {} stars", stars.len()), star_bytes)?;
-        let star_count = limits.check_u32(|| "the sky".to_owned(), stars.len() as u64, "stars")?;
         let workgroups = limits.workgroup_grid(
             || "the sky's star pass".to_owned(),
             u64::from(star_count),
             WORKGROUP_SIZE,
         )?;
+        if let Some(image) = &scene.sky.image {
+            limits.check_texture(
+                &format!("the sky image {}", image.source),
+                image.width,
+                image.height,
+            )?;
+        }
         let device = &ctx.device;
         let [stars_spec, compose_spec] = sky_specs();
         let stars_module = stars_spec.shader.module(device);
@@ -84,45 +119,38 @@ impl SkyResources {
             ctx.color_format,
             false,
         );
-        let stars_layout = SKY_STARS_GROUP.create_layout(device);
-        let compose_layout = SKY_COMPOSE_GROUP.create_layout(device);
-        let stars = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("srt sky stars"),
-            contents: bytemuck::cast_slice(&stars),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
-        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("srt sky uniforms"),
-            size: size_of::<SkyUniforms>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let light = StarLight::new(
-            ctx,
-            &stars,
-            &uniforms,
-            &stars_layout,
-            &compose_layout,
-            width,
-            height,
-        )?;
+        let uploaded = Uploaded {
+            stars: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("srt sky stars"),
+                contents: bytemuck::cast_slice(&stars),
+                usage: wgpu::BufferUsages::STORAGE,
+            }),
+            uniforms: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("srt sky uniforms"),
+                size: size_of::<SkyUniforms>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            image: image_texture(ctx, scene.sky.image.as_ref()),
+            stars_layout: SKY_STARS_GROUP.create_layout(device),
+            compose_layout: SKY_COMPOSE_GROUP.create_layout(device),
+        };
+        let light = StarLight::new(ctx, &uploaded, width, height)?;
         Ok(Some(Self {
-            stars,
+            uploaded,
             star_count,
-            uniforms,
+            image_size: sky_shape(&scene.sky).1,
             stars_pipeline,
             compose_pipeline,
-            stars_layout,
-            compose_layout,
             workgroups,
             light,
         }))
     }
 
-    /// The number of stars uploaded.
+    /// The shape of the sky uploaded ([`sky_shape`]).
     #[must_use]
-    pub const fn star_count(&self) -> u32 {
-        self.star_count
+    pub fn shape(&self) -> (usize, Option<(u32, u32)>) {
+        (self.star_count as usize, self.image_size)
     }
 
     /// Recreates the star-light buffer for images of `width` × `height`.
@@ -130,15 +158,7 @@ impl SkyResources {
     /// # Errors
     /// [`GpuError::ExceedsLimit`] when it exceeds the device's limits.
     pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
-        self.light = StarLight::new(
-            ctx,
-            &self.stars,
-            &self.uniforms,
-            &self.stars_layout,
-            &self.compose_layout,
-            width,
-            height,
-        )?;
+        self.light = StarLight::new(ctx, &self.uploaded, width, height)?;
         Ok(())
     }
 
@@ -146,32 +166,44 @@ impl SkyResources {
     /// star's light multiplied by `light_scale` (see [`crate::GpuRenderer::set_star_light_scale`]):
     /// the saturation magnitude moves by 2.5 log₁₀ of it (Pogson).
     pub fn write_uniforms(&self, ctx: &GpuContext, scene: &Scene, light_scale: f64) {
-        let saturation = scene.sky.saturation_magnitude + 2.5 * light_scale.log10();
+        let sky = &scene.sky;
+        let saturation = sky.saturation_magnitude + 2.5 * light_scale.log10();
+        let (width, height) = self.image_size.unwrap_or((0, 0));
         let uniforms = SkyUniforms {
-            beta_saturation: vec4(scene.sky.beta, saturation),
-            counts: [self.star_count, 0, 0, 0],
+            beta_saturation: vec4(sky.beta, saturation),
+            counts: [
+                self.star_count,
+                width,
+                height,
+                u32::from(self.image_size.is_some()),
+            ],
+            direction_map: mat3(sky.direction_map),
+            direction_unmap: mat3(sky.direction_map.inverse()),
+            image: [sky.image_brightness as f32, 0.0, 0.0, 0.0],
         };
         ctx.queue
-            .write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
+            .write_buffer(&self.uploaded.uniforms, 0, bytemuck::bytes_of(&uniforms));
     }
 
     /// Records the star pass and the background pass into `encoder`: `color` then holds
-    /// background + star light. `frame_group` is the frame's group 0 (uniforms and colour
-    /// table of the tone map in use).
+    /// background + sky image + star light. `stars_frame` is the frame's group 0 for the star
+    /// pass (uniforms and colour table of the tone map in use), `compose_frame` the same with the
+    /// spectral tables, for the compose pass.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        frame_group: &wgpu::BindGroup,
+        stars_frame: &wgpu::BindGroup,
+        compose_frame: &wgpu::BindGroup,
         color: &wgpu::TextureView,
     ) {
         encoder.clear_buffer(&self.light.buffer, 0, None);
-        {
+        if self.star_count > 0 {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(SKY_STARS_GROUP.label),
                 timestamp_writes: None,
             });
             pass.set_pipeline(&self.stars_pipeline);
-            pass.set_bind_group(FRAME_GROUP.index, frame_group, &[]);
+            pass.set_bind_group(FRAME_GROUP.index, stars_frame, &[]);
             pass.set_bind_group(SKY_STARS_GROUP.index, &self.light.stars_group, &[]);
             pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
         }
@@ -182,19 +214,53 @@ impl SkyResources {
             wgpu::LoadOp::Clear(wgpu::Color::BLACK),
         );
         pass.set_pipeline(&self.compose_pipeline);
-        pass.set_bind_group(FRAME_GROUP.index, frame_group, &[]);
+        pass.set_bind_group(FRAME_GROUP.index, compose_frame, &[]);
         pass.set_bind_group(SKY_COMPOSE_GROUP.index, &self.light.compose_group, &[]);
         pass.draw(0..3, 0..1);
     }
 }
 
+/// The sky image as an `Rgba32Float` texture read with `textureLoad`, or a 1 × 1 black one.
+fn image_texture(ctx: &GpuContext, image: Option<&SkyImage>) -> wgpu::TextureView {
+    let (width, height, texels): (u32, u32, Vec<[f32; 4]>) = match image {
+        Some(image) => (
+            image.width,
+            image.height,
+            image
+                .texels
+                .iter()
+                .map(|&[r, g, b]| [r, g, b, 1.0])
+                .collect(),
+        ),
+        None => (1, 1, vec![[0.0; 4]]),
+    };
+    ctx.device
+        .create_texture_with_data(
+            &ctx.queue,
+            &wgpu::TextureDescriptor {
+                label: Some("srt sky image"),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            bytemuck::cast_slice(&texels),
+        )
+        .create_view(&wgpu::TextureViewDescriptor::default())
+}
+
 impl StarLight {
     fn new(
         ctx: &GpuContext,
-        stars: &wgpu::Buffer,
-        uniforms: &wgpu::Buffer,
-        stars_layout: &wgpu::BindGroupLayout,
-        compose_layout: &wgpu::BindGroupLayout,
+        uploaded: &Uploaded,
         width: u32,
         height: u32,
     ) -> Result<Self, GpuError> {
@@ -210,19 +276,24 @@ impl StarLight {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let sky_uniforms = || slots::SKY.entry(uploaded.uniforms.as_entire_binding());
         let stars_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(SKY_STARS_GROUP.label),
-            layout: stars_layout,
+            layout: &uploaded.stars_layout,
             entries: &[
-                slots::SKY.entry(uniforms.as_entire_binding()),
-                slots::STARS.entry(stars.as_entire_binding()),
+                sky_uniforms(),
+                slots::STARS.entry(uploaded.stars.as_entire_binding()),
                 slots::STAR_LIGHT.entry(buffer.as_entire_binding()),
             ],
         });
         let compose_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(SKY_COMPOSE_GROUP.label),
-            layout: compose_layout,
-            entries: &[slots::STAR_LIGHT_TOTAL.entry(buffer.as_entire_binding())],
+            layout: &uploaded.compose_layout,
+            entries: &[
+                sky_uniforms(),
+                slots::STAR_LIGHT_TOTAL.entry(buffer.as_entire_binding()),
+                slots::SKY_IMAGE.entry(wgpu::BindingResource::TextureView(&uploaded.image)),
+            ],
         });
         Ok(Self {
             buffer,

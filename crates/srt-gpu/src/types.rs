@@ -300,8 +300,21 @@ impl From<&srt_scene::Star> for GpuStar {
 pub struct SkyUniforms {
     /// Velocity of the world frame relative to S (xyz), saturation magnitude (w).
     pub beta_saturation: [f32; 4],
-    /// Number of stars (x); yzw unused.
+    /// Number of stars (x), the sky image's width (y) and height (z), 1 if there is one (w).
     pub counts: [u32; 4],
+    /// Directions in W → directions in S before aberration (columns; w unused).
+    pub direction_map: [[f32; 4]; 3],
+    /// The inverse of `direction_map`.
+    pub direction_unmap: [[f32; 4]; 3],
+    /// The sky image's brightness factor (x).
+    pub image: [f32; 4],
+}
+
+/// A 3×3 matrix as WGSL's `mat3x3<f32>` lays it out: three columns of `vec4` alignment.
+#[must_use]
+pub fn mat3(m: glam::DMat3) -> [[f32; 4]; 3] {
+    m.to_cols_array_2d()
+        .map(|c| [c[0] as f32, c[1] as f32, c[2] as f32, 0.0])
 }
 
 /// Most points of a footprint's convex hull (WGSL `FOOTPRINT_HULL_POINTS`): the hull of the

@@ -1,6 +1,7 @@
 //! The sky: stars at infinity, at rest in the scene's world frame W, each a black body of a
 //! given temperature and brightness (docs/physics.md, "The sky"). A built-in synthetic star field
-//! or stars read from a CSV file of directions, temperatures and magnitudes.
+//! or stars read from a CSV file of directions, temperatures and magnitudes; and an
+//! equirectangular image of the sky (EXR or Radiance HDR, linear light).
 //!
 //! A star is drawn like a light source of the scene: seen in the direction and with the Doppler
 //! factor of [`srt_physics::distant_source_image`], coloured as a black body at D·T, and (with
@@ -9,11 +10,15 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::DVec3;
+use std::sync::Arc;
+
+use glam::{DMat3, DVec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::input_file::{self, FileKind, InputFileError};
+use crate::limits::Budget;
+use crate::textures::decode_checked;
 
 /// The most stars a sky may hold (a built-in field or a CSV file).
 pub const MAX_STARS: usize = 1_000_000;
@@ -35,16 +40,75 @@ pub struct Star {
     pub magnitude: f64,
 }
 
-/// The stars of a scene, seen from the observer's frame S.
+/// Colour temperature of the light a sky image shows (kelvin): its texels are the light of a
+/// black body this hot — the correlated colour temperature of D65, the white of sRGB — filtered
+/// by each texel's colour, so white texels stay white at rest (docs/colour.md).
+pub const SKY_IMAGE_WHITE_K: f64 = 6504.0;
+
+/// An equirectangular image of the sky, at rest in W: linear-light RGB radiance (any value ≥ 0),
+/// row 0 at the zenith (+z), the middle row at the horizon, column 0 towards −x, the middle
+/// column towards +x, longitude increasing towards +y.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SkyImage {
+    /// Width in texels (360° of longitude).
+    pub width: u32,
+    /// Height in texels (180° of latitude).
+    pub height: u32,
+    /// Linear RGB, row-major from the zenith.
+    pub texels: Arc<[[f32; 3]]>,
+    /// The file it came from, for messages and provenance.
+    pub source: String,
+}
+
+impl SkyImage {
+    /// The image's texture coordinates (u, v) ∈ [0, 1)² × [0, 1] of the unit direction
+    /// `direction` (in W): u = ½ + φ/2π with φ = atan2(y, x), v = ½ − asin(z)/π.
+    #[must_use]
+    pub fn uv(direction: DVec3) -> (f64, f64) {
+        let u = 0.5 + direction.y.atan2(direction.x) / std::f64::consts::TAU;
+        let v = 0.5 - direction.z.clamp(-1.0, 1.0).asin() / std::f64::consts::PI;
+        (u.rem_euclid(1.0), v)
+    }
+
+    /// The radiance seen in the unit direction `direction` (in W): bilinear between the four
+    /// texel centres around it, wrapping around in longitude and clamped at the poles.
+    #[must_use]
+    pub fn sample(&self, direction: DVec3) -> DVec3 {
+        let (u, v) = Self::uv(direction);
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let x = u * w - 0.5;
+        let y = (v * h - 0.5).clamp(0.0, h - 1.0);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // wrapped, clamped
+        let texel = |i: f64, j: f64| {
+            let column = i.rem_euclid(w) as usize;
+            let row = j.min(h - 1.0) as usize;
+            let [r, g, b] = self.texels[row * self.width as usize + column];
+            DVec3::new(f64::from(r), f64::from(g), f64::from(b))
+        };
+        (1.0 - fy) * ((1.0 - fx) * texel(x0, y0) + fx * texel(x0 + 1.0, y0))
+            + fy * ((1.0 - fx) * texel(x0, y0 + 1.0) + fx * texel(x0 + 1.0, y0 + 1.0))
+    }
+}
+
+/// The sky of a scene, seen from the observer's frame S.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sky {
-    /// Velocity of the stars' rest frame W relative to S (−β of a moving observer; zero for an
+    /// Velocity of the sky's rest frame W relative to S (−β of a moving observer; zero for an
     /// observer at rest, and in the measured and Newtonian views).
     pub beta: DVec3,
     /// The stars (directions in W).
     pub stars: Vec<Star>,
     /// A star of this magnitude at rest fills one pixel with its full colour.
     pub saturation_magnitude: f64,
+    /// The sky image, if any.
+    pub image: Option<SkyImage>,
+    /// Factor on the image's radiance.
+    pub image_brightness: f64,
+    /// Linear map of directions in W to directions in S, before aberration: the identity, except
+    /// in the measured view (the contraction by 1/γ along W's velocity).
+    pub direction_map: DMat3,
 }
 
 impl Default for Sky {
@@ -53,6 +117,9 @@ impl Default for Sky {
             beta: DVec3::ZERO,
             stars: Vec::new(),
             saturation_magnitude: DEFAULT_SATURATION_MAGNITUDE,
+            image: None,
+            image_brightness: 1.0,
+            direction_map: DMat3::IDENTITY,
         }
     }
 }
@@ -61,7 +128,7 @@ impl Sky {
     /// Whether there is nothing to draw.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.stars.is_empty()
+        self.stars.is_empty() && self.image.is_none()
     }
 
     /// The colour weight of a star of `magnitude` at rest: 10^(−0.4 (m − m_sat)), so that a star
@@ -76,7 +143,7 @@ impl Sky {
 #[derive(Debug, thiserror::Error)]
 pub enum SkyError {
     /// The file could not be read.
-    #[error("star file {}: {error}", path.display())]
+    #[error("sky file {}: {error}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
@@ -93,8 +160,9 @@ pub enum SkyError {
         /// What is wrong.
         reason: String,
     },
-    /// The header names no usable set of columns, or the file has no stars or too many.
-    #[error("star file {}: {reason}", path.display())]
+    /// The header names no usable set of columns, the file has no stars or too many, or a sky
+    /// image is not usable.
+    #[error("sky file {}: {reason}", path.display())]
     File {
         /// The file.
         path: PathBuf,
@@ -125,6 +193,53 @@ pub fn star_field(count: usize) -> Vec<Star> {
             }
         })
         .collect()
+}
+
+/// Reads the equirectangular sky image at `path` (OpenEXR or Radiance HDR, linear light; other
+/// formats the texture loader reads are taken as sRGB-encoded and decoded), charging its texels
+/// to `budget`.
+///
+/// # Errors
+/// [`SkyError`] naming the file: it cannot be read or decoded, is too large, or has negative or
+/// non-finite radiance.
+pub fn read_sky_image(path: &Path, budget: &mut Budget) -> Result<SkyImage, SkyError> {
+    let fail = |reason: String| SkyError::File {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let bytes = input_file::read(path, FileKind::Image).map_err(|error| SkyError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let extension = path.extension().and_then(|e| e.to_str());
+    let image = decode_checked(&bytes, extension, budget).map_err(fail)?;
+    let linear_light = matches!(
+        image,
+        image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
+    );
+    let rgb = image.into_rgb32f();
+    let mut texels = Vec::with_capacity(rgb.len() / 3);
+    for pixel in rgb.pixels() {
+        let c = pixel.0.map(|c| {
+            if linear_light {
+                c
+            } else {
+                srt_color::srgb_decode(f64::from(c)) as f32
+            }
+        });
+        if c.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(fail(format!(
+                "it has a texel of radiance {c:?}; a sky needs finite values ≥ 0"
+            )));
+        }
+        texels.push(c);
+    }
+    Ok(SkyImage {
+        width: rgb.width(),
+        height: rgb.height(),
+        texels: texels.into(),
+        source: path.display().to_string(),
+    })
 }
 
 /// The columns a star file may have: a direction as `x,y,z` (any length, in W) or as right
@@ -303,9 +418,48 @@ mod tests {
                         proptest::prop_assert!(star.magnitude.is_finite());
                     }
                 }
-                Err(e) => proptest::prop_assert!(e.to_string().starts_with("star file s.csv")),
+                Err(e) => proptest::prop_assert!(e.to_string().contains("s.csv")),
             }
         }
+    }
+
+    #[test]
+    fn the_equirectangular_map_puts_the_axes_where_the_format_says() {
+        let (u, v) = SkyImage::uv(DVec3::X);
+        assert!((u - 0.5).abs() < 1e-15 && (v - 0.5).abs() < 1e-15);
+        let (u, _) = SkyImage::uv(DVec3::Y);
+        assert!((u - 0.75).abs() < 1e-15);
+        let (u, _) = SkyImage::uv(DVec3::NEG_X);
+        assert!(u.abs() < 1e-15 || (u - 1.0).abs() < 1e-15);
+        assert!(SkyImage::uv(DVec3::Z).1.abs() < 1e-15);
+        assert!((SkyImage::uv(DVec3::NEG_Z).1 - 1.0).abs() < 1e-15);
+        // A 4 × 2 image: texel (2, 0) is centred at u = 5/8, v = 1/4.
+        let mut texels = vec![[0.0f32; 3]; 8];
+        texels[2] = [1.0, 2.0, 3.0];
+        let image = SkyImage {
+            width: 4,
+            height: 2,
+            texels: texels.into(),
+            source: "test".into(),
+        };
+        let phi = (5.0 / 8.0 - 0.5) * std::f64::consts::TAU;
+        let theta = std::f64::consts::FRAC_PI_4;
+        let centre = DVec3::new(
+            theta.cos() * phi.cos(),
+            theta.cos() * phi.sin(),
+            theta.sin(),
+        );
+        assert!((image.sample(centre) - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-12);
+        // Half-way to the next column: half the value; the poles clamp, longitude wraps.
+        let half = (5.5 / 8.0 - 0.5) * std::f64::consts::TAU;
+        let between = DVec3::new(
+            theta.cos() * half.cos(),
+            theta.cos() * half.sin(),
+            theta.sin(),
+        );
+        assert!((image.sample(between).x - 0.5).abs() < 1e-12);
+        assert!(image.sample(DVec3::Z).is_finite());
+        assert!(image.sample(DVec3::NEG_X).is_finite());
     }
 
     #[test]

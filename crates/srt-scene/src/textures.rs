@@ -86,9 +86,8 @@ pub fn solid(color: [f64; 3]) -> Texture {
     }
 }
 
-/// Decodes an encoded image (PNG, JPEG, BMP or TGA; the format is guessed from the content,
-/// `extension` — without the dot — is the fallback) into a texture named `source`, charging its
-/// texels to `budget`.
+/// Decodes an encoded image (the format is guessed from the content, `extension` — without the
+/// dot — is the fallback), charging its texels to `budget` only if it decodes.
 ///
 /// The size in the image's header is checked before anything is decoded: at most
 /// [`MAX_TEXTURE_SIDE`] texels per side and what is left of the budget's texels; the decoder
@@ -96,12 +95,11 @@ pub fn solid(color: [f64; 3]) -> Texture {
 ///
 /// # Errors
 /// A message saying why the bytes are not a usable image, or why it is too large.
-pub fn decode_image(
+pub fn decode_checked(
     bytes: &[u8],
     extension: Option<&str>,
-    source: &str,
     budget: &mut Budget,
-) -> Result<Texture, String> {
+) -> Result<image::DynamicImage, String> {
     let reader = || {
         let mut reader = ImageReader::new(Cursor::new(bytes));
         if let Some(format) = extension.and_then(ImageFormat::from_extension) {
@@ -129,16 +127,29 @@ pub fn decode_image(
     limits.max_alloc = Some(MAX_IMAGE_DECODE_BYTES);
     decoder.limits(limits);
     let image = decoder.decode().map_err(|e| e.to_string())?;
-    let rgba = image.into_rgba8();
-    if rgba.dimensions() != (width, height) {
+    if (image.width(), image.height()) != (width, height) {
         return Err("the image's size differs from its header's".to_owned());
     }
     *budget = charged;
-    let texels = rgba.pixels().map(|p| p.0).collect();
+    Ok(image)
+}
+
+/// Decodes an encoded image (PNG, JPEG, BMP or TGA) into a texture named `source`, charging its
+/// texels to `budget` ([`decode_checked`]).
+///
+/// # Errors
+/// A message saying why the bytes are not a usable image, or why it is too large.
+pub fn decode_image(
+    bytes: &[u8],
+    extension: Option<&str>,
+    source: &str,
+    budget: &mut Budget,
+) -> Result<Texture, String> {
+    let rgba = decode_checked(bytes, extension, budget)?.into_rgba8();
     Ok(Texture {
-        width,
-        height,
-        texels,
+        width: rgba.width(),
+        height: rgba.height(),
+        texels: rgba.pixels().map(|p| p.0).collect(),
         source: source.to_owned(),
     })
 }

@@ -80,17 +80,14 @@ impl View {
         Ok(viewed)
     }
 
-    /// Brings the stars into this view (not [`View::Seen`]): at rest in S, so without
-    /// aberration and Doppler shift; a star at infinity is where its direction in W points
-    /// (Newtonian) or, measured, where the contraction by 1/γ along W's velocity takes it.
+    /// Brings the sky into this view (not [`View::Seen`]): at rest in S, so without aberration
+    /// and Doppler shift; a direction at infinity is where it points in W (Newtonian) or,
+    /// measured, where the contraction by 1/γ along W's velocity takes it (`direction_map`).
     fn apply_to_sky(self, sky: &mut Sky) {
         if self == Self::Measured
             && let Ok(world) = Frame::new(sky.beta, DVec3::ZERO)
         {
-            let shape = measured_shape(&world, 0.0);
-            for star in &mut sky.stars {
-                star.direction = (shape * star.direction).normalize();
-            }
+            sky.direction_map = measured_shape(&world, 0.0) * sky.direction_map;
         }
         sky.beta = DVec3::ZERO;
     }

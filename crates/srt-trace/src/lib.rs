@@ -27,5 +27,7 @@ mod texture;
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
 pub use shade::{Illumination, SurfacePoint, grey_value, shade};
-pub use sky::{StarImage, project, star_colour, star_image, star_layer, tent_splat};
+pub use sky::{
+    StarImage, project, sky_image_colour, star_colour, star_image, star_layer, tent_splat,
+};
 pub use texture::sample_trilinear;

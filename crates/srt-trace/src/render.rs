@@ -18,7 +18,7 @@ use srt_scene::{Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::shade::{Illumination, SurfacePoint, shade};
-use crate::sky::star_layer;
+use crate::sky::{sky_image_colour, star_layer};
 use crate::texture::sample_trilinear;
 use srt_scene::mip::MipChain;
 
@@ -369,7 +369,10 @@ impl<'a> Tracer<'a> {
                         }
                         sum += hit.map_or_else(
                             || {
+                                let sky =
+                                    sky_image_colour(self.scene, &self.lut, direction_at(sx, sy));
                                 (self.scene.background
+                                    + sky
                                     + stars[y as usize * width as usize + x as usize])
                                     .clamp(DVec3::ZERO, DVec3::ONE)
                             },

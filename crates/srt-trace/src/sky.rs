@@ -1,15 +1,18 @@
-//! The stars of the sky in the reference renderer: each star is seen in its aberrated direction
-//! with its Doppler factor ([`srt_physics::distant_source_image`]), coloured like a light of the
-//! scene, and splatted into the image with a tent filter over the four pixels around its exact
+//! The sky in the reference renderer: each star is seen in its aberrated direction with its
+//! Doppler factor ([`srt_physics::distant_source_image`]), coloured like a light of the scene,
+//! and splatted into the image with a tent filter over the four pixels around its exact
 //! position, so that its light never falls between pixels and the weighted centroid of its
-//! splat is its position. Stars show where no object is hit.
+//! splat is its position. The sky image is looked up per viewing ray: the ray's direction is
+//! taken back into the sky's frame (the inverse aberration) and the light found there is
+//! Doppler-shifted like a surface's. The sky shows where no object is hit.
 
 use glam::{DVec2, DVec3};
-use srt_color::TemperatureLut;
+use srt_color::{Reflectance, TemperatureLut, reflected_display_rgb, srgb_coefficient_table};
 use srt_physics::distant_source_image;
-use srt_scene::{Effects, Observer, Scene, Sky, Star};
+use srt_scene::sky::SKY_IMAGE_WHITE_K;
+use srt_scene::{Effects, Observer, Scene, Sky, Star, SurfaceColour};
 
-use crate::shade::lut_colour;
+use crate::shade::{grey_value, lut_colour};
 
 /// Where one star lands in an image and with what colour.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,13 +56,65 @@ pub fn star_image(
     width: u32,
     height: u32,
 ) -> Option<StarImage> {
-    let (direction, doppler) = distant_source_image(scene.sky.beta, star.direction);
+    let rest_direction = (scene.sky.direction_map * star.direction).normalize();
+    let (direction, doppler) = distant_source_image(scene.sky.beta, rest_direction);
     let pixel = project(&scene.observer, direction, width, height)?;
     Some(StarImage {
         pixel,
         colour: star_colour(star, doppler, &scene.sky, scene.effects, lut),
         doppler,
     })
+}
+
+/// The display colour (sRGB-encoded, not clamped) the sky image shows in the viewing direction
+/// `direction` (in S; any length); black without an image.
+///
+/// The direction is taken back into the sky's frame (`distant_source_image` with −β gives the
+/// direction there and the reciprocal Doppler factor) and through the inverse of the sky's
+/// `direction_map`, the image is sampled there ([`srt_scene::sky::SkyImage::sample`]) and
+/// scaled by `image_brightness`. The texel's light is that of a black body at
+/// [`SKY_IMAGE_WHITE_K`] filtered by the texel's colour, seen with the Doppler factor D (1 for
+/// geometry only): with the paper's colour, its grey value 𝒢 (Eq. 18) times the colour table at
+/// D·T; with spectral colour, the texel's reflectance spectrum (Jakob & Hanika) under that black
+/// body, shifted by D, its brightness s = the largest channel carried as exposure ×s.
+#[must_use]
+pub fn sky_image_colour(scene: &Scene, lut: &TemperatureLut, direction: DVec3) -> DVec3 {
+    let sky = &scene.sky;
+    let Some(image) = &sky.image else {
+        return DVec3::ZERO;
+    };
+    let (rest_direction, inverse_doppler) = distant_source_image(-sky.beta, direction.normalize());
+    let world = (sky.direction_map.inverse() * rest_direction).normalize();
+    let radiance = image.sample(world) * sky.image_brightness;
+    let doppler = match scene.effects {
+        Effects::Geometry => 1.0,
+        Effects::Doppler | Effects::Searchlight => 1.0 / inverse_doppler,
+    };
+    match scene.colour {
+        SurfaceColour::Paper => {
+            grey_value(radiance.extend(1.0)) * lut_colour(lut, doppler * SKY_IMAGE_WHITE_K)
+        }
+        SurfaceColour::Spectral => {
+            let brightness = radiance.max_element();
+            // Black (and a NaN, which the image loader refuses anyway) shows nothing.
+            if brightness.is_nan() || brightness <= 0.0 {
+                return DVec3::ZERO;
+            }
+            srgb_coefficient_table()
+                .lookup((radiance / brightness).clamp(DVec3::ZERO, DVec3::ONE))
+                .and_then(|polynomial| {
+                    reflected_display_rgb(
+                        lut.tone_map(),
+                        &Reflectance::new(polynomial),
+                        SKY_IMAGE_WHITE_K,
+                        1.0,
+                        doppler,
+                        scene.exposure * brightness,
+                    )
+                })
+                .unwrap_or(DVec3::ZERO)
+        }
+    }
 }
 
 /// The pixel position of the direction `direction` (in S) in the image of `observer`: the inverse

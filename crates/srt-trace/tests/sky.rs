@@ -5,6 +5,7 @@
 
 use glam::{DVec2, DVec3};
 use srt_color::ToneMap;
+use srt_scene::sky::SkyImage;
 use srt_scene::{Effects, Light, Observer, Scene, Shading, Sky, Star, SurfaceColour};
 use srt_trace::{RenderSettings, Tracer};
 
@@ -37,6 +38,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
             stars,
             // Faint enough that no channel clips.
             saturation_magnitude: -1.0,
+            ..Sky::default()
         },
         colour: SurfaceColour::Paper,
         exposure: 1.0,
@@ -140,5 +142,83 @@ fn without_motion_the_sky_is_unshifted_and_the_searchlight_scales_flux_by_d_squa
     assert!(
         (searchlight - expected).abs().max_element() < 3e-3,
         "{searchlight} against {expected}"
+    );
+}
+
+/// An equirectangular image of `width` × `height` texels of colour `texel(longitude, latitude)`
+/// (radians).
+fn sky_image(width: u32, height: u32, texel: impl Fn(f64, f64) -> [f32; 3]) -> SkyImage {
+    let texels: Vec<[f32; 3]> = (0..height)
+        .flat_map(|row| (0..width).map(move |column| (row, column)))
+        .map(|(row, column)| {
+            let u = (f64::from(column) + 0.5) / f64::from(width);
+            let v = (f64::from(row) + 0.5) / f64::from(height);
+            texel(
+                (u - 0.5) * std::f64::consts::TAU,
+                (0.5 - v) * std::f64::consts::PI,
+            )
+        })
+        .collect();
+    SkyImage {
+        width,
+        height,
+        texels: texels.into(),
+        source: "test".into(),
+    }
+}
+
+#[test]
+fn a_sky_image_at_rest_shows_its_own_colours_in_spectral_colour() {
+    let colour = [0.2f32, 0.5, 0.8];
+    let mut scene = sky_scene(Vec::new(), 0.0, Effects::Doppler);
+    scene.colour = SurfaceColour::Spectral;
+    scene.sky.image = Some(sky_image(64, 32, |_, _| colour));
+    let image = render(&scene);
+    let expected = DVec3::from_array(colour.map(|c| srt_color::srgb_encode(f64::from(c))));
+    for pixel in [0, 1000, 150_000, image.pixels.len() - 1] {
+        // The texel is the light of a 6504 K black body filtered by its colour: at rest it is
+        // the colour itself, up to the black body's white against D65's and the fit.
+        let shown = image.pixels[pixel];
+        assert!(
+            (shown - expected).abs().max_element() < 0.03,
+            "{shown} against {expected}"
+        );
+    }
+}
+
+#[test]
+fn the_sky_image_is_aberrated_like_the_stars() {
+    // A bright meridian at longitude 0 (+x, beside the observer's path along +y): moving at
+    // 0.8c it is seen at cos θ′ = 0.8 from the direction of flight, 36.87° to the right.
+    let speed = 0.8;
+    let mut scene = sky_scene(Vec::new(), speed, Effects::Geometry);
+    scene.sky.image = Some(sky_image(2048, 64, |longitude, _| {
+        if longitude.abs() < 0.004 {
+            [1.0; 3]
+        } else {
+            [0.0; 3]
+        }
+    }));
+    let image = render(&scene);
+    let row = (HEIGHT / 2) as usize * WIDTH as usize;
+    let brightest = (0..WIDTH as usize)
+        .max_by(|&a, &b| image.pixels[row + a].x.total_cmp(&image.pixels[row + b].x))
+        .unwrap();
+    let tan_half = (0.5 * FOV_Y_DEG.to_radians()).tan();
+    let aspect = f64::from(WIDTH) / f64::from(HEIGHT);
+    let seen = speed.acos();
+    let expected = 0.5 * (1.0 + seen.tan() / (tan_half * aspect)) * f64::from(WIDTH);
+    assert!(
+        (brightest as f64 + 0.5 - expected).abs() < 1.5,
+        "the meridian is seen at pixel {brightest}, the aberration formula says {expected}"
+    );
+    // At rest it is straight to the side, outside the picture: nothing lit in that row.
+    let mut at_rest = sky_scene(Vec::new(), 0.0, Effects::Geometry);
+    at_rest.sky.image = scene.sky.image.clone();
+    let at_rest = render(&at_rest);
+    assert!(
+        at_rest.pixels[row..row + WIDTH as usize]
+            .iter()
+            .all(|p| p.x < 1e-3)
     );
 }

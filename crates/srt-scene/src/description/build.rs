@@ -111,7 +111,10 @@ impl SceneDescription {
         let sky = self
             .sky
             .as_ref()
-            .map_or_else(|| Ok(Sky::default()), |d| d.build(base_dir, &motion))
+            .map_or_else(
+                || Ok(Sky::default()),
+                |d| d.build(base_dir, &motion, &mut builder.budget),
+            )
             .map_err(fail)?;
         let mut warnings: Vec<String> = builder.warnings.iter().map(|w| one_line(w)).collect();
         if objects.is_empty() {
@@ -185,18 +188,30 @@ impl SkyDescription {
     /// The stars, seen from the observer's frame: the built-in field's and the file's, resting
     /// in W, which moves relative to the observer as an object at rest in W does
     /// ([`MovingObserver::relative_frame`]: velocity −β_o, no rotation).
-    fn build(&self, base_dir: &Path, observer: &MovingObserver) -> Result<Sky, SceneErrorKind> {
+    fn build(
+        &self,
+        base_dir: &Path,
+        observer: &MovingObserver,
+        budget: &mut Budget,
+    ) -> Result<Sky, SceneErrorKind> {
+        let on_disk = |key: &str, path: &str| match assets::resolve(base_dir, path) {
+            Ok(assets::Resolved::File(file)) => Ok(file),
+            Ok(assets::Resolved::Embedded { .. }) | Err(_) => Err(value_error(
+                key,
+                format!("\"{path}\" is not a file on disk"),
+            )),
+        };
+        let image = self
+            .image
+            .as_ref()
+            .map(|path| {
+                sky::read_sky_image(&on_disk("sky.image", path)?, budget)
+                    .map_err(SceneErrorKind::Sky)
+            })
+            .transpose()?;
         let mut stars = sky::star_field(self.star_field);
         if let Some(path) = &self.stars {
-            let file = match assets::resolve(base_dir, path) {
-                Ok(assets::Resolved::File(file)) => file,
-                Ok(assets::Resolved::Embedded { .. }) | Err(_) => {
-                    return Err(value_error(
-                        "sky.stars",
-                        format!("\"{path}\" is not a star file on disk"),
-                    ));
-                }
-            };
+            let file = on_disk("sky.stars", path)?;
             stars.extend(sky::read_star_file(&file).map_err(SceneErrorKind::Sky)?);
             if stars.len() > sky::MAX_STARS {
                 return Err(value_error(
@@ -214,6 +229,9 @@ impl SkyDescription {
             beta: world.frame.beta(),
             stars,
             saturation_magnitude: self.saturation_magnitude,
+            image,
+            image_brightness: self.image_brightness,
+            direction_map: glam::DMat3::IDENTITY,
         })
     }
 }

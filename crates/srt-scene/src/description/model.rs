@@ -61,7 +61,7 @@ pub struct EmissionDescription {
 }
 
 /// The `[sky]` table: stars at infinity at rest in the world frame W — the built-in star field,
-/// stars from a CSV file, or both.
+/// stars from a CSV file, or both — and an image of the sky behind them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SkyDescription {
@@ -74,6 +74,13 @@ pub struct SkyDescription {
     /// A star of this visual magnitude at rest fills one pixel with its full colour.
     #[serde(default = "default_saturation_magnitude")]
     pub saturation_magnitude: f64,
+    /// An equirectangular image of the sky (EXR or Radiance HDR; path relative to the scene
+    /// file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image: Option<String>,
+    /// Factor on the image's radiance (> 0).
+    #[serde(default = "default_brightness")]
+    pub image_brightness: f64,
 }
 
 /// The `[observer]` table: a pinhole camera moving with `beta` through the world frame W,

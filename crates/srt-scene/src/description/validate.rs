@@ -66,6 +66,12 @@ impl SceneDescription {
                     ),
                 ));
             }
+            if !(sky.image_brightness.is_finite() && sky.image_brightness > 0.0) {
+                return Err(value_error(
+                    "sky.image_brightness",
+                    format!("must be a positive number, got {:?}", sky.image_brightness),
+                ));
+            }
             if !(sky.saturation_magnitude.is_finite() && sky.saturation_magnitude.abs() <= 100.0) {
                 return Err(value_error(
                     "sky.saturation_magnitude",

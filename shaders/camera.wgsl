@@ -1,0 +1,33 @@
+// camera.wgsl — the pinhole camera of frame_uniforms (declared by the module that binds it:
+// render_bindings.wgsl or sky.wgsl): the viewing direction through a pixel and its inverse.
+
+// Viewing direction in S through the framebuffer position `pixel` (x right, y down, pixel
+// centres at half-integers); mirrors srt_scene::Observer::view_direction.
+fn view_direction(pixel: vec2<f32>) -> vec3<f32> {
+    let ndc = vec2<f32>(
+        2.0 * pixel.x * frame_uniforms.viewport.z - 1.0,
+        1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w,
+    );
+    return frame_uniforms.camera_forward.xyz + ndc.x * frame_uniforms.camera_right.xyz
+        + ndc.y * frame_uniforms.camera_up.xyz;
+}
+
+// Pixel position (x right, y down, pixel centres at half-integers) of the direction `d` in S in
+// xy; z = 1 in front of the camera, 0 behind. The inverse of view_direction; mirror of
+// srt_trace::project.
+fn project_direction(d: vec3<f32>) -> vec3<f32> {
+    let forward = frame_uniforms.camera_forward.xyz;
+    let right = frame_uniforms.camera_right.xyz;
+    let up = frame_uniforms.camera_up.xyz;
+    let depth = dot(d, forward);
+    if (depth <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    // camera_right and camera_up are scaled by tan(fov/2)·aspect and tan(fov/2).
+    let ndc = vec2<f32>(dot(d, right) / (depth * dot(right, right)), dot(d, up) / (depth * dot(up, up)));
+    return vec3<f32>(
+        0.5 * (ndc.x + 1.0) * frame_uniforms.viewport.x,
+        0.5 * (1.0 - ndc.y) * frame_uniforms.viewport.y,
+        1.0,
+    );
+}
