@@ -10,7 +10,8 @@
 
 use std::path::{Path, PathBuf};
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::SystemTime;
 
 use glam::{DMat3, DVec3};
 use rand::{Rng, SeedableRng};
@@ -242,6 +243,72 @@ pub fn read_sky_image(path: &Path, budget: &mut Budget) -> Result<SkyImage, SkyE
     })
 }
 
+/// A file as last read: its path, size and modification time, and what was made of it.
+struct LastRead<T> {
+    key: (PathBuf, u64, Option<SystemTime>),
+    value: T,
+}
+
+/// `read()` of the file at `path`, or a copy of the value read last time if the file (path,
+/// size, modification time) is unchanged: the viewer builds its scene again on every edit —
+/// every frame of a flight — and a sky file is decoded once, not per frame.
+fn read_cached<T: Clone, E>(
+    cache: &Mutex<Option<LastRead<T>>>,
+    path: &Path,
+    read: impl FnOnce() -> Result<T, E>,
+) -> Result<T, E> {
+    let key = std::fs::metadata(path)
+        .ok()
+        .map(|m| (path.to_path_buf(), m.len(), m.modified().ok()));
+    let mut last = cache.lock().unwrap_or_else(PoisonError::into_inner);
+    if let (Some(key), Some(hit)) = (&key, last.as_ref())
+        && hit.key == *key
+    {
+        return Ok(hit.value.clone());
+    }
+    let value = read()?;
+    if let Some(key) = key {
+        *last = Some(LastRead {
+            key,
+            value: value.clone(),
+        });
+    }
+    Ok(value)
+}
+
+/// [`read_star_file`] through a cache of the last file read (unchanged files are not parsed
+/// again).
+///
+/// # Errors
+/// As [`read_star_file`].
+pub fn read_star_file_cached(path: &Path) -> Result<Vec<Star>, SkyError> {
+    static LAST: Mutex<Option<LastRead<Vec<Star>>>> = Mutex::new(None);
+    read_cached(&LAST, path, || read_star_file(path))
+}
+
+/// [`read_sky_image`] through a cache of the last image read (an unchanged file is not decoded
+/// again; its texels are charged to `budget` either way).
+///
+/// # Errors
+/// As [`read_sky_image`].
+pub fn read_sky_image_cached(path: &Path, budget: &mut Budget) -> Result<SkyImage, SkyError> {
+    static LAST: Mutex<Option<LastRead<SkyImage>>> = Mutex::new(None);
+    let mut fresh = false;
+    let image = read_cached(&LAST, path, || {
+        fresh = true;
+        read_sky_image(path, budget)
+    })?;
+    if !fresh {
+        budget
+            .charge_texels(image.width, image.height)
+            .map_err(|e| SkyError::File {
+                path: path.to_path_buf(),
+                reason: format!("the image is too large: {e}"),
+            })?;
+    }
+    Ok(image)
+}
+
 /// The columns a star file may have: a direction as `x,y,z` (any length, in W) or as right
 /// ascension and declination in degrees (`ra_deg,dec_deg`: +z is the pole, ra = 0 is +x), plus
 /// `temperature_k` and `magnitude`. Other columns are ignored.
@@ -451,7 +518,7 @@ mod tests {
         );
         assert!((image.sample(centre) - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-12);
         // Half-way to the next column: half the value; the poles clamp, longitude wraps.
-        let half = (5.5 / 8.0 - 0.5) * std::f64::consts::TAU;
+        let half = (6.0 / 8.0 - 0.5) * std::f64::consts::TAU;
         let between = DVec3::new(
             theta.cos() * half.cos(),
             theta.cos() * half.sin(),
@@ -460,6 +527,40 @@ mod tests {
         assert!((image.sample(between).x - 0.5).abs() < 1e-12);
         assert!(image.sample(DVec3::Z).is_finite());
         assert!(image.sample(DVec3::NEG_X).is_finite());
+    }
+
+    #[test]
+    fn cached_reads_follow_the_file_and_charge_the_budget_every_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("s.csv");
+        std::fs::write(&path, "x,y,z,temperature_k,magnitude\n1,0,0,5000,1\n").unwrap();
+        assert_eq!(read_star_file_cached(&path).unwrap().len(), 1);
+        assert_eq!(read_star_file_cached(&path).unwrap().len(), 1);
+        // A changed file (another size) is read again.
+        std::fs::write(
+            &path,
+            "x,y,z,temperature_k,magnitude\n1,0,0,5000,1\n0,1,0,7000,2\n",
+        )
+        .unwrap();
+        assert_eq!(read_star_file_cached(&path).unwrap().len(), 2);
+        std::fs::remove_file(&path).unwrap();
+        assert!(
+            read_star_file_cached(&path).is_err(),
+            "a vanished file is an error"
+        );
+
+        let image_path = dir.path().join("sky.png");
+        image::RgbImage::from_pixel(8, 4, image::Rgb([255, 0, 0]))
+            .save(&image_path)
+            .unwrap();
+        let mut budget = Budget::new();
+        let first = read_sky_image_cached(&image_path, &mut budget).unwrap();
+        let after_one = budget.clone();
+        let second = read_sky_image_cached(&image_path, &mut budget).unwrap();
+        assert_eq!(first, second);
+        assert_ne!(budget, after_one, "a cached image is charged again");
+        // An sRGB image is decoded to linear light: 255 → 1.
+        assert_eq!(first.texels[0], [1.0, 0.0, 0.0]);
     }
 
     #[test]

@@ -205,14 +205,14 @@ impl SkyDescription {
             .image
             .as_ref()
             .map(|path| {
-                sky::read_sky_image(&on_disk("sky.image", path)?, budget)
+                sky::read_sky_image_cached(&on_disk("sky.image", path)?, budget)
                     .map_err(SceneErrorKind::Sky)
             })
             .transpose()?;
         let mut stars = sky::star_field(self.star_field);
         if let Some(path) = &self.stars {
             let file = on_disk("sky.stars", path)?;
-            stars.extend(sky::read_star_file(&file).map_err(SceneErrorKind::Sky)?);
+            stars.extend(sky::read_star_file_cached(&file).map_err(SceneErrorKind::Sky)?);
             if stars.len() > sky::MAX_STARS {
                 return Err(value_error(
                     "sky",
