@@ -5,7 +5,7 @@
 //
 // 1. Visibility (`lrt_visibility`): a hit writes the apparent distance (Eq. 7–8) as depth and the
 //    triangle's id (part id, triangle) — the depth test keeps the nearest.
-// 2. Shading (`lrt_shade_vertex`, `lrt_shade`): one rectangle per part, its screen bound; a
+// 2. Shading (`part_bound_vertex`, `lrt_shade`): one rectangle per part, its screen bound; a
 //    pixel where the visibility pass kept a triangle of this part shades it (Eq. 17–18), the
 //    others stop at once. So each pixel is shaded once, however deep the model, and the
 //    footprints are rasterised once.
@@ -83,14 +83,22 @@ fn lrt_visibility(in: LrtVarying) -> VisibilityOutput {
     if (!h.hit.found) {
         discard;
     }
+    return visible(vec2<u32>(part.id, in.triangle), h.ray, h.hit.distance);
+}
+
+// What the visibility passes (this one and rt.wgsl's) write for the triangle `id` (part id,
+// triangle) hit at `distance` along `ray`: the id, and its apparent distance (Eq. 7–8) as depth.
+fn visible(id: vec2<u32>, ray: RestRay, distance: f32) -> VisibilityOutput {
     var out: VisibilityOutput;
-    out.id = vec2<u32>(part.id, in.triangle);
-    out.depth = clamp(apparent_distance(object.frame, h.ray, h.hit.distance) * frame_uniforms.depth_scale, 0.0, 1.0);
+    out.id = id;
+    out.depth = clamp(apparent_distance(object.frame, ray, distance) * frame_uniforms.depth_scale, 0.0, 1.0);
     return out;
 }
 
+// The part's screen bound as two triangles, drawn by the shading pass (after the ray tracer:
+// the bound of the object's box).
 @vertex
-fn lrt_shade_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+fn part_bound_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
     let lo = vec2<f32>(f32(~part_bound[0]), f32(~part_bound[1]));
     let hi = vec2<f32>(f32(part_bound[2]), f32(part_bound[3]));
     // Two triangles; an empty bound (lo > hi) is made degenerate.

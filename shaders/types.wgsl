@@ -106,6 +106,34 @@ struct Vertex {
     uv: vec4<f32>,
 }
 
+// Entries of the ray tracer's traversal stack (srt_gpu::types::BVH_STACK_SIZE).
+const BVH_STACK_SIZE: u32 = 64u;
+
+// One node of a batch's BVH in S′ (srt_gpu::bvh::PartBvh).
+struct BvhNode {
+    // Lower corner of the (widened) box.
+    min: vec3<f32>,
+    // Triangles in this leaf; 0 for an inner node.
+    primitive_count: u32,
+    // Upper corner of the (widened) box.
+    max: vec3<f32>,
+    // An inner node's first child (the second follows it); a leaf's first primitive entry.
+    first: u32,
+}
+
+// One triangle of an object as the ray tracer reads it, in its BVH's leaf order
+// (srt_gpu::types::GpuRtTriangle): corners in S′ and the id the visibility pass writes.
+struct RtTriangle {
+    p0: vec3<f32>,
+    // The batch's part id (PartUniforms.id).
+    part: u32,
+    p1: vec3<f32>,
+    // The triangle's number in its batch.
+    triangle: u32,
+    p2: vec3<f32>,
+    padding: u32,
+}
+
 // The image-space footprint of one apparent triangle (srt_proxy::Footprint), in pixels.
 struct Footprint {
     hull: array<vec2<f32>, FOOTPRINT_HULL_POINTS>,

@@ -59,9 +59,14 @@ pub enum Backend {
 /// Rendering method on the command line (mirrors `srt_gpu::Method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
 pub enum MethodArg {
-    /// Local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes).
+    /// Exact per pixel, each object by whichever of lrt and rt is faster for it in each frame.
     #[default]
+    Auto,
+    /// Local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes).
     Lrt,
+    /// Ray tracing through a BVH per object in its rest frame: exact per pixel like lrt, and
+    /// faster for deep models and objects passing the camera.
+    Rt,
     /// Per-vertex polygon rendering (§3.2), the approximate baseline; GPU only.
     Polygon,
 }
@@ -120,7 +125,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
     /// Rendering method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Lrt)]
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     pub method: MethodArg,
     /// Effect mode (overrides the scene's).
     #[arg(long, value_enum)]
@@ -219,7 +224,7 @@ impl Default for RenderArgs {
             width: 1280,
             height: 720,
             backend: Backend::Auto,
-            method: MethodArg::Lrt,
+            method: MethodArg::Auto,
             effects: None,
             colour: None,
             exposure: None,

@@ -300,7 +300,9 @@ fn details(settings: RenderSettings, engine: &Engine, start: Instant) -> String 
 /// there is one, otherwise the CPU with a one-line notice).
 fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
     let method = match args.method {
+        MethodArg::Auto => Method::Auto,
         MethodArg::Lrt => Method::Lrt,
+        MethodArg::Rt => Method::Rt,
         MethodArg::Polygon => Method::Polygon,
     };
     let context = match args.backend {
@@ -311,7 +313,7 @@ fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
         Backend::Gpu => GpuContext::new().context("--backend gpu")?,
         Backend::Auto => match GpuContext::new() {
             Ok(context) => context,
-            Err(error) if method == Method::Lrt => {
+            Err(error) if method.is_exact() => {
                 eprintln!("note: {error}; rendering on the CPU instead");
                 return Ok(Engine::Cpu);
             }
@@ -324,7 +326,7 @@ fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
     let mut renderer = match GpuRenderer::new(&context, scene, width, height) {
         Ok(renderer) => renderer,
         Err(error @ GpuError::ExceedsLimit { .. })
-            if args.backend == Backend::Auto && method == Method::Lrt =>
+            if args.backend == Backend::Auto && method.is_exact() =>
         {
             eprintln!(
                 "note: the GPU cannot render {}x{} at {} samples (a {width}x{height} target): \

@@ -38,26 +38,53 @@ const TABLE_END: &str = "<!-- table1:end -->";
 struct Measurement {
     lrt_ms: f64,
     proxy_ms: f64,
+    rt_ms: f64,
+    /// `auto`: each object by LRT or the ray tracer, as `Method::Auto` chooses.
+    auto_ms: f64,
     polygon_ms: f64,
+    /// LRT visibility fragments per covered pixel.
     overdraw_hull: f64,
+    /// Ray-tracer visibility fragments per covered pixel.
+    overdraw_rt: f64,
+    /// Visibility fragments of `auto` per covered pixel.
+    overdraw_auto: f64,
+    /// Pixels shaded per covered pixel (the most of the exact methods; they share the
+    /// shading pass).
     shaded_per_pixel: f64,
 }
 
 impl Measurement {
+    /// Frame time of `method`.
+    fn ms(&self, method: Method) -> f64 {
+        match method {
+            Method::Auto => self.auto_ms,
+            Method::Lrt => self.lrt_ms,
+            Method::Rt => self.rt_ms,
+            Method::Polygon => self.polygon_ms,
+        }
+    }
+
+    /// The exact method the program uses (`auto`) against the polygon method.
     fn ratio(&self) -> f64 {
-        self.lrt_ms / self.polygon_ms
+        self.auto_ms / self.polygon_ms
     }
 
     /// The report's `key=value` fields of the measurement.
     fn fields(&self) -> String {
         format!(
-            "lrt_ms={:.2} proxy_ms={:.2} polygon_ms={:.2} ratio={:.2} shaded_per_pixel={:.2} overdraw_hull={:.2}",
+            "method=auto ratio={:.2} auto_ms={:.2} lrt_ms={:.2} proxy_ms={:.2} rt_ms={:.2} polygon_ms={:.2} lrt_ratio={:.2} rt_ratio={:.2} shaded_per_pixel={:.2} overdraw_auto={:.2} overdraw_hull={:.2} overdraw_rt={:.2}",
+            self.ratio(),
+            self.auto_ms,
             self.lrt_ms,
             self.proxy_ms,
+            self.rt_ms,
             self.polygon_ms,
-            self.ratio(),
+            self.lrt_ms / self.polygon_ms,
+            self.rt_ms / self.polygon_ms,
             self.shaded_per_pixel,
-            self.overdraw_hull
+            self.overdraw_auto,
+            self.overdraw_hull,
+            self.overdraw_rt
         )
     }
 }
@@ -100,6 +127,8 @@ fn measure(
 ) -> anyhow::Result<Measurement> {
     renderer.set_fragment_counting(false);
     let (lrt_ms, proxy_ms) = frame_time(ctx, renderer, scene, Method::Lrt, frames)?;
+    let (rt_ms, _) = frame_time(ctx, renderer, scene, Method::Rt, frames)?;
+    let (auto_ms, _) = frame_time(ctx, renderer, scene, Method::Auto, frames)?;
     let (polygon_ms, _) = frame_time(ctx, renderer, scene, Method::Polygon, frames)?;
     let (width, height) = renderer.size();
     let covered = Tracer::new(scene)
@@ -117,18 +146,29 @@ fn measure(
         .count()
         .max(1) as f64;
     renderer.set_fragment_counting(true);
-    let fragments = renderer
-        .render(ctx, scene, Method::Lrt, FootprintShape::Hull)?
-        .1
-        .fragments
-        .context("the renderer counts fragments")?;
+    let count = |method| -> anyhow::Result<_> {
+        renderer
+            .render(ctx, scene, method, FootprintShape::Hull)?
+            .1
+            .fragments
+            .context("the renderer counts fragments")
+    };
+    let (lrt, rt, auto) = (
+        count(Method::Lrt)?,
+        count(Method::Rt)?,
+        count(Method::Auto)?,
+    );
     renderer.set_fragment_counting(false);
     Ok(Measurement {
         lrt_ms,
         proxy_ms,
+        rt_ms,
+        auto_ms,
         polygon_ms,
-        overdraw_hull: fragments.run as f64 / covered,
-        shaded_per_pixel: fragments.shaded as f64 / covered,
+        overdraw_hull: lrt.run as f64 / covered,
+        overdraw_rt: rt.run as f64 / covered,
+        overdraw_auto: auto.run as f64 / covered,
+        shaded_per_pixel: lrt.shaded.max(rt.shaded).max(auto.shaded) as f64 / covered,
     })
 }
 
@@ -147,13 +187,19 @@ fn static_line(case: &Case, (width, height): (u32, u32), m: &Measurement) -> Lin
             m.fields()
         ),
         row: format!(
-            "| {} | {width}×{height} | {tris} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            "| {} | {width}×{height} | {tris} | {:.2} | {:.2} | {:.2} | {:.2} | **{:.2}** | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
             case.name,
+            m.auto_ms,
             m.lrt_ms,
+            m.rt_ms,
             m.polygon_ms,
             m.ratio(),
+            m.lrt_ms / m.polygon_ms,
+            m.rt_ms / m.polygon_ms,
             m.shaded_per_pixel,
-            m.overdraw_hull
+            m.overdraw_auto,
+            m.overdraw_hull,
+            m.overdraw_rt
         ),
     }
 }
@@ -180,24 +226,44 @@ fn sweep(
         .iter()
         .max_by(|a, b| a.1.ratio().total_cmp(&b.1.ratio()))
         .context("a sweep has frames")?;
-    let slowest = measured.iter().map(|(_, m)| m.lrt_ms).fold(0.0, f64::max);
+    let slowest = |method| {
+        measured
+            .iter()
+            .map(|(_, m)| m.ms(method))
+            .fold(0.0, f64::max)
+    };
+    let worst_of = |method| {
+        measured
+            .iter()
+            .map(|(_, m)| m.ms(method) / m.polygon_ms)
+            .fold(0.0, f64::max)
+    };
     let median_ratio = median(measured.iter().map(|(_, m)| m.ratio()).collect());
     let tris = scene.triangle_count();
     let frames_swept = times.len();
     Ok(Line {
         text: format!(
-            "sweep={name} size={width}x{height} tris={tris} frames={frames_swept} worst_ratio={:.2} worst_ct={:.2} median_ratio={median_ratio:.2} slowest_lrt_ms={slowest:.2} worst_shaded_per_pixel={:.2}",
+            "sweep={name} size={width}x{height} tris={tris} frames={frames_swept} method=auto worst_ratio={:.2} worst_ct={:.2} median_ratio={median_ratio:.2} worst_lrt_ratio={:.2} worst_rt_ratio={:.2} slowest_auto_ms={:.2} slowest_lrt_ms={:.2} slowest_rt_ms={:.2} worst_shaded_per_pixel={:.2}",
             worst.1.ratio(),
             worst.0,
+            worst_of(Method::Lrt),
+            worst_of(Method::Rt),
+            slowest(Method::Auto),
+            slowest(Method::Lrt),
+            slowest(Method::Rt),
             measured
                 .iter()
                 .map(|(_, m)| m.shaded_per_pixel)
                 .fold(0.0, f64::max)
         ),
         row: format!(
-            "| {name} (sweep, {frames_swept} frames) | {width}×{height} | {tris} | ≤ {slowest:.2} | | worst {:.2} (ct = {:.2}), median {median_ratio:.2} | | |",
-            worst.1.ratio(),
-            worst.0
+            "| {name} (sweep, {frames_swept} frames) | {width}×{height} | {tris} | ≤ {:.2} | ≤ {:.2} | ≤ {:.2} | | worst {:.2} | worst {:.2} | worst {:.2} | | | | |",
+            slowest(Method::Auto),
+            slowest(Method::Lrt),
+            slowest(Method::Rt),
+            worst_of(Method::Auto),
+            worst_of(Method::Lrt),
+            worst_of(Method::Rt),
         ),
     })
 }
@@ -267,6 +333,12 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
         for case in static_cases.iter().filter(|c| selected(&c.name)) {
             let mut renderer = GpuRenderer::new(&ctx, &case.scene, size.0, size.1)?;
             let m = measure(&ctx, &mut renderer, &case.scene, frames)?;
+            let layers: Vec<String> = renderer
+                .object_layers()
+                .iter()
+                .map(|l| l.map_or_else(|| "-".to_owned(), |l| format!("{l:.2}")))
+                .collect();
+            println!("  layers per object: {}", layers.join(" "));
             let line = static_line(case, size, &m);
             println!("{}", line.text);
             lines.push(line);
@@ -299,7 +371,7 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
     };
     let mut table = format!(
         "{TABLE_START}\nAdapter: {adapter}. Median of {frames} frames after {WARM_UP} warm-up frames per measurement, timed by {timing}.\n\n\
-         | scene | size | triangles | LRT ms | polygon ms | LRT / polygon | shaded per covered pixel | LRT fragments per covered pixel |\n|---|---|---:|---:|---:|---:|---:|---:|\n"
+         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
     );
     for line in &lines {
         table += &line.row;

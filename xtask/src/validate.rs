@@ -8,13 +8,14 @@
 //! 3. images: every built-in scene and three assimp models at 0.5c, 0.9c and 0.99c, and scenes
 //!    in motion (the teaser while the spider passes the camera, the engine passing through and
 //!    beside the camera, the camera inside a sphere, spectral colour with exposures and
-//!    emitters), GPU local ray tracing and the polygon
-//!    method against the exact CPU reference. The metric is the fraction
+//!    emitters), the GPU's exact methods (local ray tracing, the BVH ray tracer, and `auto`,
+//!    which picks one of them per object) and the polygon method against the exact CPU
+//!    reference. The metric is the fraction
 //!    of pixels differing by more than 2/255 in any channel, not counting pixels within 1 px of a
 //!    silhouette edge of the CPU image. PNGs go to `target/validate/`.
 //!
-//! Exits non-zero if any LRT mismatch exceeds 0.001, any kernel its tolerance, or any footprint
-//! is not conservative.
+//! Exits non-zero if any exact method's mismatch exceeds 0.001, any kernel its tolerance, or any
+//! footprint is not conservative.
 
 use std::path::{Path, PathBuf};
 
@@ -41,7 +42,7 @@ const HEIGHT: u32 = 360;
 /// Channel tolerance (steps of 1/255) and silhouette margin (pixels) of the image metric.
 const TOLERANCE: u8 = 2;
 const EDGE_MARGIN: u32 = 1;
-/// Largest LRT mismatch accepted.
+/// Largest mismatch of an exact method accepted.
 const MAX_MISMATCH: f64 = 0.001;
 /// Speeds of the image cases.
 const SPEEDS: [f64; 3] = [0.5, 0.9, 0.99];
@@ -311,7 +312,8 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
     })
 }
 
-/// GPU LRT and polygon images against the CPU reference.
+/// GPU images of the exact methods (LRT, the ray tracer and `auto`, which picks one of them per
+/// object) and of the polygon method against the CPU reference.
 fn validate_image(
     ctx: &GpuContext,
     case: &Case,
@@ -328,16 +330,26 @@ fn validate_image(
         &|_| {},
     );
     let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT)?;
-    let (lrt, _) = renderer.render(ctx, scene, Method::Lrt, FootprintShape::Hull)?;
-    let (polygon, _) = renderer.render(ctx, scene, Method::Polygon, FootprintShape::Hull)?;
-    let lrt_rgb = lrt.to_rgb8();
-    let polygon_rgb = polygon.to_rgb8();
+    let [lrt_rgb, rt_rgb, auto_rgb, polygon_rgb] =
+        [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon]
+            .map(|method| renderer.render(ctx, scene, method, FootprintShape::Hull))
+            .map(|result| result.map(|(image, _)| image.to_rgb8()));
+    let (lrt_rgb, rt_rgb, auto_rgb, polygon_rgb) = (lrt_rgb?, rt_rgb?, auto_rgb?, polygon_rgb?);
     let mismatch = compare(&reference, &lrt_rgb, TOLERANCE, EDGE_MARGIN);
+    let rt_mismatch = compare(&reference, &rt_rgb, TOLERANCE, EDGE_MARGIN);
+    let auto_mismatch = compare(&reference, &auto_rgb, TOLERANCE, EDGE_MARGIN);
     let polygon_mismatch = compare(&reference, &polygon_rgb, TOLERANCE, EDGE_MARGIN);
+    let traced = renderer
+        .object_layers()
+        .iter()
+        .filter(|l| l.is_some_and(|l| l > srt_gpu::ray_tracing::AUTO_LAYERS))
+        .count();
     println!(
-        "scene={} beta={speed} mismatch={:.6} polygon_mismatch={:.6}",
+        "scene={} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}",
         case.name,
         mismatch.fraction(),
+        rt_mismatch.fraction(),
+        auto_mismatch.fraction(),
         polygon_mismatch.fraction()
     );
     let stem = format!(
@@ -347,6 +359,7 @@ fn validate_image(
     let reference_rgb = reference.to_rgb8();
     save(out.join(format!("{stem}_reference.png")), &reference_rgb)?;
     save(out.join(format!("{stem}_actual.png")), &lrt_rgb)?;
+    save(out.join(format!("{stem}_rt.png")), &rt_rgb)?;
     save(out.join(format!("{stem}_polygon.png")), &polygon_rgb)?;
     let difference: Vec<[u8; 3]> = reference_rgb
         .iter()
@@ -354,15 +367,21 @@ fn validate_image(
         .map(|(a, b)| [0, 1, 2].map(|c| a[c].abs_diff(b[c]).saturating_mul(16)))
         .collect();
     save(out.join(format!("{stem}_difference.png")), &difference)?;
-    Ok(if mismatch.fraction() > MAX_MISMATCH {
-        vec![format!(
-            "{} at {speed}c: LRT mismatch {:.6} > {MAX_MISMATCH}",
+    Ok([
+        ("LRT", mismatch),
+        ("RT", rt_mismatch),
+        ("auto", auto_mismatch),
+    ]
+    .into_iter()
+    .filter(|(_, m)| m.fraction() > MAX_MISMATCH)
+    .map(|(method, m)| {
+        format!(
+            "{} at {speed}c: {method} mismatch {:.6} > {MAX_MISMATCH}",
             case.name,
-            mismatch.fraction()
-        )]
-    } else {
-        Vec::new()
+            m.fraction()
+        )
     })
+    .collect())
 }
 
 fn save(path: PathBuf, pixels: &[[u8; 3]]) -> anyhow::Result<()> {

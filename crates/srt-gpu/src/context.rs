@@ -45,6 +45,19 @@ pub enum GpuError {
         /// The adapter's name.
         adapter: String,
     },
+    /// A batch's BVH is deeper than the GPU ray tracer's traversal stack allows
+    /// ([`crate::types::BVH_STACK_SIZE`]); the other methods can still render the scene.
+    #[error(
+        "the BVH of {what} is {depth} levels deep, but the GPU ray tracer walks at most {limit}; use --method lrt"
+    )]
+    BvhTooDeep {
+        /// The batch, e.g. "parts 0, 1 of object \"engine\"".
+        what: String,
+        /// Edges on the longest root-to-leaf path.
+        depth: usize,
+        /// The deepest the traversal supports.
+        limit: usize,
+    },
     /// The scene's objects or parts changed since it was uploaded ([`crate::GpuRenderer`]
     /// renders only the structure it uploaded).
     #[error("the scene's objects changed since it was uploaded")]

@@ -33,3 +33,52 @@ impl BackFaceCulling {
         self.closed_outward && mesh.winding_number(frame.to_rest(observer).position).abs() < 0.5
     }
 }
+
+/// Whether the ray tracer may cull the back faces of an object's box `min`–`max` (in S′) for
+/// an observer at `observer` (S′): only when the observer is outside the box by more than f32
+/// rounding can blur, on the outer side of some face plane and off every face plane. A ray from
+/// outside that reaches into a box enters it through a face turned towards its origin, so the
+/// footprints of those faces then hold every pixel that sees into the box; otherwise all twelve
+/// triangles are drawn.
+#[must_use]
+pub fn box_back_faces_hidden(min: [f32; 3], max: [f32; 3], observer: glam::DVec3) -> bool {
+    let size = (0..3)
+        .map(|axis| f64::from(max[axis] - min[axis]).abs())
+        .fold(0.0, f64::max);
+    let reach = (0..3)
+        .map(|axis| f64::from(min[axis].abs().max(max[axis].abs())).max(observer[axis].abs()))
+        .fold(0.0, f64::max);
+    let tolerance = 1e-4 * (size + reach);
+    let mut outside = false;
+    for axis in 0..3 {
+        let below = f64::from(min[axis]) - observer[axis];
+        let above = observer[axis] - f64::from(max[axis]);
+        if below.abs() <= tolerance || above.abs() <= tolerance {
+            return false;
+        }
+        outside |= below > 0.0 || above > 0.0;
+    }
+    outside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::box_back_faces_hidden;
+    use glam::DVec3;
+
+    #[test]
+    fn box_faces_are_culled_only_from_clearly_outside() {
+        let (min, max) = ([-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]);
+        assert!(box_back_faces_hidden(min, max, DVec3::new(5.0, 0.0, 0.0)));
+        assert!(box_back_faces_hidden(min, max, DVec3::new(-3.0, 4.0, 2.0)));
+        assert!(!box_back_faces_hidden(min, max, DVec3::ZERO), "inside");
+        assert!(
+            !box_back_faces_hidden(min, max, DVec3::new(1.0 + 1e-7, 0.0, 0.0)),
+            "on a face"
+        );
+        assert!(
+            !box_back_faces_hidden(min, max, DVec3::new(5.0, 1.0, 0.0)),
+            "in the plane of a face seen edge-on"
+        );
+    }
+}

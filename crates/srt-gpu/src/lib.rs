@@ -8,6 +8,10 @@
 //!   triangle) and each fragment traces its viewing ray in the triangle's rest frame, writing
 //!   the apparent distance as depth and the triangle's id; the shading pass shades the kept
 //!   triangle once per pixel (mirror: `srt-trace`);
+//! - `rt` — the BVH ray tracer's visibility pass, a second exact method: per object, the
+//!   footprints of its box (the proxy pass run over the box's 12 triangles) are drawn and each
+//!   fragment walks the object's BVH in S′ ([`bvh`], [`ray_tracing`]); the LRT's shading pass
+//!   follows. [`Method::Auto`] picks LRT or the ray tracer per object (mirror: `srt-trace`);
 //! - `polygon` — the per-vertex photo-object method of §3.2, for comparison;
 //! - `sky` — the stars of a scene's sky: a compute pass splats each aberrated, Doppler-shifted
 //!   star into a per-pixel buffer, a full-screen pass writes background and stars before the
@@ -20,6 +24,7 @@
 //! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The
 //! production modules never depend on [`probe`], the validation harness.
 
+pub mod bvh;
 pub mod context;
 pub mod culling;
 pub mod limits;
@@ -28,6 +33,7 @@ pub mod passes;
 pub mod pipelines;
 pub mod probe;
 pub mod projection;
+pub mod ray_tracing;
 pub mod readback;
 pub mod renderer;
 pub mod shaders;

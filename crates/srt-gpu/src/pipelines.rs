@@ -1,4 +1,5 @@
-//! Bind groups and the four pipelines (proxy compute, LRT visibility, LRT shading, polygon).
+//! Bind groups and the five pipelines (proxy compute, LRT visibility, ray-tracer visibility,
+//! LRT shading, polygon).
 //!
 //! Every binding is described once, as data ([`Slot`], [`BindGroupSpec`]): the bind group
 //! layouts, the bind groups the renderer creates and the `set_bind_group` calls all read it, and
@@ -277,6 +278,21 @@ pub mod slots {
         visibility: ShaderStages::FRAGMENT,
         ty: storage(true),
     };
+    /// Group 3 of the ray tracer's visibility pass: `bvh_nodes`, the object's BVH.
+    pub const BVH_NODES: Slot = Slot {
+        wgsl_name: "bvh_nodes",
+        binding: 3,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
+    /// Group 3 of the ray tracer's visibility pass: `bvh_triangles`, the object's triangles in
+    /// leaf order.
+    pub const BVH_TRIANGLES: Slot = Slot {
+        wgsl_name: "bvh_triangles",
+        binding: 4,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
     /// Group 3 of the LRT pass: `fragment_count`.
     pub const FRAGMENT_COUNT: Slot = Slot {
         wgsl_name: "fragment_count",
@@ -357,6 +373,18 @@ pub const LRT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
         slots::LRT_PART_BOUND,
     ],
 };
+/// Group 3 of the ray tracer's visibility pass: the footprints of the object's box (read), the
+/// fragment counter and the object's BVH with its triangles.
+pub const RT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt rt input",
+    index: 3,
+    slots: &[
+        slots::LRT_FOOTPRINTS,
+        slots::FRAGMENT_COUNT,
+        slots::BVH_NODES,
+        slots::BVH_TRIANGLES,
+    ],
+};
 
 /// Group 1 of the sky's star pass: the sky's uniforms, its stars and the star light, written.
 pub const SKY_STARS_GROUP: BindGroupSpec = BindGroupSpec {
@@ -402,14 +430,17 @@ const PROXY_ENTRY: &str = "footprint_main";
 /// Entry points of the LRT visibility pass (vertex, fragment).
 const LRT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "lrt_visibility"];
 /// Entry points of the LRT shading pass (vertex, fragment).
-const LRT_SHADE_ENTRIES: [&str; 2] = ["lrt_shade_vertex", "lrt_shade"];
+const LRT_SHADE_ENTRIES: [&str; 2] = ["part_bound_vertex", "lrt_shade"];
+/// Entry points of the ray tracer's visibility pass (vertex, fragment).
+const RT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "rt_visibility"];
 /// Entry points of the polygon pass (vertex, fragment).
 const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
-/// The four pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
-/// shading (with the fragment counter when `counting`) and polygon.
+/// The five pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
+/// shading, ray-tracer visibility (the three with the fragment counter when `counting`) and
+/// polygon.
 #[must_use]
-pub fn specs(counting: bool) -> [PipelineSpec; 4] {
+pub fn specs(counting: bool) -> [PipelineSpec; 5] {
     let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
     [
         PipelineSpec {
@@ -431,6 +462,12 @@ pub fn specs(counting: bool) -> [PipelineSpec; 4] {
             groups: vec![SHADE_FRAME_GROUP, OBJECT_GROUP, PART_GROUP, LRT_INPUT_GROUP],
         },
         PipelineSpec {
+            label: "srt rt visibility",
+            shader: shaders::lrt(counting),
+            entry_points: &RT_VISIBILITY_ENTRIES,
+            groups: [&base[..], &[RT_INPUT_GROUP]].concat(),
+        },
+        PipelineSpec {
             label: "srt polygon",
             shader: shaders::polygon(),
             entry_points: &POLYGON_ENTRIES,
@@ -439,10 +476,13 @@ pub fn specs(counting: bool) -> [PipelineSpec; 4] {
     ]
 }
 
-/// The two pipelines of local ray tracing.
+/// The pipelines of the two exact methods: local ray tracing and the ray tracer, which share
+/// the shading pass.
 pub struct LrtPipelines {
-    /// Nearest hit per pixel: depth and id.
+    /// Nearest hit per pixel by footprints: depth and id.
     pub visibility: wgpu::RenderPipeline,
+    /// Nearest hit per pixel through each batch's BVH: depth and id.
+    pub rt_visibility: wgpu::RenderPipeline,
     /// One shading per pixel.
     pub shade: wgpu::RenderPipeline,
 }
@@ -450,7 +490,7 @@ pub struct LrtPipelines {
 impl LrtPipelines {
     fn new(
         device: &wgpu::Device,
-        [_, visibility, shade, _]: &[PipelineSpec; 4],
+        [_, visibility, shade, rt_visibility, _]: &[PipelineSpec; 5],
         color_format: wgpu::TextureFormat,
     ) -> Self {
         Self {
@@ -458,6 +498,13 @@ impl LrtPipelines {
                 device,
                 visibility,
                 LRT_VISIBILITY_ENTRIES,
+                VISIBLE_ID_FORMAT,
+                true,
+            ),
+            rt_visibility: render_pipeline(
+                device,
+                rt_visibility,
+                RT_VISIBILITY_ENTRIES,
                 VISIBLE_ID_FORMAT,
                 true,
             ),
@@ -478,6 +525,8 @@ pub struct Pipelines {
     pub proxy_output_layout: wgpu::BindGroupLayout,
     /// Layout of [`LRT_INPUT_GROUP`].
     pub lrt_input_layout: wgpu::BindGroupLayout,
+    /// Layout of [`RT_INPUT_GROUP`].
+    pub rt_input_layout: wgpu::BindGroupLayout,
     /// Layout of [`SHADE_FRAME_GROUP`].
     pub shade_frame_layout: wgpu::BindGroupLayout,
     /// Layout of [`POLYGON_FRAME_GROUP`].
@@ -503,7 +552,7 @@ impl Pipelines {
     #[must_use]
     pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
         let specs = specs(false);
-        let [proxy_spec, _, _, polygon_spec] = &specs;
+        let [proxy_spec, _, _, _, polygon_spec] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(proxy_spec.label),
@@ -521,6 +570,7 @@ impl Pipelines {
             part_layout: PART_GROUP.create_layout(device),
             proxy_output_layout: PROXY_OUTPUT_GROUP.create_layout(device),
             lrt_input_layout: LRT_INPUT_GROUP.create_layout(device),
+            rt_input_layout: RT_INPUT_GROUP.create_layout(device),
             shade_frame_layout: SHADE_FRAME_GROUP.create_layout(device),
             polygon_frame_layout: POLYGON_FRAME_GROUP.create_layout(device),
             proxy,

@@ -19,17 +19,19 @@ use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{
     DEPTH_FORMAT, FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
-    PROXY_OUTPUT_GROUP, Pipelines, SHADE_FRAME_GROUP, VISIBLE_ID_FORMAT, slots,
+    PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, VISIBLE_ID_FORMAT, slots,
 };
 use crate::projection::view_projection;
+use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing};
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
 use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
 use crate::types::{
     DRAW_ARGS_BYTES, EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode,
-    FrameUniforms, GpuFootprint, GpuFrame, GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags,
-    PartUniforms, SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, mat4, optics4, vec4,
+    FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle, GpuVertex, ObjectUniforms,
+    PART_BOUND_BYTES, PartFlags, PartUniforms, SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode,
+    mat4, optics4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -39,19 +41,35 @@ const LRT_DEPTH_SCALE: f32 = 1e-6;
 /// Which rendering method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
-    /// Local ray tracing (the paper's method, exact per pixel).
+    /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is faster
+    /// for it (by the layers of its triangles, `ObjectRayTracing::preferred`); the two compose
+    /// through the depth test.
     #[default]
+    Auto,
+    /// Local ray tracing (the paper's method, exact per pixel): one footprint per triangle.
     Lrt,
+    /// Ray tracing through a BVH per batch of parts in its rest frame (the reference's
+    /// algorithm on the GPU), exact per pixel like LRT; its cost does not grow with the layers
+    /// of a deep model or with footprints swept beside the camera.
+    Rt,
     /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline.
     Polygon,
 }
 
 impl Method {
+    /// Whether the method is exact per pixel (what the CPU reference computes).
+    #[must_use]
+    pub const fn is_exact(self) -> bool {
+        !matches!(self, Self::Polygon)
+    }
+
     /// The name used on the command line.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
+            Self::Auto => "auto",
             Self::Lrt => "lrt",
+            Self::Rt => "rt",
             Self::Polygon => "polygon",
         }
     }
@@ -191,11 +209,7 @@ fn batches(
     object: &Object,
     culling: &[BackFaceCulling],
 ) -> Result<Vec<Batch>, GpuError> {
-    let describe = |members: &[usize]| {
-        let list: Vec<String> = members.iter().map(usize::to_string).collect();
-        let noun = if members.len() == 1 { "part" } else { "parts" };
-        format!("{noun} {} of object {:?}", list.join(", "), object.name)
-    };
+    let describe = |members: &[usize]| describe_parts(object, members);
     // Open batches, one per key, with their running counts.
     let mut open: Vec<(BatchKey, Batch, u64, u64)> = Vec::new();
     let mut closed = Vec::new();
@@ -232,6 +246,13 @@ fn batches(
     Ok(closed)
 }
 
+/// Names parts `members` of `object` in messages, e.g. `parts 0, 3 of object "ship"`.
+fn describe_parts(object: &Object, members: &[usize]) -> String {
+    let list: Vec<String> = members.iter().map(usize::to_string).collect();
+    let noun = if members.len() == 1 { "part" } else { "parts" };
+    format!("{noun} {} of object {:?}", list.join(", "), object.name)
+}
+
 /// What parts must share to be batched.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct BatchKey {
@@ -258,12 +279,16 @@ struct PartResources {
     members: Vec<(usize, u32)>,
 }
 
-/// Per object: its uniform buffer, the culling rule of each of its parts, and its batches.
+/// Per object: its uniform buffer, the culling rule of each of its parts, its batches, and its
+/// BVH for the ray tracer.
 struct ObjectResources {
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     culling: Vec<BackFaceCulling>,
     parts: Vec<PartResources>,
+    /// The object's BVH and box, for the ray tracer, or why it has none (the other methods
+    /// render the object all the same).
+    ray_tracing: Result<ObjectRayTracing, GpuError>,
 }
 
 /// Render targets, the readback of the colour and the LRT shading pass's frame bind groups
@@ -586,21 +611,20 @@ fn batch_geometry(parts: &[&Part]) -> (Vec<GpuVertex>, Vec<[u32; 3]>) {
     (vertices, triangles)
 }
 
-/// Uploads one batch of `object`'s parts (sizes already checked): its buffers, texture and bind
-/// groups.
+/// Uploads one batch of `object`'s parts (sizes already checked), whose vertices and triangles
+/// are `geometry`: its buffers, texture and bind groups.
 fn upload_batch(
     ctx: &GpuContext,
     pipelines: &Pipelines,
     counter: &FragmentCounter,
     object: &Object,
-    batch: Batch,
-    id: u32,
+    (batch, id): (Batch, u32),
+    (vertices, triangles): &(Vec<GpuVertex>, Vec<[u32; 3]>),
 ) -> PartResources {
     let device = &ctx.device;
     let Batch { members, sizes } = batch;
     let parts: Vec<&Part> = members.iter().map(|&i| &object.parts[i]).collect();
     let part = parts[0];
-    let (vertices, triangles) = batch_geometry(&parts);
     let material = PartUniforms {
         // The base colours are in the vertex colours.
         base_color: [1.0; 4],
@@ -618,12 +642,12 @@ fn upload_batch(
     });
     let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt vertices"),
-        contents: bytemuck::cast_slice(&vertices),
+        contents: bytemuck::cast_slice(vertices),
         usage: wgpu::BufferUsages::STORAGE,
     });
     let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt indices"),
-        contents: bytemuck::cast_slice(&triangles),
+        contents: bytemuck::cast_slice(triangles),
         usage: wgpu::BufferUsages::STORAGE,
     });
     let footprints = device.create_buffer(&wgpu::BufferDescriptor {
@@ -714,16 +738,38 @@ fn upload_object(
         layout: &pipelines.object_layout,
         entries: &[slots::OBJECT.entry(uniforms.as_entire_binding())],
     });
+    let mut rt_triangles = Vec::new();
     let parts = batches
         .into_iter()
         .zip(first_id..)
-        .map(|(batch, id)| upload_batch(ctx, pipelines, counter, object, batch, id))
+        .map(|(batch, id)| {
+            let members: Vec<&Part> = batch.members.iter().map(|&i| &object.parts[i]).collect();
+            let geometry = batch_geometry(&members);
+            let (vertices, triangles) = &geometry;
+            rt_triangles.extend(triangles.iter().zip(0..).map(|(&t, number)| {
+                let [p0, p1, p2] = crate::bvh::corners(vertices, t);
+                GpuRtTriangle {
+                    p0,
+                    part: id,
+                    p1,
+                    triangle: number,
+                    p2,
+                    padding: 0,
+                }
+            }));
+            upload_batch(ctx, pipelines, counter, object, (batch, id), &geometry)
+        })
         .collect();
+    let ray_tracing =
+        ObjectRayTracing::new(ctx, pipelines, &counter.counter, &rt_triangles, || {
+            format!("object {:?}", object.name)
+        });
     ObjectResources {
         uniforms,
         bind_group,
         culling,
         parts,
+        ray_tracing,
     }
 }
 
@@ -794,6 +840,16 @@ impl GpuRenderer {
     /// global atomics per fragment.
     pub fn set_fragment_counting(&mut self, counting: bool) {
         self.count_fragments = counting;
+    }
+
+    /// Per object, its surface over its box's surface (the layers of triangles `auto` weighs,
+    /// `ObjectRayTracing::preferred`), or `None` where it has no ray tracer.
+    #[must_use]
+    pub fn object_layers(&self) -> Vec<Option<f64>> {
+        self.objects
+            .iter()
+            .map(|o| o.ray_tracing.as_ref().ok().map(ObjectRayTracing::layers))
+            .collect()
     }
 
     /// Image width and height.
@@ -910,6 +966,9 @@ impl GpuRenderer {
                 ctx.queue
                     .write_buffer(&batch.uniforms, 0, bytemuck::bytes_of(&material));
             }
+            if let Ok(rt) = &resources.ray_tracing {
+                rt.write_culling(&ctx.queue, object.frame.to_rest(event).position);
+            }
         }
         Ok(tone)
     }
@@ -928,10 +987,11 @@ impl GpuRenderer {
         footprint: FootprintShape,
     ) -> Result<(), GpuError> {
         let tone = self.write_uniforms(ctx, scene, footprint)?;
+        let traced = self.traced_objects(method)?;
         if self.count_fragments {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
-        if method == Method::Lrt {
+        if method != Method::Polygon {
             let no_draw = wgpu::util::DrawIndirectArgs {
                 vertex_count: 0,
                 instance_count: 1,
@@ -939,13 +999,20 @@ impl GpuRenderer {
                 first_instance: 0,
             };
             let both = [no_draw.as_bytes(), no_draw.as_bytes()].concat();
-            for part in self.objects.iter().flat_map(|o| &o.parts) {
-                encoder.clear_buffer(&part.bound, 0, None);
-                ctx.queue.write_buffer(&part.draw_args, 0, &both);
+            let mut outputs: Vec<(&wgpu::Buffer, &wgpu::Buffer)> = Vec::new();
+            for (object, traced) in self.objects.iter().zip(&traced) {
+                match traced {
+                    Some(rt) => outputs.push((&rt.box_bound, &rt.box_draw_args)),
+                    None => outputs.extend(object.parts.iter().map(|p| (&p.bound, &p.draw_args))),
+                }
             }
-            self.encode_proxy_pass(encoder, tone);
+            for (bound, draw_args) in outputs {
+                encoder.clear_buffer(bound, 0, None);
+                ctx.queue.write_buffer(draw_args, 0, &both);
+            }
+            self.encode_proxy_pass(encoder, tone, &traced);
         }
-        self.encode_render_pass(&ctx.device, encoder, scene, method, tone);
+        self.encode_render_pass(&ctx.device, encoder, scene, method, tone, &traced);
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
             encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
@@ -962,8 +1029,33 @@ impl GpuRenderer {
         Ok(())
     }
 
-    /// The footprint compute pass over every part (timestamps 0 and 1).
-    fn encode_proxy_pass(&self, encoder: &mut wgpu::CommandEncoder, tone: usize) {
+    /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
+    /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
+    /// [`Method::Polygon`], and for [`Method::Auto`] those for which
+    /// [`ObjectRayTracing::preferred`] says so.
+    ///
+    /// # Errors
+    /// Why an object has no ray tracer, when [`Method::Rt`] needs it.
+    fn traced_objects(&self, method: Method) -> Result<Vec<Option<&ObjectRayTracing>>, GpuError> {
+        self.objects
+            .iter()
+            .map(|object| match (method, &object.ray_tracing) {
+                (Method::Rt, Ok(rt)) => Ok(Some(rt)),
+                (Method::Rt, Err(error)) => Err(error.clone()),
+                (Method::Auto, Ok(rt)) => Ok(rt.preferred().then_some(rt)),
+                _ => Ok(None),
+            })
+            .collect()
+    }
+
+    /// The footprint compute pass (timestamps 0 and 1) over the triangles of every object drawn
+    /// by its footprints and the box of every object `traced`.
+    fn encode_proxy_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        tone: usize,
+        traced: &[Option<&ObjectRayTracing>],
+    ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("srt proxy"),
             timestamp_writes: self
@@ -977,8 +1069,14 @@ impl GpuRenderer {
         });
         pass.set_pipeline(&self.pipelines.proxy);
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-        for object in &self.objects {
+        for (object, traced) in self.objects.iter().zip(traced) {
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            if let Some(rt) = traced {
+                pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
+                pass.set_bind_group(PROXY_OUTPUT_GROUP.index, &rt.box_proxy_group, &[]);
+                pass.dispatch_workgroups(1, 1, 1);
+                continue;
+            }
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
                 pass.set_bind_group(PROXY_OUTPUT_GROUP.index, &part.proxy_bind_group, &[]);
@@ -989,8 +1087,9 @@ impl GpuRenderer {
     }
 
     /// The render passes into the targets (timestamps 2 and 3): for the polygon method one
-    /// pass into colour and depth; for LRT the visibility pass into ids and depth, then the
-    /// shading pass into colour.
+    /// pass into colour and depth; for LRT and the ray tracer the visibility pass into ids and
+    /// depth (footprints, or each batch's box bound traced through its BVH), then the shading
+    /// pass into colour.
     fn encode_render_pass(
         &self,
         device: &wgpu::Device,
@@ -998,6 +1097,7 @@ impl GpuRenderer {
         scene: &Scene,
         method: Method,
         tone: usize,
+        traced: &[Option<&ObjectRayTracing>],
     ) {
         let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
         let (color_view, depth_view, ids_view) = (
@@ -1061,7 +1161,7 @@ impl GpuRenderer {
                     pass.draw(0..3 * part.sizes.triangles, 0..1);
                 });
             }
-            Method::Lrt => {
+            Method::Lrt | Method::Rt | Method::Auto => {
                 let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
                 let mut pass = self.begin_pass(
                     encoder,
@@ -1071,9 +1171,26 @@ impl GpuRenderer {
                     Some(depth),
                     [Some(2), None],
                 );
-                pass.set_pipeline(&lrt.visibility);
                 pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-                self.draw_parts(&mut pass, |pass, part| self.draw_footprints(pass, part));
+                // Objects drawn by their footprints, then those traced through their BVH; the
+                // depth test keeps the nearest hit across both.
+                pass.set_pipeline(&lrt.visibility);
+                for (object, _) in self.objects.iter().zip(traced).filter(|(_, t)| t.is_none()) {
+                    pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                    for part in &object.parts {
+                        pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                        self.draw_footprints(&mut pass, part);
+                    }
+                }
+                pass.set_pipeline(&lrt.rt_visibility);
+                for (object, rt) in self.objects.iter().zip(traced) {
+                    if let Some(rt) = rt {
+                        pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                        pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
+                        pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
+                        self.draw_box_footprints(&mut pass, &rt.box_draw_args);
+                    }
+                }
                 drop(pass);
                 let mut pass = self.begin_pass(
                     encoder,
@@ -1089,16 +1206,19 @@ impl GpuRenderer {
                     &self.targets.shade_frame_groups[tone],
                     &[],
                 );
-                self.draw_parts(&mut pass, |pass, part| {
-                    // Group 3 for the part's bound; the shader draws it as two triangles, if
-                    // any footprint of the part is on screen (the proxy pass wrote the count).
-                    pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
-                    if self.indirect_draws {
-                        pass.draw_indirect(&part.draw_args, SHADE_DRAW_OFFSET);
-                    } else {
-                        pass.draw(0..6, 0..1);
+                for (object, traced) in self.objects.iter().zip(traced) {
+                    pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                    for part in &object.parts {
+                        pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                        // Group 3 for the part's bound (for a traced object its box's).
+                        let (group, draw_args) = match traced {
+                            Some(rt) => (&rt.shade_group, &rt.box_draw_args),
+                            None => (&part.lrt_bind_group, &part.draw_args),
+                        };
+                        pass.set_bind_group(LRT_INPUT_GROUP.index, group, &[]);
+                        self.draw_bound(&mut pass, draw_args);
                     }
-                });
+                }
             }
         }
     }
@@ -1138,6 +1258,27 @@ impl GpuRenderer {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
                 draw(pass, part);
             }
+        }
+    }
+
+    /// Draws a part's screen bound as two triangles (`part_bound_vertex`), if any footprint
+    /// behind it is on screen: the proxy pass wrote the vertex count into `draw_args` where the
+    /// device has indirect draws.
+    fn draw_bound(&self, pass: &mut wgpu::RenderPass<'_>, draw_args: &wgpu::Buffer) {
+        if self.indirect_draws {
+            pass.draw_indirect(draw_args, SHADE_DRAW_OFFSET);
+        } else {
+            pass.draw(0..6, 0..1);
+        }
+    }
+
+    /// Draws the footprints of an object's box (group 3 bound by the caller), up to the last
+    /// one on screen where the device has indirect draws.
+    fn draw_box_footprints(&self, pass: &mut wgpu::RenderPass<'_>, draw_args: &wgpu::Buffer) {
+        if self.indirect_draws {
+            pass.draw_indirect(draw_args, 0);
+        } else {
+            pass.draw(0..FOOTPRINT_VERTICES * BOX_TRIANGLES, 0..1);
         }
     }
 
@@ -1197,7 +1338,7 @@ impl GpuRenderer {
                         * 1e-6
                 };
                 match method {
-                    Method::Lrt => (Some(ms(0, 3)), Some(ms(0, 1))),
+                    Method::Lrt | Method::Rt | Method::Auto => (Some(ms(0, 3)), Some(ms(0, 1))),
                     Method::Polygon => (Some(ms(2, 3)), None),
                 }
             }

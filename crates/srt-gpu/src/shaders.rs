@@ -20,6 +20,8 @@ pub const SURFACE: &str = include_str!("../../../shaders/surface.wgsl");
 pub const PROXY: &str = include_str!("../../../shaders/proxy.wgsl");
 /// The local ray tracing pass.
 pub const LRT: &str = include_str!("../../../shaders/lrt.wgsl");
+/// The GPU ray tracer's visibility pass (composed after [`LRT`]).
+pub const RT: &str = include_str!("../../../shaders/rt.wgsl");
 /// The polygon-rendering baseline pass.
 pub const POLYGON: &str = include_str!("../../../shaders/polygon.wgsl");
 /// The stars and the image of the sky.
@@ -61,11 +63,22 @@ const fn with_spectral(first: (&'static str, f64)) -> [(&'static str, f64); 6] {
     [first, s[0], s[1], s[2], s[3], s[4]]
 }
 
+/// The overrides of the LRT shader (with the ray tracer's) with the fragment counter on or off.
+const fn lrt_overrides(count_fragments: f64) -> [(&'static str, f64); 7] {
+    let s = SPECTRAL_OVERRIDES;
+    [
+        ("COUNT_FRAGMENTS", count_fragments),
+        ("SLAB_TOLERANCE", crate::bvh::SLAB_TOLERANCE as f64),
+        s[0],
+        s[1],
+        s[2],
+        s[3],
+        s[4],
+    ]
+}
+
 /// The overrides of the LRT shader: without and with the fragment counter.
-const LRT_OVERRIDES: [&[(&str, f64)]; 2] = [
-    &with_spectral(("COUNT_FRAGMENTS", 0.0)),
-    &with_spectral(("COUNT_FRAGMENTS", 1.0)),
-];
+const LRT_OVERRIDES: [&[(&str, f64)]; 2] = [&lrt_overrides(0.0), &lrt_overrides(1.0)];
 
 /// The overrides of the sky shader: its workgroup size, the colour temperature of a sky
 /// image's light, and spectral.wgsl's.
@@ -131,7 +144,8 @@ pub fn proxy() -> Shader {
     }
 }
 
-/// The local ray tracing shader; with `counting`, every fragment it runs adds 1 to the
+/// The local ray tracing shader, with the GPU ray tracer's visibility pass (rt.wgsl); with
+/// `counting`, every visibility fragment it runs and every pixel it shades adds 1 to the
 /// fragment counter (for measurements only: one global atomic per fragment).
 #[must_use]
 pub fn lrt(counting: bool) -> Shader {
@@ -146,6 +160,7 @@ pub fn lrt(counting: bool) -> Shader {
             ("camera.wgsl", CAMERA),
             ("surface.wgsl", SURFACE),
             ("lrt.wgsl", LRT),
+            ("rt.wgsl", RT),
         ]),
         overrides: LRT_OVERRIDES[usize::from(counting)],
     }

@@ -340,6 +340,44 @@ pub const DRAW_ARGS_BYTES: u64 = 32;
 /// Byte offset of the LRT shading pass's draw in WGSL `draw_args`.
 pub const SHADE_DRAW_OFFSET: u64 = 16;
 
+/// Entries of the GPU ray tracer's traversal stack (WGSL `BVH_STACK_SIZE` in types.wgsl): a
+/// batch's BVH may be at most this deep less one ([`crate::bvh::PartBvh::build`] checks).
+pub const BVH_STACK_SIZE: u32 = 64;
+
+/// Twin of WGSL `BvhNode`: one node of a batch's BVH in S′ ([`crate::bvh::PartBvh`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuBvhNode {
+    /// Lower corner of the (widened) box.
+    pub min: [f32; 3],
+    /// Triangles in this leaf; 0 for an inner node.
+    pub primitive_count: u32,
+    /// Upper corner of the (widened) box.
+    pub max: [f32; 3],
+    /// An inner node's first child (the second follows it); a leaf's first entry in the
+    /// primitive list.
+    pub first: u32,
+}
+
+/// Twin of WGSL `RtTriangle`: one triangle of an object as the ray tracer reads it, in its
+/// BVH's leaf order, with the id the visibility pass writes for it.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuRtTriangle {
+    /// First corner in S′.
+    pub p0: [f32; 3],
+    /// The batch's part id ([`PartUniforms::id`]).
+    pub part: u32,
+    /// Second corner in S′.
+    pub p1: [f32; 3],
+    /// The triangle's number in its batch.
+    pub triangle: u32,
+    /// Third corner in S′.
+    pub p2: [f32; 3],
+    /// Padding to the WGSL size.
+    pub padding: u32,
+}
+
 /// Twin of WGSL `Footprint`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

@@ -1,9 +1,13 @@
-//! GPU images against the exact CPU reference: every built-in scene with local ray tracing (must
-//! agree) and the polygon baseline (reported, expected to differ), with the paper's colour and
-//! with spectral colour.
+//! GPU images against the exact CPU reference: every built-in scene with the exact methods (local
+//! ray tracing, the BVH ray tracer and `auto`, which mixes them per object: must agree) and the
+//! polygon baseline (reported, expected to differ), with the paper's colour and with spectral
+//! colour.
 
+use glam::DVec3;
 use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip};
-use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, builtin_scenes};
+use srt_scene::{
+    Effects, Material, Mesh, Part, Scene, SceneDescription, SurfaceColour, builtin_scenes,
+};
 use srt_trace::compare::compare;
 use srt_trace::{RenderSettings, Tracer};
 
@@ -31,6 +35,8 @@ fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
         for (method, shape) in [
             (Method::Lrt, FootprintShape::Hull),
             (Method::Lrt, FootprintShape::Rectangle),
+            (Method::Rt, FootprintShape::Hull),
+            (Method::Auto, FootprintShape::Hull),
             (Method::Polygon, FootprintShape::Hull),
         ] {
             let (image, stats) = renderer.render(&ctx, &scene, method, shape).unwrap();
@@ -43,12 +49,108 @@ fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
                 mismatch.max_difference,
                 stats.fragments
             );
-            if method == Method::Lrt {
+            if method.is_exact() {
                 assert!(mismatch.fraction() <= 0.001, "{line}");
             }
         }
         println!("{line}");
     }
+    ctx.take_errors().unwrap();
+}
+
+/// A stack of `layers` parallel squares 0.05 apart, side 1, facing +z, centred at the origin:
+/// an object deep enough (its surface over its box's about `layers` / 2) for `auto` to trace it.
+fn stack_of_squares(layers: u32) -> Mesh {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for layer in 0..layers {
+        let z = 0.05 * (f64::from(layer) - f64::from(layers - 1) / 2.0);
+        let first = positions.len() as u32;
+        for (x, y) in [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)] {
+            positions.push(DVec3::new(x, y, z));
+        }
+        triangles.push([first, first + 1, first + 2]);
+        triangles.push([first, first + 2, first + 3]);
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
+    let Some(ctx) =
+        context_or_skip("auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference")
+    else {
+        return;
+    };
+    // The teaser (shallow objects: footprints) with a deep stack flying through it (traced),
+    // in front of and behind the others in different pixels.
+    let (mut scene, _) = builtin_scenes()
+        .iter()
+        .find(|b| b.name == "teaser")
+        .expect("teaser is built in")
+        .build()
+        .unwrap();
+    let mut stack = scene.objects[0].clone();
+    stack.name = "stack".into();
+    stack.wireframe = None;
+    stack.parts = vec![Part {
+        mesh: stack_of_squares(12),
+        material: Material::default(),
+    }];
+    scene.objects.push(stack);
+    let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+    let layers = renderer.object_layers();
+    assert!(layers.last().unwrap().unwrap() > 2.0, "{layers:?}");
+    assert!(
+        layers.iter().rev().skip(1).all(|l| l.unwrap() < 2.0),
+        "{layers:?}"
+    );
+    let reference = Tracer::new(&scene).render(
+        RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            samples: 1,
+        },
+        &|_| {},
+    );
+    let mut images = Vec::new();
+    for method in [Method::Lrt, Method::Rt, Method::Auto] {
+        let (image, _) = renderer
+            .render(&ctx, &scene, method, FootprintShape::Hull)
+            .unwrap();
+        let rgb = image.to_rgb8();
+        let mismatch = compare(&reference, &rgb, 2, 1);
+        println!(
+            "{}: mismatch={:.5} max={}",
+            method.name(),
+            mismatch.fraction(),
+            mismatch.max_difference
+        );
+        assert!(
+            mismatch.fraction() <= 0.001,
+            "{}: {mismatch:?}",
+            method.name()
+        );
+        images.push(rgb);
+    }
+    // Not vacuous: the stack is on screen (removing it changes the picture).
+    let without = Tracer::new(&Scene {
+        objects: scene.objects[..scene.objects.len() - 1].to_vec(),
+        ..scene.clone()
+    })
+    .render(
+        RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            samples: 1,
+        },
+        &|_| {},
+    );
+    let changed = compare(&without, &images[2], 2, 0).fraction();
+    assert!(
+        changed > 0.005,
+        "the stack covers only {changed} of the image"
+    );
     ctx.take_errors().unwrap();
 }
 

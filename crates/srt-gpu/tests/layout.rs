@@ -9,9 +9,10 @@ use std::mem::{offset_of, size_of};
 use naga::proc::Layouter;
 use naga::{Module, ScalarKind, TypeInner};
 use srt_gpu::types::{
-    EffectsCode, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuPhysicsProbeInput,
-    GpuPhysicsProbeOutput, GpuSpectralProbeInput, GpuSpectralProbeOutput, GpuStar, GpuVertex,
-    ObjectUniforms, PartFlags, PartUniforms, SkyUniforms, SurfaceColourCode, ToneMapCode,
+    EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuFootprint, GpuFrame,
+    GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuSpectralProbeInput,
+    GpuSpectralProbeOutput, GpuStar, GpuVertex, ObjectUniforms, PartFlags, PartUniforms,
+    SkyUniforms, SurfaceColourCode, ToneMapCode,
 };
 
 /// What a member's components are, as both sides can tell.
@@ -107,6 +108,8 @@ fn table() -> Vec<Twin> {
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
         twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, padding }),
+        twin!(GpuBvhNode => "BvhNode" { min, primitive_count, max, first }),
+        twin!(GpuRtTriangle => "RtTriangle" { p0, part, p1, triangle, p2, padding }),
         twin!(GpuStar => "Star" { direction_temperature, magnitude }),
         twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts, direction_map, direction_unmap, image }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),

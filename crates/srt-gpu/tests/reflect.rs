@@ -14,8 +14,8 @@ use naga::{AddressSpace, Expression, ImageClass, ImageDimension, Literal, Module
 use srt_gpu::pipelines::{BindGroupSpec, PipelineSpec, Slot};
 use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
-    EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode, PartFlags,
-    SurfaceColourCode, ToneMapCode,
+    BVH_STACK_SIZE, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
+    PartFlags, SurfaceColourCode, ToneMapCode,
 };
 
 /// Every WGSL const with a Rust twin, and the twin's value.
@@ -35,11 +35,13 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("PART_CULL_BACK_FACES", PartFlags::CULL_BACK_FACES.0),
         ("FOOTPRINT_HULL_POINTS", FOOTPRINT_HULL_POINTS as u32),
         ("FOOTPRINT_VERTICES", FOOTPRINT_VERTICES),
+        ("BVH_STACK_SIZE", BVH_STACK_SIZE),
     ]
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 5] = [
+const SHARED_FAMILIES: [&str; 6] = [
+    "BVH_",
     "EFFECTS_",
     "FOOTPRINT_",
     "PART_",
@@ -445,9 +447,9 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        13,
-        "proxy, lrt visibility, lrt shading, polygon (twice: without and with counting), three \
-         probes and the sky's two passes"
+        15,
+        "proxy, lrt visibility, lrt shading, rt visibility, polygon (twice: without and with \
+         counting), three probes and the sky's two passes"
     );
     let mut failures = Vec::new();
     for spec in &specs {

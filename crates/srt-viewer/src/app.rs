@@ -176,7 +176,7 @@ impl ViewerApp {
             speed_text: String::new(),
             speed_text_for: None,
             keep_apparent: true,
-            method: ViewMethod::Lrt,
+            method: ViewMethod::Exact,
             playing: false,
             playback_speed: 1.0,
             time_range: (ct.min(0.0) - 20.0, ct.max(0.0) + 20.0),

@@ -21,26 +21,32 @@ pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// Which method(s) the view shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ViewMethod {
-    /// Local ray tracing only (the paper's method).
+    /// Exact: each object by whichever of LRT and the ray tracer is faster for it.
     #[default]
+    Exact,
+    /// Local ray tracing only (the paper's method).
     Lrt,
+    /// The GPU ray tracer only (exact like LRT; a BVH per batch of parts).
+    Rt,
     /// The polygon baseline only (§3.2).
     Polygon,
-    /// Both, side by side: local ray tracing on the left, polygons on the right.
+    /// Both, side by side: the exact picture on the left, polygons on the right.
     Split,
 }
 
 impl ViewMethod {
     /// All choices, in the order the panel lists them.
-    pub const ALL: [Self; 3] = [Self::Lrt, Self::Polygon, Self::Split];
+    pub const ALL: [Self; 5] = [Self::Exact, Self::Lrt, Self::Rt, Self::Polygon, Self::Split];
 
     /// The methods rendered, left to right.
     #[must_use]
     pub const fn methods(self) -> &'static [Method] {
         match self {
+            Self::Exact => &[Method::Auto],
             Self::Lrt => &[Method::Lrt],
+            Self::Rt => &[Method::Rt],
             Self::Polygon => &[Method::Polygon],
-            Self::Split => &[Method::Lrt, Method::Polygon],
+            Self::Split => &[Method::Auto, Method::Polygon],
         }
     }
 
@@ -48,7 +54,9 @@ impl ViewMethod {
     #[must_use]
     pub const fn label(self) -> &'static str {
         match self {
+            Self::Exact => "Exact (fastest method per object)",
             Self::Lrt => "Local ray tracing",
+            Self::Rt => "Ray tracing (BVH)",
             Self::Polygon => "Polygon",
             Self::Split => "Split screen (both)",
         }
@@ -88,7 +96,9 @@ impl Pane {
         let several_methods = panes.iter().any(|p| p.method != pane.method);
         let view = (several_views || pane.view != View::Seen).then(|| view_label(pane.view));
         let method = several_methods.then_some(match pane.method {
+            Method::Auto => "exact",
             Method::Lrt => "local ray tracing",
+            Method::Rt => "ray tracing (BVH)",
             Method::Polygon => "polygon",
         });
         match (view, method) {

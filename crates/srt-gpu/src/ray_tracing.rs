@@ -1,0 +1,253 @@
+//! What the GPU ray tracer (`Method::Rt`, `shaders/rt.wgsl`) keeps per object: a BVH over all
+//! the object's triangles in its rest frame S′ ([`crate::bvh::ObjectBvh`]), the triangles in
+//! the BVH's leaf order with the ids the visibility pass writes, and the BVH's box, uploaded as
+//! a 12-triangle stand-in for the proxy pass. The proxy pass turns the box's triangles into
+//! conservative footprints (back faces culled when the observer is clearly outside the box,
+//! [`crate::culling::box_back_faces_hidden`]); the ray tracer's visibility pass draws those
+//! footprints and traces each fragment's ray through the BVH; the shading pass (the LRT's)
+//! shades each batch inside the box's screen bound.
+//!
+//! Why the box's footprints hold the object's image: a pixel sees a triangle of the object only
+//! if its backward ray in S′ reaches a point inside the box, and a half-line that reaches a
+//! point inside a box crosses the box's surface — entering it through a face turned towards its
+//! origin, or leaving it when it starts inside; the footprint of the surface triangle it
+//! crosses holds the pixel (srt-proxy's guarantee, checked by `cargo xtask validate`).
+
+use glam::DVec3;
+use wgpu::util::DeviceExt as _;
+
+use crate::bvh::{ObjectBvh, box_geometry};
+use crate::context::{GpuContext, GpuError};
+use crate::culling::box_back_faces_hidden;
+use crate::limits::DeviceLimits;
+use crate::pipelines::{Pipelines, slots};
+use crate::types::{
+    DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PART_BOUND_BYTES, PartFlags, PartUniforms,
+};
+
+/// Above this many layers of triangles (an object's surface over its box's surface,
+/// [`ObjectRayTracing::preferred`]) `auto` traces an object through its BVH. Measured with
+/// `cargo xtask bench` on lavapipe (docs/performance.md): the 2CylinderEngine (2.8 layers)
+/// renders 2.6× faster traced at 1280×720; the fig10 cubes (1.0) 2.2–2.9× and the spider
+/// (0.29) 7× slower.
+pub const AUTO_LAYERS: f64 = 2.0;
+
+/// Triangles of an object's box.
+pub(crate) const BOX_TRIANGLES: u32 = 12;
+
+/// Per object: the BVH, the box's proxy inputs and outputs, and the ray tracer's bind groups.
+pub(crate) struct ObjectRayTracing {
+    /// The box's uniforms (their culling flag is written every frame).
+    box_uniforms: wgpu::Buffer,
+    /// The BVH's (widened) box in S′.
+    bounds: ([f32; 3], [f32; 3]),
+    /// The object's surface area over its box's: how many layers of triangles an average
+    /// line of sight through the box crosses, against the box's two faces.
+    layers: f64,
+    /// Group 2 of the proxy pass for the box (its uniforms, corners and triangles); also bound
+    /// in the visibility pass, which reads nothing of it.
+    pub box_part_group: wgpu::BindGroup,
+    /// Group 3 of the proxy pass for the box: its footprints, screen bound and draw arguments.
+    pub box_proxy_group: wgpu::BindGroup,
+    /// The box's screen bound, cleared before every proxy pass.
+    pub box_bound: wgpu::Buffer,
+    /// The box's two draws (its footprints, then the bound's rectangle), reset before every
+    /// proxy pass.
+    pub box_draw_args: wgpu::Buffer,
+    /// Group 3 of the ray tracer's visibility pass: the box's footprints, counter, BVH.
+    pub visibility_group: wgpu::BindGroup,
+    /// Group 3 of the shading pass after the ray tracer: the box's footprints, the counter and
+    /// the box's bound.
+    pub shade_group: wgpu::BindGroup,
+}
+
+impl ObjectRayTracing {
+    /// Builds the BVH over `triangles` (every triangle of the object, with its batch's part id
+    /// and its number there; named `what` in errors), uploads it and the box, and makes the bind
+    /// groups; `counter` is the fragment counter.
+    ///
+    /// # Errors
+    /// [`GpuError::BvhTooDeep`] when the BVH is deeper than the traversal's stack,
+    /// [`GpuError::ExceedsLimit`] when the triangles exceed a storage buffer.
+    pub fn new(
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        counter: &wgpu::Buffer,
+        triangles: &[GpuRtTriangle],
+        what: impl FnOnce() -> String,
+    ) -> Result<Self, GpuError> {
+        let device = &ctx.device;
+        let what = what();
+        DeviceLimits::of(ctx).check_storage_buffer(
+            || format!("the ray tracer's triangle buffer of {what}"),
+            std::mem::size_of_val(triangles) as u64,
+        )?;
+        let corners: Vec<[[f32; 3]; 3]> = triangles.iter().map(|t| [t.p0, t.p1, t.p2]).collect();
+        let bvh = ObjectBvh::build(&corners, || what.clone())?;
+        DeviceLimits::of(ctx).check_storage_buffer(
+            || format!("the BVH of {what}"),
+            std::mem::size_of_val(bvh.nodes.as_slice()) as u64,
+        )?;
+        let storage = |label, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let nodes = storage("srt bvh nodes", bytemuck::cast_slice(&bvh.nodes));
+        let ordered = storage(
+            "srt bvh triangles",
+            bytemuck::cast_slice(&bvh.in_leaf_order(triangles)),
+        );
+        let bounds = bvh.bounds();
+        let area = |[a, b, c]: [[f32; 3]; 3]| {
+            let [a, b, c] = [a, b, c].map(|p| DVec3::from(p.map(f64::from)));
+            0.5 * (b - a).cross(c - a).length()
+        };
+        let size = DVec3::from(bounds.1.map(f64::from)) - DVec3::from(bounds.0.map(f64::from));
+        let box_area = 2.0 * (size.x * size.y + size.y * size.z + size.z * size.x);
+        let layers =
+            corners.iter().map(|&t| area(t)).sum::<f64>() / box_area.max(f64::MIN_POSITIVE);
+        let (box_vertices, box_triangles) = box_geometry(bounds.0, bounds.1);
+        let box_uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("srt box uniforms"),
+            contents: bytemuck::bytes_of(&box_uniforms(false)),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let box_vertices = storage("srt box vertices", bytemuck::cast_slice(&box_vertices));
+        let box_indices = storage("srt box indices", bytemuck::cast_slice(&box_triangles));
+        let zeroed = |label, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        let footprints = zeroed(
+            "srt box footprints",
+            u64::from(BOX_TRIANGLES) * size_of::<GpuFootprint>() as u64,
+            wgpu::BufferUsages::empty(),
+        );
+        let box_bound = zeroed(
+            "srt box bound",
+            PART_BOUND_BYTES,
+            wgpu::BufferUsages::COPY_DST,
+        );
+        let box_draw_args = zeroed(
+            "srt box draw",
+            DRAW_ARGS_BYTES,
+            wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+        );
+        // The box has no texture; group 2 wants one.
+        let blank = device
+            .create_texture_with_data(
+                &ctx.queue,
+                &wgpu::TextureDescriptor {
+                    label: Some("srt box texture"),
+                    size: wgpu::Extent3d {
+                        width: 1,
+                        height: 1,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu::TextureFormat::Rgba8Unorm,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                },
+                wgpu::util::TextureDataOrder::LayerMajor,
+                &[255; 4],
+            )
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout,
+                entries,
+            })
+        };
+        Ok(Self {
+            box_part_group: group(
+                "srt box part",
+                &pipelines.part_layout,
+                &[
+                    slots::PART.entry(box_uniforms.as_entire_binding()),
+                    slots::VERTICES.entry(box_vertices.as_entire_binding()),
+                    slots::INDICES.entry(box_indices.as_entire_binding()),
+                    slots::PART_TEXTURE.entry(wgpu::BindingResource::TextureView(&blank)),
+                ],
+            ),
+            box_proxy_group: group(
+                "srt box proxy output",
+                &pipelines.proxy_output_layout,
+                &[
+                    slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding()),
+                    slots::PROXY_PART_BOUND.entry(box_bound.as_entire_binding()),
+                    slots::PROXY_DRAW_ARGS.entry(box_draw_args.as_entire_binding()),
+                ],
+            ),
+            visibility_group: group(
+                "srt rt input",
+                &pipelines.rt_input_layout,
+                &[
+                    slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
+                    slots::FRAGMENT_COUNT.entry(counter.as_entire_binding()),
+                    slots::BVH_NODES.entry(nodes.as_entire_binding()),
+                    slots::BVH_TRIANGLES.entry(ordered.as_entire_binding()),
+                ],
+            ),
+            shade_group: group(
+                "srt rt shading input",
+                &pipelines.lrt_input_layout,
+                &[
+                    slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
+                    slots::FRAGMENT_COUNT.entry(counter.as_entire_binding()),
+                    slots::LRT_PART_BOUND.entry(box_bound.as_entire_binding()),
+                ],
+            ),
+            box_uniforms,
+            bounds,
+            layers,
+            box_bound,
+            box_draw_args,
+        })
+    }
+
+    /// Whether the ray tracer is the faster exact method for this object: when its triangles
+    /// lie in more than [`AUTO_LAYERS`] layers. An LRT fragment tests one triangle and there are
+    /// about as many per pixel as layers; a traced fragment walks the BVH, which costs several
+    /// triangle tests but does not grow with the layers. Either is exact; this decides speed
+    /// only.
+    #[must_use]
+    pub fn preferred(&self) -> bool {
+        self.layers > AUTO_LAYERS
+    }
+
+    /// The object's surface over its box's ([`ObjectRayTracing::preferred`]).
+    #[must_use]
+    pub const fn layers(&self) -> f64 {
+        self.layers
+    }
+
+    /// Sets, for the observer at `observer` in S′, whether the proxy pass culls the box's back
+    /// faces.
+    pub fn write_culling(&self, queue: &wgpu::Queue, observer: DVec3) {
+        let (min, max) = self.bounds;
+        let uniforms = box_uniforms(box_back_faces_hidden(min, max, observer));
+        queue.write_buffer(&self.box_uniforms, 0, bytemuck::bytes_of(&uniforms));
+    }
+}
+
+/// The box's part uniforms, culling back faces or not.
+fn box_uniforms(cull_back_faces: bool) -> PartUniforms {
+    PartUniforms {
+        base_color: [1.0; 4],
+        flags: PartFlags::default().with(PartFlags::CULL_BACK_FACES, cull_back_faces),
+        triangle_count: BOX_TRIANGLES,
+        id: 0,
+        padding: 0,
+    }
+}

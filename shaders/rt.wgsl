@@ -1,0 +1,113 @@
+// rt.wgsl — the GPU ray tracer (`--method rt`): a third exact method beside the LRT's
+// footprints. Per object, its visibility pass draws the footprints of the object's box (the
+// proxy pass run over the box's 12 triangles, back faces culled when the observer is clearly
+// outside it): a pixel's ray must cross the box's surface to reach anything inside. Each
+// fragment traces its viewing ray in the object's rest frame S′ (Eq. 3, 5) through the object's
+// BVH and keeps the nearest triangle hit (Eq. 15–16), written as lrt.wgsl's visibility pass
+// writes it (`visible`: id, apparent distance as depth). The LRT's shading pass then shades each
+// pixel once.
+//
+// So a pixel costs one BVH walk per object whose box it sees, however many triangles lie behind
+// each other there: the reference's algorithm (srt-trace), where the LRT pays one ray test per
+// footprint covering the pixel.
+//
+// Mirror: srt_gpu::bvh::ObjectBvh::nearest_hit (the traversal, tested against a test of every
+// triangle) and crates/srt-trace (the image, compared by `cargo xtask validate`).
+// Composed after lrt.wgsl (it uses `fragment_count`, `lrt_vertex`, `VisibilityOutput`, `visible`).
+
+// The object's BVH nodes (srt_gpu::bvh::ObjectBvh::nodes), root first.
+@group(3) @binding(3) var<storage, read> bvh_nodes: array<BvhNode>;
+// The object's triangles in leaf order, with their ids.
+@group(3) @binding(4) var<storage, read> bvh_triangles: array<RtTriangle>;
+
+// Factor on the slab test's exit distance: 1 + 2γ₃, rounded up (set from
+// srt_gpu::bvh::SLAB_TOLERANCE).
+override SLAB_TOLERANCE: f32;
+
+// 1 / direction per axis, components nearer 0 than 10⁻²⁰ replaced by 10⁻²⁰ (no ∞, no 0 × ∞).
+fn safe_inverse(direction: vec3<f32>) -> vec3<f32> {
+    return 1.0 / select(direction, vec3<f32>(1e-20), abs(direction) < vec3<f32>(1e-20));
+}
+
+// Where the ray enters the node's box (0 if it starts inside), or −1 if it misses the box or
+// meets it only beyond `limit`. The exit is taken a few rounding units late.
+fn box_entry(node: u32, origin: vec3<f32>, inverse: vec3<f32>, limit: f32) -> f32 {
+    let a = (bvh_nodes[node].min - origin) * inverse;
+    let b = (bvh_nodes[node].max - origin) * inverse;
+    let lo = min(a, b);
+    let hi = max(a, b);
+    let near = max(max(lo.x, lo.y), max(lo.z, 0.0));
+    let far = min(min(hi.x, hi.y), hi.z);
+    return select(-1.0, near, near <= far * SLAB_TOLERANCE && near <= limit);
+}
+
+// The nearest hit of the ray with the object's triangles, through its BVH; `triangle` is the
+// hit's entry in bvh_triangles. Ties keep the triangle found first.
+struct BvhHit {
+    found: bool,
+    distance: f32,
+    triangle: u32,
+}
+
+fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>) -> BvhHit {
+    var best = BvhHit(false, 3.4e38, 0u);
+    let inverse = safe_inverse(direction);
+    if (box_entry(0u, origin, inverse, best.distance) < 0.0) {
+        return best;
+    }
+    var stack: array<u32, BVH_STACK_SIZE>;
+    var top = 0u;
+    var node = 0u;
+    loop {
+        let count = bvh_nodes[node].primitive_count;
+        let first = bvh_nodes[node].first;
+        var descend = false;
+        if (count > 0u) {
+            for (var k = first; k < first + count; k++) {
+                let t = bvh_triangles[k];
+                let hit = intersect_triangle(origin, direction, array<vec3<f32>, 3>(t.p0, t.p1, t.p2));
+                if (hit.found && hit.distance < best.distance) {
+                    best = BvhHit(true, hit.distance, k);
+                }
+            }
+        } else {
+            let ea = box_entry(first, origin, inverse, best.distance);
+            let eb = box_entry(first + 1u, origin, inverse, best.distance);
+            if (ea >= 0.0 && eb >= 0.0) {
+                let a_first = ea <= eb;
+                stack[top] = select(first, first + 1u, a_first);
+                top++;
+                node = select(first + 1u, first, a_first);
+                descend = true;
+            } else if (ea >= 0.0) {
+                node = first;
+                descend = true;
+            } else if (eb >= 0.0) {
+                node = first + 1u;
+                descend = true;
+            }
+        }
+        if (!descend) {
+            if (top == 0u) {
+                break;
+            }
+            top--;
+            node = stack[top];
+        }
+    }
+    return best;
+}
+
+@fragment
+fn rt_visibility(@builtin(position) position: vec4<f32>) -> VisibilityOutput {
+    if (COUNT_FRAGMENTS) {
+        atomicAdd(&fragment_count[0], 1u);
+    }
+    let ray = backward_ray(object.frame, view_direction(position.xy));
+    let hit = bvh_nearest_hit(ray.origin, ray.direction);
+    if (!hit.found) {
+        discard;
+    }
+    let t = bvh_triangles[hit.triangle];
+    return visible(vec2<u32>(t.part, t.triangle), ray, hit.distance);
+}
