@@ -1,14 +1,16 @@
 //! `cargo xtask bench`: the paper's Table 1 on the current adapter, and scenes in motion.
 //!
-//! For each case: the median frame time of local ray tracing (LRT, hull footprints) and of the
-//! polygon method, their ratio, and what the LRT fragments did per pixel the scene actually
-//! covers (coverage from the exact CPU renderer): `overdraw_hull`, fragments run, and
-//! `shaded_per_pixel`, fragments that hit their triangle and were shaded. Cases:
+//! For each case: the median frame time of each exact method — `auto` (what `srt` uses: each
+//! object by LRT or the BVH ray tracer), local ray tracing alone (LRT, hull footprints) and the
+//! ray tracer alone (RT) — and of the polygon method, taking turns frame by frame; `ratio` is
+//! auto's against the polygon method's. Per pixel the scene actually covers (coverage from the
+//! exact CPU renderer): visibility fragments run by each exact method (`overdraw_auto`,
+//! `overdraw_hull` for LRT, `overdraw_rt`) and `shaded_per_pixel`, pixels shaded. Cases:
 //!
 //! - the paper's static frames (the five scenes of the issue) at 1280×720 and 1920×1080;
 //! - fly-by sweeps at 1280×720: the teaser while the spider passes the camera, and the engine
 //!   passing beside, above and behind it, 12 frames each; one line per sweep with the worst
-//!   frame's ratio (`worst_ratio`) and the slowest LRT frame;
+//!   frame's ratio (`worst_ratio`), each method's worst ratio and slowest frame;
 //! - a large scene: three engines side by side (364 488 triangles);
 //! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
 //!   `flythrough` (a moving observer under 6 000 stars).
@@ -94,31 +96,37 @@ fn median(mut values: Vec<f64>) -> f64 {
     values[values.len() / 2]
 }
 
-/// Median frame time in ms (GPU timestamps where supported, else wall clock of render +
-/// readback) and median time of the proxy pass (0 where unknown).
-fn frame_time(
+/// Median frame time in ms of each of `methods` (GPU timestamps where supported, else wall
+/// clock of render + readback) and median time of its proxy pass (0 where unknown). The
+/// methods take turns frame by frame, so that a slow spell of the machine (software adapters
+/// share its cores) falls on all of them alike.
+fn frame_times<const N: usize>(
     ctx: &GpuContext,
     renderer: &GpuRenderer,
     scene: &Scene,
-    method: Method,
+    methods: [Method; N],
     frames: u32,
-) -> anyhow::Result<(f64, f64)> {
+) -> anyhow::Result<[(f64, f64); N]> {
     for _ in 0..WARM_UP {
-        renderer.render(ctx, scene, method, FootprintShape::Hull)?;
+        for method in methods {
+            renderer.render(ctx, scene, method, FootprintShape::Hull)?;
+        }
     }
-    let (mut times, mut proxy) = (Vec::new(), Vec::new());
+    let mut times = [(); N].map(|()| (Vec::new(), Vec::new()));
     for _ in 0..frames {
-        let start = Instant::now();
-        let (_, stats) = renderer.render(ctx, scene, method, FootprintShape::Hull)?;
-        let wall = start.elapsed().as_secs_f64() * 1e3;
-        times.push(stats.gpu_time_ms.unwrap_or(wall));
-        proxy.push(stats.proxy_time_ms.unwrap_or(0.0));
+        for (method, (time, proxy)) in methods.iter().zip(&mut times) {
+            let start = Instant::now();
+            let (_, stats) = renderer.render(ctx, scene, *method, FootprintShape::Hull)?;
+            let wall = start.elapsed().as_secs_f64() * 1e3;
+            time.push(stats.gpu_time_ms.unwrap_or(wall));
+            proxy.push(stats.proxy_time_ms.unwrap_or(0.0));
+        }
     }
-    Ok((median(times), median(proxy)))
+    Ok(times.map(|(time, proxy)| (median(time), median(proxy))))
 }
 
-/// Times both methods on `scene` with `renderer` (made for this scene's structure), then counts
-/// the LRT fragments against the pixels the exact renderer finds covered.
+/// Times the methods on `scene` with `renderer` (made for this scene's structure), then counts
+/// each exact method's fragments against the pixels the exact renderer finds covered.
 fn measure(
     ctx: &GpuContext,
     renderer: &mut GpuRenderer,
@@ -126,10 +134,18 @@ fn measure(
     frames: u32,
 ) -> anyhow::Result<Measurement> {
     renderer.set_fragment_counting(false);
-    let (lrt_ms, proxy_ms) = frame_time(ctx, renderer, scene, Method::Lrt, frames)?;
-    let (rt_ms, _) = frame_time(ctx, renderer, scene, Method::Rt, frames)?;
-    let (auto_ms, _) = frame_time(ctx, renderer, scene, Method::Auto, frames)?;
-    let (polygon_ms, _) = frame_time(ctx, renderer, scene, Method::Polygon, frames)?;
+    let [
+        (lrt_ms, proxy_ms),
+        (rt_ms, _),
+        (auto_ms, _),
+        (polygon_ms, _),
+    ] = frame_times(
+        ctx,
+        renderer,
+        scene,
+        [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon],
+        frames,
+    )?;
     let (width, height) = renderer.size();
     let covered = Tracer::new(scene)
         .render(

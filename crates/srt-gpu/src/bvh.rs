@@ -215,8 +215,14 @@ fn box_entry(node: &GpuBvhNode, origin: [f32; 3], inverse: [f32; 3], limit: f32)
 /// rounded up (the value of WGSL `override SLAB_TOLERANCE` in rt.wgsl).
 pub const SLAB_TOLERANCE: f32 = 1.000_000_4;
 
-/// The 8 corners and 12 triangles (outward) of the box `min`–`max`, as vertices of an upload:
-/// the object's stand-in in the proxy pass, whose footprints bound where the ray tracer draws.
+/// The 8 corners and 12 triangles of the box `min`–`max`, as vertices of an upload: the
+/// object's stand-in in the proxy pass, whose footprints bound where the ray tracer draws.
+///
+/// The triangles are wound *inward*, so that the proxy pass's back-face culling, when it
+/// applies ([`crate::culling::box_near_faces_cullable`]), keeps the far faces: those a ray
+/// leaves the box through. Every ray that reaches into the box from outside leaves it again,
+/// so their footprints suffice, and measured tighter than the near faces' (the
+/// 2CylinderEngine: 2.2 against 3.0 fragments per covered pixel).
 #[must_use]
 pub fn box_geometry(min: [f32; 3], max: [f32; 3]) -> (Vec<GpuVertex>, Vec<[u32; 3]>) {
     let vertices = (0..8u32)
@@ -237,7 +243,7 @@ pub fn box_geometry(min: [f32; 3], max: [f32; 3]) -> (Vec<GpuVertex>, Vec<[u32; 
         })
         .collect();
     // Corner k has x from bit 0, y from bit 1, z from bit 2; each face's corners in turn, its
-    // triangles wound so that their normals point out of the box.
+    // triangles wound so that their normals point into the box.
     let faces = [
         [0, 2, 6, 4], // x = min
         [1, 5, 7, 3], // x = max
@@ -248,7 +254,7 @@ pub fn box_geometry(min: [f32; 3], max: [f32; 3]) -> (Vec<GpuVertex>, Vec<[u32; 
     ];
     let triangles = faces
         .iter()
-        .flat_map(|&[a, b, c, d]| [[a, c, b], [a, d, c]])
+        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
         .collect();
     (vertices, triangles)
 }
@@ -347,7 +353,7 @@ mod tests {
     }
 
     #[test]
-    fn the_box_mesh_faces_outward_and_covers_the_bounds() {
+    fn the_box_mesh_faces_inward_and_covers_the_bounds() {
         let (vertices, triangles) = box_geometry([-1.0, -2.0, -3.0], [1.0, 2.0, 3.0]);
         assert_eq!((vertices.len(), triangles.len()), (8, 12));
         let mut area = 0.0;
@@ -355,7 +361,7 @@ mod tests {
             let [a, b, c] = corners(&vertices, t).map(Vec3A::from);
             let normal = (b - a).cross(c - a);
             let centre = (a + b + c) / 3.0;
-            assert!(normal.dot(centre) > 0.0, "triangle {t:?} faces inward");
+            assert!(normal.dot(centre) < 0.0, "triangle {t:?} faces outward");
             area += 0.5 * normal.length();
         }
         assert!((area - 2.0 * (2.0 * 4.0 + 2.0 * 6.0 + 4.0 * 6.0)).abs() < 1e-4);

@@ -34,14 +34,15 @@ impl BackFaceCulling {
     }
 }
 
-/// Whether the ray tracer may cull the back faces of an object's box `min`–`max` (in S′) for
-/// an observer at `observer` (S′): only when the observer is outside the box by more than f32
+/// Whether the ray tracer may cull the faces of an object's box `min`–`max` (in S′) that are
+/// turned towards an observer at `observer` (S′; the box is wound inward, so the proxy pass's
+/// back-face test culls those): only when the observer is outside the box by more than f32
 /// rounding can blur, on the outer side of some face plane and off every face plane. A ray from
-/// outside that reaches into a box enters it through a face turned towards its origin, so the
-/// footprints of those faces then hold every pixel that sees into the box; otherwise all twelve
-/// triangles are drawn.
+/// outside that reaches into a box leaves it again through a face turned away from its origin,
+/// so the footprints of those faces then hold every pixel that sees into the box; otherwise all
+/// twelve triangles are drawn.
 #[must_use]
-pub fn box_back_faces_hidden(min: [f32; 3], max: [f32; 3], observer: glam::DVec3) -> bool {
+pub fn box_near_faces_cullable(min: [f32; 3], max: [f32; 3], observer: glam::DVec3) -> bool {
     let size = (0..3)
         .map(|axis| f64::from(max[axis] - min[axis]).abs())
         .fold(0.0, f64::max);
@@ -63,21 +64,25 @@ pub fn box_back_faces_hidden(min: [f32; 3], max: [f32; 3], observer: glam::DVec3
 
 #[cfg(test)]
 mod tests {
-    use super::box_back_faces_hidden;
+    use super::box_near_faces_cullable;
     use glam::DVec3;
 
     #[test]
     fn box_faces_are_culled_only_from_clearly_outside() {
         let (min, max) = ([-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]);
-        assert!(box_back_faces_hidden(min, max, DVec3::new(5.0, 0.0, 0.0)));
-        assert!(box_back_faces_hidden(min, max, DVec3::new(-3.0, 4.0, 2.0)));
-        assert!(!box_back_faces_hidden(min, max, DVec3::ZERO), "inside");
+        assert!(box_near_faces_cullable(min, max, DVec3::new(5.0, 0.0, 0.0)));
+        assert!(box_near_faces_cullable(
+            min,
+            max,
+            DVec3::new(-3.0, 4.0, 2.0)
+        ));
+        assert!(!box_near_faces_cullable(min, max, DVec3::ZERO), "inside");
         assert!(
-            !box_back_faces_hidden(min, max, DVec3::new(1.0 + 1e-7, 0.0, 0.0)),
+            !box_near_faces_cullable(min, max, DVec3::new(1.0 + 1e-7, 0.0, 0.0)),
             "on a face"
         );
         assert!(
-            !box_back_faces_hidden(min, max, DVec3::new(5.0, 1.0, 0.0)),
+            !box_near_faces_cullable(min, max, DVec3::new(5.0, 1.0, 0.0)),
             "in the plane of a face seen edge-on"
         );
     }

@@ -2,23 +2,23 @@
 //! the object's triangles in its rest frame S′ ([`crate::bvh::ObjectBvh`]), the triangles in
 //! the BVH's leaf order with the ids the visibility pass writes, and the BVH's box, uploaded as
 //! a 12-triangle stand-in for the proxy pass. The proxy pass turns the box's triangles into
-//! conservative footprints (back faces culled when the observer is clearly outside the box,
-//! [`crate::culling::box_back_faces_hidden`]); the ray tracer's visibility pass draws those
+//! conservative footprints (the near faces culled when the observer is clearly outside the box,
+//! [`crate::culling::box_near_faces_cullable`]); the ray tracer's visibility pass draws those
 //! footprints and traces each fragment's ray through the BVH; the shading pass (the LRT's)
 //! shades each batch inside the box's screen bound.
 //!
 //! Why the box's footprints hold the object's image: a pixel sees a triangle of the object only
 //! if its backward ray in S′ reaches a point inside the box, and a half-line that reaches a
-//! point inside a box crosses the box's surface — entering it through a face turned towards its
-//! origin, or leaving it when it starts inside; the footprint of the surface triangle it
-//! crosses holds the pixel (srt-proxy's guarantee, checked by `cargo xtask validate`).
+//! point inside a box leaves it through the box's surface, through a face turned away from its
+//! origin; the footprint of the surface triangle it crosses holds the pixel (srt-proxy's
+//! guarantee, checked by `cargo xtask validate`).
 
 use glam::DVec3;
 use wgpu::util::DeviceExt as _;
 
 use crate::bvh::{ObjectBvh, box_geometry};
 use crate::context::{GpuContext, GpuError};
-use crate::culling::box_back_faces_hidden;
+use crate::culling::box_near_faces_cullable;
 use crate::limits::DeviceLimits;
 use crate::pipelines::{Pipelines, slots};
 use crate::types::{
@@ -232,11 +232,11 @@ impl ObjectRayTracing {
         self.layers
     }
 
-    /// Sets, for the observer at `observer` in S′, whether the proxy pass culls the box's back
-    /// faces.
+    /// Sets, for the observer at `observer` in S′, whether the proxy pass culls the box's faces
+    /// turned towards it.
     pub fn write_culling(&self, queue: &wgpu::Queue, observer: DVec3) {
         let (min, max) = self.bounds;
-        let uniforms = box_uniforms(box_back_faces_hidden(min, max, observer));
+        let uniforms = box_uniforms(box_near_faces_cullable(min, max, observer));
         queue.write_buffer(&self.box_uniforms, 0, bytemuck::bytes_of(&uniforms));
     }
 }

@@ -9,26 +9,32 @@ use srt_scene::{
     Effects, Material, Mesh, Part, Scene, SceneDescription, SurfaceColour, builtin_scenes,
 };
 use srt_trace::compare::compare;
-use srt_trace::{RenderSettings, Tracer};
+use srt_trace::{RenderSettings, RenderedImage, Tracer};
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
 
+/// The CPU reference's image of `scene` (one sample per pixel).
+fn cpu_image(scene: &Scene) -> RenderedImage {
+    Tracer::new(scene).render(
+        RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            samples: 1,
+        },
+        &|_| {},
+    )
+}
+
 #[test]
-fn lrt_matches_the_cpu_reference_on_every_builtin_scene() {
-    let Some(ctx) = context_or_skip("lrt_matches_the_cpu_reference_on_every_builtin_scene") else {
+fn exact_methods_match_the_cpu_reference_on_every_builtin_scene() {
+    let Some(ctx) = context_or_skip("exact_methods_match_the_cpu_reference_on_every_builtin_scene")
+    else {
         return;
     };
     for builtin in builtin_scenes() {
         let (scene, _) = builtin.build().unwrap();
-        let reference = Tracer::new(&scene).render(
-            RenderSettings {
-                width: WIDTH,
-                height: HEIGHT,
-                samples: 1,
-            },
-            &|_| {},
-        );
+        let reference = cpu_image(&scene);
         let mut renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
         renderer.set_fragment_counting(true);
         let mut line = format!("scene={}", builtin.name);
@@ -105,14 +111,7 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
         layers.iter().rev().skip(1).all(|l| l.unwrap() < 2.0),
         "{layers:?}"
     );
-    let reference = Tracer::new(&scene).render(
-        RenderSettings {
-            width: WIDTH,
-            height: HEIGHT,
-            samples: 1,
-        },
-        &|_| {},
-    );
+    let reference = cpu_image(&scene);
     let mut images = Vec::new();
     for method in [Method::Lrt, Method::Rt, Method::Auto] {
         let (image, _) = renderer
@@ -134,18 +133,10 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
         images.push(rgb);
     }
     // Not vacuous: the stack is on screen (removing it changes the picture).
-    let without = Tracer::new(&Scene {
+    let without = cpu_image(&Scene {
         objects: scene.objects[..scene.objects.len() - 1].to_vec(),
         ..scene.clone()
-    })
-    .render(
-        RenderSettings {
-            width: WIDTH,
-            height: HEIGHT,
-            samples: 1,
-        },
-        &|_| {},
-    );
+    });
     let changed = compare(&without, &images[2], 2, 0).fraction();
     assert!(
         changed > 0.005,
@@ -156,14 +147,7 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
 
 /// LRT with spectral colour agrees with the CPU: `scene`'s mismatch (2/255, 1 px edge margin).
 fn assert_spectral_lrt_agrees(ctx: &srt_gpu::GpuContext, name: &str, scene: &Scene) {
-    let reference = Tracer::new(scene).render(
-        RenderSettings {
-            width: WIDTH,
-            height: HEIGHT,
-            samples: 1,
-        },
-        &|_| {},
-    );
+    let reference = cpu_image(scene);
     let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT).unwrap();
     let (image, _) = renderer
         .render(ctx, scene, Method::Lrt, FootprintShape::Hull)

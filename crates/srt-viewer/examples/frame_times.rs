@@ -2,8 +2,8 @@
 //! (srt-gpu passes, then the blit into the displayed texture), waiting for the GPU after each
 //! frame, at a list of observation times.
 //!
-//! `cargo run -p srt-viewer --example frame_times -- [lrt|polygon|split] [WIDTHxHEIGHT] CT...`
-//! e.g. `-- lrt 1213x880 0 1 2 3` (the size of the view in a 1600×900 window).
+//! `cargo run -p srt-viewer --example frame_times -- [exact|lrt|rt|polygon|split] [WIDTHxHEIGHT] CT...`
+//! e.g. `-- exact 1213x880 0 1 2 3` (the size of the view in a 1600×900 window).
 
 use std::time::Instant;
 
@@ -14,9 +14,11 @@ use srt_viewer::{Editor, Pane, ViewMethod};
 fn main() -> anyhow::Result<()> {
     let mut arguments = std::env::args().skip(1);
     let method = match arguments.next().as_deref() {
+        Some("lrt") => ViewMethod::Lrt,
+        Some("rt") => ViewMethod::Rt,
         Some("polygon") => ViewMethod::Polygon,
         Some("split") => ViewMethod::Split,
-        _ => ViewMethod::Lrt,
+        _ => ViewMethod::Exact,
     };
     let size = arguments.next().unwrap_or_else(|| "1213x880".to_owned());
     let (width, height) = size
