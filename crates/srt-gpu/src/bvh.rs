@@ -54,7 +54,8 @@ pub fn corners(vertices: &[GpuVertex], triangle: [u32; 3]) -> [[f32; 3]; 3] {
 }
 
 impl ObjectBvh {
-    /// Builds the BVH over `triangles` (their corners; at least one triangle).
+    /// Builds the BVH over `triangles` (their corners; at least one triangle: the caller,
+    /// [`crate::ray_tracing`], refuses objects without any).
     ///
     /// # Errors
     /// [`GpuError::BvhTooDeep`] when the tree is deeper than the GPU traversal's stack

@@ -27,9 +27,9 @@ use crate::types::{
 
 /// Above this many layers of triangles (an object's surface over its box's surface,
 /// [`ObjectRayTracing::preferred`]) `auto` traces an object through its BVH. Measured with
-/// `cargo xtask bench` on lavapipe (docs/performance.md): the 2CylinderEngine (2.8 layers)
-/// renders 2.6× faster traced at 1280×720; the fig10 cubes (1.0) 2.2–2.9× and the spider
-/// (0.29) 7× slower.
+/// `cargo xtask bench` on lavapipe (docs/performance.md): the 2CylinderEngine (2.80 layers)
+/// renders 2.2× faster traced at 1280×720; the fig10 cubes (1.00) 2.6–3.5× and the spider
+/// (0.29) 5.6–6.7× slower.
 pub const AUTO_LAYERS: f64 = 2.0;
 
 /// Triangles of an object's box.
@@ -68,7 +68,8 @@ impl ObjectRayTracing {
     ///
     /// # Errors
     /// [`GpuError::BvhTooDeep`] when the BVH is deeper than the traversal's stack,
-    /// [`GpuError::ExceedsLimit`] when the triangles exceed a storage buffer.
+    /// [`GpuError::ExceedsLimit`] when the triangles exceed a storage buffer,
+    /// [`GpuError::NotReady`] when there are none.
     pub fn new(
         ctx: &GpuContext,
         pipelines: &Pipelines,
@@ -78,6 +79,9 @@ impl ObjectRayTracing {
     ) -> Result<Self, GpuError> {
         let device = &ctx.device;
         let what = what();
+        if triangles.is_empty() {
+            return Err(GpuError::NotReady("an object without triangles has no BVH"));
+        }
         DeviceLimits::of(ctx).check_storage_buffer(
             || format!("the ray tracer's triangle buffer of {what}"),
             std::mem::size_of_val(triangles) as u64,

@@ -1087,9 +1087,9 @@ impl GpuRenderer {
     }
 
     /// The render passes into the targets (timestamps 2 and 3): for the polygon method one
-    /// pass into colour and depth; for LRT and the ray tracer the visibility pass into ids and
-    /// depth (footprints, or each batch's box bound traced through its BVH), then the shading
-    /// pass into colour.
+    /// pass into colour and depth; for the exact methods the visibility pass into ids and depth
+    /// (each object by its triangles' footprints, or, where `traced`, by its box's footprints
+    /// and its BVH), then the shading pass into colour.
     fn encode_render_pass(
         &self,
         device: &wgpu::Device,
