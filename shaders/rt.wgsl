@@ -1,7 +1,8 @@
-// rt.wgsl — the GPU ray tracer (`--method rt`): a third exact method beside the LRT's
+// rt.wgsl — the GPU ray tracer (`--method rt`): the second exact method beside the LRT's
 // footprints. Per object, its visibility pass draws the footprints of the object's box (the
-// proxy pass run over the box's 12 triangles, back faces culled when the observer is clearly
-// outside it): a pixel's ray must cross the box's surface to reach anything inside. Each
+// proxy pass run over the box's 12 triangles, wound inward so that the faces turned towards the
+// observer are culled when it is clearly outside the box): a pixel's ray that reaches anything
+// inside the box leaves it through a face that is drawn. Each
 // fragment traces its viewing ray in the object's rest frame S′ (Eq. 3, 5) through the object's
 // BVH and keeps the nearest triangle hit (Eq. 15–16), written as lrt.wgsl's visibility pass
 // writes it (`visible`: id, apparent distance as depth). The LRT's shading pass then shades each
