@@ -21,6 +21,7 @@ use crate::context::{GpuContext, GpuError};
 use crate::culling::box_near_faces_cullable;
 use crate::limits::DeviceLimits;
 use crate::pipelines::{Pipelines, slots};
+use crate::renderer::part_texture;
 use crate::types::{
     DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PART_BOUND_BYTES, PartFlags, PartUniforms,
 };
@@ -145,27 +146,7 @@ impl ObjectRayTracing {
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
         );
         // The box has no texture; group 2 wants one.
-        let blank = device
-            .create_texture_with_data(
-                &ctx.queue,
-                &wgpu::TextureDescriptor {
-                    label: Some("srt box texture"),
-                    size: wgpu::Extent3d {
-                        width: 1,
-                        height: 1,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Rgba8Unorm,
-                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                },
-                wgpu::util::TextureDataOrder::LayerMajor,
-                &[255; 4],
-            )
-            .create_view(&wgpu::TextureViewDescriptor::default());
+        let blank = part_texture(ctx, None);
         let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),

@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use srt_color::{TemperatureLut, ToneMap, quantize_8bit, searchlight_reference_ln_y};
 use srt_scene::mip::{MipChain, MipLevel};
-use srt_scene::{Object, Part, Scene};
+use srt_scene::{Object, Part, Scene, Texture};
 use wgpu::util::DeviceExt as _;
 
 use crate::context::{GpuContext, GpuError};
@@ -541,16 +541,16 @@ pub struct GpuRenderer {
     indirect_draws: bool,
 }
 
-/// The part's texture with its mip chain (levels larger than the device allows are skipped),
-/// or a 1×1 white texture.
-fn part_texture(ctx: &GpuContext, part: &Part) -> wgpu::TextureView {
+/// `texture` with its mip chain (levels larger than the device allows are skipped), or, for
+/// `None`, a 1×1 white texture.
+pub(crate) fn part_texture(ctx: &GpuContext, texture: Option<&Texture>) -> wgpu::TextureView {
     let limit = ctx.device.limits().max_texture_dimension_2d;
     let white = MipLevel {
         width: 1,
         height: 1,
         texels: vec![[255; 4]],
     };
-    let chain = part.material.texture.as_deref().map(MipChain::new);
+    let chain = texture.map(MipChain::new);
     let mut levels: Vec<&MipLevel> = chain.as_ref().map_or_else(Vec::new, |chain| {
         chain
             .levels()
@@ -670,7 +670,7 @@ fn upload_batch(
             | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let texture = part_texture(ctx, part);
+    let texture = part_texture(ctx, part.material.texture.as_deref());
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(PART_GROUP.label),
         layout: &pipelines.part_layout,
