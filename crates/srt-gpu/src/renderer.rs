@@ -490,8 +490,13 @@ struct Timestamps {
     readback: wgpu::Buffer,
 }
 
-/// Timestamps written per frame: begin and end of the proxy and of the render pass.
-const TIMESTAMP_COUNT: u32 = 4;
+/// Timestamps written per frame: begin and end of the proxy pass (0, 1) and of the render
+/// passes (2, 3), and the beginning of the sky's passes (4), which precede the render passes,
+/// so that every method's frame time includes them.
+const TIMESTAMP_COUNT: u32 = 5;
+
+/// The timestamp written at the beginning of the sky's passes.
+const SKY_TIMESTAMP: u32 = 4;
 
 impl Timestamps {
     fn new(device: &wgpu::Device) -> Self {
@@ -1114,6 +1119,7 @@ impl GpuRenderer {
                     &self.frame.bind_groups[tone],
                     &self.frame.polygon_groups[tone],
                     &color_view,
+                    self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP)),
                 );
                 wgpu::LoadOp::Load
             }
@@ -1337,9 +1343,14 @@ impl GpuRenderer {
                         * f64::from(ctx.queue.get_timestamp_period())
                         * 1e-6
                 };
+                // From the first pass of the frame (the proxy pass, or else the sky's, or
+                // else the polygon pass) to the end of the last.
                 match method {
                     Method::Lrt | Method::Rt | Method::Auto => (Some(ms(0, 3)), Some(ms(0, 1))),
-                    Method::Polygon => (Some(ms(2, 3)), None),
+                    Method::Polygon => {
+                        let first = if self.sky.is_some() { SKY_TIMESTAMP } else { 2 };
+                        (Some(ms(first as usize, 3)), None)
+                    }
                 }
             }
             None => (None, None),

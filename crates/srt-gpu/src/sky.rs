@@ -12,7 +12,7 @@ use wgpu::util::DeviceExt as _;
 
 use crate::context::{GpuContext, GpuError};
 use crate::limits::DeviceLimits;
-use crate::passes::begin_colour_pass;
+use crate::passes::begin_pass;
 use crate::pipelines::{
     FRAME_GROUP, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP, SKY_STARS_ENTRY, SKY_STARS_GROUP,
     pipeline_layout, render_pipeline, sky_specs, slots,
@@ -188,30 +188,44 @@ impl SkyResources {
     /// Records the star pass and the background pass into `encoder`: `color` then holds
     /// background + sky image + star light. `stars_frame` is the frame's group 0 for the star
     /// pass (uniforms and colour table of the tone map in use), `compose_frame` the same with the
-    /// spectral tables, for the compose pass.
+    /// spectral tables, for the compose pass. `first_timestamp` (query set, index), when given,
+    /// is written at the beginning of the first of the two passes.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         stars_frame: &wgpu::BindGroup,
         compose_frame: &wgpu::BindGroup,
         color: &wgpu::TextureView,
+        mut first_timestamp: Option<(&wgpu::QuerySet, u32)>,
     ) {
         encoder.clear_buffer(&self.light.buffer, 0, None);
         if self.star_count > 0 {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(SKY_STARS_GROUP.label),
-                timestamp_writes: None,
+                timestamp_writes: first_timestamp.take().map(|(query_set, index)| {
+                    wgpu::ComputePassTimestampWrites {
+                        query_set,
+                        beginning_of_pass_write_index: Some(index),
+                        end_of_pass_write_index: None,
+                    }
+                }),
             });
             pass.set_pipeline(&self.stars_pipeline);
             pass.set_bind_group(FRAME_GROUP.index, stars_frame, &[]);
             pass.set_bind_group(SKY_STARS_GROUP.index, &self.light.stars_group, &[]);
             pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
         }
-        let mut pass = begin_colour_pass(
+        let mut pass = begin_pass(
             encoder,
             SKY_COMPOSE_GROUP.label,
             color,
             wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+            None,
+            first_timestamp.map(|(query_set, index)| wgpu::RenderPassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: Some(index),
+                end_of_pass_write_index: None,
+            }),
         );
         pass.set_pipeline(&self.compose_pipeline);
         pass.set_bind_group(FRAME_GROUP.index, compose_frame, &[]);
