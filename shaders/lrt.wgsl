@@ -54,10 +54,11 @@ fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
 
 @vertex
 fn lrt_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
-    let t = index / FOOTPRINT_VERTICES;
-    let pixel = footprint_corner(footprints[t], index % FOOTPRINT_VERTICES);
+    // A triangle's own slot or a piece of a split triangle: the footprint names the triangle.
+    let f = footprints[index / FOOTPRINT_VERTICES];
+    let pixel = footprint_corner(f, index % FOOTPRINT_VERTICES);
     let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
-    return LrtVarying(vec4<f32>(ndc, 0.5, 1.0), t);
+    return LrtVarying(vec4<f32>(ndc, 0.5, 1.0), f.triangle);
 }
 
 // The backward viewing ray through `pixel` in S′, the rest-frame corners of triangle `t` and the

@@ -3,6 +3,9 @@
 // addition: the result is dilated by FOOTPRINT_MARGIN pixels to absorb f32 rounding, so that it
 // stays conservative (the validation checks it against the f64 footprint).
 
+// One footprint per triangle of the batch ([0, part.triangle_count)), then slots for the pieces
+// of split triangles (split_footprint), taken in turn by draw_args[8]. Each footprint names its
+// triangle, so the LRT pass draws all of them in one draw.
 @group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
 // The part's screen bound, the union of its footprints' rectangles in whole pixels, for the LRT
 // shading pass: (!min x, !min y, max x, max y) so that all four grow by atomicMax from the
@@ -13,8 +16,9 @@
 // footprint draw of the LRT visibility pass: its vertex count grows to the end of the last
 // triangle with a footprint on screen (FOOTPRINT_VERTICES per triangle). [4..8] is the LRT
 // shading pass's rectangle: 6 vertices once any footprint is on screen. So a part wholly off
-// screen or behind the camera draws nothing in either pass.
-@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, 8>;
+// screen or behind the camera draws nothing in either pass. [8] counts the piece slots taken
+// (the CPU writes 0).
+@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, 9>;
 
 // Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
@@ -22,6 +26,15 @@ override WORKGROUP_SIZE: u32;
 // footprint is taken to be the whole screen: set at pipeline creation from
 // srt_proxy::MAX_TANGENT_REACH.
 override MAX_TANGENT_REACH: f32;
+// How many times split_footprint may halve a triangle (srt_proxy::MAX_SPLIT_DEPTH).
+const MAX_SPLIT_DEPTH: u32 = 8u;
+// The fraction of the screen above which a piece is split again, the hull-to-corners area
+// ratio above which a hull is loose, and the fraction of near_bound at which a swept prism is
+// clipped: set at pipeline creation from srt_proxy::SPLIT_AREA_FRACTION,
+// srt_proxy::LOOSE_HULL_FACTOR and srt_proxy::NEAR_CLIP_FRACTION.
+override SPLIT_AREA_FRACTION: f32;
+override LOOSE_HULL_FACTOR: f32;
+override NEAR_CLIP_FRACTION: f32;
 // Clip-space w at or below which a point counts as at or behind the camera.
 const MIN_CLIP_W: f32 = 1e-6;
 // Outward dilation of rectangle and hull, in pixels.
@@ -86,12 +99,37 @@ fn whole_screen_footprint() -> Footprint {
     return f;
 }
 
-// The footprint of a triangle the tangent construction cannot bound (a point at or behind the
-// camera, or an ill-conditioned tangent intersection): the rectangle of the on-screen part of its
-// swept prism, clamped to the screen (srt_proxy::swept_prism and srt_proxy::visible_rect, whose
-// documentation proves it conservative); empty when nothing of it can be seen, the whole screen
-// when the prism may reach the camera.
-fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
+// The six points P1, G12, P2, G23, P3, G31 of the apparent image of the rest triangle `rest`,
+// projected to pixels (srt_proxy::tangent_footprint); false when one of them is at or behind
+// the camera or a tangent intersection lies more than MAX_TANGENT_REACH chord lengths away
+// (ill-conditioned in f32).
+fn tangent_outline(rest: array<vec3<f32>, 3>, points: ptr<function, array<vec2<f32>, 6>>) -> bool {
+    var corners: array<vec3<f32>, 3>;
+    for (var i = 0u; i < 3u; i++) {
+        corners[i] = apparent_position(object.frame, rest[i]);
+    }
+    for (var i = 0u; i < 3u; i++) {
+        let j = (i + 1u) % 3u;
+        let edge = rest[j] - rest[i];
+        let ti = apparent_tangent(object.frame, rest[i], edge);
+        let tj = apparent_tangent(object.frame, rest[j], -edge);
+        let g = tangent_intersection(corners[i], ti, corners[j], tj);
+        let pp = project_point(corners[i]);
+        let pg = project_point(g);
+        let far = length(g - 0.5 * (corners[i] + corners[j])) > MAX_TANGENT_REACH * length(corners[j] - corners[i]);
+        if (pp.z == 0.0 || pg.z == 0.0 || far) {
+            return false;
+        }
+        (*points)[2u * i] = pp.xy;
+        (*points)[2u * i + 1u] = pg.xy;
+    }
+    return true;
+}
+
+// The six points of the swept prism of the rest triangle `rest` in clip space
+// (srt_proxy::swept_prism, whose documentation proves that their convex hull holds the apparent
+// triangle); false when the observer is at a corner's apparent position.
+fn swept_prism_clip(rest: array<vec3<f32>, 3>, clip: ptr<function, array<vec4<f32>, 6>>) -> bool {
     let beta = object.frame.beta_gamma.xyz;
     let observer = frame_uniforms.observer.xyz;
     var emission: array<vec4<f32>, 3>;
@@ -105,7 +143,7 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
         let to_point = emission[i].yzw - observer;
         let reach = length(to_point);
         if (!(reach > 0.0)) {
-            return whole_screen_footprint();
+            return false;
         }
         let n = to_point / reach;
         slope[i] = -n / (1.0 + dot(n, beta));
@@ -120,44 +158,92 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
         latest = min(latest, highest);
     }
     latest = max(latest, latest_corner);
-    var clip: array<vec4<f32>, 6>;
-    var lo = vec4<f32>(3.0e38);
-    var hi = vec4<f32>(-3.0e38);
-    // Signed distances to the camera plane and the four side planes of the view pyramid: a
-    // plane with all six points behind it hides the prism.
-    var all_beyond = vec4<bool>(true);
-    var all_behind = true;
     for (var k = 0u; k < 6u; k++) {
         let p = select(emission[k % 3u].yzw, start[k % 3u] + beta * latest, k >= 3u);
-        let c = frame_uniforms.view_projection * vec4<f32>(p, 1.0);
-        clip[k] = c;
-        lo = min(lo, c);
-        hi = max(hi, c);
-        all_beyond = all_beyond & (vec4<f32>(c.w - c.x, c.w + c.x, c.w - c.y, c.w + c.y) < vec4<f32>(0.0));
-        all_behind = all_behind && c.w < 0.0;
+        (*clip)[k] = frame_uniforms.view_projection * vec4<f32>(p, 1.0);
     }
-    if (all_behind || any(all_beyond)) {
-        return Footprint();
+    return true;
+}
+
+// What near_bound returns for a hull nothing of which is on screen.
+const NEAR_HIDDEN: f32 = -1.0;
+// Relative size below which a plane's distance from the camera is taken for f32 rounding (the
+// f64 srt_proxy uses 1e-9).
+const PLANE_TOLERANCE: f32 = 1e-4;
+
+// srt_proxy::near_bound in f32: the largest lower bound on clip w of the on-screen points of
+// the convex hull of `clip`, NEAR_HIDDEN when none is on screen, 0 when no plane keeps the hull
+// off the camera. Candidate planes (through the camera in (x, y, w)): x = 0, y = 0, w = 0, the
+// view pyramid's four faces, and the planes through any three of the points, both ways round.
+// The cone's extent along a direction is widened by PLANE_TOLERANCE·|n|, so that rounding can
+// only lower the bound.
+fn near_bound(clip: ptr<function, array<vec4<f32>, 6>>) -> f32 {
+    var points: array<vec3<f32>, 6>;
+    var reach = 0.0;
+    for (var i = 0u; i < 6u; i++) {
+        points[i] = (*clip)[i].xyw;
+        reach = max(reach, length(points[i]));
     }
-    let clearance = max(max(max(lo.x, -hi.x), max(lo.y, -hi.y)), lo.w);
-    if (!(clearance > 0.0 && clearance < 3.0e38)) {
-        return whole_screen_footprint();
+    if (!(reach < 3.0e38)) {
+        return 0.0;
     }
-    let near = 0.5 * clearance;
+    var best = 0.0;
+    for (var candidate = 0u; candidate < 50u; candidate++) {
+        var n: vec3<f32>;
+        if (candidate < 10u) {
+            let fixed = array<vec3<f32>, 10>(
+                vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(-1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0),
+                vec3<f32>(0.0, -1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0, 0.0, -1.0),
+                vec3<f32>(1.0, 0.0, -1.0), vec3<f32>(-1.0, 0.0, -1.0), vec3<f32>(0.0, 1.0, -1.0),
+                vec3<f32>(0.0, -1.0, -1.0));
+            n = fixed[candidate];
+        } else {
+            // The 20 triples a < b < c of six points, each both ways round.
+            let triple = (candidate - 10u) / 2u;
+            let packed = array<u32, 20>(
+                0x012u, 0x013u, 0x014u, 0x015u, 0x023u, 0x024u, 0x025u, 0x034u, 0x035u, 0x045u,
+                0x123u, 0x124u, 0x125u, 0x134u, 0x135u, 0x145u, 0x234u, 0x235u, 0x245u, 0x345u);
+            let abc = packed[triple];
+            let a = points[abc >> 8u];
+            let b = points[(abc >> 4u) & 15u];
+            let c = points[abc & 15u];
+            n = cross(b - a, c - a) * select(1.0, -1.0, candidate % 2u == 1u);
+        }
+        var m = 3.0e38;
+        for (var i = 0u; i < 6u; i++) {
+            m = min(m, dot(n, points[i]));
+        }
+        let size = length(n);
+        if (!(m > PLANE_TOLERANCE * size * reach)) {
+            continue;
+        }
+        let widest = abs(n.x) + abs(n.y) + n.z + PLANE_TOLERANCE * size;
+        if (widest <= 0.0) {
+            return NEAR_HIDDEN;
+        }
+        best = max(best, m / widest);
+    }
+    return best;
+}
+
+// The rectangle (min.xy, max.xy, in pixels, clamped to the screen) of the hull of `clip`
+// clipped at w = near (srt_proxy::visible_rect): its points with w ≥ near and the crossings of
+// w = near by the segments between points on either side. Empty (min ≥ max) when none.
+fn clipped_rect(clip: ptr<function, array<vec4<f32>, 6>>, near: f32) -> vec4<f32> {
     var pixels_lo = vec2<f32>(3.0e38);
     var pixels_hi = vec2<f32>(-3.0e38);
     for (var a = 0u; a < 6u; a++) {
-        if (clip[a].w < near) {
+        if ((*clip)[a].w < near) {
             continue;
         }
         for (var b = 0u; b < 7u; b++) {
             // b = 6 stands for the point a itself; b < 6 for the crossing towards a point behind.
-            var c = clip[a];
+            var c = (*clip)[a];
             if (b < 6u) {
-                if (clip[b].w >= near) {
+                if ((*clip)[b].w >= near) {
                     continue;
                 }
-                c = clip[a] + (clip[b] - clip[a]) * ((near - clip[a].w) / (clip[b].w - clip[a].w));
+                c = (*clip)[a] + ((*clip)[b] - (*clip)[a]) * ((near - (*clip)[a].w) / ((*clip)[b].w - (*clip)[a].w));
             }
             let w = max(c.w, near);
             let pixel = vec2<f32>((c.x / w + 1.0) * 0.5 * frame_uniforms.viewport.x, (1.0 - c.y / w) * 0.5 * frame_uniforms.viewport.y);
@@ -165,71 +251,30 @@ fn swept_footprint(rest: array<vec3<f32>, 3>) -> Footprint {
             pixels_hi = max(pixels_hi, pixel);
         }
     }
-    let screen = frame_uniforms.viewport.xy;
-    let rect_lo = max(pixels_lo - FOOTPRINT_MARGIN, vec2<f32>(0.0));
-    let rect_hi = min(pixels_hi + FOOTPRINT_MARGIN, screen);
-    if (!all(rect_lo < rect_hi)) {
-        return Footprint();
-    }
-    return rectangle_footprint(rect_lo, rect_hi);
+    return vec4<f32>(max(pixels_lo, vec2<f32>(0.0)), min(pixels_hi, frame_uniforms.viewport.xy));
 }
 
-// Stores footprint `f` of triangle `t`, grows the part's screen bound by its rectangle clamped
-// to the screen and the draw's vertex count past `t` (an empty footprint adds nothing).
-fn store_footprint(t: u32, f: Footprint) {
-    footprints[t] = f;
-    let screen = frame_uniforms.viewport.xy;
-    let lo = max(floor(f.rect.xy), vec2<f32>(0.0));
-    let hi = min(ceil(f.rect.zw), screen);
-    if (f.hull_len == 0u || !all(lo < hi)) {
-        return;
-    }
-    atomicMax(&draw_args[0], (t + 1u) * FOOTPRINT_VERTICES);
-    atomicMax(&draw_args[4], 6u);
-    atomicMax(&part_bound[0], ~u32(lo.x));
-    atomicMax(&part_bound[1], ~u32(lo.y));
-    atomicMax(&part_bound[2], u32(hi.x));
-    atomicMax(&part_bound[3], u32(hi.y));
+// Area of a clamped rectangle (min.xy, max.xy); 0 when empty.
+fn rect_area(r: vec4<f32>) -> f32 {
+    let size = max(r.zw - r.xy, vec2<f32>(0.0));
+    return size.x * size.y;
 }
 
-@compute @workgroup_size(WORKGROUP_SIZE)
-fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    // Large parts are dispatched as a 2D grid of workgroups.
-    let t = id.x + id.y * groups.x * WORKGROUP_SIZE;
-    if (t >= part.triangle_count) {
-        return;
+// Area of the polygon of the first `len` points of `points`.
+fn polygon_area(points: array<vec2<f32>, 6>, len: u32) -> f32 {
+    var twice = 0.0;
+    for (var i = 0u; i < len; i++) {
+        let a = points[i];
+        let b = points[(i + 1u) % len];
+        twice += a.x * b.y - a.y * b.x;
     }
-    let rest = triangle_corners(t);
-    // Back-face culling in S′, exact for closed meshes: every viewing ray starts at the
-    // observer's rest-frame position, so a triangle facing away from it is hidden behind the
-    // rest of the solid. An empty footprint draws nothing.
-    if (part_has(PART_CULL_BACK_FACES) && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
-        store_footprint(t, Footprint());
-        return;
-    }
-    var corners: array<vec3<f32>, 3>;
-    for (var i = 0u; i < 3u; i++) {
-        corners[i] = apparent_position(object.frame, rest[i]);
-    }
-    // Six points P1, G12, P2, G23, P3, G31, projected.
-    var points: array<vec2<f32>, 6>;
-    for (var i = 0u; i < 3u; i++) {
-        let j = (i + 1u) % 3u;
-        let edge = rest[j] - rest[i];
-        let ti = apparent_tangent(object.frame, rest[i], edge);
-        let tj = apparent_tangent(object.frame, rest[j], -edge);
-        let g = tangent_intersection(corners[i], ti, corners[j], tj);
-        let pp = project_point(corners[i]);
-        let pg = project_point(g);
-        // A tangent intersection far beyond its chord is ill-conditioned in f32: whole screen.
-        let far = length(g - 0.5 * (corners[i] + corners[j])) > MAX_TANGENT_REACH * length(corners[j] - corners[i]);
-        if (pp.z == 0.0 || pg.z == 0.0 || far) {
-            store_footprint(t, swept_footprint(rest));
-            return;
-        }
-        points[2u * i] = pp.xy;
-        points[2u * i + 1u] = pg.xy;
-    }
+    return 0.5 * abs(twice);
+}
+
+// The paper's footprint of the six points P1, G12, P2, G23, P3, G31 (pixels): their rectangle
+// and convex hull, both dilated by FOOTPRINT_MARGIN.
+fn hull_footprint(six: array<vec2<f32>, 6>) -> Footprint {
+    var points = six;
     var f: Footprint;
     var lo = points[0];
     var hi = points[0];
@@ -284,23 +329,204 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     let len = min(k - 1u, FOOTPRINT_HULL_POINTS);
     if (len < 3u) {
         // Degenerate in f32: fall back to the (dilated, hence non-empty) rectangle.
-        f = rectangle_footprint(f.rect.xy, f.rect.zw);
-    } else {
-        // Dilate: move each vertex along its miter so both adjacent edges shift outward.
-        for (var i = 0u; i < len; i++) {
-            let prev = chain[(i + len - 1u) % len];
-            let here = chain[i];
-            let next = chain[(i + 1u) % len];
-            let e1 = normalize(here - prev);
-            let e2 = normalize(next - here);
-            // Outward normals of a counter-clockwise polygon (y-up reading): (e.y, −e.x).
-            let n1 = vec2<f32>(e1.y, -e1.x);
-            let n2 = vec2<f32>(e2.y, -e2.x);
-            let miter = (n1 + n2) / max(1.0 + dot(n1, n2), 1e-3);
-            f.hull[i] = here + FOOTPRINT_MARGIN * miter;
-        }
-        f.hull_len = len;
+        return rectangle_footprint(f.rect.xy, f.rect.zw);
     }
+    // Dilate: move each vertex along its miter so both adjacent edges shift outward.
+    for (var i = 0u; i < len; i++) {
+        let prev = chain[(i + len - 1u) % len];
+        let here = chain[i];
+        let next = chain[(i + 1u) % len];
+        let e1 = normalize(here - prev);
+        let e2 = normalize(next - here);
+        // Outward normals of a counter-clockwise polygon (y-up reading): (e.y, −e.x).
+        let n1 = vec2<f32>(e1.y, -e1.x);
+        let n2 = vec2<f32>(e2.y, -e2.x);
+        let miter = (n1 + n2) / max(1.0 + dot(n1, n2), 1e-3);
+        f.hull[i] = here + FOOTPRINT_MARGIN * miter;
+    }
+    f.hull_len = len;
     f.whole_screen = 0u;
-    store_footprint(t, f);
+    return f;
+}
+
+// srt_proxy::Footprint::worth_splitting: footprint `f` of the six points `six` covers more than
+// SPLIT_AREA_FRACTION of the screen and its hull is loose (LOOSE_HULL_FACTOR times the area of
+// the triangle of the projected corners).
+fn worth_splitting(f: Footprint, six: array<vec2<f32>, 6>) -> bool {
+    let screen = frame_uniforms.viewport.xy;
+    let on_screen = vec4<f32>(max(f.rect.xy, vec2<f32>(0.0)), min(f.rect.zw, screen));
+    if (!(rect_area(on_screen) > SPLIT_AREA_FRACTION * screen.x * screen.y)) {
+        return false;
+    }
+    var hull: array<vec2<f32>, 6>;
+    for (var i = 0u; i < 6u; i++) {
+        hull[i] = f.hull[i];
+    }
+    let corners = array<vec2<f32>, 6>(six[0], six[2], six[4], vec2<f32>(0.0), vec2<f32>(0.0), vec2<f32>(0.0));
+    return polygon_area(hull, f.hull_len) > LOOSE_HULL_FACTOR * polygon_area(corners, 3u);
+}
+
+// The halves of `piece` across the midpoint of its longest edge (srt_proxy's bisect).
+fn bisect(piece: array<vec3<f32>, 3>) -> array<array<vec3<f32>, 3>, 2> {
+    var longest = 0u;
+    var length = -1.0;
+    for (var i = 0u; i < 3u; i++) {
+        let edge = piece[(i + 1u) % 3u] - piece[i];
+        if (dot(edge, edge) > length) {
+            length = dot(edge, edge);
+            longest = i;
+        }
+    }
+    let a = piece[longest];
+    let b = piece[(longest + 1u) % 3u];
+    let c = piece[(longest + 2u) % 3u];
+    let middle = 0.5 * (a + b);
+    return array<array<vec3<f32>, 3>, 2>(array<vec3<f32>, 3>(a, middle, c), array<vec3<f32>, 3>(middle, b, c));
+}
+
+// Stores footprint `f` of triangle `triangle` in slot `slot`, grows the part's screen bound by
+// its rectangle clamped to the screen and the draw's vertex count past `slot` (an empty
+// footprint adds nothing).
+fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
+    var named = f;
+    named.triangle = triangle;
+    footprints[slot] = named;
+    let screen = frame_uniforms.viewport.xy;
+    let lo = max(floor(f.rect.xy), vec2<f32>(0.0));
+    let hi = min(ceil(f.rect.zw), screen);
+    if (f.hull_len == 0u || !all(lo < hi)) {
+        return;
+    }
+    atomicMax(&draw_args[0], (slot + 1u) * FOOTPRINT_VERTICES);
+    atomicMax(&draw_args[4], 6u);
+    atomicMax(&part_bound[0], ~u32(lo.x));
+    atomicMax(&part_bound[1], ~u32(lo.y));
+    atomicMax(&part_bound[2], u32(hi.x));
+    atomicMax(&part_bound[3], u32(hi.y));
+}
+
+// Stores `f` as a piece of triangle `t` in the next free piece slot; false when none is left.
+fn store_piece(t: u32, f: Footprint) -> bool {
+    let slot = part.triangle_count + atomicAdd(&draw_args[8], 1u);
+    if (slot >= arrayLength(&footprints)) {
+        return false;
+    }
+    store_footprint(slot, t, f);
+    return true;
+}
+
+// Pieces on split_footprint's stack: each halving replaces one by two.
+const SPLIT_STACK: u32 = MAX_SPLIT_DEPTH + 1u;
+
+// Splits triangle `t` (corners `rest` in S′) as srt_proxy::split_pieces does, whose
+// documentation says why the pieces are conservative, and stores them: the first in the
+// triangle's own slot, the others in piece slots. When the piece slots run out, the triangle's
+// own slot gets the rectangle holding all its pieces instead (srt_proxy::split_footprint); when
+// a piece MAX_SPLIT_DEPTH deep may reach the camera, the whole screen.
+fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
+    let screen = frame_uniforms.viewport.xy;
+    let split_area = SPLIT_AREA_FRACTION * screen.x * screen.y;
+    var stack: array<array<vec3<f32>, 3>, SPLIT_STACK>;
+    var depths: array<u32, SPLIT_STACK>;
+    stack[0] = rest;
+    depths[0] = 0u;
+    var size = 1u;
+    var union_lo = vec2<f32>(3.0e38);
+    var union_hi = vec2<f32>(-3.0e38);
+    var own = Footprint();
+    var kept = 0u;
+    var all_stored = true;
+    while (size > 0u) {
+        size--;
+        let piece = stack[size];
+        let depth = depths[size];
+        var f: Footprint;
+        var split = false;
+        var points: array<vec2<f32>, 6>;
+        if (tangent_outline(piece, &points)) {
+            f = hull_footprint(points);
+            split = worth_splitting(f, points);
+        } else {
+            var clip: array<vec4<f32>, 6>;
+            var bound = 0.0;
+            if (swept_prism_clip(piece, &clip)) {
+                bound = near_bound(&clip);
+            }
+            if (bound == NEAR_HIDDEN) {
+                continue;
+            }
+            var rect = vec4<f32>(0.0);
+            if (bound > 0.0) {
+                rect = clipped_rect(&clip, NEAR_CLIP_FRACTION * bound);
+            }
+            split = bound == 0.0 || rect_area(rect) > split_area;
+            if (!split || depth == MAX_SPLIT_DEPTH) {
+                if (bound == 0.0) {
+                    store_footprint(t, t, whole_screen_footprint());
+                    return;
+                }
+                if (!all(rect.xy < rect.zw)) {
+                    continue;
+                }
+                let lo = max(rect.xy - FOOTPRINT_MARGIN, vec2<f32>(0.0));
+                let hi = min(rect.zw + FOOTPRINT_MARGIN, screen);
+                f = rectangle_footprint(lo, hi);
+            }
+        }
+        if (split && depth < MAX_SPLIT_DEPTH) {
+            let halves = bisect(piece);
+            stack[size] = halves[0];
+            stack[size + 1u] = halves[1];
+            depths[size] = depth + 1u;
+            depths[size + 1u] = depth + 1u;
+            size += 2u;
+            continue;
+        }
+        // A kept piece: skip it when nothing of it is on screen.
+        let lo = max(f.rect.xy, vec2<f32>(0.0));
+        let hi = min(f.rect.zw, screen);
+        if (!all(lo < hi)) {
+            continue;
+        }
+        union_lo = min(union_lo, lo);
+        union_hi = max(union_hi, hi);
+        if (kept == 0u) {
+            own = f;
+        } else if (all_stored) {
+            all_stored = store_piece(t, f);
+        }
+        kept++;
+    }
+    if (!all_stored) {
+        own = rectangle_footprint(union_lo, union_hi);
+    }
+    store_footprint(t, t, own);
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    // Large parts are dispatched as a 2D grid of workgroups.
+    let t = id.x + id.y * groups.x * WORKGROUP_SIZE;
+    if (t >= part.triangle_count) {
+        return;
+    }
+    let rest = triangle_corners(t);
+    // Back-face culling in S′, exact for closed meshes: every viewing ray starts at the
+    // observer's rest-frame position, so a triangle facing away from it is hidden behind the
+    // rest of the solid. An empty footprint draws nothing.
+    if (part_has(PART_CULL_BACK_FACES) && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
+        store_footprint(t, t, Footprint());
+        return;
+    }
+    // Six points P1, G12, P2, G23, P3, G31, projected: the paper's footprint, unless it cannot
+    // be made or is loose and large.
+    var points: array<vec2<f32>, 6>;
+    if (tangent_outline(rest, &points)) {
+        let f = hull_footprint(points);
+        if (!worth_splitting(f, points)) {
+            store_footprint(t, t, f);
+            return;
+        }
+    }
+    split_footprint(t, rest);
 }

@@ -144,7 +144,9 @@ struct Footprint {
     hull_len: u32,
     // 1 for a whole-screen footprint.
     whole_screen: u32,
-    padding: vec2<u32>,
+    // The triangle of the batch it is a footprint of (itself, or a piece of it).
+    triangle: u32,
+    padding: u32,
 }
 
 // One star of the sky (srt_scene::Star), at rest in the world frame W.

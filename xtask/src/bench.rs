@@ -8,8 +8,9 @@
 //! `overdraw_hull` for LRT, `overdraw_rt`) and `shaded_per_pixel`, pixels shaded. Cases:
 //!
 //! - the paper's static frames (the five scenes of the issue) at 1280×720 and 1920×1080;
-//! - fly-by sweeps at 1280×720: the teaser while the spider passes the camera, and the engine
-//!   passing beside, above and behind it, 12 frames each; one line per sweep with the worst
+//! - fly-by sweeps at 1280×720: the teaser while the spider passes the camera, the engine
+//!   passing beside, above and behind it, and the `flythrough`'s observer flying on between
+//!   columns passing beside it, 12 frames each; one line per sweep with the worst
 //!   frame's ratio (`worst_ratio`), each method's worst ratio and slowest frame;
 //! - a large scene: three engines side by side (364 488 triangles);
 //! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
@@ -26,8 +27,8 @@ use srt_scene::{Scene, SurfaceColour};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::cases::{
-    Case, ENGINE, ENGINE_BESIDE, at_time, builtin_cases, engine_sweep_times, model_case, shifted,
-    teaser_sweep_times,
+    Case, ENGINE, ENGINE_BESIDE, at_time, builtin_cases, engine_sweep_times,
+    flythrough_sweep_times, model_case, shifted, teaser_sweep_times,
 };
 
 /// Image sizes of the static cases; the first is also that of the sweeps.
@@ -362,6 +363,7 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
     }
     let teaser = builtin("teaser")?;
     let engine = model_case(ENGINE, 0.9)?;
+    let flythrough = builtin("flythrough")?;
     for (name, scene, times) in [
         ("teaser", teaser.scene, teaser_sweep_times()),
         (
@@ -369,6 +371,7 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
             shifted(&engine.scene, ENGINE_BESIDE),
             engine_sweep_times(),
         ),
+        ("flythrough", flythrough.scene, flythrough_sweep_times()),
     ] {
         if !selected(name) {
             continue;

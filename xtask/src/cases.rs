@@ -132,6 +132,13 @@ pub fn engine_sweep_times() -> Vec<f64> {
     (0..12).map(|k| -2.0 + 0.5 * f64::from(k)).collect()
 }
 
+/// The `flythrough`'s observer flying on for 11 time units (0.9c: about 25 of the world's
+/// length units, past five pairs of columns and over the seams between ground slabs), 12 frames.
+#[must_use]
+pub fn flythrough_sweep_times() -> Vec<f64> {
+    (0..12).map(f64::from).collect()
+}
+
 /// Sideways shift of the engine's path so that it passes beside and above the camera instead
 /// of through it.
 pub const ENGINE_BESIDE: glam::DVec3 = glam::DVec3::new(1.2, 0.4, 1.0);
@@ -162,7 +169,8 @@ pub fn enclosing_case() -> anyhow::Result<Case> {
 }
 
 /// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine
-/// passing through and beside the camera, and the camera inside a sphere.
+/// passing through and beside the camera, the flythrough's observer further on (columns and
+/// ground passing beside and under it), and the camera inside a sphere.
 ///
 /// # Errors
 /// If the engine model is missing.
@@ -181,6 +189,13 @@ pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
     for ct in [0.2, 0.5, 1.5] {
         cases.push(at_time("engine-through", &engine.scene, ct));
         cases.push(at_time("engine-beside", &beside, ct));
+    }
+    let flythrough = builtin_cases()?
+        .into_iter()
+        .find(|c| c.name == "flythrough")
+        .context("flythrough is a built-in scene")?;
+    for &ct in flythrough_sweep_times().iter().skip(3).step_by(4) {
+        cases.push(at_time("flythrough", &flythrough.scene, ct));
     }
     cases.push(enclosing_case()?);
     cases.extend(sky_cases()?);

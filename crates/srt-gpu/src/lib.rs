@@ -43,4 +43,6 @@ pub mod types;
 
 pub use context::{GpuContext, GpuError, context_or_skip};
 pub use readback::{TextureReadback, read_texture};
-pub use renderer::{FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method};
+pub use renderer::{
+    FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method, TriangleFootprints,
+};

@@ -24,6 +24,7 @@ use crate::pipelines::{Pipelines, slots};
 use crate::renderer::part_texture;
 use crate::types::{
     DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PART_BOUND_BYTES, PartFlags, PartUniforms,
+    footprint_slots,
 };
 
 /// Above this many layers of triangles (an object's surface over its box's surface,
@@ -132,7 +133,7 @@ impl ObjectRayTracing {
         };
         let footprints = zeroed(
             "srt box footprints",
-            u64::from(BOX_TRIANGLES) * size_of::<GpuFootprint>() as u64,
+            footprint_slots(u64::from(BOX_TRIANGLES)) * size_of::<GpuFootprint>() as u64,
             wgpu::BufferUsages::empty(),
         );
         let box_bound = zeroed(

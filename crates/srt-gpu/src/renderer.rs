@@ -31,7 +31,7 @@ use crate::types::{
     DRAW_ARGS_BYTES, EffectsCode, FOOTPRINT_VERTICES, FRAGMENT_COUNTER_BYTES, FootprintCode,
     FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle, GpuVertex, ObjectUniforms,
     PART_BOUND_BYTES, PartFlags, PartUniforms, SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode,
-    mat4, optics4, vec4,
+    footprint_slots, mat4, optics4, vec4,
 };
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
@@ -161,7 +161,7 @@ impl PartSizes {
                 describe()
             )
         };
-        let footprint_bytes = triangles * size_of::<GpuFootprint>() as u64;
+        let footprint_bytes = footprint_slots(triangles) * size_of::<GpuFootprint>() as u64;
         limits.check_storage_buffer(
             || name("vertex buffer"),
             vertices * size_of::<GpuVertex>() as u64,
@@ -177,7 +177,7 @@ impl PartSizes {
         limits.check_u32(|| name("polygon draw"), 3 * triangles, "vertices")?;
         limits.check_u32(
             || name("LRT draw"),
-            u64::from(FOOTPRINT_VERTICES) * triangles,
+            u64::from(FOOTPRINT_VERTICES) * footprint_slots(triangles),
             "vertices",
         )?;
         limits.check_u32(|| name("index range"), vertices, "vertices")?;
@@ -670,9 +670,11 @@ fn upload_batch(
     let draw_args = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("srt footprint draw"),
         size: DRAW_ARGS_BYTES,
+        // Read back (COPY_SRC) by `read_footprints` for its piece count.
         usage: wgpu::BufferUsages::STORAGE
             | wgpu::BufferUsages::INDIRECT
-            | wgpu::BufferUsages::COPY_DST,
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
     let texture = part_texture(ctx, part.material.texture.as_deref());
@@ -1003,7 +1005,8 @@ impl GpuRenderer {
                 first_vertex: 0,
                 first_instance: 0,
             };
-            let both = [no_draw.as_bytes(), no_draw.as_bytes()].concat();
+            // Both draws empty, no piece slot taken.
+            let both = [no_draw.as_bytes(), no_draw.as_bytes(), &[0; 4]].concat();
             let mut outputs: Vec<(&wgpu::Buffer, &wgpu::Buffer)> = Vec::new();
             for (object, traced) in self.objects.iter().zip(&traced) {
                 match traced {
@@ -1371,8 +1374,8 @@ impl GpuRenderer {
     }
 
     /// Runs the proxy pass for `scene` and reads back every part's footprints (split out of the
-    /// batches the parts are uploaded in), indexed
-    /// `[object][part][triangle]` (for validation against srt-proxy).
+    /// batches the parts are uploaded in), indexed `[object][part][triangle]`: each triangle's
+    /// own footprint and the pieces it was split into (for validation against srt-proxy).
     ///
     /// # Errors
     /// wgpu or readback errors.
@@ -1380,42 +1383,66 @@ impl GpuRenderer {
         &self,
         ctx: &GpuContext,
         scene: &Scene,
-    ) -> Result<Vec<Vec<Vec<GpuFootprint>>>, GpuError> {
+    ) -> Result<Vec<Vec<Vec<TriangleFootprints>>>, GpuError> {
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("srt footprints"),
             });
         self.encode(ctx, &mut encoder, scene, Method::Lrt, FootprintShape::Hull)?;
-        let mut readbacks = Vec::new();
-        for object in &self.objects {
-            let mut parts = Vec::new();
-            for part in &object.parts {
-                let size = part.sizes.footprint_bytes;
-                let readback = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("srt footprint readback"),
-                    size,
-                    usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                    mapped_at_creation: false,
-                });
-                encoder.copy_buffer_to_buffer(&part.footprints, 0, &readback, 0, size);
-                parts.push(readback);
-            }
-            readbacks.push(parts);
-        }
+        let readback = |encoder: &mut wgpu::CommandEncoder, source: &wgpu::Buffer, size| {
+            let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("srt footprint readback"),
+                size,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            });
+            encoder.copy_buffer_to_buffer(source, 0, &buffer, 0, size);
+            buffer
+        };
+        let readbacks: Vec<Vec<(wgpu::Buffer, wgpu::Buffer)>> = self
+            .objects
+            .iter()
+            .map(|object| {
+                object
+                    .parts
+                    .iter()
+                    .map(|part| {
+                        (
+                            readback(&mut encoder, &part.footprints, part.sizes.footprint_bytes),
+                            readback(&mut encoder, &part.draw_args, DRAW_ARGS_BYTES),
+                        )
+                    })
+                    .collect()
+            })
+            .collect();
         ctx.queue.submit([encoder.finish()]);
         let mut footprints = Vec::new();
         for (object, buffers) in self.objects.iter().zip(&readbacks) {
-            // Split each batch's footprints among its parts, back in part order.
+            // Split each batch's footprints among its parts, back in part order, and hand each
+            // piece to its triangle.
             let mut parts = vec![Vec::new(); object.culling.len()];
-            for (batch, buffer) in object.parts.iter().zip(buffers) {
-                let all: Vec<GpuFootprint> =
-                    bytemuck::pod_collect_to_vec(&ctx.read_buffer(buffer)?);
-                let mut rest = all.as_slice();
+            for (batch, (slots, draw_args)) in object.parts.iter().zip(buffers) {
+                let all: Vec<GpuFootprint> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(slots)?);
+                let args: Vec<u32> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(draw_args)?);
+                let (own, piece_slots) = all.split_at(batch.sizes.triangles as usize);
+                let pieces = &piece_slots[..(args[8] as usize).min(piece_slots.len())];
+                let mut first = 0;
                 for &(index, triangles) in &batch.members {
-                    let (mine, others) = rest.split_at(triangles as usize);
-                    parts[index] = mine.to_vec();
-                    rest = others;
+                    let mine = first..first + triangles;
+                    parts[index] = own[mine.start as usize..mine.end as usize]
+                        .iter()
+                        .enumerate()
+                        .map(|(t, &own)| TriangleFootprints {
+                            own,
+                            pieces: pieces
+                                .iter()
+                                .filter(|p| p.triangle == mine.start + t as u32)
+                                .copied()
+                                .collect(),
+                        })
+                        .collect();
+                    first = mine.end;
                 }
             }
             footprints.push(parts);
@@ -1423,6 +1450,15 @@ impl GpuRenderer {
         ctx.take_errors()?;
         Ok(footprints)
     }
+}
+
+/// What the proxy pass drew for one triangle ([`GpuRenderer::read_footprints`]).
+#[derive(Debug, Clone)]
+pub struct TriangleFootprints {
+    /// The footprint in the triangle's own slot.
+    pub own: GpuFootprint,
+    /// The footprints of the pieces it was split into, beyond `own` (drawn as well).
+    pub pieces: Vec<GpuFootprint>,
 }
 
 /// One RGBA pixel of the colour target: four little-endian f32 (16 bytes) or f16 (8 bytes).
@@ -1518,8 +1554,8 @@ mod tests {
     /// not fit alone is an error naming it.
     #[test]
     fn batches_stay_within_the_device_limits() {
-        // A storage-buffer limit of twice one part's vertex bytes: the vertices of two parts
-        // fit, their footprints (80 bytes per triangle) do not.
+        // A storage-buffer limit of the footprint buffer of two parts (the largest buffer of a
+        // batch): two parts fit in a batch, three do not.
         let object = Object {
             name: "cubes".to_owned(),
             parts: (0..3).map(|_| part(cube(1.0, 4), None)).collect(),
@@ -1528,8 +1564,9 @@ mod tests {
             optics: SurfaceOptics::default(),
         };
         let culling = vec![BackFaceCulling::for_mesh(&object.parts[0].mesh); 3];
-        let vertex_bytes = object.parts[0].mesh.positions().len() * 64;
-        let two = 2 * vertex_bytes as u64;
+        let triangles = object.parts[0].mesh.triangles().len() as u64;
+        let two = crate::types::footprint_slots(2 * triangles)
+            * size_of::<crate::types::GpuFootprint>() as u64;
         let sizes: Vec<usize> = batches(&limits(two), &object, &culling)
             .unwrap()
             .iter()

@@ -36,6 +36,9 @@ pub const WORKGROUP_SIZE: u32 = 64;
 const PROXY_OVERRIDES: &[(&str, f64)] = &[
     ("WORKGROUP_SIZE", WORKGROUP_SIZE as f64),
     ("MAX_TANGENT_REACH", srt_proxy::MAX_TANGENT_REACH),
+    ("SPLIT_AREA_FRACTION", srt_proxy::SPLIT_AREA_FRACTION),
+    ("LOOSE_HULL_FACTOR", srt_proxy::LOOSE_HULL_FACTOR),
+    ("NEAR_CLIP_FRACTION", srt_proxy::NEAR_CLIP_FRACTION),
 ];
 
 /// The overrides of spectral.wgsl: the constants of Planck's law (Eq. 10: c₂ = hc/k and 2hc²),

@@ -332,10 +332,22 @@ pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
 /// Size of WGSL `part_bound` (`array<u32, 4>`: a part's screen bound), one buffer per part.
 pub const PART_BOUND_BYTES: u64 = 16;
 
-/// Size of WGSL `draw_args` (`array<atomic<u32>, 8>`: the arguments of two non-indexed indirect
+/// Footprint slots for the pieces of split triangles in every batch, beyond
+/// [`footprint_slots`]'s share per triangle.
+pub const PIECE_SLOTS: u64 = 1024;
+
+/// Footprint slots of a batch of `triangles` triangles (the length of WGSL `footprints`): one
+/// per triangle, then [`PIECE_SLOTS`] and one more per two triangles for the pieces of split
+/// triangles (a split triangle whose pieces find no slot is drawn by the rectangle holding them).
+#[must_use]
+pub const fn footprint_slots(triangles: u64) -> u64 {
+    triangles + PIECE_SLOTS + triangles / 2
+}
+
+/// Size of WGSL `draw_args` (`array<atomic<u32>, 9>`: the arguments of two non-indexed indirect
 /// draws, each a `wgpu::util::DrawIndirectArgs`: the LRT visibility pass's footprints, then the
-/// shading pass's rectangle), one buffer per part.
-pub const DRAW_ARGS_BYTES: u64 = 32;
+/// shading pass's rectangle; then the count of piece slots taken), one buffer per part.
+pub const DRAW_ARGS_BYTES: u64 = 36;
 
 /// Byte offset of the LRT shading pass's draw in WGSL `draw_args`.
 pub const SHADE_DRAW_OFFSET: u64 = 16;
@@ -391,8 +403,11 @@ pub struct GpuFootprint {
     pub hull_len: u32,
     /// 1 for a whole-screen footprint.
     pub whole_screen: u32,
+    /// The triangle of the batch it is a footprint of: the triangle of its slot, or the one it
+    /// is a piece of.
+    pub triangle: u32,
     /// Padding to the WGSL size.
-    pub padding: [u32; 2],
+    pub padding: u32,
 }
 
 /// Twin of WGSL `PhysicsProbeInput`: one set of arguments for every physics kernel

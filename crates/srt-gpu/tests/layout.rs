@@ -107,7 +107,7 @@ fn table() -> Vec<Twin> {
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
-        twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, padding }),
+        twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, triangle, padding }),
         twin!(GpuBvhNode => "BvhNode" { min, primitive_count, max, first }),
         twin!(GpuRtTriangle => "RtTriangle" { p0, part, p1, triangle, p2, padding }),
         twin!(GpuStar => "Star" { direction_temperature, magnitude }),
@@ -251,7 +251,8 @@ fn buffers_sized_in_rust_match_their_wgsl_globals() {
     ];
     let draw = size_of::<wgpu::util::DrawIndirectArgs>() as u64;
     assert_eq!(srt_gpu::types::SHADE_DRAW_OFFSET, draw);
-    assert_eq!(srt_gpu::types::DRAW_ARGS_BYTES, 2 * draw);
+    // Two draws, then the piece counter.
+    assert_eq!(srt_gpu::types::DRAW_ARGS_BYTES, 2 * draw + 4);
     for (name, bytes) in expected {
         let mut declared_in = Vec::new();
         for shader in srt_gpu::shaders::all() {

@@ -36,6 +36,7 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("FOOTPRINT_HULL_POINTS", FOOTPRINT_HULL_POINTS as u32),
         ("FOOTPRINT_VERTICES", FOOTPRINT_VERTICES),
         ("BVH_STACK_SIZE", BVH_STACK_SIZE),
+        ("MAX_SPLIT_DEPTH", srt_proxy::MAX_SPLIT_DEPTH),
     ]
 }
 

@@ -14,11 +14,14 @@
 //! 4. the window-aligned rectangle (min–max of P̄_i, Ḡ_ij) and the tighter convex hull (3–6
 //!    points) of the same six points;
 //! 5. if any of the six points is at or behind the camera, or a tangent intersection is
-//!    ill-conditioned, the paper takes the whole screen. We bound such a triangle instead by a
-//!    *swept prism* (below), clip it at the camera and take the rectangle of what is left on the
-//!    screen: a triangle beside or behind the camera draws only where it can be seen, and one
-//!    wholly behind draws nothing. The whole screen remains only for a triangle whose prism
-//!    reaches the camera itself.
+//!    ill-conditioned, the paper takes the whole screen. We split such a triangle in S′ instead
+//!    ([`split_pieces`]), and bound each piece by the paper's footprint when it lies wholly in
+//!    front of the camera, or else by a *swept prism* (below), clipped at the camera, taking the
+//!    rectangle of what is left on the screen: a triangle beside or behind the camera draws
+//!    only where it can be seen, and one wholly behind draws nothing. The whole screen remains
+//!    only for a piece 8 halvings deep whose prism reaches the camera itself. A large footprint
+//!    whose hull is loose (strongly curved edges: [`Footprint::worth_splitting`]) is split the
+//!    same way.
 //!
 //! **The swept prism.** A point of the object that is at x₀ in S at ct = 0 moves along
 //! x₀ + β·ct; it is seen where that worldline meets the observer's backward light cone, at the
@@ -157,14 +160,14 @@ pub struct Footprint {
     pub hull: [DVec2; 6],
     /// Number of valid points in `hull`.
     pub hull_len: usize,
-    /// True when the triangle's swept prism reaches the camera itself: the footprint is then
-    /// the whole screen.
+    /// True when a piece of the triangle, split as deep as allowed, may reach the camera
+    /// itself: the footprint is then the whole screen.
     pub whole_screen: bool,
-    /// True when the footprint bounds the clipped swept prism (a triangle reaching beside or
-    /// behind the camera, or with an ill-conditioned tangent intersection) rather than the
-    /// tangent construction: its hull is then its rectangle, clamped to the screen (or empty when
-    /// nothing of it can be seen).
-    pub swept: bool,
+    /// True when the footprint is the rectangle holding the pieces of a split triangle
+    /// ([`split_pieces`]: one reaching beside or behind the camera, with an ill-conditioned
+    /// tangent intersection, or loose and large) rather than the tangent construction: its hull
+    /// is then its rectangle, clamped to the screen (or empty when nothing of it can be seen).
+    pub split: bool,
 }
 
 impl Footprint {
@@ -192,13 +195,13 @@ impl Footprint {
             hull,
             hull_len: 4,
             whole_screen: true,
-            swept: false,
+            split: false,
         }
     }
 
-    /// The footprint of a swept prism whose visible part projects into `rect` (clamped to the
-    /// screen here); empty (zero rectangle, no hull) when `rect` misses the screen.
-    fn swept(
+    /// The footprint of a split triangle whose pieces lie in `rect` (clamped to the screen
+    /// here); empty (zero rectangle, no hull) when `rect` misses the screen.
+    fn split(
         viewport: Viewport,
         corners: [DVec2; 3],
         tangent_points: [DVec2; 3],
@@ -224,8 +227,20 @@ impl Footprint {
             hull,
             hull_len: if visible { 4 } else { 0 },
             whole_screen: false,
-            swept: true,
+            split: true,
         }
+    }
+
+    /// Whether this footprint of the tangent construction is better split ([`split_pieces`]):
+    /// it covers more than [`SPLIT_AREA_FRACTION`] of the screen and its hull is loose
+    /// ([`LOOSE_HULL_FACTOR`]).
+    #[must_use]
+    pub fn worth_splitting(&self, viewport: Viewport) -> bool {
+        !self.split
+            && !self.whole_screen
+            && self.rect.clamped(viewport).area()
+                > SPLIT_AREA_FRACTION * viewport.width * viewport.height
+            && polygon_area(self.hull_points()) > LOOSE_HULL_FACTOR * polygon_area(&self.corners)
     }
 
     /// Whether nothing is drawn for it (an empty rectangle).
@@ -295,10 +310,11 @@ pub fn apparent_outline(
 /// coordinates → clip space) onto `viewport` (§4.1, Fig. 8).
 ///
 /// Degenerate input has a documented result rather than an error: a zero-area triangle yields a
-/// zero-area footprint (nothing is drawn, and the exact tracer finds no hit either); a triangle
-/// touching the observer's own position, any corner or tangent intersection at or behind the
-/// camera, or a tangent intersection more than [`MAX_TANGENT_REACH`] chord lengths away, yields
-/// the whole screen.
+/// zero-area footprint (nothing is drawn, and the exact tracer finds no hit either). A triangle
+/// with any corner or tangent intersection at or behind the camera, or a tangent intersection
+/// more than [`MAX_TANGENT_REACH`] chord lengths away, or whose footprint is
+/// [worth splitting](Footprint::worth_splitting), is split ([`split_pieces`]); the footprint
+/// returned is then the rectangle holding its pieces ([`split_footprint`]).
 #[must_use]
 pub fn footprint(
     frame: &Frame,
@@ -307,46 +323,185 @@ pub fn footprint(
     view_projection: DMat4,
     viewport: Viewport,
 ) -> Footprint {
+    match tangent_footprint(frame, triangle, observer, view_projection, viewport) {
+        Some(f) if !f.worth_splitting(viewport) => f,
+        _ => split_footprint(frame, triangle, observer, view_projection, viewport),
+    }
+}
+
+/// The paper's footprint (the six points P_i, G_ij, their rectangle and convex hull), or
+/// `None` when one of the six points is at or behind the camera or a tangent intersection is
+/// more than [`MAX_TANGENT_REACH`] chord lengths away.
+#[must_use]
+pub fn tangent_footprint(
+    frame: &Frame,
+    triangle: [DVec3; 3],
+    observer: Event,
+    view_projection: DMat4,
+    viewport: Viewport,
+) -> Option<Footprint> {
     let (corners, tangent_points) = apparent_outline(frame, triangle, observer);
     let far = (0..3).any(|i| {
         let (a, b) = (corners[i], corners[(i + 1) % 3]);
         (tangent_points[i] - 0.5 * (a + b)).length() > MAX_TANGENT_REACH * (b - a).length()
     });
-    let project = |p: DVec3| {
-        if far {
-            None
-        } else {
-            project(view_projection, viewport, p)
+    if far {
+        return None;
+    }
+    let project = |p: DVec3| project(view_projection, viewport, p);
+    let [p1, p2, p3] = corners.map(project);
+    let [g1, g2, g3] = tangent_points.map(project);
+    let (corners, tangent_points) = ([p1?, p2?, p3?], [g1?, g2?, g3?]);
+    let six = [
+        corners[0],
+        tangent_points[0],
+        corners[1],
+        tangent_points[1],
+        corners[2],
+        tangent_points[2],
+    ];
+    let mut hull = [DVec2::ZERO; 6];
+    let hull_len = convex_hull(&six, &mut hull);
+    Some(Footprint {
+        corners,
+        tangent_points,
+        rect: Rect::bounding(&six),
+        hull,
+        hull_len,
+        whole_screen: false,
+        split: false,
+    })
+}
+
+/// How many times a split triangle may be halved ([`split_pieces`]): at most 2^depth pieces
+/// (WGSL `MAX_SPLIT_DEPTH` in proxy.wgsl, whose stack holds depth + 1 pieces).
+pub const MAX_SPLIT_DEPTH: u32 = 8;
+
+/// A piece whose footprint covers more than this fraction of the screen is split again (until
+/// [`MAX_SPLIT_DEPTH`]) when it reaches beside or behind the camera or its hull is loose
+/// ([`LOOSE_HULL_FACTOR`]).
+pub const SPLIT_AREA_FRACTION: f64 = 1.0 / 64.0;
+
+/// A footprint of the tangent construction whose hull has more than this many times the area
+/// of the triangle of its projected corners is loose: its edges are seen strongly curved, and
+/// the tangent triangles P_i G_ij P_j hold much more than the arcs. (For straight edges the
+/// hull is that triangle.)
+pub const LOOSE_HULL_FACTOR: f64 = 2.0;
+
+/// The fraction of [`near_bound`]'s bound at which a piece's swept prism is clipped (below 1
+/// so that rounding cannot clip off what can be seen; the GPU's f32 mirror uses the same).
+pub const NEAR_CLIP_FRACTION: f64 = 0.9;
+
+/// The halves of `piece` across the midpoint of its longest edge (so that pieces of a long,
+/// thin triangle become well shaped instead of thinner).
+fn bisect(piece: [DVec3; 3]) -> [[DVec3; 3]; 2] {
+    let length = |i: usize| (piece[(i + 1) % 3] - piece[i]).length_squared();
+    let i = (0..3)
+        .max_by(|&a, &b| length(a).total_cmp(&length(b)))
+        .unwrap_or(0);
+    let (a, b, c) = (piece[i], piece[(i + 1) % 3], piece[(i + 2) % 3]);
+    let middle = 0.5 * (a + b);
+    [[a, middle, c], [middle, b, c]]
+}
+
+/// The pieces of a triangle that one convex footprint cannot bound tightly: footprints that
+/// together hold every on-screen point of its apparent image, none of them empty; `None` when
+/// the whole screen is needed.
+///
+/// The triangle is split in S′ (halved across its longest edge) until every piece either has
+/// the paper's footprint ([`tangent_footprint`]: wholly in front of the camera) and that is
+/// not both loose and large ([`Footprint::worth_splitting`]), which it then keeps; or is proved
+/// hidden ([`NearBound::Hidden`]: its swept prism misses the view pyramid); or is small on the
+/// screen (its visible rectangle, [`visible_rect`] of its swept prism, under
+/// [`SPLIT_AREA_FRACTION`] of the screen) or [`MAX_SPLIT_DEPTH`] halvings deep, and gets that
+/// rectangle. One convex bound of a whole big triangle cannot be tight: an edge passing around
+/// the camera is seen as an arc from one side of the picture, behind the observer, to the
+/// other, and every convex set holding both ends crosses the screen between them. The pieces
+/// follow the arc.
+///
+/// The whole screen is left only for a piece at the deepest level whose prism reaches the
+/// camera itself.
+#[must_use]
+pub fn split_pieces(
+    frame: &Frame,
+    triangle: [DVec3; 3],
+    observer: Event,
+    view_projection: DMat4,
+    viewport: Viewport,
+) -> Option<Vec<Footprint>> {
+    let split_area = SPLIT_AREA_FRACTION * viewport.width * viewport.height;
+    let mut kept = Vec::new();
+    let mut pieces = vec![(triangle, 0)];
+    while let Some((piece, depth)) = pieces.pop() {
+        let (footprint, worth_splitting) =
+            match tangent_footprint(frame, piece, observer, view_projection, viewport) {
+                Some(f) => {
+                    let worth_splitting = f.worth_splitting(viewport);
+                    (Some(f), worth_splitting)
+                }
+                None => {
+                    let rect = swept_prism(frame, piece, observer)
+                        .and_then(|prism| visible_rect(&prism, view_projection, viewport));
+                    let large = rect.is_none_or(|r| r.clamped(viewport).area() > split_area);
+                    let footprint = rect
+                        .map(|r| Footprint::split(viewport, [DVec2::ZERO; 3], [DVec2::ZERO; 3], r));
+                    (footprint, large)
+                }
+            };
+        if depth < MAX_SPLIT_DEPTH && worth_splitting {
+            pieces.extend(bisect(piece).map(|half| (half, depth + 1)));
+            continue;
         }
-    };
-    match (corners.map(project), tangent_points.map(project)) {
-        ([Some(p1), Some(p2), Some(p3)], [Some(g1), Some(g2), Some(g3)]) => {
-            let corners = [p1, p2, p3];
-            let tangent_points = [g1, g2, g3];
-            let six = [p1, g1, p2, g2, p3, g3];
-            let mut hull = [DVec2::ZERO; 6];
-            let hull_len = convex_hull(&six, &mut hull);
-            Footprint {
-                corners,
-                tangent_points,
-                rect: Rect::bounding(&six),
-                hull,
-                hull_len,
-                whole_screen: false,
-                swept: false,
-            }
-        }
-        (c, g) => {
-            let or_zero = |p: Option<DVec2>| p.unwrap_or(DVec2::ZERO);
-            let (c, g) = (c.map(or_zero), g.map(or_zero));
-            match swept_prism(frame, triangle, observer)
-                .and_then(|prism| visible_rect(&prism, view_projection, viewport))
-            {
-                Some(rect) => Footprint::swept(viewport, c, g, rect),
-                None => Footprint::whole(viewport, c, g),
-            }
+        let footprint = footprint?;
+        if !footprint.is_empty() && footprint.rect.clamped(viewport).area() > 0.0 {
+            kept.push(footprint);
         }
     }
+    Some(kept)
+}
+
+/// The footprint of a triangle the tangent construction cannot bound tightly: the rectangle
+/// holding its [`split_pieces`] on the screen (what a renderer draws when it has no room for
+/// the pieces themselves), or the whole screen.
+#[must_use]
+pub fn split_footprint(
+    frame: &Frame,
+    triangle: [DVec3; 3],
+    observer: Event,
+    view_projection: DMat4,
+    viewport: Viewport,
+) -> Footprint {
+    let projected = |p: DVec3| project(view_projection, viewport, p).unwrap_or(DVec2::ZERO);
+    let (corners, tangent_points) = apparent_outline(frame, triangle, observer);
+    let (corners, tangent_points) = (corners.map(projected), tangent_points.map(projected));
+    match split_pieces(frame, triangle, observer, view_projection, viewport) {
+        Some(pieces) => {
+            let ends: Vec<DVec2> = pieces
+                .iter()
+                .map(|f| f.rect.clamped(viewport))
+                .flat_map(|r| [r.min, r.max])
+                .collect();
+            let union = if ends.is_empty() {
+                Rect {
+                    min: DVec2::ZERO,
+                    max: DVec2::ZERO,
+                }
+            } else {
+                Rect::bounding(&ends)
+            };
+            Footprint::split(viewport, corners, tangent_points, union)
+        }
+        None => Footprint::whole(viewport, corners, tangent_points),
+    }
+}
+
+/// Area of the polygon `points` (either orientation).
+fn polygon_area(points: &[DVec2]) -> f64 {
+    let n = points.len();
+    0.5 * (0..n)
+        .map(|i| points[i].perp_dot(points[(i + 1) % n]))
+        .sum::<f64>()
+        .abs()
 }
 
 /// The six points whose convex hull holds the apparent image of `triangle` (see the crate
@@ -391,38 +546,29 @@ pub fn swept_prism(frame: &Frame, triangle: [DVec3; 3], observer: Event) -> Opti
 /// The rectangle (pixels, not yet clamped to the screen) holding every on-screen point of the
 /// convex hull of `points` (in S), or `None` when that hull may reach the camera itself.
 ///
-/// In clip space the on-screen points with 0 < w ≤ ε lie in the box |x|, |y| ≤ ε, 0 ≤ w ≤ ε.
-/// With ε half the distance by which the points' bounding box misses that box at ε = its
-/// largest possible value, nothing of the hull is on screen before w = ε, so the hull is
-/// clipped there: the points with w ≥ ε and the crossings of w = ε by the segments between
-/// points on either side (these include every vertex of the clipped hull) are projected.
+/// Work in the clip coordinates c = (x, y, w); the on-screen points form the cone
+/// |x|, |y| ≤ w. Any direction n with m = min over the points of n·c > 0 bounds the hull by the
+/// half-space n·c ≥ m; over the cone n·c ≤ w (|n_x| + |n_y| + n_w). So either that factor is
+/// ≤ 0 and nothing of the hull is on screen, or every on-screen point of the hull has
+/// w ≥ m / (|n_x| + |n_y| + n_w). [`near_bound`] takes the best such bound over the planes
+/// through any three of the points (among them the hull's faces) and the cone's own axes; the
+/// hull is clipped at [`NEAR_CLIP_FRACTION`] of it: the points with w ≥ near and the crossings of w = near by the
+/// segments between points on either side (these include every vertex of the clipped hull) are
+/// projected.
 #[must_use]
 pub fn visible_rect(points: &[DVec3], view_projection: DMat4, viewport: Viewport) -> Option<Rect> {
     let clip: Vec<DVec4> = points
         .iter()
         .map(|p| view_projection * DVec4::new(p.x, p.y, p.z, 1.0))
         .collect();
-    let lo = clip.iter().fold(DVec4::INFINITY, |a, &c| a.min(c));
-    let hi = clip.iter().fold(DVec4::NEG_INFINITY, |a, &c| a.max(c));
     let nothing = Rect {
         min: DVec2::INFINITY,
         max: DVec2::NEG_INFINITY,
     };
-    // Wholly behind the camera, or wholly beyond one side plane of the view pyramid.
-    let beyond = |f: &dyn Fn(DVec4) -> f64| clip.iter().all(|&c| f(c) < 0.0);
-    if beyond(&|c| c.w)
-        || beyond(&|c| c.w - c.x)
-        || beyond(&|c| c.w + c.x)
-        || beyond(&|c| c.w - c.y)
-        || beyond(&|c| c.w + c.y)
-    {
-        return Some(nothing);
-    }
-    let clearance = lo.x.max(-hi.x).max(lo.y).max(-hi.y).max(lo.w);
-    if !(clearance > 0.0 && clearance.is_finite()) {
-        return None;
-    }
-    let near = 0.5 * clearance;
+    let near = match near_bound(&clip)? {
+        NearBound::Hidden => return Some(nothing),
+        NearBound::At(bound) => NEAR_CLIP_FRACTION * bound,
+    };
     let mut kept: Vec<DVec4> = clip.iter().copied().filter(|c| c.w >= near).collect();
     for a in &clip {
         for b in &clip {
@@ -445,4 +591,68 @@ pub fn visible_rect(points: &[DVec3], view_projection: DMat4, viewport: Viewport
     } else {
         Rect::bounding(&pixels)
     })
+}
+
+/// What [`near_bound`] proves about the convex hull of some clip-space points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NearBound {
+    /// No point of the hull is on screen.
+    Hidden,
+    /// Every on-screen point of the hull has clip w at least this (> 0).
+    At(f64),
+}
+
+/// Relative size below which a plane's distance from the camera is taken for rounding.
+const PLANE_TOLERANCE: f64 = 1e-9;
+
+/// The largest lower bound on clip w of the on-screen points of the convex hull of `clip`
+/// (see [`visible_rect`]), from the planes through any three points, the planes x = 0, y = 0
+/// and w = 0, and the cone's four faces; `None` when no plane keeps the hull off the camera.
+#[must_use]
+pub fn near_bound(clip: &[DVec4]) -> Option<NearBound> {
+    let xyw = |c: DVec4| DVec3::new(c.x, c.y, c.w);
+    let points: Vec<DVec3> = clip.iter().map(|&c| xyw(c)).collect();
+    if !points.iter().all(|p| p.is_finite()) {
+        return None;
+    }
+    let reach = points.iter().map(|p| p.length()).fold(0.0, f64::max);
+    // The cone's axes, the camera plane and the cone's four faces (hull wholly beyond one).
+    let mut normals = vec![
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+        DVec3::new(1.0, 0.0, -1.0),
+        DVec3::new(-1.0, 0.0, -1.0),
+        DVec3::new(0.0, 1.0, -1.0),
+        DVec3::new(0.0, -1.0, -1.0),
+    ];
+    for a in 0..points.len() {
+        for b in a + 1..points.len() {
+            for c in b + 1..points.len() {
+                let n = (points[b] - points[a]).cross(points[c] - points[a]);
+                normals.extend([n, -n]);
+            }
+        }
+    }
+    let mut best: Option<f64> = None;
+    for n in normals {
+        let m = points
+            .iter()
+            .map(|p| n.dot(*p))
+            .fold(f64::INFINITY, f64::min);
+        if m <= PLANE_TOLERANCE * n.length() * reach {
+            continue;
+        }
+        // The cone's extent along n, widened by the tolerance so that rounding can only lower
+        // the bound.
+        let widest = n.x.abs() + n.y.abs() + n.z + PLANE_TOLERANCE * n.length();
+        if widest <= 0.0 {
+            return Some(NearBound::Hidden);
+        }
+        best = Some(best.map_or(m / widest, |b: f64| b.max(m / widest)));
+    }
+    best.map(NearBound::At)
 }

@@ -7,7 +7,7 @@ use glam::dcamera::rh::view::look_at_mat4 as look_at;
 use glam::{DMat4, DVec2, DVec3};
 use proptest::prelude::*;
 use srt_physics::{Event, Frame};
-use srt_proxy::{Footprint, Rect, Viewport, footprint, project};
+use srt_proxy::{Footprint, Rect, Viewport, footprint, project, split_pieces};
 
 const VIEWPORT: Viewport = Viewport {
     width: 640.0,
@@ -132,10 +132,21 @@ fn passing_setup() -> impl Strategy<Value = Setup> {
 }
 
 /// Every sample of the apparent triangle that lands on the screen lies in the footprint's
-/// rectangle and hull (samples behind the camera, or off screen for a footprint clamped to it,
-/// are never seen).
+/// rectangle and hull, and for a split triangle in one of its pieces (samples behind the camera,
+/// or off screen for a footprint clamped to it, are never seen).
 fn assert_conservative(s: &Setup) -> Result<(), TestCaseError> {
     let fp = s.footprint();
+    let pieces = if fp.split {
+        split_pieces(
+            &s.frame,
+            s.triangle,
+            s.observer,
+            s.view_projection,
+            VIEWPORT,
+        )
+    } else {
+        None
+    };
     let extent = if fp.whole_screen {
         1.0
     } else {
@@ -148,7 +159,7 @@ fn assert_conservative(s: &Setup) -> Result<(), TestCaseError> {
             None => {}
             // The whole screen covers every pixel that can show the point.
             Some(_) if fp.whole_screen => {}
-            Some(px) if fp.swept && !Rect::screen(VIEWPORT).contains(px, 0.0) => {}
+            Some(px) if fp.split && !Rect::screen(VIEWPORT).contains(px, 0.0) => {}
             Some(px) => {
                 prop_assert!(
                     fp.rect.contains(px, tolerance),
@@ -160,6 +171,15 @@ fn assert_conservative(s: &Setup) -> Result<(), TestCaseError> {
                     "{px} outside hull {:?}",
                     fp.hull_points()
                 );
+                if let Some(pieces) = &pieces {
+                    prop_assert!(
+                        pieces
+                            .iter()
+                            .any(|f| f.rect.contains(px, tolerance)
+                                && f.hull_contains(px, tolerance)),
+                        "{px} outside every piece {pieces:?}"
+                    );
+                }
             }
         }
     }
@@ -183,14 +203,14 @@ proptest! {
 #[test]
 fn few_passing_triangles_need_the_whole_screen() {
     // Guards the second property test against passing through the whole-screen case, and
-    // measures what the swept prism saves: the whole screen is left only for triangles whose
+    // measures what splitting saves: the whole screen is left only for pieces whose
     // prism reaches the camera.
     use proptest::strategy::ValueTree;
     use proptest::test_runner::TestRunner;
     let mut runner = TestRunner::deterministic();
     let strategy = passing_setup();
     let total = 400;
-    let (mut whole, mut swept, mut empty) = (0, 0, 0);
+    let (mut whole, mut split, mut empty) = (0, 0, 0);
     for _ in 0..total {
         let fp = strategy
             .new_tree(&mut runner)
@@ -198,22 +218,39 @@ fn few_passing_triangles_need_the_whole_screen() {
             .current()
             .footprint();
         whole += usize::from(fp.whole_screen);
-        swept += usize::from(fp.swept);
+        split += usize::from(fp.split);
         empty += usize::from(fp.is_empty());
     }
-    eprintln!("passing footprints: {whole} whole screen, {swept} swept, {empty} empty of {total}");
+    eprintln!("passing footprints: {whole} whole screen, {split} split, {empty} empty of {total}");
     assert!(
         whole * 10 < total,
         "{whole} of {total} passing footprints were the whole screen"
     );
     assert!(
-        swept * 5 > total,
-        "only {swept} of {total} passing footprints were swept prisms"
+        split * 5 > total,
+        "only {split} of {total} passing footprints were split"
     );
     assert!(
         empty * 10 > total,
         "only {empty} of {total} passing footprints were empty"
     );
+}
+
+/// How many samples of the rest triangle's dense barycentric grid land on the screen.
+fn samples_on_screen(s: &Setup) -> usize {
+    let n = 400;
+    let t = s.triangle;
+    (0..=n)
+        .flat_map(|i| (0..=n - i).map(move |j| (i, j)))
+        .filter(|&(i, j)| {
+            let (u, v) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
+            let seen = s
+                .frame
+                .apparent_position(t[0] + u * (t[1] - t[0]) + v * (t[2] - t[0]), s.observer);
+            project(s.view_projection, VIEWPORT, seen)
+                .is_some_and(|q| Rect::screen(VIEWPORT).contains(q, 0.0))
+        })
+        .count()
 }
 
 #[test]
@@ -223,28 +260,43 @@ fn a_triangle_beside_and_behind_the_camera_draws_only_where_it_is_seen() {
     let frame = Frame::new(DVec3::new(0.0, 0.0, -0.9), DVec3::new(0.0, 0.0, 0.0)).unwrap();
     let observer = Event::new(0.0, DVec3::ZERO);
     let view = look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y);
-    let vp = perspective(1.0, 4.0 / 3.0, 0.1, 100.0) * view;
-    let beside = [
-        DVec3::new(2.0, -0.5, -12.0),
-        DVec3::new(2.5, 0.5, 1.0),
-        DVec3::new(3.0, 0.0, -4.0),
-    ];
-    let seen_z = beside.map(|p| frame.apparent_position(p, observer).z);
+    let setup = |triangle| Setup {
+        frame,
+        triangle,
+        observer,
+        view_projection: perspective(1.0, 4.0 / 3.0, 0.1, 100.0) * view,
+    };
+    let beside = setup([
+        DVec3::new(1.0, -0.5, -12.0),
+        DVec3::new(1.5, 0.5, 1.0),
+        DVec3::new(2.0, 0.0, -4.0),
+    ]);
+    let seen_z = beside
+        .triangle
+        .map(|p| frame.apparent_position(p, observer).z);
     assert!(seen_z[0] < 0.0 && seen_z[1] > 0.0, "{seen_z:?}");
-    let fp = footprint(&frame, beside, observer, vp, VIEWPORT);
-    assert!(!fp.whole_screen && fp.swept, "{fp:?}");
+    let fp = beside.footprint();
+    assert!(!fp.whole_screen && fp.split, "{fp:?}");
+    assert!(samples_on_screen(&beside) > 0);
+    assert_conservative(&beside).unwrap();
     assert!(
-        fp.rect.area() < 0.5 * VIEWPORT.width * VIEWPORT.height,
+        fp.rect.area() < 0.1 * VIEWPORT.width * VIEWPORT.height,
         "{fp:?}"
     );
     assert!(
         fp.rect.max.x == VIEWPORT.width,
         "the part in front reaches the right edge: {fp:?}"
     );
+    // Further out, its corner ahead is seen just beyond the right edge and the rest of it
+    // passes behind the camera: nothing of it is on screen, and its pieces draw next to
+    // nothing (a convex bound of the whole triangle reaches into the picture).
+    let further = setup(beside.triangle.map(|p| p + DVec3::X));
+    assert_eq!(samples_on_screen(&further), 0);
+    let area = further.footprint().rect.area();
+    assert!(area < 0.005 * VIEWPORT.width * VIEWPORT.height, "{area}");
     // Wholly behind the camera: nothing.
-    let behind = beside.map(|p| p + DVec3::new(-2.0, 0.0, 40.0));
-    let fp = footprint(&frame, behind, observer, vp, VIEWPORT);
-    assert!(fp.is_empty(), "{fp:?}");
+    let behind = setup(beside.triangle.map(|p| p + DVec3::new(-1.0, 0.0, 40.0)));
+    assert!(behind.footprint().is_empty(), "{:?}", behind.footprint());
 }
 
 #[test]
@@ -293,22 +345,31 @@ fn hull_is_tighter_than_rectangle_and_has_three_to_six_points() {
 }
 
 #[test]
-fn triangle_around_the_observer_covers_the_whole_screen() {
+fn a_big_triangle_around_the_observer_draws_its_visible_part() {
     let frame = Frame::new(DVec3::new(0.5, 0.0, 0.0), DVec3::ZERO).unwrap();
     let observer = Event::new(0.0, DVec3::ZERO);
     let view = look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y);
     let vp = perspective(1.0, 4.0 / 3.0, 0.1, 100.0) * view;
-    // A big triangle in the plane z = −2 in S′ that reaches behind the observer.
-    let tri = [
-        DVec3::new(-5.0, -5.0, 5.0),
-        DVec3::new(5.0, -5.0, -5.0),
-        DVec3::new(0.0, 5.0, -5.0),
-    ];
-    let fp = footprint(&frame, tri, observer, vp, VIEWPORT);
-    assert!(fp.whole_screen);
-    assert_eq!(fp.rect.min, DVec2::ZERO);
-    assert_eq!(fp.rect.max, DVec2::new(640.0, 480.0));
-    // The observer on the triangle itself: also the whole screen, no NaN.
+    // A big triangle 1.7 from the observer, reaching from in front of it to behind it.
+    let around = Setup {
+        frame,
+        triangle: [
+            DVec3::new(-5.0, -5.0, 5.0),
+            DVec3::new(5.0, -5.0, -5.0),
+            DVec3::new(0.0, 5.0, -5.0),
+        ],
+        observer,
+        view_projection: vp,
+    };
+    let fp = around.footprint();
+    assert!(fp.split && !fp.whole_screen, "{fp:?}");
+    assert!(samples_on_screen(&around) > 0);
+    assert_conservative(&around).unwrap();
+    assert!(
+        fp.rect.area() < 0.7 * VIEWPORT.width * VIEWPORT.height,
+        "{fp:?}"
+    );
+    // The observer on the triangle itself: the whole screen, no NaN.
     let touching = [
         DVec3::ZERO,
         DVec3::new(1.0, 0.0, -1.0),
@@ -317,7 +378,8 @@ fn triangle_around_the_observer_covers_the_whole_screen() {
     let frame_at_rest = Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
     let fp = footprint(&frame_at_rest, touching, observer, vp, VIEWPORT);
     assert!(fp.whole_screen);
-    assert!(fp.rect.min.is_finite() && fp.rect.max.is_finite());
+    assert_eq!(fp.rect.min, DVec2::ZERO);
+    assert_eq!(fp.rect.max, DVec2::new(640.0, 480.0));
 }
 
 #[test]
@@ -331,4 +393,59 @@ fn zero_area_triangle_has_a_zero_area_footprint() {
     assert!(!fp.whole_screen);
     assert!(fp.hull_len < 3);
     assert!(fp.rect.area() < 1e-9);
+}
+
+#[test]
+fn a_large_strongly_curved_footprint_is_split_into_tighter_pieces() {
+    // A wall close beside the camera, rushing away from it at 0.9c along the view direction:
+    // all of it is seen in front of the camera, but its edges are seen strongly curved.
+    let frame = Frame::new(DVec3::new(0.0, 0.0, 0.9), DVec3::ZERO).unwrap();
+    let observer = Event::new(0.0, DVec3::ZERO);
+    let view = look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y);
+    let wall = Setup {
+        frame,
+        triangle: [
+            DVec3::new(0.5, -2.0, -1.0),
+            DVec3::new(0.5, 2.0, -1.0),
+            DVec3::new(0.5, -2.0, -5.0),
+        ],
+        observer,
+        view_projection: perspective(1.2, 4.0 / 3.0, 0.1, 100.0) * view,
+    };
+    let tangent = srt_proxy::tangent_footprint(
+        &wall.frame,
+        wall.triangle,
+        observer,
+        wall.view_projection,
+        VIEWPORT,
+    )
+    .expect("wholly in front of the camera");
+    assert!(tangent.worth_splitting(VIEWPORT), "{tangent:?}");
+    let fp = wall.footprint();
+    assert!(fp.split && !fp.whole_screen, "{fp:?}");
+    assert_conservative(&wall).unwrap();
+    let pieces = split_pieces(
+        &wall.frame,
+        wall.triangle,
+        observer,
+        wall.view_projection,
+        VIEWPORT,
+    )
+    .unwrap();
+    let pieces_area: f64 = pieces.iter().map(|f| polygon_area(f.hull_points())).sum();
+    let hull_area = polygon_area(tangent.hull_points());
+    assert!(
+        pieces.len() > 1 && pieces_area < 0.9 * hull_area,
+        "{} pieces of {pieces_area} px² against a hull of {hull_area} px²",
+        pieces.len()
+    );
+}
+
+/// Area of the polygon `points`.
+fn polygon_area(points: &[DVec2]) -> f64 {
+    let n = points.len();
+    0.5 * (0..n)
+        .map(|i| points[i].perp_dot(points[(i + 1) % n]))
+        .sum::<f64>()
+        .abs()
 }
