@@ -495,8 +495,10 @@ pub fn split_footprint(
     }
 }
 
-/// Area of the polygon `points` (either orientation).
-fn polygon_area(points: &[DVec2]) -> f64 {
+/// Area of the polygon `points` (either orientation), e.g. of a footprint's hull in square
+/// pixels.
+#[must_use]
+pub fn polygon_area(points: &[DVec2]) -> f64 {
     let n = points.len();
     0.5 * (0..n)
         .map(|i| points[i].perp_dot(points[(i + 1) % n]))

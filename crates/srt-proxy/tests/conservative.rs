@@ -7,7 +7,7 @@ use glam::dcamera::rh::view::look_at_mat4 as look_at;
 use glam::{DMat4, DVec2, DVec3};
 use proptest::prelude::*;
 use srt_physics::{Event, Frame};
-use srt_proxy::{Footprint, Rect, Viewport, footprint, project, split_pieces};
+use srt_proxy::{Footprint, Rect, Viewport, footprint, polygon_area, project, split_pieces};
 
 const VIEWPORT: Viewport = Viewport {
     width: 640.0,
@@ -337,6 +337,7 @@ fn hull_is_tighter_than_rectangle_and_has_three_to_six_points() {
     let fp = footprint(&frame, tri, observer, vp, VIEWPORT);
     assert!(!fp.whole_screen);
     assert!((3..=6).contains(&fp.hull_len));
+    // Signed: positive for the documented counter-clockwise order.
     let hull_area: f64 = (0..fp.hull_len)
         .map(|i| fp.hull[i].perp_dot(fp.hull[(i + 1) % fp.hull_len]))
         .sum::<f64>()
@@ -439,13 +440,4 @@ fn a_large_strongly_curved_footprint_is_split_into_tighter_pieces() {
         "{} pieces of {pieces_area} px² against a hull of {hull_area} px²",
         pieces.len()
     );
-}
-
-/// Area of the polygon `points`.
-fn polygon_area(points: &[DVec2]) -> f64 {
-    let n = points.len();
-    0.5 * (0..n)
-        .map(|i| points[i].perp_dot(points[(i + 1) % n]))
-        .sum::<f64>()
-        .abs()
 }
