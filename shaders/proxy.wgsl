@@ -26,6 +26,9 @@ override WORKGROUP_SIZE: u32;
 // footprint is taken to be the whole screen: set at pipeline creation from
 // srt_proxy::MAX_TANGENT_REACH.
 override MAX_TANGENT_REACH: f32;
+// How far from the screen's centre, in screen sizes, a footprint point may lie before the
+// triangle is split instead: set from srt_proxy::MAX_SCREEN_REACH.
+override MAX_SCREEN_REACH: f32;
 // How many times split_footprint may halve a triangle (srt_proxy::MAX_SPLIT_DEPTH).
 const MAX_SPLIT_DEPTH: u32 = 8u;
 // The fraction of the screen above which a piece is split again, the hull-to-corners area
@@ -40,15 +43,18 @@ const MIN_CLIP_W: f32 = 1e-6;
 // Outward dilation of rectangle and hull, in pixels.
 const FOOTPRINT_MARGIN: f32 = 0.25;
 
-// Pixel position of a point in S (xy) and whether it is in front of the camera (z = 1).
+// Pixel position of a point in S (xy) and whether it is in front of the camera and within
+// MAX_SCREEN_REACH screens of the screen's centre (z = 1).
 fn project_point(p: vec3<f32>) -> vec3<f32> {
     let clip = frame_uniforms.view_projection * vec4<f32>(p, 1.0);
     if (!(clip.w > MIN_CLIP_W)) {
         return vec3<f32>(0.0);
     }
     let ndc = clip.xy / clip.w;
-    let pixel = vec2<f32>((ndc.x + 1.0) * 0.5 * frame_uniforms.viewport.x, (1.0 - ndc.y) * 0.5 * frame_uniforms.viewport.y);
-    if (!(abs(pixel.x) < 1e30 && abs(pixel.y) < 1e30)) {
+    let screen = frame_uniforms.viewport.xy;
+    let pixel = vec2<f32>((ndc.x + 1.0) * 0.5 * screen.x, (1.0 - ndc.y) * 0.5 * screen.y);
+    let offset = abs(pixel - 0.5 * screen);
+    if (!(max(offset.x, offset.y) <= MAX_SCREEN_REACH * max(screen.x, screen.y))) {
         return vec3<f32>(0.0);
     }
     return vec3<f32>(pixel, 1.0);

@@ -143,6 +143,33 @@ pub fn flythrough_sweep_times() -> Vec<f64> {
 /// of through it.
 pub const ENGINE_BESIDE: glam::DVec3 = glam::DVec3::new(1.2, 0.4, 1.0);
 
+/// A corridor: a long checkered box around the observer, moving at 0.5c along it, seen from
+/// inside along its length; its walls' few triangles reach from beside the camera far ahead
+/// and behind it (the camera inside an object of big triangles).
+///
+/// # Errors
+/// If the scene does not build (a bug).
+pub fn corridor_case() -> anyhow::Result<Case> {
+    let text = r#"
+        name = "corridor"
+        [observer]
+        position = [0.0, 0.0, 0.0]
+        look_at = [0.1, 1.0, 0.05]
+        fov_y_deg = 70.0
+        [[object]]
+        shape = { type = "cube", size = 1.0 }
+        texture = { type = "checker", squares = 8 }
+        scale = [2.0, 40.0, 1.6]
+        beta = [0.0, -0.5, 0.0]
+        offset = [0.3, 0.0, 0.1]
+    "#;
+    let (scene, _) = SceneDescription::from_toml_str(text, "corridor")?.build(Path::new("/"))?;
+    Ok(Case {
+        name: "corridor".to_owned(),
+        scene,
+    })
+}
+
 /// A checkered sphere of radius 5 around the observer, moving at 0.5c: the camera inside an
 /// object.
 ///
@@ -198,6 +225,7 @@ pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
         cases.push(at_time("flythrough", &flythrough.scene, ct));
     }
     cases.push(enclosing_case()?);
+    cases.push(corridor_case()?);
     cases.extend(sky_cases()?);
     cases.extend(spectral_cases()?);
     Ok(cases)

@@ -145,6 +145,90 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
     ctx.take_errors().unwrap();
 }
 
+/// `count` open tubes of `sides` flat sides, radii r = 1 to `count`, 40 r long, centred on
+/// `centre` along `axis` (each the last scaled): an observer at `centre` sees every triangle
+/// reach beside and behind it, and every tube alike.
+fn nested_tubes(centre: DVec3, axis: DVec3, count: u32, sides: u32) -> Mesh {
+    let (u, v) = axis.any_orthonormal_pair();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for tube in 1..=count {
+        let radius = f64::from(tube);
+        for side in 0..sides {
+            let first = positions.len() as u32;
+            for k in [side, side + 1] {
+                // Turned by 0.3 so that no seam runs along a pixel diagonal (where f32 and f64
+                // may break the tie between the two sides differently).
+                let angle = 0.3 + std::f64::consts::TAU * f64::from(k) / f64::from(sides);
+                let rim = centre + radius * (angle.cos() * u + angle.sin() * v);
+                positions.extend([rim - 20.0 * radius * axis, rim + 20.0 * radius * axis]);
+            }
+            triangles.push([first, first + 2, first + 3]);
+            triangles.push([first, first + 3, first + 1]);
+        }
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn triangles_split_beyond_the_piece_slots_are_drawn_by_the_rectangle_of_their_pieces() {
+    let Some(ctx) = context_or_skip(
+        "triangles_split_beyond_the_piece_slots_are_drawn_by_the_rectangle_of_their_pieces",
+    ) else {
+        return;
+    };
+    // Eight tubes around the teaser's observer, along its view: each of the 128 triangles is
+    // split into pieces (about 200 per tube at this size), more than the batch's 1 088 piece
+    // slots. (The first version of this test found footprint points 2·10⁸ pixels out, whose
+    // f32 hulls missed the triangle: MAX_SCREEN_REACH.)
+    let (mut scene, _) = builtin_scenes()
+        .iter()
+        .find(|b| b.name == "teaser")
+        .expect("teaser is built in")
+        .build()
+        .unwrap();
+    let mut tubes = scene.objects[0].clone();
+    tubes.name = "tubes".into();
+    tubes.wireframe = None;
+    tubes.frame = srt_physics::Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+    let observer = &scene.observer;
+    let mesh = nested_tubes(observer.position, observer.direction.normalize(), 8, 8);
+    let triangles = mesh.triangles().len() as u64;
+    tubes.parts = vec![Part {
+        mesh,
+        material: Material::default(),
+    }];
+    scene.objects = vec![tubes];
+    let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+    let footprints = renderer.read_footprints(&ctx, &scene).unwrap();
+    let drawn = &footprints[0][0];
+    let pieces: usize = drawn.iter().map(|t| t.pieces.len()).sum();
+    let slots = srt_gpu::types::footprint_slots(triangles) - triangles;
+    assert_eq!(pieces as u64, slots, "every piece slot is taken");
+    // So some triangle's own slot holds the rectangle around all its pieces.
+    let holds = |outer: [f32; 4], inner: [f32; 4]| {
+        outer[0] <= inner[0] && outer[1] <= inner[1] && outer[2] >= inner[2] && outer[3] >= inner[3]
+    };
+    assert!(
+        drawn
+            .iter()
+            .any(|t| t.pieces.len() > 1 && t.pieces.iter().all(|p| holds(t.own.rect, p.rect))),
+        "no triangle fell back to the rectangle of its pieces"
+    );
+    let (image, _) = renderer
+        .render(&ctx, &scene, Method::Lrt, FootprintShape::Hull)
+        .unwrap();
+    let reference = cpu_image(&scene);
+    let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
+    println!(
+        "{pieces} pieces in {slots} slots: mismatch={:.5} max={}",
+        mismatch.fraction(),
+        mismatch.max_difference
+    );
+    assert!(mismatch.fraction() <= 0.001, "{mismatch:?}");
+    ctx.take_errors().unwrap();
+}
+
 /// LRT with spectral colour agrees with the CPU: `scene`'s mismatch (2/255, 1 px edge margin).
 fn assert_spectral_lrt_agrees(ctx: &srt_gpu::GpuContext, name: &str, scene: &Scene) {
     let reference = cpu_image(scene);

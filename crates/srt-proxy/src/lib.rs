@@ -67,6 +67,13 @@ pub const PAPER_EPSILON: f64 = 0.01;
 /// anyway.
 pub const MAX_TANGENT_REACH: f64 = 1000.0;
 
+/// How far from the screen's centre, in screen sizes (the larger of width and height), the
+/// points of the paper's footprint may lie; a triangle with one further out is split instead
+/// ([`split_pieces`]). Points that far out come from corners just in front of the camera
+/// plane; in f32 the hull of such points is numerically meaningless (seen in `cargo xtask
+/// validate`: hull points at 2·10⁸ pixels that no longer held the triangle).
+pub const MAX_SCREEN_REACH: f64 = 16.0;
+
 /// Clip-space w at or below which a point counts as at or behind the camera.
 pub const MIN_CLIP_W: f64 = 1e-9;
 
@@ -311,8 +318,9 @@ pub fn apparent_outline(
 ///
 /// Degenerate input has a documented result rather than an error: a zero-area triangle yields a
 /// zero-area footprint (nothing is drawn, and the exact tracer finds no hit either). A triangle
-/// with any corner or tangent intersection at or behind the camera, or a tangent intersection
-/// more than [`MAX_TANGENT_REACH`] chord lengths away, or whose footprint is
+/// with any corner or tangent intersection at or behind the camera or more than
+/// [`MAX_SCREEN_REACH`] screens away, or a tangent intersection more than
+/// [`MAX_TANGENT_REACH`] chord lengths away, or whose footprint is
 /// [worth splitting](Footprint::worth_splitting), is split ([`split_pieces`]); the footprint
 /// returned is then the rectangle holding its pieces ([`split_footprint`]).
 #[must_use]
@@ -330,8 +338,9 @@ pub fn footprint(
 }
 
 /// The paper's footprint (the six points P_i, G_ij, their rectangle and convex hull), or
-/// `None` when one of the six points is at or behind the camera or a tangent intersection is
-/// more than [`MAX_TANGENT_REACH`] chord lengths away.
+/// `None` when one of the six points is at or behind the camera or more than
+/// [`MAX_SCREEN_REACH`] screens away, or a tangent intersection is more than
+/// [`MAX_TANGENT_REACH`] chord lengths away.
 #[must_use]
 pub fn tangent_footprint(
     frame: &Frame,
@@ -348,7 +357,12 @@ pub fn tangent_footprint(
     if far {
         return None;
     }
-    let project = |p: DVec3| project(view_projection, viewport, p);
+    let centre = 0.5 * DVec2::new(viewport.width, viewport.height);
+    let reach = MAX_SCREEN_REACH * viewport.width.max(viewport.height);
+    let project = |p: DVec3| {
+        project(view_projection, viewport, p)
+            .filter(|pixel| (*pixel - centre).abs().max_element() <= reach)
+    };
     let [p1, p2, p3] = corners.map(project);
     let [g1, g2, g3] = tangent_points.map(project);
     let (corners, tangent_points) = ([p1?, p2?, p3?], [g1?, g2?, g3?]);
