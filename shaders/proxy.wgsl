@@ -1,7 +1,9 @@
 // proxy.wgsl — §4.1: the conservative image-space footprint of every apparent triangle of one
-// mesh part, one invocation per triangle. The f32 mirror of crates/srt-proxy (f64), with one
-// addition: the result is dilated by FOOTPRINT_MARGIN pixels to absorb f32 rounding, so that it
-// stays conservative (the validation checks it against the f64 footprint).
+// mesh part, one invocation per triangle. The f32 mirror of crates/srt-proxy (f64), with two
+// additions: every footprint is dilated by FOOTPRINT_MARGIN pixels to absorb f32 rounding, so
+// that it stays conservative (the validation checks it against the f64 apparent triangle); and
+// the pieces of a split triangle (srt_proxy::split_pieces, a list there) are stored in footprint
+// slots shared by the batch, or bounded by one rectangle when those run out.
 
 // One footprint per triangle of the batch ([0, part.triangle_count)), then slots for the pieces
 // of split triangles (split_footprint), taken in turn by draw_args[8]. Each footprint names its
@@ -107,8 +109,8 @@ fn whole_screen_footprint() -> Footprint {
 
 // The six points P1, G12, P2, G23, P3, G31 of the apparent image of the rest triangle `rest`,
 // projected to pixels (srt_proxy::tangent_footprint); false when one of them is at or behind
-// the camera or a tangent intersection lies more than MAX_TANGENT_REACH chord lengths away
-// (ill-conditioned in f32).
+// the camera or more than MAX_SCREEN_REACH screens out, or a tangent intersection lies more
+// than MAX_TANGENT_REACH chord lengths away (ill-conditioned in f32).
 fn tangent_outline(rest: array<vec3<f32>, 3>, points: ptr<function, array<vec2<f32>, 6>>) -> bool {
     var corners: array<vec3<f32>, 3>;
     for (var i = 0u; i < 3u; i++) {

@@ -197,7 +197,7 @@ pub fn enclosing_case() -> anyhow::Result<Case> {
 
 /// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine
 /// passing through and beside the camera, the flythrough's observer further on (columns and
-/// ground passing beside and under it), and the camera inside a sphere.
+/// ground passing beside and under it), and the camera inside a sphere and inside a long box.
 ///
 /// # Errors
 /// If the engine model is missing.

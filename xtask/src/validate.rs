@@ -2,13 +2,14 @@
 //!
 //! 1. physics kernels, colour-table sampling and spectral colour (`srt-gpu` probe pass vs
 //!    `srt-physics` / `srt-color`, f32 vs f64): worst error per kernel against its tolerance;
-//! 2. the proxy pass against `srt-proxy`: every GPU footprint must contain the on-screen part of
+//! 2. the proxy pass against `srt-proxy`: the footprints the GPU draws for a triangle (its own
+//!    and those of the pieces it was split into) must together contain the on-screen part of
 //!    its apparent triangle, computed in f64 (edges and interior sampled densely), and culled
 //!    back faces must be back faces of closed solids seen from outside;
 //! 3. images: every built-in scene and three assimp models at 0.5c, 0.9c and 0.99c, and scenes
 //!    in motion (the teaser while the spider passes the camera, the engine passing through and
-//!    beside the camera, the camera inside a sphere, spectral colour with exposures and
-//!    emitters), the GPU's exact methods (local ray tracing, the BVH ray tracer, and `auto`,
+//!    beside the camera, the flythrough's observer further on, the camera inside a sphere and
+//!    a long box, spectral colour with exposures and emitters), the GPU's exact methods (local ray tracing, the BVH ray tracer, and `auto`,
 //!    which picks one of them per object) and the polygon method against the exact CPU
 //!    reference. The metric is the fraction
 //!    of pixels differing by more than 2/255 in any channel, not counting pixels within 1 px of a

@@ -568,9 +568,9 @@ pub fn swept_prism(frame: &Frame, triangle: [DVec3; 3], observer: Event) -> Opti
 /// ≤ 0 and nothing of the hull is on screen, or every on-screen point of the hull has
 /// w ≥ m / (|n_x| + |n_y| + n_w). [`near_bound`] takes the best such bound over the planes
 /// through any three of the points (among them the hull's faces) and the cone's own axes; the
-/// hull is clipped at [`NEAR_CLIP_FRACTION`] of it: the points with w ≥ near and the crossings of w = near by the
-/// segments between points on either side (these include every vertex of the clipped hull) are
-/// projected.
+/// hull is clipped at w = near, [`NEAR_CLIP_FRACTION`] of that bound: the points with
+/// w ≥ near and the crossings of w = near by the segments between points on either side (these
+/// include every vertex of the clipped hull) are projected.
 #[must_use]
 pub fn visible_rect(points: &[DVec3], view_projection: DMat4, viewport: Viewport) -> Option<Rect> {
     let clip: Vec<DVec4> = points
