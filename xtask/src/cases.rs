@@ -163,9 +163,14 @@ pub fn corridor_case() -> anyhow::Result<Case> {
         beta = [0.0, -0.5, 0.0]
         offset = [0.3, 0.0, 0.1]
     "#;
-    let (scene, _) = SceneDescription::from_toml_str(text, "corridor")?.build(Path::new("/"))?;
+    toml_case("corridor", text)
+}
+
+/// The case `name` of the scene description `text`.
+fn toml_case(name: &str, text: &str) -> anyhow::Result<Case> {
+    let (scene, _) = SceneDescription::from_toml_str(text, name)?.build(Path::new("/"))?;
     Ok(Case {
-        name: "corridor".to_owned(),
+        name: name.to_owned(),
         scene,
     })
 }
@@ -188,11 +193,7 @@ pub fn enclosing_case() -> anyhow::Result<Case> {
         beta = [0.5, 0.0, 0.0]
         offset = [0.0, 0.0, 0.0]
     "#;
-    let (scene, _) = SceneDescription::from_toml_str(text, "enclosing")?.build(Path::new("/"))?;
-    Ok(Case {
-        name: "enclosing".to_owned(),
-        scene,
-    })
+    toml_case("enclosing", text)
 }
 
 /// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine

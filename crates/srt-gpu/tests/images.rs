@@ -81,6 +81,25 @@ fn stack_of_squares(layers: u32) -> Mesh {
     Mesh::new(positions, triangles).unwrap()
 }
 
+/// The teaser, and a new object `name` moving as its first object does, made of `mesh`
+/// (default material, no wireframe).
+fn teaser_and_object(name: &str, mesh: Mesh) -> (Scene, srt_scene::Object) {
+    let (scene, _) = builtin_scenes()
+        .iter()
+        .find(|b| b.name == "teaser")
+        .expect("teaser is built in")
+        .build()
+        .unwrap();
+    let mut object = scene.objects[0].clone();
+    object.name = name.into();
+    object.wireframe = None;
+    object.parts = vec![Part {
+        mesh,
+        material: Material::default(),
+    }];
+    (scene, object)
+}
+
 #[test]
 fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
     let Some(ctx) =
@@ -90,19 +109,7 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
     };
     // The teaser (shallow objects: footprints) with a deep stack flying through it (traced),
     // in front of and behind the others in different pixels.
-    let (mut scene, _) = builtin_scenes()
-        .iter()
-        .find(|b| b.name == "teaser")
-        .expect("teaser is built in")
-        .build()
-        .unwrap();
-    let mut stack = scene.objects[0].clone();
-    stack.name = "stack".into();
-    stack.wireframe = None;
-    stack.parts = vec![Part {
-        mesh: stack_of_squares(12),
-        material: Material::default(),
-    }];
+    let (mut scene, stack) = teaser_and_object("stack", stack_of_squares(12));
     scene.objects.push(stack);
     let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
     let layers = renderer.object_layers();
@@ -181,23 +188,11 @@ fn triangles_split_beyond_the_piece_slots_are_drawn_by_the_rectangle_of_their_pi
     // split into pieces (about 200 per tube at this size), more than the batch's 1 088 piece
     // slots. (The first version of this test found footprint points 2·10⁸ pixels out, whose
     // f32 hulls missed the triangle: MAX_SCREEN_REACH.)
-    let (mut scene, _) = builtin_scenes()
-        .iter()
-        .find(|b| b.name == "teaser")
-        .expect("teaser is built in")
-        .build()
-        .unwrap();
-    let mut tubes = scene.objects[0].clone();
-    tubes.name = "tubes".into();
-    tubes.wireframe = None;
-    tubes.frame = srt_physics::Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+    let (mut scene, mut tubes) = teaser_and_object("tubes", stack_of_squares(1));
     let observer = &scene.observer;
-    let mesh = nested_tubes(observer.position, observer.direction.normalize(), 8, 8);
-    let triangles = mesh.triangles().len() as u64;
-    tubes.parts = vec![Part {
-        mesh,
-        material: Material::default(),
-    }];
+    tubes.parts[0].mesh = nested_tubes(observer.position, observer.direction.normalize(), 8, 8);
+    let triangles = tubes.parts[0].mesh.triangles().len() as u64;
+    tubes.frame = srt_physics::Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
     scene.objects = vec![tubes];
     let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
     let footprints = renderer.read_footprints(&ctx, &scene).unwrap();
