@@ -43,7 +43,10 @@ fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
     return (1.0 - f) * a + f * b;
 }
 
+// The weights (R, G, B) of the grey value of Eq. 18 (twin of srt_trace::GREY_WEIGHTS).
+const GREY_WEIGHTS: vec3<f32> = vec3<f32>(0.3, 0.59, 0.11);
+
 // Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.
 fn grey_value(c: vec4<f32>) -> f32 {
-    return 0.3 * c.x + 0.59 * c.y + 0.11 * c.z;
+    return dot(c.rgb, GREY_WEIGHTS);
 }

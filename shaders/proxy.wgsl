@@ -6,7 +6,7 @@
 // slots shared by the batch, or bounded by one rectangle when those run out.
 
 // One footprint per triangle of the batch ([0, part.triangle_count)), then slots for the pieces
-// of split triangles (split_footprint), taken in turn by draw_args[8]. Each footprint names its
+// of split triangles (split_footprint), taken in turn by draw_args[DRAW_ARGS_PIECES_TAKEN]. Each footprint names its
 // triangle, so the LRT pass draws all of them in one draw.
 @group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
 // The part's screen bound, the union of its footprints' rectangles in whole pixels, for the LRT
@@ -19,8 +19,16 @@
 // triangle with a footprint on screen (FOOTPRINT_VERTICES per triangle). [4..8] is the LRT
 // shading pass's rectangle: 6 vertices once any footprint is on screen. So a part wholly off
 // screen or behind the camera draws nothing in either pass. [8] counts the piece slots taken
-// (the CPU writes 0).
-@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, 9>;
+// (the CPU writes 0). The indices are named below (twins of srt_gpu::types::DRAW_ARGS_*).
+@group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, DRAW_ARGS_WORDS>;
+// draw_args[DRAW_ARGS_FOOTPRINT_VERTICES]: the footprint draw's vertex count.
+const DRAW_ARGS_FOOTPRINT_VERTICES: u32 = 0u;
+// draw_args[DRAW_ARGS_SHADE_VERTICES]: the shading draw's vertex count.
+const DRAW_ARGS_SHADE_VERTICES: u32 = 4u;
+// draw_args[DRAW_ARGS_PIECES_TAKEN]: piece slots taken (or asked for, once they run out).
+const DRAW_ARGS_PIECES_TAKEN: u32 = 8u;
+// Words in draw_args.
+const DRAW_ARGS_WORDS: u32 = 9u;
 
 // Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
@@ -405,8 +413,8 @@ fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
     if (f.hull_len == 0u || !all(lo < hi)) {
         return;
     }
-    atomicMax(&draw_args[0], (slot + 1u) * FOOTPRINT_VERTICES);
-    atomicMax(&draw_args[4], 6u);
+    atomicMax(&draw_args[DRAW_ARGS_FOOTPRINT_VERTICES], (slot + 1u) * FOOTPRINT_VERTICES);
+    atomicMax(&draw_args[DRAW_ARGS_SHADE_VERTICES], 6u);
     atomicMax(&part_bound[0], ~u32(lo.x));
     atomicMax(&part_bound[1], ~u32(lo.y));
     atomicMax(&part_bound[2], u32(hi.x));
@@ -415,7 +423,7 @@ fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
 
 // Stores `f` as a piece of triangle `t` in the next free piece slot; false when none is left.
 fn store_piece(t: u32, f: Footprint) -> bool {
-    let slot = part.triangle_count + atomicAdd(&draw_args[8], 1u);
+    let slot = part.triangle_count + atomicAdd(&draw_args[DRAW_ARGS_PIECES_TAKEN], 1u);
     if (slot >= arrayLength(&footprints)) {
         return false;
     }
@@ -507,6 +515,7 @@ fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
     }
     if (!all_stored) {
         own = rectangle_footprint(union_lo, union_hi);
+        own.pieces_overflowed = 1u;
     }
     store_footprint(t, t, own);
 }

@@ -8,8 +8,16 @@
 // Composed into the shaders that shade (lrt, polygon) and the probe. The tables are the CPU's,
 // uploaded once per renderer (srt_gpu::spectral), bound in group 0 of those passes.
 
-// The CIE 1931 2° table (srt_color::cie_1931), 360–830 nm at 1 nm: x̄, ȳ, z̄, λ in nm.
-@group(0) @binding(8) var<storage, read> cie_table: array<vec4<f32>>;
+// One row of the CIE 1931 2° table (twin of srt_gpu::types::GpuCieSample).
+struct CieSample {
+    // x̄, ȳ, z̄ at this wavelength.
+    xyz_bar: vec3<f32>,
+    // The wavelength in nm.
+    wavelength_nm: f32,
+}
+
+// The CIE 1931 2° table (srt_color::cie_1931), 360–830 nm at 1 nm.
+@group(0) @binding(8) var<storage, read> cie_table: array<CieSample>;
 // The coefficient table's brightness scale z₀ … z_{n−1} (CoefficientTable::scale).
 @group(0) @binding(9) var<storage, read> coefficient_scale: array<f32>;
 // Its 3 · n³ texels of (c₀, c₁, c₂), three f32 each, in CoefficientTable::texels' layout.
@@ -138,7 +146,7 @@ fn reflectance_evaluate(r: Reflectance, wavelength_nm: f32) -> f32 {
     if (r.grey >= 0.0) {
         return r.grey;
     }
-    let l = clamp(wavelength_nm, cie_table[0].w, cie_table[arrayLength(&cie_table) - 1u].w);
+    let l = clamp(wavelength_nm, cie_table[0].wavelength_nm, cie_table[arrayLength(&cie_table) - 1u].wavelength_nm);
     let c = r.coefficients;
     return spectral_sigmoid((c.x * l + c.y) * l + c.z);
 }
@@ -166,8 +174,8 @@ fn ln_planck(wavelength_nm: f32, temperature_k: f32) -> f32 {
 // unimodal in λ with its peak at c₂/(x_max T) (Wien), so the maximum over the 1 nm grid lies on
 // one of the two grid wavelengths around the peak, held to the table.
 fn ln_planck_max(temperature_k: f32) -> f32 {
-    let first = cie_table[0].w;
-    let last = cie_table[arrayLength(&cie_table) - 1u].w;
+    let first = cie_table[0].wavelength_nm;
+    let last = cie_table[arrayLength(&cie_table) - 1u].wavelength_nm;
     let peak = clamp(SECOND_RADIATION_CONSTANT / (WIEN_X * temperature_k) * 1.0e9, first, last);
     return max(ln_planck(floor(peak), temperature_k), ln_planck(min(floor(peak) + 1.0, last), temperature_k));
 }
@@ -192,8 +200,8 @@ fn reflected_light(r: Reflectance, temperature_k: f32, d_in: f32, d_out: f32) ->
     let count = arrayLength(&cie_table);
     for (var s = 0u; s < count; s++) {
         let sample = cie_table[s];
-        let radiance = exp(ln_planck(sample.w, apparent) - ln_max) * sample.xyz;
-        light += reflectance_evaluate(r, d_out * sample.w) * radiance;
+        let radiance = exp(ln_planck(sample.wavelength_nm, apparent) - ln_max) * sample.xyz_bar;
+        light += reflectance_evaluate(r, d_out * sample.wavelength_nm) * radiance;
         white += radiance;
     }
     return SpectralLight(light, white, ln_max + log(CIE_1931_STEP_M), true);

@@ -46,7 +46,7 @@ struct FrameUniforms {
     camera_right: vec4<f32>,
     // Camera up axis scaled by tan(fov/2), w = 0.
     camera_up: vec4<f32>,
-    // Observer position in S (xyz) and observation time ct_obs (w).
+    // Observer position in S (xyz); w is 0 (ct_obs is in each object's Frame.observer_rest).
     observer: vec4<f32>,
     // Light position in S (xyz) and its Planck temperature in kelvin (w).
     light: vec4<f32>,
@@ -146,7 +146,9 @@ struct Footprint {
     whole_screen: u32,
     // The triangle of the batch it is a footprint of (itself, or a piece of it).
     triangle: u32,
-    padding: u32,
+    // 1 in a triangle's own slot when the batch's piece slots ran out while storing its pieces:
+    // the footprint is then the rectangle holding all of them (proxy.wgsl, split_footprint).
+    pieces_overflowed: u32,
 }
 
 // One star of the sky (srt_scene::Star), at rest in the world frame W.

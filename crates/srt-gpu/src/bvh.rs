@@ -17,7 +17,7 @@ use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
 use obvhs::{Boundable, BvhBuildParams};
 
-use crate::context::GpuError;
+use crate::error::GpuError;
 use crate::types::{BVH_STACK_SIZE, GpuBvhNode, GpuVertex};
 
 /// An object's BVH as the GPU reads it.

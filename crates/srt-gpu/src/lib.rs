@@ -27,6 +27,8 @@
 pub mod bvh;
 pub mod context;
 pub mod culling;
+pub mod error;
+pub mod formats;
 pub mod limits;
 pub mod lut;
 pub mod passes;
@@ -39,9 +41,11 @@ pub mod renderer;
 pub mod shaders;
 pub mod sky;
 pub mod spectral;
+pub mod textures;
 pub mod types;
 
-pub use context::{GpuContext, GpuError, context_or_skip};
+pub use context::{GpuContext, context_or_skip};
+pub use error::GpuError;
 pub use readback::{TextureReadback, read_texture};
 pub use renderer::{
     FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method, TriangleFootprints,

@@ -2,7 +2,8 @@
 //! the adapter cannot serve comes back as a typed [`GpuError::ExceedsLimit`] that names the limit
 //! and the amounts, instead of a wgpu validation error after the fact.
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 
 /// The limits of one device and the adapter's name, for the checks and their messages.
 #[derive(Debug, Clone)]

@@ -4,8 +4,10 @@
 
 use srt_color::TemperatureLut;
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 use crate::limits::DeviceLimits;
+use crate::textures::{Texture2d, upload_2d};
 
 /// The `lut_sample` parameters of `lut`: (ln T_min, ln T_max, N, 0) in `f32`, as
 /// `FrameUniforms::lut` holds them.
@@ -27,35 +29,17 @@ pub fn lut_params(lut: &TemperatureLut) -> [f32; 4] {
 pub fn lut_texture(ctx: &GpuContext, lut: &TemperatureLut) -> Result<wgpu::Texture, GpuError> {
     let width = u32::try_from(lut.size()).unwrap_or(u32::MAX);
     DeviceLimits::of(ctx).check_texture("colour table", width, 1)?;
-    let size = wgpu::Extent3d {
-        width,
-        height: 1,
-        depth_or_array_layers: 1,
-    };
-    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("temperature LUT"),
-        size,
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    ctx.queue.write_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture: &texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
+    let texture = upload_2d(
+        ctx,
+        &Texture2d {
+            label: "temperature LUT",
+            width,
+            height: 1,
+            mip_levels: 1,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
         },
         bytemuck::cast_slice(lut.texels()),
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(width * 16),
-            rows_per_image: None,
-        },
-        size,
     );
     Ok(texture)
 }

@@ -6,19 +6,8 @@
 //! `tests/reflect.rs` checks it against the `@group`/`@binding` declarations naga reflects from
 //! the WGSL (`shaders/render_bindings.wgsl` for groups 0–2, each pass for its group 3).
 
+use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
 use crate::shaders::{self, Shader};
-
-/// Colour target format: f32 display colours, quantised to 8 bits on the CPU like the
-/// reference. Backends that cannot render to it (OpenGL ES through wgpu's downlevel rules) use
-/// [`FALLBACK_COLOR_FORMAT`].
-pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// Colour target format where `Rgba32Float` is not renderable: half floats (11-bit mantissa,
-/// ample for 8-bit output).
-pub const FALLBACK_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Format of the LRT visibility pass's id target: (part id, triangle) per pixel.
-pub const VISIBLE_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
-/// Depth format (apparent distance × depth scale for LRT, clip depth for polygons).
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// One binding of a bind group: the WGSL global it feeds, its `@binding` and what is bound.
 #[derive(Debug, Clone, Copy)]

@@ -42,7 +42,8 @@ use srt_color::{
 use srt_physics::{Event, Frame, RestRay};
 use wgpu::util::DeviceExt;
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{BindGroupSpec, PipelineSpec, Slot, TEXTURE_2D, UNIFORM, storage};

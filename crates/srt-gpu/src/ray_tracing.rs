@@ -17,11 +17,12 @@ use glam::DVec3;
 use wgpu::util::DeviceExt as _;
 
 use crate::bvh::{ObjectBvh, box_geometry};
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
 use crate::culling::box_near_faces_cullable;
+use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::pipelines::{Pipelines, slots};
-use crate::renderer::part_texture;
+use crate::textures::part_texture;
 use crate::types::{
     DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PART_BOUND_BYTES, PartFlags, PartUniforms,
     footprint_slots,

@@ -2,7 +2,8 @@
 //! to `COPY_BYTES_PER_ROW_ALIGNMENT` (256 bytes); this module owns that padding, so callers (the
 //! renderer, the viewer) get tightly packed rows.
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 use crate::limits::{DeviceLimits, padded_row_bytes};
 
 /// A buffer that receives one mip-0 image of a 2D texture, and the row layout to unpack it.

@@ -10,7 +10,8 @@ use srt_scene::sky::SkyImage;
 use srt_scene::{Scene, Sky};
 use wgpu::util::DeviceExt as _;
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::passes::begin_pass;
 use crate::pipelines::{
@@ -18,6 +19,7 @@ use crate::pipelines::{
     pipeline_layout, render_pipeline, sky_specs, slots,
 };
 use crate::shaders::WORKGROUP_SIZE;
+use crate::textures::{Texture2d, upload_2d};
 use crate::types::{GpuStar, SkyUniforms, mat3, vec4};
 
 /// Bytes of star light per pixel: three u32 channels.
@@ -248,27 +250,19 @@ fn image_texture(ctx: &GpuContext, image: Option<&SkyImage>) -> wgpu::TextureVie
         ),
         None => (1, 1, vec![[0.0; 4]]),
     };
-    ctx.device
-        .create_texture_with_data(
-            &ctx.queue,
-            &wgpu::TextureDescriptor {
-                label: Some("srt sky image"),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&texels),
-        )
-        .create_view(&wgpu::TextureViewDescriptor::default())
+    upload_2d(
+        ctx,
+        &Texture2d {
+            label: "srt sky image",
+            width,
+            height,
+            mip_levels: 1,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+        },
+        bytemuck::cast_slice(&texels),
+    )
+    .create_view(&wgpu::TextureViewDescriptor::default())
 }
 
 impl StarLight {

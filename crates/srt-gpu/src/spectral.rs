@@ -6,16 +6,21 @@
 use srt_color::{cie_1931, srgb_coefficient_table};
 use wgpu::util::DeviceExt as _;
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::pipelines::slots;
+use crate::types::GpuCieSample;
 
-/// The CIE table as WGSL `cie_table` reads it: x̄, ȳ, z̄, λ in nm per row.
+/// The CIE table as WGSL `cie_table` reads it, in f32.
 #[must_use]
-pub fn cie_rows() -> Vec<[f32; 4]> {
+pub fn cie_rows() -> Vec<GpuCieSample> {
     cie_1931()
         .iter()
-        .map(|s| [s.xbar, s.ybar, s.zbar, s.wavelength_nm].map(|v| v as f32))
+        .map(|s| GpuCieSample {
+            xyz_bar: [s.xbar, s.ybar, s.zbar].map(|v| v as f32),
+            wavelength_nm: s.wavelength_nm as f32,
+        })
         .collect()
 }
 
@@ -75,10 +80,11 @@ mod tests {
     fn cie_rows_are_the_cpu_table_in_f32() {
         let rows = cie_rows();
         assert_eq!(rows.len(), cie_1931().len());
-        assert_eq!(rows.first().map(|r| r[3]), Some(360.0));
-        assert_eq!(rows.last().map(|r| r[3]), Some(830.0));
+        assert_eq!(rows.first().map(|r| r.wavelength_nm), Some(360.0));
+        assert_eq!(rows.last().map(|r| r.wavelength_nm), Some(830.0));
         for (row, sample) in rows.iter().zip(cie_1931()) {
-            assert_eq!(row[1], sample.ybar as f32);
+            let cpu = [sample.xbar, sample.ybar, sample.zbar].map(|v| v as f32);
+            assert_eq!(row.xyz_bar, cpu);
         }
     }
 }

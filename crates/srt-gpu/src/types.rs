@@ -168,7 +168,8 @@ pub struct FrameUniforms {
     pub camera_right: [f32; 4],
     /// Camera up × tan(fov/2).
     pub camera_up: [f32; 4],
-    /// Observer position (xyz) and ct_obs (w).
+    /// Observer position (xyz), w = 0: the observation time reaches the shaders through each
+    /// object's [`GpuFrame::observer_rest`].
     pub observer: [f32; 4],
     /// Light position (xyz) and temperature in kelvin (w).
     pub light: [f32; 4],
@@ -275,6 +276,17 @@ pub struct GpuVertex {
     pub uv: [f32; 4],
 }
 
+/// Twin of WGSL `CieSample` (spectral.wgsl): one row of the CIE 1931 2° table
+/// ([`crate::spectral::cie_rows`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuCieSample {
+    /// x̄, ȳ, z̄ at this wavelength.
+    pub xyz_bar: [f32; 3],
+    /// The wavelength in nm.
+    pub wavelength_nm: f32,
+}
+
 /// Twin of WGSL `Star` (types.wgsl): one star of the sky.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -344,13 +356,21 @@ pub const fn footprint_slots(triangles: u64) -> u64 {
     triangles + PIECE_SLOTS + triangles / 2
 }
 
-/// Size of WGSL `draw_args` (`array<atomic<u32>, 9>`: the arguments of two non-indexed indirect
-/// draws, each a `wgpu::util::DrawIndirectArgs`: the LRT visibility pass's footprints, then the
-/// shading pass's rectangle; then the count of piece slots taken), one buffer per part.
-pub const DRAW_ARGS_BYTES: u64 = 36;
+/// Index in WGSL `draw_args` of the LRT visibility pass's draw (its vertex count first): the
+/// first of two non-indexed indirect draws, each a `wgpu::util::DrawIndirectArgs`.
+pub const DRAW_ARGS_FOOTPRINT_VERTICES: u32 = 0;
+/// Index in WGSL `draw_args` of the LRT shading pass's draw (its vertex count first).
+pub const DRAW_ARGS_SHADE_VERTICES: u32 = 4;
+/// Index in WGSL `draw_args` of the count of piece slots taken (and asked for once they ran out).
+pub const DRAW_ARGS_PIECES_TAKEN: u32 = 8;
+/// Words (u32) in WGSL `draw_args`, one buffer per part.
+pub const DRAW_ARGS_WORDS: u32 = 9;
+
+/// Size of WGSL `draw_args` in bytes.
+pub const DRAW_ARGS_BYTES: u64 = 4 * DRAW_ARGS_WORDS as u64;
 
 /// Byte offset of the LRT shading pass's draw in WGSL `draw_args`.
-pub const SHADE_DRAW_OFFSET: u64 = 16;
+pub const SHADE_DRAW_OFFSET: u64 = 4 * DRAW_ARGS_SHADE_VERTICES as u64;
 
 /// Entries of the GPU ray tracer's traversal stack (WGSL `BVH_STACK_SIZE` in types.wgsl): a
 /// batch's BVH may be at most this deep less one ([`crate::bvh::PartBvh::build`] checks).
@@ -406,8 +426,9 @@ pub struct GpuFootprint {
     /// The triangle of the batch it is a footprint of: the triangle of its slot, or the one it
     /// is a piece of.
     pub triangle: u32,
-    /// Padding to the WGSL size.
-    pub padding: u32,
+    /// 1 in a triangle's own slot when the batch's piece slots ran out while its pieces were
+    /// stored: the footprint is then the rectangle holding all its pieces (0 otherwise).
+    pub pieces_overflowed: u32,
 }
 
 /// Twin of WGSL `PhysicsProbeInput`: one set of arguments for every physics kernel

@@ -9,7 +9,7 @@ use std::mem::{offset_of, size_of};
 use naga::proc::Layouter;
 use naga::{Module, ScalarKind, TypeInner};
 use srt_gpu::types::{
-    EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuFootprint, GpuFrame,
+    EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuCieSample, GpuFootprint, GpuFrame,
     GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuSpectralProbeInput,
     GpuSpectralProbeOutput, GpuStar, GpuVertex, ObjectUniforms, PartFlags, PartUniforms,
     SkyUniforms, SurfaceColourCode, ToneMapCode,
@@ -107,10 +107,11 @@ fn table() -> Vec<Twin> {
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
-        twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, triangle, padding }),
+        twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, triangle, pieces_overflowed }),
         twin!(GpuBvhNode => "BvhNode" { min, primitive_count, max, first }),
         twin!(GpuRtTriangle => "RtTriangle" { p0, part, p1, triangle, p2, padding }),
         twin!(GpuStar => "Star" { direction_temperature, magnitude }),
+        twin!(GpuCieSample => "CieSample" { xyz_bar, wavelength_nm }),
         twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts, direction_map, direction_unmap, image }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
         twin!(GpuPhysicsProbeOutput => "PhysicsProbeOutput" { to_observer, to_rest, emission_event, apparent_position, apparent_tangent, aberrate, ray_origin, ray_direction, scalars }),

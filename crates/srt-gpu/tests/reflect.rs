@@ -14,7 +14,8 @@ use naga::{AddressSpace, Expression, ImageClass, ImageDimension, Literal, Module
 use srt_gpu::pipelines::{BindGroupSpec, PipelineSpec, Slot};
 use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
-    BVH_STACK_SIZE, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
+    BVH_STACK_SIZE, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN, DRAW_ARGS_SHADE_VERTICES,
+    DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
     PartFlags, SurfaceColourCode, ToneMapCode,
 };
 
@@ -37,12 +38,17 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("FOOTPRINT_VERTICES", FOOTPRINT_VERTICES),
         ("BVH_STACK_SIZE", BVH_STACK_SIZE),
         ("MAX_SPLIT_DEPTH", srt_proxy::MAX_SPLIT_DEPTH),
+        ("DRAW_ARGS_FOOTPRINT_VERTICES", DRAW_ARGS_FOOTPRINT_VERTICES),
+        ("DRAW_ARGS_SHADE_VERTICES", DRAW_ARGS_SHADE_VERTICES),
+        ("DRAW_ARGS_PIECES_TAKEN", DRAW_ARGS_PIECES_TAKEN),
+        ("DRAW_ARGS_WORDS", DRAW_ARGS_WORDS),
     ]
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 6] = [
+const SHARED_FAMILIES: [&str; 7] = [
     "BVH_",
+    "DRAW_ARGS_",
     "EFFECTS_",
     "FOOTPRINT_",
     "PART_",
@@ -71,7 +77,8 @@ fn u32_consts(module: &Module) -> Result<Vec<(String, u32)>, String> {
         .filter_map(|(_, c)| c.name.clone().map(|name| (name, c.init)))
         .filter_map(|(name, init)| match module.global_expressions[init] {
             Expression::Literal(Literal::U32(value)) => Some(Ok((name, value))),
-            Expression::Literal(_) => None,
+            // Other scalars and vectors (e.g. GREY_WEIGHTS, checked on its own) are not u32s.
+            Expression::Literal(_) | Expression::Compose { .. } => None,
             ref other => Some(Err(format!("const {name} is not a literal: {other:?}"))),
         })
         .collect()
@@ -150,6 +157,42 @@ fn shared_consts_equal_their_rust_twins() {
         3 * (FOOTPRINT_HULL_POINTS - 2),
         "the fan of the LRT pass covers the largest hull"
     );
+}
+
+/// The components of `module`'s `f32` vector const `name`, if it has one; an error if the
+/// const is not a vector of `f32` literals.
+fn f32_vector_const(module: &Module, name: &str) -> Option<Result<Vec<f32>, String>> {
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))?;
+    let Expression::Compose { components, .. } = &module.global_expressions[constant.init] else {
+        return Some(Err(format!("const {name} is not a vector")));
+    };
+    Some(
+        components
+            .iter()
+            .map(|&c| match module.global_expressions[c] {
+                Expression::Literal(Literal::F32(value)) => Ok(value),
+                ref other => Err(format!("const {name} has a component {other:?}")),
+            })
+            .collect(),
+    )
+}
+
+/// The grey value's weights (Eq. 18) in colour.wgsl are the reference's, in f32.
+#[test]
+fn grey_weights_equal_the_reference() {
+    let reference = srt_trace::GREY_WEIGHTS.map(|w| w as f32).to_vec();
+    let mut found = 0;
+    for shader in shaders::all() {
+        let (module, _) = parse(shader.name, &shader.source);
+        if let Some(weights) = f32_vector_const(&module, "GREY_WEIGHTS") {
+            assert_eq!(weights, Ok(reference.clone()), "{}", shader.name);
+            found += 1;
+        }
+    }
+    assert!(found > 0, "no shader defines GREY_WEIGHTS");
 }
 
 #[test]

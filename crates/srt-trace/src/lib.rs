@@ -26,7 +26,7 @@ mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
-pub use shade::{Illumination, SurfacePoint, grey_value, shade};
+pub use shade::{GREY_WEIGHTS, Illumination, SurfacePoint, grey_value, shade};
 pub use sky::{
     StarImage, project, sky_image_colour, star_colour, star_image, star_layer, tent_splat,
 };

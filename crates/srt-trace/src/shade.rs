@@ -57,10 +57,14 @@ pub struct Illumination<'a> {
     pub exposure: f64,
 }
 
+/// The weights (R, G, B) of the grey value 𝒢 of Eq. 18 (WGSL `GREY_WEIGHTS` in colour.wgsl,
+/// checked by srt-gpu's `tests/reflect.rs`).
+pub const GREY_WEIGHTS: [f64; 3] = [0.3, 0.59, 0.11];
+
 /// Grey value 𝒢 = 0.3R + 0.59G + 0.11B of Eq. 18.
 #[must_use]
 pub fn grey_value(colour: DVec4) -> f64 {
-    0.3 * colour.x + 0.59 * colour.y + 0.11 * colour.z
+    colour.truncate().dot(DVec3::from_array(GREY_WEIGHTS))
 }
 
 /// Display colour (sRGB-encoded RGB in [0, 1]) of a surface point.

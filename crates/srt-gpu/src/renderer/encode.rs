@@ -1,0 +1,432 @@
+//! Encoding a frame: the per-frame uniforms, the proxy pass (footprints), and the render pass
+//! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
+
+use super::*;
+
+impl super::GpuRenderer {
+    /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities);
+    /// returns the tone map's index in [`ToneMap::ALL`].
+    pub(super) fn write_uniforms(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        footprint: FootprintShape,
+    ) -> Result<usize, GpuError> {
+        if scene.objects.len() != self.objects.len()
+            || scene
+                .objects
+                .iter()
+                .zip(&self.objects)
+                .any(|(o, r)| o.parts.len() != r.culling.len())
+        {
+            return Err(GpuError::SceneChanged);
+        }
+        let uploaded_sky = self.sky.as_ref().map_or((0, None), SkyResources::shape);
+        if sky_shape(&scene.sky) != uploaded_sky {
+            return Err(GpuError::SceneChanged);
+        }
+        if let Some(sky) = &self.sky {
+            sky.write_uniforms(ctx, scene, self.star_light_scale);
+        }
+        let (width, height) = self.size();
+        let aspect = f64::from(width) / f64::from(height);
+        let observer = &scene.observer;
+        let (forward, right, up) = observer.basis();
+        let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
+        let tone = FrameResources::tone_index(scene.tone_map);
+        let uniforms = FrameUniforms {
+            view_projection: mat4(view_projection(observer, width, height)),
+            camera_forward: vec4(forward, 0.0),
+            camera_right: vec4(right * tan_half * aspect, 0.0),
+            camera_up: vec4(up * tan_half, 0.0),
+            observer: vec4(observer.position, 0.0),
+            light: vec4(scene.light.position, scene.light.temperature_k),
+            shading: [
+                scene.shading.ambient as f32,
+                scene.shading.diffuse as f32,
+                scene.shading.specular as f32,
+                scene.shading.shininess as f32,
+            ],
+            background: vec4(scene.background, 1.0),
+            lut: self.frame.lut_params[tone],
+            viewport: [
+                width as f32,
+                height as f32,
+                1.0 / width as f32,
+                1.0 / height as f32,
+            ],
+            effects: EffectsCode::from(scene.effects),
+            footprint_shape: FootprintCode::from(footprint),
+            depth_scale: LRT_DEPTH_SCALE,
+            colour: SurfaceColourCode::from(scene.colour),
+            tone_map: ToneMapCode::from(scene.tone_map),
+            exposure: scene.exposure as f32,
+            searchlight_ln_y: searchlight_reference_ln_y() as f32,
+            padding: 0,
+        };
+        ctx.queue
+            .write_buffer(&self.frame.uniforms, 0, bytemuck::bytes_of(&uniforms));
+        let event = observer.event();
+        for (object, resources) in scene.objects.iter().zip(&self.objects) {
+            let uniforms = ObjectUniforms {
+                frame: GpuFrame::new(&object.frame, event),
+                style: [object.wireframe.unwrap_or(0.0) as f32, 0.0, 0.0, 0.0],
+                optics: optics4(&object.optics),
+            };
+            ctx.queue
+                .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
+            for batch in &resources.parts {
+                // Back faces of a batch of closed solids are hidden when the observer is
+                // outside every one of them.
+                let cull = batch.members.iter().all(|&(index, _)| {
+                    resources.culling[index].applies(
+                        &object.parts[index].mesh,
+                        &object.frame,
+                        event,
+                    )
+                });
+                let mut material = batch.material;
+                material.flags = material.flags.with(PartFlags::CULL_BACK_FACES, cull);
+                ctx.queue
+                    .write_buffer(&batch.uniforms, 0, bytemuck::bytes_of(&material));
+            }
+            if let Ok(rt) = &resources.ray_tracing {
+                rt.write_culling(&ctx.queue, object.frame.to_rest(event).position);
+            }
+        }
+        Ok(tone)
+    }
+
+    /// Records the passes of one frame into `encoder`, leaving the image in
+    /// [`GpuRenderer::color_texture`].
+    ///
+    /// # Errors
+    /// [`GpuError::SceneChanged`] if the scene's structure differs from the uploaded one.
+    pub fn encode(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+    ) -> Result<(), GpuError> {
+        let tone = self.write_uniforms(ctx, scene, footprint)?;
+        let traced = self.traced_objects(method)?;
+        if self.count_fragments {
+            encoder.clear_buffer(&self.counter.counter, 0, None);
+        }
+        if method != Method::Polygon {
+            let no_draw = wgpu::util::DrawIndirectArgs {
+                vertex_count: 0,
+                instance_count: 1,
+                first_vertex: 0,
+                first_instance: 0,
+            };
+            // Both draws empty, no piece slot taken.
+            let both = [no_draw.as_bytes(), no_draw.as_bytes(), &[0; 4]].concat();
+            debug_assert_eq!(both.len() as u64, DRAW_ARGS_BYTES);
+            let mut outputs: Vec<(&wgpu::Buffer, &wgpu::Buffer)> = Vec::new();
+            for (object, traced) in self.objects.iter().zip(&traced) {
+                match traced {
+                    Some(rt) => outputs.push((&rt.box_bound, &rt.box_draw_args)),
+                    None => outputs.extend(object.parts.iter().map(|p| (&p.bound, &p.draw_args))),
+                }
+            }
+            for (bound, draw_args) in outputs {
+                encoder.clear_buffer(bound, 0, None);
+                ctx.queue.write_buffer(draw_args, 0, &both);
+            }
+            self.encode_proxy_pass(encoder, tone, &traced);
+        }
+        self.encode_render_pass(&ctx.device, encoder, scene, method, tone, &traced);
+        if let Some(t) = &self.timestamps {
+            encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
+            encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
+        }
+        if self.count_fragments {
+            encoder.copy_buffer_to_buffer(
+                &self.counter.counter,
+                0,
+                &self.counter.readback,
+                0,
+                FRAGMENT_COUNTER_BYTES,
+            );
+        }
+        Ok(())
+    }
+
+    /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
+    /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
+    /// [`Method::Polygon`], and for [`Method::Auto`] those for which
+    /// [`ObjectRayTracing::preferred`] says so.
+    ///
+    /// # Errors
+    /// Why an object has no ray tracer, when [`Method::Rt`] needs it.
+    pub(super) fn traced_objects(
+        &self,
+        method: Method,
+    ) -> Result<Vec<Option<&ObjectRayTracing>>, GpuError> {
+        self.objects
+            .iter()
+            .map(|object| match (method, &object.ray_tracing) {
+                (Method::Rt, Ok(rt)) => Ok(Some(rt)),
+                (Method::Rt, Err(error)) => Err(error.clone()),
+                (Method::Auto, Ok(rt)) => Ok(rt.preferred().then_some(rt)),
+                _ => Ok(None),
+            })
+            .collect()
+    }
+
+    /// The footprint compute pass (timestamps 0 and 1) over the triangles of every object drawn
+    /// by its footprints and the box of every object `traced`.
+    pub(super) fn encode_proxy_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        tone: usize,
+        traced: &[Option<&ObjectRayTracing>],
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("srt proxy"),
+            timestamp_writes: self
+                .timestamps
+                .as_ref()
+                .map(|t| wgpu::ComputePassTimestampWrites {
+                    query_set: &t.set,
+                    beginning_of_pass_write_index: Some(0),
+                    end_of_pass_write_index: Some(1),
+                }),
+        });
+        pass.set_pipeline(&self.pipelines.proxy);
+        pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+        for (object, traced) in self.objects.iter().zip(traced) {
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            if let Some(rt) = traced {
+                pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
+                pass.set_bind_group(PROXY_OUTPUT_GROUP.index, &rt.box_proxy_group, &[]);
+                pass.dispatch_workgroups(1, 1, 1);
+                continue;
+            }
+            for part in &object.parts {
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                pass.set_bind_group(PROXY_OUTPUT_GROUP.index, &part.proxy_bind_group, &[]);
+                let (x, y) = part.sizes.workgroups;
+                pass.dispatch_workgroups(x, y, 1);
+            }
+        }
+    }
+
+    /// The render passes into the targets (timestamps 2 and 3): for the polygon method one
+    /// pass into colour and depth; for the exact methods the visibility pass into ids and depth
+    /// (each object by its triangles' footprints, or, where `traced`, by its box's footprints
+    /// and its BVH), then the shading pass into colour.
+    pub(super) fn encode_render_pass(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        method: Method,
+        tone: usize,
+        traced: &[Option<&ObjectRayTracing>],
+    ) {
+        let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
+        let (color_view, depth_view, ids_view) = (
+            view(&self.targets.color),
+            view(&self.targets.depth),
+            view(&self.targets.ids),
+        );
+        // Without stars the object passes clear to the background; with them, the sky's passes
+        // draw background and stars first and the object passes draw over them.
+        let background = match &self.sky {
+            Some(sky) => {
+                sky.encode(
+                    encoder,
+                    &self.frame.bind_groups[tone],
+                    &self.frame.polygon_groups[tone],
+                    &color_view,
+                    self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP)),
+                );
+                wgpu::LoadOp::Load
+            }
+            None => {
+                let b = scene.background;
+                wgpu::LoadOp::Clear(wgpu::Color {
+                    r: b.x,
+                    g: b.y,
+                    b: b.z,
+                    a: 1.0,
+                })
+            }
+        };
+        let depth = wgpu::RenderPassDepthStencilAttachment {
+            view: &depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        };
+        let lrt = if self.count_fragments {
+            self.pipelines.lrt_counting(device)
+        } else {
+            &self.pipelines.lrt
+        };
+        match method {
+            Method::Polygon => {
+                let mut pass = self.begin_pass(
+                    encoder,
+                    "srt polygon",
+                    &color_view,
+                    background,
+                    Some(depth),
+                    [Some(2), Some(3)],
+                );
+                pass.set_pipeline(&self.pipelines.polygon);
+                pass.set_bind_group(
+                    POLYGON_FRAME_GROUP.index,
+                    &self.frame.polygon_groups[tone],
+                    &[],
+                );
+                self.draw_parts(&mut pass, |pass, part| {
+                    // Checked at upload: 3 × triangles fits in u32.
+                    pass.draw(0..3 * part.sizes.triangles, 0..1);
+                });
+            }
+            Method::Lrt | Method::Rt | Method::Auto => {
+                let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
+                let mut pass = self.begin_pass(
+                    encoder,
+                    "srt lrt visibility",
+                    &ids_view,
+                    none,
+                    Some(depth),
+                    [Some(2), None],
+                );
+                pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+                // Objects drawn by their footprints, then those traced through their BVH; the
+                // depth test keeps the nearest hit across both.
+                pass.set_pipeline(&lrt.visibility);
+                for (object, _) in self.objects.iter().zip(traced).filter(|(_, t)| t.is_none()) {
+                    pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                    for part in &object.parts {
+                        pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                        self.draw_footprints(&mut pass, part);
+                    }
+                }
+                pass.set_pipeline(&lrt.rt_visibility);
+                for (object, rt) in self.objects.iter().zip(traced) {
+                    if let Some(rt) = rt {
+                        pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                        pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
+                        pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
+                        self.draw_box_footprints(&mut pass, &rt.box_draw_args);
+                    }
+                }
+                drop(pass);
+                let mut pass = self.begin_pass(
+                    encoder,
+                    "srt lrt shading",
+                    &color_view,
+                    background,
+                    None,
+                    [None, Some(3)],
+                );
+                pass.set_pipeline(&lrt.shade);
+                pass.set_bind_group(
+                    SHADE_FRAME_GROUP.index,
+                    &self.targets.shade_frame_groups[tone],
+                    &[],
+                );
+                for (object, traced) in self.objects.iter().zip(traced) {
+                    pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                    for part in &object.parts {
+                        pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                        // Group 3 for the part's bound (for a traced object its box's).
+                        let (group, draw_args) = match traced {
+                            Some(rt) => (&rt.shade_group, &rt.box_draw_args),
+                            None => (&part.lrt_bind_group, &part.draw_args),
+                        };
+                        pass.set_bind_group(LRT_INPUT_GROUP.index, group, &[]);
+                        self.draw_bound(&mut pass, draw_args);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Begins a render pass into `target` (loaded as `load` says) and `depth`, writing
+    /// timestamps at the indices `[beginning, end]` given.
+    pub(super) fn begin_pass<'a>(
+        &self,
+        encoder: &'a mut wgpu::CommandEncoder,
+        label: &str,
+        target: &wgpu::TextureView,
+        load: wgpu::LoadOp<wgpu::Color>,
+        depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
+        [beginning, end]: [Option<u32>; 2],
+    ) -> wgpu::RenderPass<'a> {
+        let timestamps = self
+            .timestamps
+            .as_ref()
+            .map(|t| wgpu::RenderPassTimestampWrites {
+                query_set: &t.set,
+                beginning_of_pass_write_index: beginning,
+                end_of_pass_write_index: end,
+            });
+        crate::passes::begin_pass(encoder, label, target, load, depth, timestamps)
+    }
+
+    /// Binds each object's and part's groups in `pass` (groups 1 and 2) and lets `draw` draw the
+    /// part.
+    pub(super) fn draw_parts(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        draw: impl Fn(&mut wgpu::RenderPass<'_>, &PartResources),
+    ) {
+        for object in &self.objects {
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            for part in &object.parts {
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                draw(pass, part);
+            }
+        }
+    }
+
+    /// Draws a part's screen bound as two triangles (`part_bound_vertex`), if any footprint
+    /// behind it is on screen: the proxy pass wrote the vertex count into `draw_args` where the
+    /// device has indirect draws.
+    pub(super) fn draw_bound(&self, pass: &mut wgpu::RenderPass<'_>, draw_args: &wgpu::Buffer) {
+        if self.indirect_draws {
+            pass.draw_indirect(draw_args, SHADE_DRAW_OFFSET);
+        } else {
+            pass.draw(0..6, 0..1);
+        }
+    }
+
+    /// Draws the footprints of an object's box (group 3 bound by the caller), up to the last
+    /// one on screen where the device has indirect draws.
+    pub(super) fn draw_box_footprints(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        draw_args: &wgpu::Buffer,
+    ) {
+        if self.indirect_draws {
+            pass.draw_indirect(draw_args, 0);
+        } else {
+            pass.draw(0..FOOTPRINT_VERTICES * BOX_TRIANGLES, 0..1);
+        }
+    }
+
+    /// Draws the footprints of `part`, `FOOTPRINT_VERTICES` vertices per triangle in one draw
+    /// (not instanced: a 12-vertex instance per triangle leaves most of a software rasteriser's
+    /// vertex batch empty), up to the last triangle on screen where the device has indirect
+    /// draws (the proxy pass wrote the count); group 3: footprints and counter.
+    pub(super) fn draw_footprints(&self, pass: &mut wgpu::RenderPass<'_>, part: &PartResources) {
+        pass.set_bind_group(LRT_INPUT_GROUP.index, &part.lrt_bind_group, &[]);
+        if self.indirect_draws {
+            pass.draw_indirect(&part.draw_args, 0);
+        } else {
+            // Checked at upload: FOOTPRINT_VERTICES × triangles fits in u32.
+            pass.draw(0..FOOTPRINT_VERTICES * part.sizes.triangles, 0..1);
+        }
+    }
+}

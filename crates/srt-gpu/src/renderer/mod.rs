@@ -1,0 +1,450 @@
+//! The GPU renderer: uploads a scene once, then renders it (local ray tracing or the polygon
+//! baseline) for any observer, time, velocities and effect mode with the same mesh structure,
+//! and reads the image back.
+//!
+//! Everything the renderer allocates is checked against the device's limits first
+//! ([`crate::limits`]), so a scene or image size the adapter cannot serve is a
+//! [`GpuError::ExceedsLimit`] before any GPU object exists.
+
+use std::sync::Arc;
+
+use srt_color::{TemperatureLut, ToneMap, quantize_8bit, searchlight_reference_ln_y};
+use srt_scene::{Object, Part, Scene};
+use wgpu::util::DeviceExt as _;
+
+use crate::context::GpuContext;
+use crate::culling::BackFaceCulling;
+use crate::error::GpuError;
+use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
+use crate::limits::DeviceLimits;
+use crate::lut::{lut_params, lut_texture};
+use crate::pipelines::{
+    FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
+    PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, slots,
+};
+use crate::projection::view_projection;
+use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing};
+use crate::readback::{TextureReadback, texel_bytes};
+use crate::shaders::WORKGROUP_SIZE;
+use crate::sky::{SkyResources, sky_shape};
+use crate::spectral::SpectralTables;
+use crate::textures::part_texture;
+use crate::types::{
+    DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
+    FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
+    GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags, PartUniforms, SHADE_DRAW_OFFSET,
+    SurfaceColourCode, ToneMapCode, footprint_slots, mat4, optics4, vec4,
+};
+
+mod encode;
+mod targets;
+mod upload;
+
+use targets::{
+    FragmentCounter, FrameResources, SKY_TIMESTAMP, TIMESTAMP_COUNT, Targets, Timestamps,
+};
+use upload::{ObjectResources, PartResources, batches, upload_object};
+
+/// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
+/// f32 depth has constant relative precision, so the scale costs nothing).
+const LRT_DEPTH_SCALE: f32 = 1e-6;
+
+/// Which rendering method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is faster
+    /// for it (by the layers of its triangles, `ObjectRayTracing::preferred`); the two compose
+    /// through the depth test.
+    #[default]
+    Auto,
+    /// Local ray tracing (the paper's method, exact per pixel): one footprint per triangle.
+    Lrt,
+    /// Ray tracing through a BVH per batch of parts in its rest frame (the reference's
+    /// algorithm on the GPU), exact per pixel like LRT; its cost does not grow with the layers
+    /// of a deep model or with footprints swept beside the camera.
+    Rt,
+    /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline.
+    Polygon,
+}
+
+impl Method {
+    /// Whether the method is exact per pixel (what the CPU reference computes).
+    #[must_use]
+    pub const fn is_exact(self) -> bool {
+        !matches!(self, Self::Polygon)
+    }
+
+    /// The name used on the command line.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Lrt => "lrt",
+            Self::Rt => "rt",
+            Self::Polygon => "polygon",
+        }
+    }
+}
+
+/// Which footprint the LRT pass rasterises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FootprintShape {
+    /// The convex hull (3–6 points).
+    #[default]
+    Hull,
+    /// The window-aligned rectangle (the paper's choice).
+    Rectangle,
+}
+
+impl From<FootprintShape> for FootprintCode {
+    fn from(shape: FootprintShape) -> Self {
+        match shape {
+            FootprintShape::Hull => Self::HULL,
+            FootprintShape::Rectangle => Self::RECTANGLE,
+        }
+    }
+}
+
+/// A rendered image read back from the GPU: display colours (sRGB-encoded, [0, 1]), RGBA.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GpuImage {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Row-major pixels from the top.
+    pub pixels: Vec<[f32; 4]>,
+}
+
+impl GpuImage {
+    /// 8-bit sRGB pixels, rounded as the CPU reference rounds.
+    #[must_use]
+    pub fn to_rgb8(&self) -> Vec<[u8; 3]> {
+        self.pixels
+            .iter()
+            .map(|p| [p[0], p[1], p[2]].map(|c| quantize_8bit(f64::from(c))))
+            .collect()
+    }
+}
+
+/// Timing and work counters of one frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameStats {
+    /// GPU time of the passes in milliseconds, where timestamp queries are supported.
+    pub gpu_time_ms: Option<f64>,
+    /// GPU time of the LRT's footprint (proxy) pass alone, in milliseconds, where timestamp
+    /// queries are supported (`None` for the polygon method).
+    pub proxy_time_ms: Option<f64>,
+    /// The LRT pass's fragments, when the renderer counts them
+    /// ([`GpuRenderer::set_fragment_counting`]; zero for the polygon method).
+    pub fragments: Option<FragmentCounts>,
+}
+
+/// What the LRT pass's fragment shader did in one frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FragmentCounts {
+    /// Fragment shader invocations (one per footprint pixel that passed the rasteriser).
+    pub run: u64,
+    /// Those whose ray hit the triangle and were shaded (the rest discard).
+    pub shaded: u64,
+}
+
+/// A scene uploaded to the GPU, ready to render.
+pub struct GpuRenderer {
+    pipelines: Pipelines,
+    frame: FrameResources,
+    objects: Vec<ObjectResources>,
+    counter: FragmentCounter,
+    timestamps: Option<Timestamps>,
+    targets: Targets,
+    /// The stars, if the scene has a sky.
+    sky: Option<SkyResources>,
+    /// Factor on every star's light ([`GpuRenderer::set_star_light_scale`]).
+    star_light_scale: f64,
+    /// Whether the LRT pass counts its fragments.
+    count_fragments: bool,
+    /// Whether the LRT draws take their vertex counts from the proxy pass
+    /// ([`GpuContext::indirect_draws`]).
+    indirect_draws: bool,
+}
+
+impl GpuRenderer {
+    /// Uploads `scene` (meshes, textures, colour tables) for images of `width` × `height`.
+    ///
+    /// # Errors
+    /// [`GpuError::ExceedsLimit`] when the image or a mesh exceeds the device's limits (checked
+    /// before anything is allocated), or any wgpu error.
+    pub fn new(ctx: &GpuContext, scene: &Scene, width: u32, height: u32) -> Result<Self, GpuError> {
+        let limits = DeviceLimits::of(ctx);
+        limits.check_render_target(width, height, texel_bytes(ctx.color_format)?)?;
+        let sizes = scene
+            .objects
+            .iter()
+            .map(|object| {
+                let culling: Vec<BackFaceCulling> = object
+                    .parts
+                    .iter()
+                    .map(|part| BackFaceCulling::for_mesh(&part.mesh))
+                    .collect();
+                let batches = batches(&limits, object, &culling)?;
+                Ok((culling, batches))
+            })
+            .collect::<Result<Vec<_>, GpuError>>()?;
+        let device = &ctx.device;
+        let pipelines = Pipelines::new(device, ctx.color_format);
+        let frame = FrameResources::new(ctx, &pipelines)?;
+        let counter = FragmentCounter::new(device);
+        // Batches are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
+        let mut first_id = 1u32;
+        let objects = scene
+            .objects
+            .iter()
+            .zip(sizes)
+            .map(|(object, sizes)| {
+                let id = first_id;
+                first_id += sizes.1.len() as u32;
+                upload_object(ctx, &pipelines, &counter, object, id, sizes)
+            })
+            .collect();
+        let renderer = Self {
+            timestamps: ctx.timestamps.then(|| Timestamps::new(device)),
+            targets: Targets::new(ctx, width, height, &pipelines, &frame)?,
+            sky: SkyResources::new(ctx, scene, width, height)?,
+            star_light_scale: 1.0,
+            pipelines,
+            frame,
+            objects,
+            counter,
+            count_fragments: false,
+            indirect_draws: ctx.indirect_draws,
+        };
+        ctx.take_errors()?;
+        Ok(renderer)
+    }
+
+    /// Multiplies every star's light by `scale` (default 1). A caller that renders at k× the
+    /// output size and box-filters down (supersampling) sets k², so that each star brings the
+    /// same light to the output pixels as in the CPU reference, where it lands in one output
+    /// pixel's samples.
+    pub fn set_star_light_scale(&mut self, scale: f64) {
+        self.star_light_scale = scale;
+    }
+
+    /// Makes the LRT passes count the fragments they run and shade
+    /// ([`FrameStats::fragments`]), or stop counting. Counting is for measurements: it costs
+    /// global atomics per fragment.
+    pub fn set_fragment_counting(&mut self, counting: bool) {
+        self.count_fragments = counting;
+    }
+
+    /// Per object, its surface over its box's surface (the layers of triangles `auto` weighs,
+    /// `ObjectRayTracing::preferred`), or `None` where it has no ray tracer.
+    #[must_use]
+    pub fn object_layers(&self) -> Vec<Option<f64>> {
+        self.objects
+            .iter()
+            .map(|o| o.ray_tracing.as_ref().ok().map(ObjectRayTracing::layers))
+            .collect()
+    }
+
+    /// Image width and height.
+    #[must_use]
+    pub fn size(&self) -> (u32, u32) {
+        (self.targets.width, self.targets.height)
+    }
+
+    /// Changes the image size (recreates the render targets).
+    ///
+    /// # Errors
+    /// [`GpuError::ExceedsLimit`] when the size exceeds the device's limits; the renderer then
+    /// keeps its previous size.
+    pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
+        if (width, height) != self.size() {
+            let targets = Targets::new(ctx, width, height, &self.pipelines, &self.frame)?;
+            if let Some(sky) = &mut self.sky {
+                sky.resize(ctx, width, height)?;
+            }
+            self.targets = targets;
+        }
+        Ok(())
+    }
+
+    /// The texture the last frame was rendered into, for display.
+    #[must_use]
+    pub fn color_texture(&self) -> &wgpu::Texture {
+        &self.targets.color
+    }
+
+    /// Renders one frame of `scene` and reads it back.
+    ///
+    /// # Errors
+    /// wgpu errors, a lost device, or a scene whose structure differs from the uploaded one.
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+    ) -> Result<(GpuImage, FrameStats), GpuError> {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("srt frame"),
+            });
+        self.encode(ctx, &mut encoder, scene, method, footprint)?;
+        let t = &self.targets;
+        t.readback.encode_copy(&mut encoder, &t.color);
+        ctx.queue.submit([encoder.finish()]);
+        let bytes = t.readback.read(ctx)?;
+        let pixel_bytes = texel_bytes(ctx.color_format)? as usize;
+        let pixels = bytes.chunks_exact(pixel_bytes).map(decode_pixel).collect();
+        let fragments = if self.count_fragments {
+            let [run, shaded] =
+                bytemuck::pod_read_unaligned::<[u32; 2]>(&ctx.read_buffer(&self.counter.readback)?);
+            Some(FragmentCounts {
+                run: u64::from(run),
+                shaded: u64::from(shaded),
+            })
+        } else {
+            None
+        };
+        let (gpu_time_ms, proxy_time_ms) = match &self.timestamps {
+            Some(t) => {
+                let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&t.readback)?);
+                let ms = |from: usize, to: usize| {
+                    stamps[to].saturating_sub(stamps[from]) as f64
+                        * f64::from(ctx.queue.get_timestamp_period())
+                        * 1e-6
+                };
+                // From the first pass of the frame (the proxy pass, or else the sky's, or
+                // else the polygon pass) to the end of the last.
+                match method {
+                    Method::Lrt | Method::Rt | Method::Auto => (Some(ms(0, 3)), Some(ms(0, 1))),
+                    Method::Polygon => {
+                        let first = if self.sky.is_some() { SKY_TIMESTAMP } else { 2 };
+                        (Some(ms(first as usize, 3)), None)
+                    }
+                }
+            }
+            None => (None, None),
+        };
+        ctx.take_errors()?;
+        Ok((
+            GpuImage {
+                width: t.width,
+                height: t.height,
+                pixels,
+            },
+            FrameStats {
+                gpu_time_ms,
+                proxy_time_ms,
+                fragments,
+            },
+        ))
+    }
+
+    /// Runs the proxy pass for `scene` and reads back every part's footprints (split out of the
+    /// batches the parts are uploaded in), indexed `[object][part][triangle]`: each triangle's
+    /// own footprint and the pieces it was split into (for validation against srt-proxy).
+    ///
+    /// # Errors
+    /// wgpu or readback errors.
+    pub fn read_footprints(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+    ) -> Result<Vec<Vec<Vec<TriangleFootprints>>>, GpuError> {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("srt footprints"),
+            });
+        self.encode(ctx, &mut encoder, scene, Method::Lrt, FootprintShape::Hull)?;
+        let readback = |encoder: &mut wgpu::CommandEncoder, source: &wgpu::Buffer, size| {
+            let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("srt footprint readback"),
+                size,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            });
+            encoder.copy_buffer_to_buffer(source, 0, &buffer, 0, size);
+            buffer
+        };
+        let readbacks: Vec<Vec<(wgpu::Buffer, wgpu::Buffer)>> = self
+            .objects
+            .iter()
+            .map(|object| {
+                object
+                    .parts
+                    .iter()
+                    .map(|part| {
+                        (
+                            readback(&mut encoder, &part.footprints, part.sizes.footprint_bytes),
+                            readback(&mut encoder, &part.draw_args, DRAW_ARGS_BYTES),
+                        )
+                    })
+                    .collect()
+            })
+            .collect();
+        ctx.queue.submit([encoder.finish()]);
+        let mut footprints = Vec::new();
+        for (object, buffers) in self.objects.iter().zip(&readbacks) {
+            // Split each batch's footprints among its parts, back in part order, and hand each
+            // piece to its triangle.
+            let mut parts = vec![Vec::new(); object.culling.len()];
+            for (batch, (slots, draw_args)) in object.parts.iter().zip(buffers) {
+                let all: Vec<GpuFootprint> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(slots)?);
+                let args: Vec<u32> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(draw_args)?);
+                let (own, piece_slots) = all.split_at(batch.sizes.triangles as usize);
+                let taken = args[DRAW_ARGS_PIECES_TAKEN as usize] as usize;
+                let pieces = &piece_slots[..taken.min(piece_slots.len())];
+                let mut first = 0;
+                for &(index, triangles) in &batch.members {
+                    let mine = first..first + triangles;
+                    parts[index] = own[mine.start as usize..mine.end as usize]
+                        .iter()
+                        .enumerate()
+                        .map(|(t, &own)| TriangleFootprints {
+                            own,
+                            pieces: pieces
+                                .iter()
+                                .filter(|p| p.triangle == mine.start + t as u32)
+                                .copied()
+                                .collect(),
+                        })
+                        .collect();
+                    first = mine.end;
+                }
+            }
+            footprints.push(parts);
+        }
+        ctx.take_errors()?;
+        Ok(footprints)
+    }
+}
+
+/// What the proxy pass drew for one triangle ([`GpuRenderer::read_footprints`]).
+#[derive(Debug, Clone)]
+pub struct TriangleFootprints {
+    /// The footprint in the triangle's own slot.
+    pub own: GpuFootprint,
+    /// The footprints of the pieces it was split into, beyond `own` (drawn as well).
+    pub pieces: Vec<GpuFootprint>,
+}
+
+/// One RGBA pixel of the colour target: four little-endian f32 (16 bytes) or f16 (8 bytes).
+fn decode_pixel(bytes: &[u8]) -> [f32; 4] {
+    let channel = |k: usize| {
+        if bytes.len() == 16 {
+            f32::from_le_bytes([
+                bytes[4 * k],
+                bytes[4 * k + 1],
+                bytes[4 * k + 2],
+                bytes[4 * k + 3],
+            ])
+        } else {
+            half::f16::from_le_bytes([bytes[2 * k], bytes[2 * k + 1]]).to_f32()
+        }
+    };
+    [channel(0), channel(1), channel(2), channel(3)]
+}

@@ -1,0 +1,452 @@
+//! Uploading a scene: its parts grouped into batches (one per texture and culling kind, within
+//! the device's buffer limits), each batch's vertices, triangles and footprint slots, and an
+//! object's BVH and box for the ray tracer.
+
+use super::*;
+
+/// One batch's buffer sizes and counts, checked against the device's limits before upload.
+pub(super) struct PartSizes {
+    pub(super) triangles: u32,
+    pub(super) footprint_bytes: u64,
+    /// Workgroup grid of the proxy pass.
+    pub(super) workgroups: (u32, u32),
+}
+
+impl PartSizes {
+    /// The sizes of a batch of `triangles` triangles and `vertices` vertices, named in messages
+    /// by `describe` (e.g. `parts 0, 3 of object "ship"`).
+    pub(super) fn check(
+        limits: &DeviceLimits,
+        describe: &dyn Fn() -> String,
+        triangles: u64,
+        vertices: u64,
+    ) -> Result<Self, GpuError> {
+        let name = |buffer: &str| {
+            format!(
+                "the {buffer} of {} ({triangles} triangles, {vertices} vertices)",
+                describe()
+            )
+        };
+        let footprint_bytes = footprint_slots(triangles) * size_of::<GpuFootprint>() as u64;
+        limits.check_storage_buffer(
+            || name("vertex buffer"),
+            vertices * size_of::<GpuVertex>() as u64,
+        )?;
+        limits.check_storage_buffer(
+            || name("index buffer"),
+            triangles * size_of::<[u32; 3]>() as u64,
+        )?;
+        limits.check_storage_buffer(|| name("footprint buffer"), footprint_bytes)?;
+        let workgroups =
+            limits.workgroup_grid(|| name("footprint pass"), triangles, WORKGROUP_SIZE)?;
+        // The polygon pass draws three vertices per triangle, the LRT pass FOOTPRINT_VERTICES.
+        limits.check_u32(|| name("polygon draw"), 3 * triangles, "vertices")?;
+        limits.check_u32(
+            || name("LRT draw"),
+            u64::from(FOOTPRINT_VERTICES) * footprint_slots(triangles),
+            "vertices",
+        )?;
+        limits.check_u32(|| name("index range"), vertices, "vertices")?;
+        Ok(Self {
+            triangles: limits.check_u32(|| name("batch"), triangles, "triangles")?,
+            footprint_bytes,
+            workgroups,
+        })
+    }
+}
+
+/// Parts of one object uploaded and drawn together ([`batches`]), and their sizes.
+pub(super) struct Batch {
+    /// Indices of the parts in the object, ascending.
+    pub(super) members: Vec<usize>,
+    pub(super) sizes: PartSizes,
+}
+
+/// Groups the parts of `object` into batches: parts with the same texture and the same
+/// back-face culling kind are concatenated (their base colours baked into the vertex colours),
+/// as long as the result fits the device's limits. Every draw call costs time of its own — on
+/// lavapipe milliseconds for the LRT shading shader — and models often have many parts (the
+/// 2CylinderEngine has 115, uploaded as one batch; the spider.obj 19, as 5).
+///
+/// # Errors
+/// [`GpuError::ExceedsLimit`] when a single part does not fit.
+pub(super) fn batches(
+    limits: &DeviceLimits,
+    object: &Object,
+    culling: &[BackFaceCulling],
+) -> Result<Vec<Batch>, GpuError> {
+    let describe = |members: &[usize]| describe_parts(object, members);
+    // Open batches, one per key, with their running counts.
+    let mut open: Vec<(BatchKey, Batch, u64, u64)> = Vec::new();
+    let mut closed = Vec::new();
+    for (index, part) in object.parts.iter().enumerate() {
+        let key = BatchKey {
+            texture: part
+                .material
+                .texture
+                .as_ref()
+                .map(|t| Arc::as_ptr(t) as usize),
+            culling: culling[index],
+        };
+        let (triangles, vertices) = (
+            part.mesh.triangles().len() as u64,
+            part.mesh.positions().len() as u64,
+        );
+        if let Some(position) = open.iter().position(|(k, ..)| *k == key) {
+            let (_, batch, batch_triangles, batch_vertices) = &mut open[position];
+            let mut members = batch.members.clone();
+            members.push(index);
+            let (t, v) = (*batch_triangles + triangles, *batch_vertices + vertices);
+            if let Ok(sizes) = PartSizes::check(limits, &|| describe(&members), t, v) {
+                *batch = Batch { members, sizes };
+                (*batch_triangles, *batch_vertices) = (t, v);
+                continue;
+            }
+            closed.push(open.swap_remove(position).1);
+        }
+        let members = vec![index];
+        let sizes = PartSizes::check(limits, &|| describe(&members), triangles, vertices)?;
+        open.push((key, Batch { members, sizes }, triangles, vertices));
+    }
+    closed.extend(open.into_iter().map(|(_, batch, ..)| batch));
+    Ok(closed)
+}
+
+/// Names parts `members` of `object` in messages, e.g. `parts 0, 3 of object "ship"`.
+pub(super) fn describe_parts(object: &Object, members: &[usize]) -> String {
+    let list: Vec<String> = members.iter().map(usize::to_string).collect();
+    let noun = if members.len() == 1 { "part" } else { "parts" };
+    format!("{noun} {} of object {:?}", list.join(", "), object.name)
+}
+
+/// What parts must share to be batched.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct BatchKey {
+    /// The texture's address (textures are shared between parts by `Arc`), if any.
+    pub(super) texture: Option<usize>,
+    pub(super) culling: BackFaceCulling,
+}
+
+/// Per batch of parts ([`Batch`]): buffers, texture and bind groups.
+pub(super) struct PartResources {
+    pub(super) uniforms: wgpu::Buffer,
+    pub(super) bind_group: wgpu::BindGroup,
+    pub(super) proxy_bind_group: wgpu::BindGroup,
+    pub(super) lrt_bind_group: wgpu::BindGroup,
+    pub(super) footprints: wgpu::Buffer,
+    /// The part's screen bound (WGSL `part_bound`), cleared before every proxy pass.
+    pub(super) bound: wgpu::Buffer,
+    /// The arguments of its footprint draw (WGSL `draw_args`), reset before every proxy pass.
+    pub(super) draw_args: wgpu::Buffer,
+    pub(super) sizes: PartSizes,
+    pub(super) material: PartUniforms,
+    /// The object's parts in this batch, ascending, and their triangle counts (for splitting
+    /// the footprints by part).
+    pub(super) members: Vec<(usize, u32)>,
+}
+
+/// Per object: its uniform buffer, the culling rule of each of its parts, its batches, and its
+/// BVH for the ray tracer.
+pub(super) struct ObjectResources {
+    pub(super) uniforms: wgpu::Buffer,
+    pub(super) bind_group: wgpu::BindGroup,
+    pub(super) culling: Vec<BackFaceCulling>,
+    pub(super) parts: Vec<PartResources>,
+    /// The object's BVH and box, for the ray tracer, or why it has none (the other methods
+    /// render the object all the same).
+    pub(super) ray_tracing: Result<ObjectRayTracing, GpuError>,
+}
+
+/// The vertices of `parts`, one after the other, each colour multiplied by its part's base
+/// colour (so the batch's own base colour is white), and their triangles with indices shifted
+/// to match.
+pub(super) fn batch_geometry(parts: &[&Part]) -> (Vec<GpuVertex>, Vec<[u32; 3]>) {
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+    for part in parts {
+        let mesh = &part.mesh;
+        let base = part.material.base_color;
+        // Checked by PartSizes: the batch's vertex count fits in u32.
+        let first = vertices.len() as u32;
+        vertices.extend((0..mesh.positions().len()).map(|i| {
+            let color = mesh.colors().map_or([1.0; 4], |c| c[i]);
+            GpuVertex {
+                position: vec4(mesh.positions()[i], 1.0),
+                normal: vec4(mesh.normals()[i], 0.0),
+                color: [0, 1, 2, 3].map(|k| base[k] * color[k]),
+                uv: [mesh.uvs()[i].x as f32, mesh.uvs()[i].y as f32, 0.0, 0.0],
+            }
+        }));
+        triangles.extend(mesh.triangles().iter().map(|t| t.map(|v| v + first)));
+    }
+    (vertices, triangles)
+}
+
+/// Uploads one batch of `object`'s parts (sizes already checked), whose vertices and triangles
+/// are `geometry`: its buffers, texture and bind groups.
+pub(super) fn upload_batch(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    counter: &FragmentCounter,
+    object: &Object,
+    (batch, id): (Batch, u32),
+    (vertices, triangles): &(Vec<GpuVertex>, Vec<[u32; 3]>),
+) -> PartResources {
+    let device = &ctx.device;
+    let Batch { members, sizes } = batch;
+    let parts: Vec<&Part> = members.iter().map(|&i| &object.parts[i]).collect();
+    let part = parts[0];
+    let material = PartUniforms {
+        // The base colours are in the vertex colours.
+        base_color: [1.0; 4],
+        flags: PartFlags::default()
+            .with(PartFlags::TEXTURED, part.material.texture.is_some())
+            .with(PartFlags::VERTEX_COLOURS, true),
+        triangle_count: sizes.triangles,
+        id,
+        padding: 0,
+    };
+    let uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("srt part uniforms"),
+        contents: bytemuck::bytes_of(&material),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("srt vertices"),
+        contents: bytemuck::cast_slice(vertices),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("srt indices"),
+        contents: bytemuck::cast_slice(triangles),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let footprints = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt footprints"),
+        size: sizes.footprint_bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let bound = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt part bound"),
+        size: PART_BOUND_BYTES,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let draw_args = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt footprint draw"),
+        size: DRAW_ARGS_BYTES,
+        // Read back (COPY_SRC) by `read_footprints` for its piece count.
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::INDIRECT
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let texture = part_texture(ctx, part.material.texture.as_deref());
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(PART_GROUP.label),
+        layout: &pipelines.part_layout,
+        entries: &[
+            slots::PART.entry(uniforms.as_entire_binding()),
+            slots::VERTICES.entry(vertex_buffer.as_entire_binding()),
+            slots::INDICES.entry(index_buffer.as_entire_binding()),
+            slots::PART_TEXTURE.entry(wgpu::BindingResource::TextureView(&texture)),
+        ],
+    });
+    let proxy_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(PROXY_OUTPUT_GROUP.label),
+        layout: &pipelines.proxy_output_layout,
+        entries: &[
+            slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding()),
+            slots::PROXY_PART_BOUND.entry(bound.as_entire_binding()),
+            slots::PROXY_DRAW_ARGS.entry(draw_args.as_entire_binding()),
+        ],
+    });
+    let lrt_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(LRT_INPUT_GROUP.label),
+        layout: &pipelines.lrt_input_layout,
+        entries: &[
+            slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
+            slots::FRAGMENT_COUNT.entry(counter.counter.as_entire_binding()),
+            slots::LRT_PART_BOUND.entry(bound.as_entire_binding()),
+        ],
+    });
+    PartResources {
+        uniforms,
+        bind_group,
+        proxy_bind_group,
+        lrt_bind_group,
+        footprints,
+        bound,
+        draw_args,
+        sizes,
+        material,
+        members: parts
+            .iter()
+            .zip(&members)
+            .map(|(part, &index)| (index, part.mesh.triangles().len() as u32))
+            .collect(),
+    }
+}
+
+/// Uploads one object (batch sizes already checked): its uniform buffer and batches, numbered
+/// from `first_id`.
+pub(super) fn upload_object(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    counter: &FragmentCounter,
+    object: &Object,
+    first_id: u32,
+    (culling, batches): (Vec<BackFaceCulling>, Vec<Batch>),
+) -> ObjectResources {
+    let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("srt object uniforms"),
+        size: size_of::<ObjectUniforms>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(OBJECT_GROUP.label),
+        layout: &pipelines.object_layout,
+        entries: &[slots::OBJECT.entry(uniforms.as_entire_binding())],
+    });
+    let mut rt_triangles = Vec::new();
+    let parts = batches
+        .into_iter()
+        .zip(first_id..)
+        .map(|(batch, id)| {
+            let members: Vec<&Part> = batch.members.iter().map(|&i| &object.parts[i]).collect();
+            let geometry = batch_geometry(&members);
+            let (vertices, triangles) = &geometry;
+            rt_triangles.extend(triangles.iter().zip(0..).map(|(&t, number)| {
+                let [p0, p1, p2] = crate::bvh::corners(vertices, t);
+                GpuRtTriangle {
+                    p0,
+                    part: id,
+                    p1,
+                    triangle: number,
+                    p2,
+                    padding: 0,
+                }
+            }));
+            upload_batch(ctx, pipelines, counter, object, (batch, id), &geometry)
+        })
+        .collect();
+    let ray_tracing =
+        ObjectRayTracing::new(ctx, pipelines, &counter.counter, &rt_triangles, || {
+            format!("object {:?}", object.name)
+        });
+    ObjectResources {
+        uniforms,
+        bind_group,
+        culling,
+        parts,
+        ray_tracing,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use srt_scene::SurfaceOptics;
+    use std::sync::Arc;
+
+    use glam::DVec3;
+    use srt_physics::Frame;
+    use srt_scene::shapes::cube;
+    use srt_scene::{Material, Mesh, Object, Part, Texture};
+
+    use super::{BackFaceCulling, batches};
+    use crate::limits::DeviceLimits;
+
+    fn limits(max_storage_buffer_binding_size: u64) -> DeviceLimits {
+        DeviceLimits {
+            limits: wgpu::Limits {
+                max_storage_buffer_binding_size,
+                ..wgpu::Limits::downlevel_defaults()
+            },
+            adapter: "test".to_owned(),
+        }
+    }
+
+    fn part(mesh: Mesh, texture: Option<&Arc<Texture>>) -> Part {
+        Part {
+            mesh,
+            material: Material {
+                texture: texture.cloned(),
+                ..Material::default()
+            },
+        }
+    }
+
+    /// Parts with the same texture and culling kind share a batch; textures and open meshes
+    /// keep theirs apart; the order within a batch is the parts' order.
+    #[test]
+    fn parts_are_batched_by_texture_and_culling_kind() {
+        let texture = Arc::new(Texture {
+            width: 1,
+            height: 1,
+            texels: vec![[255; 4]],
+            source: "test".to_owned(),
+        });
+        let open = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
+        let object = Object {
+            name: "test".to_owned(),
+            parts: vec![
+                part(cube(1.0, 1), None),
+                part(open.clone(), None),
+                part(cube(2.0, 2), None),
+                part(cube(1.0, 1), Some(&texture)),
+                part(open, None),
+                part(cube(1.0, 1), Some(&texture)),
+            ],
+            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
+            wireframe: None,
+            optics: SurfaceOptics::default(),
+        };
+        let culling: Vec<BackFaceCulling> = object
+            .parts
+            .iter()
+            .map(|p| BackFaceCulling::for_mesh(&p.mesh))
+            .collect();
+        let mut groups: Vec<Vec<usize>> = batches(&limits(1 << 27), &object, &culling)
+            .unwrap()
+            .into_iter()
+            .map(|b| b.members)
+            .collect();
+        groups.sort();
+        assert_eq!(groups, vec![vec![0, 2], vec![1, 4], vec![3, 5]]);
+    }
+
+    /// A batch closes when the next part would exceed a storage-buffer limit; a part that does
+    /// not fit alone is an error naming it.
+    #[test]
+    fn batches_stay_within_the_device_limits() {
+        // A storage-buffer limit of the footprint buffer of two parts (the largest buffer of a
+        // batch): two parts fit in a batch, three do not.
+        let object = Object {
+            name: "cubes".to_owned(),
+            parts: (0..3).map(|_| part(cube(1.0, 4), None)).collect(),
+            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
+            wireframe: None,
+            optics: SurfaceOptics::default(),
+        };
+        let culling = vec![BackFaceCulling::for_mesh(&object.parts[0].mesh); 3];
+        let triangles = object.parts[0].mesh.triangles().len() as u64;
+        let two = crate::types::footprint_slots(2 * triangles)
+            * size_of::<crate::types::GpuFootprint>() as u64;
+        let sizes: Vec<usize> = batches(&limits(two), &object, &culling)
+            .unwrap()
+            .iter()
+            .map(|b| b.members.len())
+            .collect();
+        assert_eq!(sizes.iter().sum::<usize>(), 3);
+        assert!(sizes.iter().all(|&n| n <= 2), "{sizes:?}");
+        let error = batches(&limits(100), &object, &culling)
+            .err()
+            .expect("a part larger than the limit");
+        assert!(
+            error.to_string().contains("part 0 of object \"cubes\""),
+            "{error}"
+        );
+    }
+}

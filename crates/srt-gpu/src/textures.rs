@@ -1,0 +1,90 @@
+//! Textures uploaded from the CPU, in one place: the one 2D upload every texture goes
+//! through ([`upload_2d`]: the sky image, the colour table, the parts' textures with their mip
+//! chains) and the part texture the shading passes sample.
+
+use srt_scene::Texture;
+use srt_scene::mip::{MipChain, MipLevel};
+use wgpu::util::DeviceExt as _;
+
+use crate::context::GpuContext;
+
+/// What a 2D texture uploaded by [`upload_2d`] is.
+#[derive(Debug, Clone, Copy)]
+pub struct Texture2d<'a> {
+    /// wgpu's debug label.
+    pub label: &'a str,
+    /// Width of the first level in texels.
+    pub width: u32,
+    /// Height of the first level in texels.
+    pub height: u32,
+    /// Mip levels in the data, each half the size of the one before (1: no mip chain).
+    pub mip_levels: u32,
+    /// Texel format of the data.
+    pub format: wgpu::TextureFormat,
+    /// How the texture is used, besides being written by the upload (`COPY_DST` is added).
+    pub usage: wgpu::TextureUsages,
+}
+
+/// Creates the texture `texture` describes holding `data`: its levels one after the other,
+/// each in rows of tightly packed texels.
+#[must_use]
+pub fn upload_2d(ctx: &GpuContext, texture: &Texture2d<'_>, data: &[u8]) -> wgpu::Texture {
+    ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: Some(texture.label),
+            size: wgpu::Extent3d {
+                width: texture.width,
+                height: texture.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: texture.mip_levels,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: texture.format,
+            usage: texture.usage | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        data,
+    )
+}
+
+/// `texture` with its mip chain (levels larger than the device allows are skipped), or, for
+/// `None`, a 1×1 white texture: the `part_texture` the shading passes sample by hand.
+pub(crate) fn part_texture(ctx: &GpuContext, texture: Option<&Texture>) -> wgpu::TextureView {
+    let limit = ctx.device.limits().max_texture_dimension_2d;
+    let white = MipLevel {
+        width: 1,
+        height: 1,
+        texels: vec![[255; 4]],
+    };
+    let chain = texture.map(MipChain::new);
+    let mut levels: Vec<&MipLevel> = chain.as_ref().map_or_else(Vec::new, |chain| {
+        chain
+            .levels()
+            .iter()
+            .filter(|l| l.width <= limit && l.height <= limit)
+            .collect()
+    });
+    if levels.is_empty() {
+        levels.push(&white);
+    }
+    let data: Vec<u8> = levels
+        .iter()
+        .flat_map(|l| l.texels.iter().flatten().copied())
+        .collect();
+    upload_2d(
+        ctx,
+        &Texture2d {
+            label: "srt part texture",
+            width: levels[0].width,
+            height: levels[0].height,
+            mip_levels: levels.len() as u32,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+        },
+        &data,
+    )
+    .create_view(&wgpu::TextureViewDescriptor::default())
+}
