@@ -64,6 +64,78 @@ pub(crate) struct ObjectRayTracing {
     pub shade_group: wgpu::BindGroup,
 }
 
+/// How many layers of triangles an average line of sight through the box `bounds` crosses:
+/// the triangles' total area over the box's surface ([`ObjectRayTracing::preferred`]).
+fn layers(corners: &[[[f32; 3]; 3]], bounds: ([f32; 3], [f32; 3])) -> f64 {
+    let area = |[a, b, c]: [[f32; 3]; 3]| {
+        let [a, b, c] = [a, b, c].map(|p| DVec3::from(p.map(f64::from)));
+        0.5 * (b - a).cross(c - a).length()
+    };
+    let size = DVec3::from(bounds.1.map(f64::from)) - DVec3::from(bounds.0.map(f64::from));
+    let box_area = 2.0 * (size.x * size.y + size.y * size.z + size.z * size.x);
+    corners.iter().map(|&t| area(t)).sum::<f64>() / box_area.max(f64::MIN_POSITIVE)
+}
+
+/// A storage buffer holding `contents`.
+fn storage_buffer(device: &wgpu::Device, label: &str, contents: &[u8]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
+/// The buffers of an object's box as the proxy pass's input (uniforms, corners, triangles) and
+/// output (footprints, screen bound, draw arguments).
+struct BoxBuffers {
+    uniforms: wgpu::Buffer,
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    footprints: wgpu::Buffer,
+    bound: wgpu::Buffer,
+    draw_args: wgpu::Buffer,
+}
+
+impl BoxBuffers {
+    /// Uploads the box `bounds` (S′) and allocates its proxy outputs.
+    fn new(device: &wgpu::Device, bounds: ([f32; 3], [f32; 3])) -> Self {
+        let (vertices, triangles) = box_geometry(bounds.0, bounds.1);
+        let storage = |label, contents: &[u8]| storage_buffer(device, label, contents);
+        let zeroed = |label, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            uniforms: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("srt box uniforms"),
+                contents: bytemuck::bytes_of(&box_uniforms(false)),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            }),
+            vertices: storage("srt box vertices", bytemuck::cast_slice(&vertices)),
+            indices: storage("srt box indices", bytemuck::cast_slice(&triangles)),
+            footprints: zeroed(
+                "srt box footprints",
+                footprint_slots(u64::from(BOX_TRIANGLES)) * size_of::<GpuFootprint>() as u64,
+                wgpu::BufferUsages::empty(),
+            ),
+            bound: zeroed(
+                "srt box bound",
+                PART_BOUND_BYTES,
+                wgpu::BufferUsages::COPY_DST,
+            ),
+            draw_args: zeroed(
+                "srt box draw",
+                DRAW_ARGS_BYTES,
+                wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+            ),
+        }
+    }
+}
+
 impl ObjectRayTracing {
     /// Builds the BVH over `triangles` (every triangle of the object, with its batch's part id
     /// and its number there; named `what` in errors), uploads it and the box, and makes the bind
@@ -95,58 +167,15 @@ impl ObjectRayTracing {
             || format!("the BVH of {what}"),
             std::mem::size_of_val(bvh.nodes.as_slice()) as u64,
         )?;
-        let storage = |label, contents: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        let storage = |label, contents: &[u8]| storage_buffer(device, label, contents);
         let nodes = storage("srt bvh nodes", bytemuck::cast_slice(&bvh.nodes));
         let ordered = storage(
             "srt bvh triangles",
             bytemuck::cast_slice(&bvh.in_leaf_order(triangles)),
         );
         let bounds = bvh.bounds();
-        let area = |[a, b, c]: [[f32; 3]; 3]| {
-            let [a, b, c] = [a, b, c].map(|p| DVec3::from(p.map(f64::from)));
-            0.5 * (b - a).cross(c - a).length()
-        };
-        let size = DVec3::from(bounds.1.map(f64::from)) - DVec3::from(bounds.0.map(f64::from));
-        let box_area = 2.0 * (size.x * size.y + size.y * size.z + size.z * size.x);
-        let layers =
-            corners.iter().map(|&t| area(t)).sum::<f64>() / box_area.max(f64::MIN_POSITIVE);
-        let (box_vertices, box_triangles) = box_geometry(bounds.0, bounds.1);
-        let box_uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("srt box uniforms"),
-            contents: bytemuck::bytes_of(&box_uniforms(false)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
-        let box_vertices = storage("srt box vertices", bytemuck::cast_slice(&box_vertices));
-        let box_indices = storage("srt box indices", bytemuck::cast_slice(&box_triangles));
-        let zeroed = |label, size: u64, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::STORAGE | usage,
-                mapped_at_creation: false,
-            })
-        };
-        let footprints = zeroed(
-            "srt box footprints",
-            footprint_slots(u64::from(BOX_TRIANGLES)) * size_of::<GpuFootprint>() as u64,
-            wgpu::BufferUsages::empty(),
-        );
-        let box_bound = zeroed(
-            "srt box bound",
-            PART_BOUND_BYTES,
-            wgpu::BufferUsages::COPY_DST,
-        );
-        let box_draw_args = zeroed(
-            "srt box draw",
-            DRAW_ARGS_BYTES,
-            wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
-        );
+        let layers = layers(&corners, bounds);
+        let boxed = BoxBuffers::new(device, bounds);
         // The box has no texture; group 2 wants one.
         let blank = part_texture(ctx, None);
         let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
@@ -161,9 +190,9 @@ impl ObjectRayTracing {
                 "srt box part",
                 &pipelines.part_layout,
                 &[
-                    slots::PART.entry(box_uniforms.as_entire_binding()),
-                    slots::VERTICES.entry(box_vertices.as_entire_binding()),
-                    slots::INDICES.entry(box_indices.as_entire_binding()),
+                    slots::PART.entry(boxed.uniforms.as_entire_binding()),
+                    slots::VERTICES.entry(boxed.vertices.as_entire_binding()),
+                    slots::INDICES.entry(boxed.indices.as_entire_binding()),
                     slots::PART_TEXTURE.entry(wgpu::BindingResource::TextureView(&blank)),
                 ],
             ),
@@ -171,16 +200,16 @@ impl ObjectRayTracing {
                 "srt box proxy output",
                 &pipelines.proxy_output_layout,
                 &[
-                    slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding()),
-                    slots::PROXY_PART_BOUND.entry(box_bound.as_entire_binding()),
-                    slots::PROXY_DRAW_ARGS.entry(box_draw_args.as_entire_binding()),
+                    slots::PROXY_FOOTPRINTS.entry(boxed.footprints.as_entire_binding()),
+                    slots::PROXY_PART_BOUND.entry(boxed.bound.as_entire_binding()),
+                    slots::PROXY_DRAW_ARGS.entry(boxed.draw_args.as_entire_binding()),
                 ],
             ),
             visibility_group: group(
                 "srt rt input",
                 &pipelines.rt_input_layout,
                 &[
-                    slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
+                    slots::LRT_FOOTPRINTS.entry(boxed.footprints.as_entire_binding()),
                     slots::FRAGMENT_COUNT.entry(counter.as_entire_binding()),
                     slots::BVH_NODES.entry(nodes.as_entire_binding()),
                     slots::BVH_TRIANGLES.entry(ordered.as_entire_binding()),
@@ -190,16 +219,16 @@ impl ObjectRayTracing {
                 "srt rt shading input",
                 &pipelines.lrt_input_layout,
                 &[
-                    slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
+                    slots::LRT_FOOTPRINTS.entry(boxed.footprints.as_entire_binding()),
                     slots::FRAGMENT_COUNT.entry(counter.as_entire_binding()),
-                    slots::LRT_PART_BOUND.entry(box_bound.as_entire_binding()),
+                    slots::LRT_PART_BOUND.entry(boxed.bound.as_entire_binding()),
                 ],
             ),
-            box_uniforms,
+            box_uniforms: boxed.uniforms,
             bounds,
             layers,
-            box_bound,
-            box_draw_args,
+            box_bound: boxed.bound,
+            box_draw_args: boxed.draw_args,
         })
     }
 

@@ -234,29 +234,7 @@ impl super::GpuRenderer {
             view(&self.targets.depth),
             view(&self.targets.ids),
         );
-        // Without stars the object passes clear to the background; with them, the sky's passes
-        // draw background and stars first and the object passes draw over them.
-        let background = match &self.sky {
-            Some(sky) => {
-                sky.encode(
-                    encoder,
-                    &self.frame.bind_groups[tone],
-                    &self.frame.polygon_groups[tone],
-                    &color_view,
-                    self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP)),
-                );
-                wgpu::LoadOp::Load
-            }
-            None => {
-                let b = scene.background;
-                wgpu::LoadOp::Clear(wgpu::Color {
-                    r: b.x,
-                    g: b.y,
-                    b: b.z,
-                    a: 1.0,
-                })
-            }
-        };
+        let background = self.encode_background(encoder, scene, tone, &color_view);
         let depth = wgpu::RenderPassDepthStencilAttachment {
             view: &depth_view,
             depth_ops: Some(wgpu::Operations {
@@ -265,90 +243,128 @@ impl super::GpuRenderer {
             }),
             stencil_ops: None,
         };
+        if method == Method::Polygon {
+            let mut pass = self.begin_pass(
+                encoder,
+                "srt polygon",
+                &color_view,
+                background,
+                Some(depth),
+                [Some(2), Some(3)],
+            );
+            pass.set_pipeline(&self.pipelines.polygon);
+            pass.set_bind_group(
+                POLYGON_FRAME_GROUP.index,
+                &self.frame.polygon_groups[tone],
+                &[],
+            );
+            self.draw_parts(&mut pass, |pass, part| {
+                // Checked at upload: 3 × triangles fits in u32.
+                pass.draw(0..3 * part.sizes.triangles, 0..1);
+            });
+            return;
+        }
         let lrt = if self.count_fragments {
             self.pipelines.lrt_counting(device)
         } else {
             &self.pipelines.lrt
         };
-        match method {
-            Method::Polygon => {
-                let mut pass = self.begin_pass(
-                    encoder,
-                    "srt polygon",
-                    &color_view,
-                    background,
-                    Some(depth),
-                    [Some(2), Some(3)],
-                );
-                pass.set_pipeline(&self.pipelines.polygon);
-                pass.set_bind_group(
-                    POLYGON_FRAME_GROUP.index,
-                    &self.frame.polygon_groups[tone],
-                    &[],
-                );
-                self.draw_parts(&mut pass, |pass, part| {
-                    // Checked at upload: 3 × triangles fits in u32.
-                    pass.draw(0..3 * part.sizes.triangles, 0..1);
-                });
+        let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
+        let mut pass = self.begin_pass(
+            encoder,
+            "srt lrt visibility",
+            &ids_view,
+            none,
+            Some(depth),
+            [Some(2), None],
+        );
+        pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
+        self.draw_visibility(&mut pass, lrt, traced);
+        drop(pass);
+        let mut pass = self.begin_pass(
+            encoder,
+            "srt lrt shading",
+            &color_view,
+            background,
+            None,
+            [None, Some(3)],
+        );
+        pass.set_pipeline(&lrt.shade);
+        pass.set_bind_group(
+            SHADE_FRAME_GROUP.index,
+            &self.targets.shade_frame_groups[tone],
+            &[],
+        );
+        self.draw_shading(&mut pass, traced);
+    }
+
+    /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
+    /// colour target: over the sky, or cleared to the scene's background.
+    fn encode_background(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        tone: usize,
+        color_view: &wgpu::TextureView,
+    ) -> wgpu::LoadOp<wgpu::Color> {
+        let Some(sky) = &self.sky else {
+            let b = scene.background;
+            return wgpu::LoadOp::Clear(wgpu::Color {
+                r: b.x,
+                g: b.y,
+                b: b.z,
+                a: 1.0,
+            });
+        };
+        sky.encode(
+            encoder,
+            &self.frame.bind_groups[tone],
+            &self.frame.polygon_groups[tone],
+            color_view,
+            self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP)),
+        );
+        wgpu::LoadOp::Load
+    }
+
+    /// The visibility pass's draws: objects drawn by their footprints, then those traced
+    /// through their BVH; the depth test keeps the nearest hit across both.
+    fn draw_visibility(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        lrt: &LrtPipelines,
+        traced: &[Option<&ObjectRayTracing>],
+    ) {
+        pass.set_pipeline(&lrt.visibility);
+        for (object, _) in self.objects.iter().zip(traced).filter(|(_, t)| t.is_none()) {
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            for part in &object.parts {
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                self.draw_footprints(pass, part);
             }
-            Method::Lrt | Method::Rt | Method::Auto => {
-                let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
-                let mut pass = self.begin_pass(
-                    encoder,
-                    "srt lrt visibility",
-                    &ids_view,
-                    none,
-                    Some(depth),
-                    [Some(2), None],
-                );
-                pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-                // Objects drawn by their footprints, then those traced through their BVH; the
-                // depth test keeps the nearest hit across both.
-                pass.set_pipeline(&lrt.visibility);
-                for (object, _) in self.objects.iter().zip(traced).filter(|(_, t)| t.is_none()) {
-                    pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
-                    for part in &object.parts {
-                        pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
-                        self.draw_footprints(&mut pass, part);
-                    }
-                }
-                pass.set_pipeline(&lrt.rt_visibility);
-                for (object, rt) in self.objects.iter().zip(traced) {
-                    if let Some(rt) = rt {
-                        pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
-                        pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
-                        pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
-                        self.draw_box_footprints(&mut pass, &rt.box_draw_args);
-                    }
-                }
-                drop(pass);
-                let mut pass = self.begin_pass(
-                    encoder,
-                    "srt lrt shading",
-                    &color_view,
-                    background,
-                    None,
-                    [None, Some(3)],
-                );
-                pass.set_pipeline(&lrt.shade);
-                pass.set_bind_group(
-                    SHADE_FRAME_GROUP.index,
-                    &self.targets.shade_frame_groups[tone],
-                    &[],
-                );
-                for (object, traced) in self.objects.iter().zip(traced) {
-                    pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
-                    for part in &object.parts {
-                        pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
-                        // Group 3 for the part's bound (for a traced object its box's).
-                        let (group, draw_args) = match traced {
-                            Some(rt) => (&rt.shade_group, &rt.box_draw_args),
-                            None => (&part.lrt_bind_group, &part.draw_args),
-                        };
-                        pass.set_bind_group(LRT_INPUT_GROUP.index, group, &[]);
-                        self.draw_bound(&mut pass, draw_args);
-                    }
-                }
+        }
+        pass.set_pipeline(&lrt.rt_visibility);
+        for (object, rt) in self.objects.iter().zip(traced) {
+            if let Some(rt) = rt {
+                pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
+                pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
+                self.draw_box_footprints(pass, &rt.box_draw_args);
+            }
+        }
+    }
+
+    /// The shading pass's draws: each part's screen bound (for a traced object its box's).
+    fn draw_shading(&self, pass: &mut wgpu::RenderPass<'_>, traced: &[Option<&ObjectRayTracing>]) {
+        for (object, traced) in self.objects.iter().zip(traced) {
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            for part in &object.parts {
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                let (group, draw_args) = match traced {
+                    Some(rt) => (&rt.shade_group, &rt.box_draw_args),
+                    None => (&part.lrt_bind_group, &part.draw_args),
+                };
+                pass.set_bind_group(LRT_INPUT_GROUP.index, group, &[]);
+                self.draw_bound(pass, draw_args);
             }
         }
     }
