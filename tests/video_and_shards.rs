@@ -178,6 +178,14 @@ fn mp4_and_gif_of_the_teaser_decode_to_the_frames_asked_for() {
         for (k, (frame, picture)) in video.frames.iter().zip(&pictures).enumerate() {
             let error = mean_difference(frame, picture);
             assert!(error < tolerance, "frame {k} differs by {error} on average");
+            // In order: each frame is nearer its own picture than any other frame's.
+            for (j, other) in pictures.iter().enumerate().filter(|&(j, _)| j != k) {
+                let other_error = mean_difference(frame, other);
+                assert!(
+                    error < other_error,
+                    "frame {k} is {error} from its picture but {other_error} from frame {j}'s"
+                );
+            }
         }
     }
     assert_eq!(
@@ -408,23 +416,30 @@ fn bad_shards_and_video_outputs_are_refused_and_leave_nothing() {
         let locked = dir.path().join("locked");
         std::fs::create_dir(&locked).unwrap();
         std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o555)).unwrap();
-        // Root may write anywhere; the case then says nothing about srt.
-        if File::create(locked.join("probe")).is_err() {
-            let args = [
-                &["render", "teaser"][..],
-                &SMALL,
-                &["--frames", "2", "-o", "locked/f.gif"],
-            ]
-            .concat();
-            assert_clean_failure(&srt(&args, dir.path()), &["locked/f.gif", "cannot"]);
+        // Root may write anywhere, so as root the case runs srt as an unprivileged user
+        // (through util-linux's setpriv) where the system has setpriv.
+        let args = [
+            &["render", "teaser"][..],
+            &SMALL,
+            &["--frames", "2", "-o", "locked/f.gif"],
+        ]
+        .concat();
+        let refused = if File::create(locked.join("probe")).is_err() {
+            Some(srt(&args, dir.path()))
         } else {
             std::fs::remove_file(locked.join("probe")).unwrap();
-            // Written to stderr directly: the harness captures `eprintln!` of passing tests.
-            let _ = writeln!(
-                std::io::stderr(),
-                "SKIPPED the read-only-folder case: running as root, every folder is writable \
-                 (the /proc case above still runs)"
-            );
+            as_nobody(&args, dir.path())
+        };
+        match refused {
+            Some(output) => assert_clean_failure(&output, &["locked/f.gif", "cannot"]),
+            None => {
+                // Written to stderr directly: the harness captures `eprintln!` of passing tests.
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "SKIPPED the read-only-folder case: running as root without `setpriv` to \
+                     run srt as an unprivileged user (the /proc case above still runs)"
+                );
+            }
         }
         assert!(file_names(&locked).is_empty());
         std::fs::remove_dir(&locked).unwrap();
@@ -434,6 +449,24 @@ fn bad_shards_and_video_outputs_are_refused_and_leave_nothing() {
         "{:?}",
         file_names(dir.path())
     );
+}
+
+/// Runs `srt` with `args` in `dir` as an unprivileged user (uid and gid 65534, `nobody` on
+/// Debian), or `None` where the system has no `setpriv`. `dir` is opened to every user for the
+/// run.
+#[cfg(unix)]
+fn as_nobody(args: &[&str], dir: &Path) -> Option<std::process::Output> {
+    use std::os::unix::fs::PermissionsExt as _;
+    std::fs::set_permissions(dir, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let output = std::process::Command::new("setpriv")
+        .args(["--reuid=65534", "--regid=65534", "--clear-groups", "--"])
+        .arg(env!("CARGO_BIN_EXE_srt"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .ok();
+    std::fs::set_permissions(dir, std::fs::Permissions::from_mode(0o700)).unwrap();
+    output
 }
 
 /// A video that fails midway (its third frame is no image; then frames of two sizes) leaves no

@@ -340,4 +340,5 @@ fn fragments_are_counted_only_when_measuring() {
     assert_eq!(plain.to_rgb8(), counted.to_rgb8());
     renderer.set_fragment_counting(false);
     assert_eq!(render(&renderer).1.fragments, None);
+    ctx.take_errors().unwrap();
 }
