@@ -1,6 +1,6 @@
-//! `srt render`: resolve the scene, apply command-line overrides, choose the backend, render one
-//! image, a share of an animation's numbered frames, or a video, and write it with a record of
-//! how it was made.
+//! `srt render`: resolve the scene with the command-line overrides (applied by srt-scene to its
+//! description, [`srt_scene::Overrides`]), choose the backend, render one image, a share of an
+//! animation's numbered frames, or a video, and write it with a record of how it was made.
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -9,9 +9,8 @@ use std::time::Instant;
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
-use srt_physics::Frame;
-use srt_scene::limits::MAX_COORDINATE;
-use srt_scene::{Effects, Scene, SurfaceColour, View};
+use srt_scene::description::observation_time;
+use srt_scene::{Effects, OverrideNames, Overrides, Scene, SurfaceColour, ValueName, View};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::cli::{Backend, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
@@ -90,12 +89,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         check_writable(output)?;
     }
     let animation = check_animation(args)?;
-    let loaded = load_scene(&args.scene, args.beta, args.observer_beta)?;
+    let loaded = load_scene(&args.scene, &overrides(args))?;
     for warning in &loaded.warnings {
         eprintln!("warning: {warning}");
     }
     let mut scene = loaded.scene;
-    apply_overrides(&mut scene, args)?;
     let output = match &args.output {
         Some(output) => output.clone(),
         None => {
@@ -130,8 +128,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         println!("{}", wrote(&output, settings, &engine, start));
         return Ok(());
     };
-    let t0 = observation_time("--t0", args.t0.unwrap_or(scene.observer.ct))?;
-    let t1 = observation_time("--t1", args.t1.unwrap_or(t0 + 10.0))?;
+    // The animation's ends follow observer.ct's rule; every frame's time lies between them.
+    let t0 = observation_time(
+        ValueName::Option("--t0"),
+        args.t0.unwrap_or(scene.observer.ct),
+    )?;
+    let t1 = observation_time(ValueName::Option("--t1"), args.t1.unwrap_or(t0 + 10.0))?;
     let time_of = |frame: u32| {
         let fraction = if frames > 1 {
             f64::from(frame) / f64::from(frames - 1)
@@ -381,56 +383,24 @@ fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
     Ok(Cow::Owned(viewed))
 }
 
-/// Applies --effects, --colour, --exposure, --time and --beta.
-fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> anyhow::Result<()> {
-    if let Some(effects) = args.effects {
-        scene.set_effects(match effects {
+/// The scene overrides among the options (--effects, --colour, --exposure, --time, --beta,
+/// --observer-beta), for srt-scene's resolver to apply to the description.
+fn overrides(args: &RenderArgs) -> Overrides {
+    Overrides {
+        effects: args.effects.map(|effects| match effects {
             EffectsArg::Geometry => Effects::Geometry,
             EffectsArg::Doppler => Effects::Doppler,
             EffectsArg::Searchlight => Effects::Searchlight,
-        });
-    }
-    if let Some(colour) = args.colour {
-        scene.colour = match colour {
+        }),
+        colour: args.colour.map(|colour| match colour {
             ColourArg::Paper => SurfaceColour::Paper,
             ColourArg::Spectral => SurfaceColour::Spectral,
-        };
-    }
-    if let Some(exposure) = args.exposure {
-        if !(exposure.is_finite() && exposure > 0.0) {
-            bail!("--exposure must be a positive number, got {exposure:?}");
-        }
-        scene.exposure = exposure;
-    }
-    if scene.exposure != 1.0 && scene.colour == SurfaceColour::Paper {
-        bail!(
-            "an exposure of {:?} needs spectral colour (--colour spectral): the paper's colour \
-             tables have no exposure",
-            scene.exposure
-        );
-    }
-    if let Some(ct) = args.time {
-        scene.observer.ct = observation_time("--time", ct)?;
-    }
-    if let Some(beta) = args.beta {
-        for object in &mut scene.objects {
-            object.frame = Frame::new(beta, object.frame.offset()).with_context(|| {
-                format!(
-                    "--beta {:?},{:?},{:?} is not a valid velocity",
-                    beta.x, beta.y, beta.z
-                )
-            })?;
-        }
-    }
-    Ok(())
-}
-
-/// `ct` if it is a finite observation time within ±`MAX_COORDINATE`, the scene file's bound.
-fn observation_time(option: &str, ct: f64) -> anyhow::Result<f64> {
-    if ct.is_finite() && ct.abs() <= MAX_COORDINATE {
-        Ok(ct)
-    } else {
-        bail!("{option} must be a finite number within ±{MAX_COORDINATE:e}, got {ct:?}")
+        }),
+        exposure: args.exposure,
+        time: args.time,
+        beta: args.beta,
+        observer_beta: args.observer_beta,
+        names: OverrideNames::COMMAND_LINE,
     }
 }
 

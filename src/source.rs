@@ -1,17 +1,18 @@
 //! Turning the SCENE argument into a scene through srt-scene's resolver
 //! ([`srt_scene::resolve`]): a built-in scene name, a `.toml` scene file, or a bare 3D model file
 //! (placed in front of the observer, moving with `--beta` or, by default, approaching at
-//! [`DEFAULT_MODEL_SPEED`](srt_scene::resolve::DEFAULT_MODEL_SPEED)).
+//! [`DEFAULT_MODEL_SPEED`](srt_scene::resolve::DEFAULT_MODEL_SPEED)), with the command-line
+//! overrides applied to its description ([`srt_scene::Overrides`]).
 
 use std::fmt::Write as _;
 use std::io::Read as _;
 use std::path::Path;
 
-use anyhow::{Context as _, anyhow, bail};
+use anyhow::anyhow;
 use glam::DVec3;
 use sha2::{Digest as _, Sha256};
 use srt_scene::message::io_reason;
-use srt_scene::{Scene, SceneSource, builtin_scenes};
+use srt_scene::{Overrides, Scene, SceneSource, builtin_scenes};
 
 /// A scene ready to render, and where it came from.
 pub struct LoadedScene {
@@ -34,36 +35,16 @@ pub struct SceneOrigin {
     pub sha256: Option<String>,
 }
 
-/// Loads the scene named by `argument`; `beta` is the `--beta` option (used to place a bare
-/// model), `observer_beta` the `--observer-beta` option (the observer's velocity through the
-/// scene's world frame).
+/// Loads the scene named by `argument` with the command-line `overrides` in place of its own
+/// values (srt-scene's one route for them, [`SceneSource::load_with`]: they edit the description,
+/// whose validation judges them by their options' names).
 ///
 /// # Errors
-/// Unknown names, unsupported, unreadable or invalid files, bad values; `--observer-beta` that
-/// is not a velocity; `--beta` (a velocity relative to the observer, applied after loading)
-/// with a moving observer.
-pub fn load_scene(
-    argument: &str,
-    beta: Option<DVec3>,
-    observer_beta: Option<DVec3>,
-) -> anyhow::Result<LoadedScene> {
-    if let Some(b) = observer_beta {
-        srt_physics::validate_beta(b).with_context(|| {
-            format!(
-                "--observer-beta {:?},{:?},{:?} is not a valid velocity",
-                b.x, b.y, b.z
-            )
-        })?;
-    }
+/// Unknown names, unsupported, unreadable or invalid files, bad values, among them an override
+/// the scene file's rules refuse (`--beta` with a moving observer included).
+pub fn load_scene(argument: &str, overrides: &Overrides) -> anyhow::Result<LoadedScene> {
     let source = SceneSource::resolve(argument)?;
-    let loaded = source.load_observed(beta, observer_beta)?;
-    if beta.is_some() && loaded.source.description.observer.beta != [0.0; 3] {
-        bail!(
-            "--beta sets every object's velocity relative to a resting observer and cannot be \
-             combined with a moving observer (--observer-beta or observer.beta of {argument}); \
-             give the objects' velocities in the scene file instead"
-        );
-    }
+    let loaded = source.load_with(overrides)?;
     let origin = match &source {
         SceneSource::Builtin(scene) => SceneOrigin {
             description: format!("{} (built-in)", scene.name),

@@ -21,9 +21,9 @@ pub mod view;
 
 pub use builtin::{BuiltinScene, builtin, builtin_scenes};
 pub use description::{
-    LightDescription, ObjectDescription, ObserverDescription, RenderDescription, Scale,
-    SceneDescription, SceneError, SceneErrorKind, ShapeDescription, TextureDescription,
-    load_scene_file,
+    LightDescription, ObjectDescription, ObserverDescription, OverrideNames, Overrides,
+    RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind, ShapeDescription,
+    TextureDescription, ValueName, load_scene_file,
 };
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};

@@ -11,6 +11,10 @@
 //! A bare model becomes the scene of [`SceneDescription::for_model`]: fitted, in front of the
 //! observer, moving with the β the caller gives or, by default, approaching at
 //! [`DEFAULT_MODEL_SPEED`].
+//!
+//! Values a front end gives in place of the scene's own ([`Overrides`], e.g. `srt render
+//! --exposure`) take one route, [`SceneSource::load_with`]: they edit the description, which is
+//! then validated and built like any other.
 
 use std::path::{Path, PathBuf};
 
@@ -18,7 +22,9 @@ use glam::DVec3;
 
 use crate::builtin::{BuiltinScene, find_builtin};
 pub use crate::description::scene_file_folder;
-use crate::description::{SceneDescription, SceneError, build_scene_file, read_scene_file};
+use crate::description::{
+    Overrides, SceneDescription, SceneError, build_scene_file, read_scene_file,
+};
 use crate::import::SUPPORTED_EXTENSIONS;
 use crate::placement::approach_velocity;
 use crate::scene::Scene;
@@ -173,24 +179,31 @@ impl SceneSource {
     /// [`SceneError`] naming the file (or the built-in scene) when it cannot be read, parsed or
     /// built.
     pub fn load(&self, model_beta: Option<DVec3>) -> Result<LoadedScene, SceneError> {
-        self.load_observed(model_beta, None)
+        self.build(self.description(model_beta)?)
     }
 
-    /// [`SceneSource::load`], with the observer moving with `observer_beta` (relative to the
-    /// scene's world frame, replacing the scene's `observer.beta`) when it is given.
+    /// Loads the scene with `overrides` in place of its own values: the description is edited
+    /// and validated ([`Overrides::apply`]; a bare model is placed for [`Overrides::beta`]),
+    /// then built, and given [`Overrides::time`] ([`Overrides::apply_to_scene`]).
     ///
     /// # Errors
-    /// As [`SceneSource::load`]; an invalid `observer_beta` is reported as the scene's
-    /// `observer.beta`.
-    pub fn load_observed(
-        &self,
-        model_beta: Option<DVec3>,
-        observer_beta: Option<DVec3>,
-    ) -> Result<LoadedScene, SceneError> {
-        let mut source = self.description(model_beta)?;
-        if let Some(beta) = observer_beta {
-            source.description.observer.beta = beta.to_array();
-        }
+    /// As [`SceneSource::load`]; a value of an option the scene file's rules refuse is reported
+    /// by the option's name ([`SceneErrorKind::Override`](crate::SceneErrorKind::Override)),
+    /// before any model or texture is read.
+    pub fn load_with(&self, overrides: &Overrides) -> Result<LoadedScene, SceneError> {
+        let mut source = self.description(overrides.beta)?;
+        let origin = self.origin(&source.description);
+        overrides
+            .apply(&mut source.description, &origin)
+            .map_err(|kind| SceneError::new(origin, kind))?;
+        let mut loaded = self.build(source)?;
+        overrides.apply_to_scene(&mut loaded.scene);
+        Ok(loaded)
+    }
+
+    /// Builds `source`, this scene's description (perhaps edited), as the scene is built: a scene
+    /// file's errors name the file, a built-in scene's the scene.
+    fn build(&self, mut source: LocatedDescription) -> Result<LoadedScene, SceneError> {
         let (scene, warnings) = match self {
             Self::SceneFile(path) => {
                 let (scene, description, warnings) = build_scene_file(source.description, path)?;
@@ -205,6 +218,15 @@ impl SceneSource {
             source,
             warnings,
         })
+    }
+
+    /// How messages name the scene of `description`, read from this source.
+    fn origin(&self, description: &SceneDescription) -> String {
+        match self {
+            Self::Builtin(builtin) => builtin.origin(),
+            Self::SceneFile(path) => path.display().to_string(),
+            Self::Model(_) => description.origin(),
+        }
     }
 }
 

@@ -19,6 +19,7 @@ use super::model::{
     ObjectDescription, ObserverDescription, SceneDescription, ShapeDescription, SkyDescription,
     TextureDescription,
 };
+use super::validate::{ValueName, invalid_velocity};
 use super::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
 use crate::assets;
 use crate::input_file::{self, FileKind};
@@ -155,9 +156,9 @@ impl SceneDescription {
     pub fn moving_observer(&self) -> Result<MovingObserver, SceneErrorKind> {
         let observer = &self.observer;
         let event = Event::new(observer.ct, DVec3::from_array(observer.position));
-        MovingObserver::new(DVec3::from_array(observer.beta), event).map_err(|error| {
-            value_error("observer.beta", format!("is not a valid velocity: {error}"))
-        })
+        let beta = DVec3::from_array(observer.beta);
+        MovingObserver::new(beta, event)
+            .map_err(|error| invalid_velocity(ValueName::Key("observer.beta"), beta, &error))
     }
 
     /// Each object's frame relative to the observer and the Wigner rotation of its rest-frame
@@ -223,7 +224,7 @@ impl SkyDescription {
         let world = observer
             .relative_frame(&Frame::new(DVec3::ZERO, DVec3::ZERO).expect("a frame at rest"))
             .map_err(|error| {
-                value_error("observer.beta", format!("is not a valid velocity: {error}"))
+                invalid_velocity(ValueName::Key("observer.beta"), observer.beta(), &error)
             })?;
         Ok(Sky {
             beta: world.frame.beta(),

@@ -15,7 +15,9 @@ use crate::message::one_line;
 /// Its message names both, e.g. `scenes/cube.toml: line 4, column 1: unknown field `colour`, …`
 /// or `scene "demo": object "probe" has an invalid velocity or offset: speed |β| = 1.2 is not
 /// below the speed of light (it must be < 1)`, on one line of at most
-/// [`MAX_MESSAGE_CHARS`](crate::message::MAX_MESSAGE_CHARS) characters.
+/// [`MAX_MESSAGE_CHARS`](crate::message::MAX_MESSAGE_CHARS) characters. An error in a value an
+/// option gave ([`SceneErrorKind::Override`]) is about the option alone and names only it, e.g.
+/// `--exposure must be a positive number, got -1.0`.
 #[derive(Debug)]
 pub struct SceneError {
     origin: String,
@@ -57,7 +59,11 @@ impl SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&one_line(&format!("{}: {}", self.origin, self.kind)))
+        let message = match *self.kind {
+            SceneErrorKind::Override { .. } => self.kind.to_string(),
+            _ => format!("{}: {}", self.origin, self.kind),
+        };
+        f.write_str(&one_line(&message))
     }
 }
 
@@ -89,6 +95,15 @@ pub enum SceneErrorKind {
         /// The value concerned, e.g. `observer.fov_y_deg` or `shape.size of object "cube"`.
         field: String,
         /// What is wrong with it, e.g. `must be in (0, 180) degrees, got 200`.
+        reason: String,
+    },
+    /// A value an option gave in place of the scene's own is out of its range or inconsistent
+    /// with the scene ([`Overrides`](super::Overrides)).
+    #[error("{option} {reason}")]
+    Override {
+        /// The option, perhaps with the value given, e.g. `--exposure` or `--beta 0.0,1.2,0.0`.
+        option: String,
+        /// What is wrong with it, e.g. `must be a positive number, got -1.0`.
         reason: String,
     },
     /// An object's velocity or offset is not usable (|β| ≥ 1, NaN…).

@@ -16,12 +16,14 @@
 //! ([`srt_physics::MovingObserver`]), where the light rests. The default up direction is +z.
 //!
 //! The module is split by concern: `error` (what can go wrong), `model` (the serde
-//! model of the file), `validate` (checks that need no file) and `build` (shapes, models,
-//! textures and placement into the runtime scene).
+//! model of the file), `validate` (checks that need no file, every rule once), `overrides`
+//! (values front ends give in place of the scene's own, applied as edits and judged by the same
+//! checks) and `build` (shapes, models, textures and placement into the runtime scene).
 
 mod build;
 mod error;
 mod model;
+mod overrides;
 mod validate;
 
 pub use build::{
@@ -33,6 +35,8 @@ pub use model::{
     RenderDescription, Scale, SceneDescription, ShapeDescription, SkyDescription,
     TextureDescription,
 };
+pub use overrides::{OverrideNames, Overrides};
+pub use validate::{ValueName, observation_time, velocity};
 
 /// Up direction of the observer's camera when a scene file gives none: +z.
 pub const DEFAULT_UP: [f64; 3] = [0.0, 0.0, 1.0];

@@ -2,9 +2,16 @@
 //! Lengths, positions and times are also bounded by [`MAX_COORDINATE`], and shape resolutions by
 //! what fits in [`MAX_SCENE_TRIANGLES`], so that absurd but finite values are refused here, with
 //! the key named, rather than in a renderer or a library.
+//!
+//! Every rule lives here once. The values a front end may override
+//! ([`Overrides`](super::Overrides)) are named in messages by a [`ValueName`]: the scene file's
+//! key, or the option that gave the value; the rules that front ends also need on their own
+//! ([`observation_time`], [`velocity`]) are public.
+
+use std::borrow::Cow;
 
 use glam::DVec3;
-use srt_physics::{Frame, validate_beta};
+use srt_physics::{Frame, FrameError, validate_beta};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
@@ -40,21 +47,23 @@ impl SceneDescription {
             .map_err(|kind| SceneError::new(self.origin(), kind))
     }
 
+    /// [`SceneDescription::validate`]'s checks, naming every value by its scene file key.
     pub(super) fn check(&self) -> Result<(), SceneErrorKind> {
-        self.observer.check()?;
+        self.check_named(&Names::SCENE_FILE)
+    }
+
+    /// [`SceneDescription::validate`]'s checks, naming the overridable values as `names` says.
+    pub(super) fn check_named(&self, names: &Names<'_>) -> Result<(), SceneErrorKind> {
+        self.observer.check(names)?;
         if let Some(light) = &self.light {
             coordinates3("light.position", light.position)?;
-            if !(light.temperature_k.is_finite() && light.temperature_k > 0.0) {
-                return Err(value_error(
-                    "light.temperature_k",
-                    format!(
-                        "must be a positive number of kelvin, got {:?}",
-                        light.temperature_k
-                    ),
-                ));
-            }
+            positive(
+                ValueName::Key("light.temperature_k"),
+                light.temperature_k,
+                " of kelvin",
+            )?;
         }
-        self.render.check()?;
+        self.render.check(names)?;
         if let Some(sky) = &self.sky {
             if sky.star_field > crate::sky::MAX_STARS {
                 return Err(value_error(
@@ -66,12 +75,11 @@ impl SceneDescription {
                     ),
                 ));
             }
-            if !(sky.image_brightness.is_finite() && sky.image_brightness > 0.0) {
-                return Err(value_error(
-                    "sky.image_brightness",
-                    format!("must be a positive number, got {:?}", sky.image_brightness),
-                ));
-            }
+            positive(
+                ValueName::Key("sky.image_brightness"),
+                sky.image_brightness,
+                "",
+            )?;
             if !(sky.saturation_magnitude.is_finite() && sky.saturation_magnitude.abs() <= 100.0) {
                 return Err(value_error(
                     "sky.saturation_magnitude",
@@ -83,10 +91,112 @@ impl SceneDescription {
             }
         }
         for (index, object) in self.objects.iter().enumerate() {
-            object.check(&object.label(index))?;
+            object.check(&object.label(index), names)?;
         }
         Ok(())
     }
+}
+
+/// What a message calls a value: the scene file's key, or the option that gave the value in
+/// place of the scene's own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ValueName<'a> {
+    /// A key of the scene file, e.g. `render.exposure`.
+    Key(&'a str),
+    /// An option (or control) of a front end, e.g. `--exposure`.
+    Option(&'a str),
+}
+
+impl<'a> ValueName<'a> {
+    /// The key or the option.
+    #[must_use]
+    pub const fn name(self) -> &'a str {
+        match self {
+            Self::Key(name) | Self::Option(name) => name,
+        }
+    }
+
+    /// The value shown with its name: `render.exposure = 2.0`, `--exposure 2.0`.
+    fn with_value(self, value: &str) -> String {
+        match self {
+            Self::Key(key) => format!("{key} = {value}"),
+            Self::Option(option) => format!("{option} {value}"),
+        }
+    }
+
+    /// The error `reason` about the value, called `subject` in the message: a scene file's
+    /// [`SceneErrorKind::Value`], an option's [`SceneErrorKind::Override`].
+    fn error(self, subject: impl Into<String>, reason: impl Into<String>) -> SceneErrorKind {
+        match self {
+            Self::Key(_) => value_error(subject, reason),
+            Self::Option(_) => SceneErrorKind::Override {
+                option: subject.into(),
+                reason: reason.into(),
+            },
+        }
+    }
+}
+
+/// What messages call the values a front end may override.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct Names<'a> {
+    /// `render.exposure`.
+    pub exposure: ValueName<'a>,
+    /// `observer.beta`.
+    pub observer_beta: ValueName<'a>,
+    /// Every object's `beta`, when one option gives them all; `None`: each object's own.
+    pub object_beta: Option<ValueName<'a>>,
+    /// How to ask for spectral colour: `colour = "spectral"`, `--colour spectral`.
+    pub spectral: Cow<'a, str>,
+}
+
+impl Names<'_> {
+    /// Every value as the scene file gives it.
+    pub const SCENE_FILE: Self = Self {
+        exposure: ValueName::Key("render.exposure"),
+        observer_beta: ValueName::Key("observer.beta"),
+        object_beta: None,
+        spectral: Cow::Borrowed("colour = \"spectral\""),
+    };
+}
+
+/// `ct` if it is a usable observation time: finite and within ±[`MAX_COORDINATE`], the rule of
+/// `observer.ct` (and of the times front ends give, e.g. an animation's first and last).
+///
+/// # Errors
+/// [`SceneErrorKind::Value`] or [`SceneErrorKind::Override`] naming `name`.
+pub fn observation_time(name: ValueName<'_>, ct: f64) -> Result<f64, SceneErrorKind> {
+    if ct.is_finite() && ct.abs() <= MAX_COORDINATE {
+        Ok(ct)
+    } else {
+        Err(name.error(
+            name.name(),
+            format!("must be a finite number within ±{MAX_COORDINATE:e}, got {ct:?}"),
+        ))
+    }
+}
+
+/// `beta` if it is a velocity (finite, |β| < 1), the rule of `observer.beta` and of velocities
+/// front ends give.
+///
+/// # Errors
+/// [`SceneErrorKind::Value`] or [`SceneErrorKind::Override`] naming `name` (an option with the
+/// value given, e.g. `--beta 0.0,1.2,0.0 is not a valid velocity: …`).
+pub fn velocity(name: ValueName<'_>, beta: DVec3) -> Result<DVec3, SceneErrorKind> {
+    validate_beta(beta).map_err(|error| invalid_velocity(name, beta, &error))
+}
+
+/// The error saying that `beta`, called `name`, is not a velocity because of `error`.
+pub(super) fn invalid_velocity(
+    name: ValueName<'_>,
+    beta: DVec3,
+    error: &FrameError,
+) -> SceneErrorKind {
+    let subject = match name {
+        ValueName::Key(key) => key.to_owned(),
+        ValueName::Option(_) => name.with_value(&format!("{:?},{:?},{:?}", beta.x, beta.y, beta.z)),
+    };
+    name.error(subject, format!("is not a valid velocity: {error}"))
 }
 
 fn finite3(field: &str, value: [f64; 3]) -> Result<DVec3, SceneErrorKind> {
@@ -121,6 +231,18 @@ fn unit_color(field: &str, value: [f64; 3]) -> Result<(), SceneErrorKind> {
         Err(value_error(
             field,
             format!("must have components in [0, 1], got {value:?}"),
+        ))
+    }
+}
+
+/// A finite number > 0; `unit` follows "number" in the message (e.g. " of kelvin").
+fn positive(name: ValueName<'_>, value: f64, unit: &str) -> Result<(), SceneErrorKind> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(name.error(
+            name.name(),
+            format!("must be a positive number{unit}, got {value:?}"),
         ))
     }
 }
@@ -170,7 +292,7 @@ fn non_negative(field: &str, value: f64) -> Result<(), SceneErrorKind> {
 }
 
 impl ObserverDescription {
-    fn check(&self) -> Result<(), SceneErrorKind> {
+    fn check(&self, names: &Names<'_>) -> Result<(), SceneErrorKind> {
         coordinates3("observer.position", self.position)?;
         let direction = match (self.look_at, self.direction) {
             (Some(target), None) => {
@@ -215,15 +337,27 @@ impl ObserverDescription {
                 format!("must be in (0, 180) degrees, got {:?}", self.fov_y_deg),
             ));
         }
-        validate_beta(DVec3::from_array(self.beta)).map_err(|error| {
-            value_error("observer.beta", format!("is not a valid velocity: {error}"))
-        })?;
-        if !self.ct.is_finite() || self.ct.abs() > MAX_COORDINATE {
-            return Err(value_error(
-                "observer.ct",
+        velocity(names.observer_beta, DVec3::from_array(self.beta))?;
+        observation_time(ValueName::Key("observer.ct"), self.ct)?;
+        Ok(())
+    }
+}
+
+impl RenderDescription {
+    fn check(&self, names: &Names<'_>) -> Result<(), SceneErrorKind> {
+        unit_color("render.background", self.background)?;
+        non_negative("render.ambient", self.ambient)?;
+        non_negative("render.diffuse", self.diffuse)?;
+        non_negative("render.specular", self.specular)?;
+        non_negative("render.shininess", self.shininess)?;
+        let exposure = names.exposure;
+        positive(exposure, self.exposure, "")?;
+        if self.exposure != 1.0 && self.colour == SurfaceColour::Paper {
+            return Err(exposure.error(
+                exposure.with_value(&format!("{:?}", self.exposure)),
                 format!(
-                    "must be finite and within ±{MAX_COORDINATE:e}, got {:?}",
-                    self.ct
+                    "needs spectral colour ({}): the paper's colour tables have no exposure",
+                    names.spectral
                 ),
             ));
         }
@@ -231,32 +365,14 @@ impl ObserverDescription {
     }
 }
 
-impl RenderDescription {
-    fn check(&self) -> Result<(), SceneErrorKind> {
-        unit_color("render.background", self.background)?;
-        non_negative("render.ambient", self.ambient)?;
-        non_negative("render.diffuse", self.diffuse)?;
-        non_negative("render.specular", self.specular)?;
-        non_negative("render.shininess", self.shininess)?;
-        if !(self.exposure.is_finite() && self.exposure > 0.0) {
-            return Err(value_error(
-                "render.exposure",
-                format!("must be a positive number, got {:?}", self.exposure),
-            ));
-        }
-        if self.exposure != 1.0 && self.colour == SurfaceColour::Paper {
-            return Err(value_error(
-                "render.exposure",
-                "needs colour = \"spectral\" (the paper's colour tables have no exposure)",
-            ));
-        }
-        Ok(())
-    }
-}
-
 impl ObjectDescription {
-    fn check(&self, label: &str) -> Result<(), SceneErrorKind> {
+    /// Checks the object called `label`: its motion (`beta` named as `names` says), optics,
+    /// shape, texture and placement.
+    fn check(&self, label: &str, names: &Names<'_>) -> Result<(), SceneErrorKind> {
         let field = |name: &str| format!("{name} of {label}");
+        if let Some(name) = names.object_beta {
+            velocity(name, DVec3::from_array(self.beta))?;
+        }
         Frame::new(DVec3::from_array(self.beta), DVec3::from_array(self.offset)).map_err(
             |error| SceneErrorKind::Frame {
                 object: label.to_owned(),
@@ -278,60 +394,16 @@ impl ObjectDescription {
             }
         }
         if let Some(emission) = &self.emission {
-            if !(emission.temperature_k.is_finite() && emission.temperature_k > 0.0) {
-                return Err(value_error(
-                    field("emission.temperature_k"),
-                    format!(
-                        "must be a positive number of kelvin, got {:?}",
-                        emission.temperature_k
-                    ),
-                ));
-            }
+            positive(
+                ValueName::Key(&field("emission.temperature_k")),
+                emission.temperature_k,
+                " of kelvin",
+            )?;
             non_negative(&field("emission.brightness"), emission.brightness)?;
         }
-        match &self.shape {
-            ShapeDescription::Cube { size, subdivisions } => {
-                length(&field("shape.size"), *size)?;
-                let n = u64::from(*subdivisions);
-                resolution(
-                    &field("shape.subdivisions"),
-                    *subdivisions,
-                    (1, MAX_CUBE_SUBDIVISIONS),
-                    n.saturating_mul(n).saturating_mul(12),
-                )?;
-            }
-            ShapeDescription::Sphere { radius, segments } => {
-                length(&field("shape.radius"), *radius)?;
-                let n = u64::from(*segments);
-                resolution(
-                    &field("shape.segments"),
-                    *segments,
-                    (MIN_SPHERE_SEGMENTS, MAX_SPHERE_SEGMENTS),
-                    n.saturating_mul((n / 2).max(2) - 1).saturating_mul(2),
-                )?;
-            }
-            ShapeDescription::Model { path } => {
-                if path.is_empty() {
-                    return Err(value_error(field("shape.path"), "must not be empty"));
-                }
-            }
-        }
-        match &self.texture {
-            Some(TextureDescription::Checker { squares, colors }) => {
-                if !(1..=MAX_CHECKER_SQUARES).contains(squares) {
-                    return Err(value_error(
-                        field("texture.squares"),
-                        format!("must be in 1..={MAX_CHECKER_SQUARES}, got {squares}"),
-                    ));
-                }
-                for color in colors {
-                    unit_color(&field("texture.colors"), *color)?;
-                }
-            }
-            Some(TextureDescription::Image { path }) if path.is_empty() => {
-                return Err(value_error(field("texture.path"), "must not be empty"));
-            }
-            _ => {}
+        self.shape.check(&field)?;
+        if let Some(texture) = &self.texture {
+            texture.check(&field)?;
         }
         if let Some(color) = self.color {
             unit_color(&field("color"), color)?;
@@ -355,5 +427,61 @@ impl ObjectDescription {
             ));
         }
         Ok(())
+    }
+}
+
+impl ShapeDescription {
+    /// Checks sizes and resolutions; `field` names a key of the object (`shape.size of …`).
+    fn check(&self, field: &dyn Fn(&str) -> String) -> Result<(), SceneErrorKind> {
+        match self {
+            Self::Cube { size, subdivisions } => {
+                length(&field("shape.size"), *size)?;
+                let n = u64::from(*subdivisions);
+                resolution(
+                    &field("shape.subdivisions"),
+                    *subdivisions,
+                    (1, MAX_CUBE_SUBDIVISIONS),
+                    n.saturating_mul(n).saturating_mul(12),
+                )
+            }
+            Self::Sphere { radius, segments } => {
+                length(&field("shape.radius"), *radius)?;
+                let n = u64::from(*segments);
+                resolution(
+                    &field("shape.segments"),
+                    *segments,
+                    (MIN_SPHERE_SEGMENTS, MAX_SPHERE_SEGMENTS),
+                    n.saturating_mul((n / 2).max(2) - 1).saturating_mul(2),
+                )
+            }
+            Self::Model { path } if path.is_empty() => {
+                Err(value_error(field("shape.path"), "must not be empty"))
+            }
+            Self::Model { .. } => Ok(()),
+        }
+    }
+}
+
+impl TextureDescription {
+    /// Checks the checker's squares and colours or the image's path; `field` names a key of the
+    /// object (`texture.squares of …`).
+    fn check(&self, field: &dyn Fn(&str) -> String) -> Result<(), SceneErrorKind> {
+        match self {
+            Self::Checker { squares, colors } => {
+                if !(1..=MAX_CHECKER_SQUARES).contains(squares) {
+                    return Err(value_error(
+                        field("texture.squares"),
+                        format!("must be in 1..={MAX_CHECKER_SQUARES}, got {squares}"),
+                    ));
+                }
+                colors
+                    .iter()
+                    .try_for_each(|color| unit_color(&field("texture.colors"), *color))
+            }
+            Self::Image { path } if path.is_empty() => {
+                Err(value_error(field("texture.path"), "must not be empty"))
+            }
+            Self::Image { .. } => Ok(()),
+        }
     }
 }

@@ -49,7 +49,8 @@ const MAX_DEPTH: usize = 256;
 /// document below about 100 MB; large real scenes have tens of thousands.
 pub const MAX_JSON_OBJECTS: usize = 250_000;
 
-/// Loads a `.gltf` or `.glb` file.
+/// Loads a `.gltf` or `.glb` file: parses it, counts what its node graph gives (charged to the
+/// budget) and instances the meshes of the default scene.
 pub(super) fn load(
     path: &Path,
     bytes: Vec<u8>,
@@ -59,51 +60,11 @@ pub(super) fn load(
         format: "glTF",
         message,
     };
-    check_glb_header(&bytes).map_err(invalid)?;
-    let objects = json_part(&bytes).iter().filter(|&&b| b == b'{').count();
-    if objects > MAX_JSON_OBJECTS {
-        return Err(invalid(format!(
-            "the JSON has {objects} objects, more than the {MAX_JSON_OBJECTS} a glTF file may have"
-        )));
-    }
-    let Gltf { document, blob } =
-        Gltf::from_slice_without_validation(&bytes).map_err(|e| invalid(e.to_string()))?;
     let mut warnings = Vec::new();
-    let mut root = document.into_json();
-    let (ignored, kept): (Vec<String>, Vec<String>) = root
-        .extensions_required
-        .drain(..)
-        .partition(|e| ignorable_extension(e));
-    if !ignored.is_empty() {
-        warnings.push(format!(
-            "required glTF extensions ignored: {} (their effect on materials is not imported)",
-            ignored.join(", ")
-        ));
-    }
-    if !kept.is_empty() {
-        return Err(invalid(format!(
-            "the file requires glTF extensions this importer does not support: {}",
-            kept.join(", ")
-        )));
-    }
-    fill_missing_position_bounds(&mut root, &mut warnings).map_err(invalid)?;
-    let document = Document::from_json(root).map_err(|e| invalid(e.to_string()))?;
+    let (document, blob) = parse(&bytes, &mut warnings).map_err(invalid)?;
     let base = path.parent().unwrap_or_else(|| Path::new(""));
     let buffers = load_buffers(&document, base, blob)?;
-    let roots: Vec<gltf::Node<'_>> = match document.default_scene() {
-        Some(scene) => scene.nodes().collect(),
-        None => {
-            let mut is_child = vec![false; document.nodes().len()];
-            for node in document.nodes() {
-                for child in node.children() {
-                    if let Some(flag) = is_child.get_mut(child.index()) {
-                        *flag = true;
-                    }
-                }
-            }
-            document.nodes().filter(|n| !is_child[n.index()]).collect()
-        }
-    };
+    let roots = root_nodes(&document);
     let meshes: Vec<Tally> = document
         .meshes()
         .map(|mesh| Tally::of_mesh(&mesh))
@@ -142,6 +103,58 @@ pub(super) fn load(
         loader.visit(&node, DMat4::IDENTITY, 0, &mut parts, &mut warnings)?;
     }
     Ok(Model { parts, warnings })
+}
+
+/// Parses and validates the document (refusing one with more than [`MAX_JSON_OBJECTS`] JSON
+/// objects or with required extensions that change geometry, ignoring the others with a
+/// warning); returns it with the binary chunk of a `.glb`.
+fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<(Document, Option<Vec<u8>>), String> {
+    check_glb_header(bytes)?;
+    let objects = json_part(bytes).iter().filter(|&&b| b == b'{').count();
+    if objects > MAX_JSON_OBJECTS {
+        return Err(format!(
+            "the JSON has {objects} objects, more than the {MAX_JSON_OBJECTS} a glTF file may have"
+        ));
+    }
+    let Gltf { document, blob } =
+        Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
+    let mut root = document.into_json();
+    let (ignored, kept): (Vec<String>, Vec<String>) = root
+        .extensions_required
+        .drain(..)
+        .partition(|e| ignorable_extension(e));
+    if !ignored.is_empty() {
+        warnings.push(format!(
+            "required glTF extensions ignored: {} (their effect on materials is not imported)",
+            ignored.join(", ")
+        ));
+    }
+    if !kept.is_empty() {
+        return Err(format!(
+            "the file requires glTF extensions this importer does not support: {}",
+            kept.join(", ")
+        ));
+    }
+    fill_missing_position_bounds(&mut root, warnings)?;
+    let document = Document::from_json(root).map_err(|e| e.to_string())?;
+    Ok((document, blob))
+}
+
+/// The nodes the walk starts from: the default scene's, or without one every node that is no
+/// other node's child.
+fn root_nodes(document: &Document) -> Vec<gltf::Node<'_>> {
+    if let Some(scene) = document.default_scene() {
+        return scene.nodes().collect();
+    }
+    let mut is_child = vec![false; document.nodes().len()];
+    for node in document.nodes() {
+        for child in node.children() {
+            if let Some(flag) = is_child.get_mut(child.index()) {
+                *flag = true;
+            }
+        }
+    }
+    document.nodes().filter(|n| !is_child[n.index()]).collect()
 }
 
 /// The JSON of a glTF file: the whole of a `.gltf`, the first chunk of a binary glTF.
@@ -581,13 +594,38 @@ impl Loader<'_> {
             warnings.push(format!("{label}: no POSITION attribute; skipped"));
             return Ok(None);
         };
+        let (positions, triangles) =
+            self.geometry(primitive, &position_accessor, &label, warnings)?;
+        let material = primitive.material();
+        let texture_info = material.pbr_metallic_roughness().base_color_texture();
+        let uv_set = texture_info
+            .as_ref()
+            .map_or(0, gltf::texture::Info::tex_coord);
+        let raw = self.vertex_attributes(primitive, positions, triangles, uv_set, &label, warnings);
+        let Some(built) = raw.build(&label, warnings)? else {
+            warnings.push(format!("{label}: no triangles; skipped"));
+            return Ok(None);
+        };
+        let material = self.material(&material, texture_info, &label, warnings);
+        Ok(Some((built, material)))
+    }
+
+    /// The positions of a primitive (charged to the budget) and its triangles, assembled from
+    /// its indices (or, without any, from its vertices in order) in its triangle mode.
+    fn geometry(
+        &mut self,
+        primitive: &gltf::Primitive<'_>,
+        position_accessor: &gltf::Accessor<'_>,
+        label: &str,
+        warnings: &mut Vec<String>,
+    ) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), ImportFailure> {
         let invalid = |message: String| ImportFailure::Invalid {
             format: "glTF",
             message: format!("{label}: {message}"),
         };
         self.budget
             .charge_vertices(position_accessor.count() as u64)?;
-        let positions: Vec<DVec3> = read::<3>(&position_accessor, self.buffers, true)
+        let positions: Vec<DVec3> = read::<3>(position_accessor, self.buffers, true)
             .map_err(invalid)?
             .into_iter()
             .map(DVec3::from_array)
@@ -598,6 +636,7 @@ impl Loader<'_> {
                 .map_err(|_| invalid("too many vertices".into()))?)
                 .collect(),
         };
+        let mode = primitive.mode();
         let triangles = assemble(mode, &indices);
         if mode == Mode::Triangles && indices.len() % 3 != 0 {
             warnings.push(format!(
@@ -606,49 +645,36 @@ impl Loader<'_> {
                 indices.len() % 3
             ));
         }
-        let material = primitive.material();
-        let pbr = material.pbr_metallic_roughness();
-        let texture_info = pbr.base_color_texture();
-        let uv_set = texture_info
-            .as_ref()
-            .map_or(0, gltf::texture::Info::tex_coord);
-        let optional = |semantic: Semantic, what: &str, warnings: &mut Vec<String>| {
-            primitive.get(&semantic).and_then(|accessor| {
-                if accessor.count() != positions.len() {
-                    warnings.push(format!(
-                        "{label}: {what} ignored: {} values for {} vertices",
-                        accessor.count(),
-                        positions.len()
-                    ));
-                    return None;
-                }
-                let result = match accessor.dimensions().multiplicity() {
-                    2 => read::<2>(&accessor, self.buffers, true).map(|v| {
-                        v.into_iter()
-                            .map(|[a, b]| [a, b, 0.0, 1.0])
-                            .collect::<Vec<_>>()
-                    }),
-                    3 => read::<3>(&accessor, self.buffers, true)
-                        .map(|v| v.into_iter().map(|[a, b, c]| [a, b, c, 1.0]).collect()),
-                    _ => read::<4>(&accessor, self.buffers, true),
-                };
-                result
-                    .map_err(|e| warnings.push(format!("{label}: {what} ignored: {e}")))
-                    .ok()
-            })
+        Ok((positions, triangles))
+    }
+
+    /// The mesh of `positions` and `triangles` with the primitive's normals, texture
+    /// coordinates of set `uv_set` and vertex colours, each where it is usable (otherwise
+    /// ignored with a warning).
+    fn vertex_attributes(
+        &self,
+        primitive: &gltf::Primitive<'_>,
+        positions: Vec<DVec3>,
+        triangles: Vec<[u32; 3]>,
+        uv_set: u32,
+        label: &str,
+        warnings: &mut Vec<String>,
+    ) -> RawMesh {
+        let mut attribute = |semantic: Semantic, what: &str| {
+            self.attribute(primitive, &semantic, what, positions.len(), label, warnings)
         };
-        let normals = optional(Semantic::Normals, "NORMAL", warnings).map(|v| {
+        let normals = attribute(Semantic::Normals, "NORMAL").map(|v| {
             v.into_iter()
                 .map(|[x, y, z, _]| DVec3::new(x, y, z))
                 .collect()
         });
-        let uvs = optional(Semantic::TexCoords(uv_set), "texture coordinates", warnings)
+        let uvs = attribute(Semantic::TexCoords(uv_set), "texture coordinates")
             .map(|v| v.into_iter().map(|[u, v, _, _]| DVec2::new(u, v)).collect());
         #[expect(
             clippy::cast_possible_truncation,
             reason = "colour components in [0, 1]"
         )]
-        let colors = optional(Semantic::Colors(0), "COLOR_0", warnings).map(|v| {
+        let colors = attribute(Semantic::Colors(0), "COLOR_0").map(|v| {
             v.into_iter()
                 .map(|[r, g, b, a]| {
                     [
@@ -660,40 +686,79 @@ impl Loader<'_> {
                 })
                 .collect()
         });
-        let raw = RawMesh {
+        RawMesh {
             positions,
             normals,
             uvs,
             colors,
             triangles,
+        }
+    }
+
+    /// A vertex attribute of the primitive (called `what` in warnings) as four components per
+    /// vertex (missing ones 0, alpha 1); `None` if the primitive has none, or (with a warning)
+    /// if it does not have one value per vertex or cannot be read.
+    fn attribute(
+        &self,
+        primitive: &gltf::Primitive<'_>,
+        semantic: &Semantic,
+        what: &str,
+        vertex_count: usize,
+        label: &str,
+        warnings: &mut Vec<String>,
+    ) -> Option<Vec<[f64; 4]>> {
+        let accessor = primitive.get(semantic)?;
+        if accessor.count() != vertex_count {
+            warnings.push(format!(
+                "{label}: {what} ignored: {} values for {vertex_count} vertices",
+                accessor.count(),
+            ));
+            return None;
+        }
+        let result = match accessor.dimensions().multiplicity() {
+            2 => read::<2>(&accessor, self.buffers, true).map(|v| {
+                v.into_iter()
+                    .map(|[a, b]| [a, b, 0.0, 1.0])
+                    .collect::<Vec<_>>()
+            }),
+            3 => read::<3>(&accessor, self.buffers, true)
+                .map(|v| v.into_iter().map(|[a, b, c]| [a, b, c, 1.0]).collect()),
+            _ => read::<4>(&accessor, self.buffers, true),
         };
-        let Some(built) = raw.build(&label, warnings)? else {
-            warnings.push(format!("{label}: no triangles; skipped"));
-            return Ok(None);
-        };
+        result
+            .map_err(|e| warnings.push(format!("{label}: {what} ignored: {e}")))
+            .ok()
+    }
+
+    /// The primitive's material: its name, `baseColorFactor` and base-colour texture (`None`,
+    /// with a warning, if the image cannot be loaded).
+    fn material(
+        &mut self,
+        material: &gltf::Material<'_>,
+        texture_info: Option<gltf::texture::Info<'_>>,
+        label: &str,
+        warnings: &mut Vec<String>,
+    ) -> Material {
         let name = material.name().unwrap_or_default().to_owned();
         let user = if name.is_empty() {
-            label.clone()
+            label.to_owned()
         } else {
             format!("material \"{name}\"")
         };
         let texture =
             texture_info.and_then(|info| self.image(&info.texture().source(), &user, warnings));
-        let [r, g, b, a] = pbr.base_color_factor();
+        let [r, g, b, a] = material.pbr_metallic_roughness().base_color_factor();
         let base_color = [
             encode_srgb(r),
             encode_srgb(g),
             encode_srgb(b),
             a.clamp(0.0, 1.0),
         ];
-        Ok(Some((
-            built,
-            Material {
-                name,
-                base_color,
-                texture,
-            },
-        )))
+        Material {
+            name,
+            base_color,
+            texture,
+        }
     }
 
     /// Decodes an image once; `None` (with a warning naming it) if it cannot be loaded.

@@ -26,76 +26,20 @@ use crate::limits::Budget;
 use crate::mesh::{Material, Part};
 use crate::message::quote;
 
-/// Loads an `.obj` file and the MTL files it names.
+/// Loads an `.obj` file and the MTL files it names: one part per object/group and material.
 pub(super) fn load(
     path: &Path,
     bytes: Vec<u8>,
     budget: &mut Budget,
 ) -> Result<Model, ImportFailure> {
-    let base = path.parent().unwrap_or_else(|| Path::new(""));
-    // Material name → directory of its MTL file, for texture paths.
-    let material_dirs = RefCell::new(HashMap::<String, PathBuf>::new());
-    let warnings = RefCell::new(Vec::<String>::new());
-    let options = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    let (text, note) = normalize_text(&bytes, Kind::Obj);
-    if let Some(note) = note {
-        warnings.borrow_mut().push(format!("the OBJ file {note}"));
-    }
-    let counts = prescan(&text).map_err(|message| ImportFailure::Invalid {
-        format: "OBJ",
-        message,
-    })?;
-    budget.charge_mesh(counts.triangles, counts.vertices)?;
-    let mut cursor = Cursor::new(text.as_bytes());
-    let result = tobj::load_obj_buf(&mut cursor, &options, |library: &Path| {
-        let full = base.join(library);
-        let loaded = input_file::read(&full, FileKind::Model)
-            .map_err(|e| e.to_string())
-            .and_then(|bytes| {
-                let (text, note) = normalize_text(&bytes, Kind::Mtl);
-                if let Some(note) = note {
-                    warnings
-                        .borrow_mut()
-                        .push(format!("material library \"{}\" {note}", full.display()));
-                }
-                let mut cursor = Cursor::new(text.as_bytes());
-                tobj::load_mtl_buf(&mut cursor)
-                    .map_err(|e| describe_error(&e, &text, stopped_at(&cursor), Kind::Mtl))
-            });
-        match loaded {
-            Ok((materials, names)) => {
-                let dir = full.parent().map(Path::to_path_buf).unwrap_or_default();
-                let mut dirs = material_dirs.borrow_mut();
-                for material in &materials {
-                    dirs.insert(material.name.clone(), dir.clone());
-                }
-                Ok((materials, names))
-            }
-            Err(error) => {
-                warnings.borrow_mut().push(format!(
-                    "material library \"{}\" cannot be loaded ({error}); default materials are used",
-                    full.display()
-                ));
-                Err(tobj::LoadError::OpenFileFailed)
-            }
-        }
-    });
-    let (models, materials) = result.map_err(|e| ImportFailure::Invalid {
-        format: "OBJ",
-        message: describe_error(&e, &text, stopped_at(&cursor), Kind::Obj),
-    })?;
+    let Parsed {
+        models,
+        materials,
+        material_dirs,
+        mut warnings,
+    } = parse(path, &bytes, budget)?;
     let parts_with_faces = models.iter().filter(|m| !m.mesh.indices.is_empty()).count();
     budget.charge_parts(parts_with_faces as u64)?;
-    // A failed library was warned about above; the materials that did load are kept by tobj
-    // only when all succeeded.
-    let materials = materials.unwrap_or_default();
-    let material_dirs = material_dirs.into_inner();
-    let mut warnings = warnings.into_inner();
     let mut textures = TextureCache::default();
     let mut converted = HashMap::new();
     let mut parts = Vec::new();
@@ -108,37 +52,7 @@ pub(super) fn load(
             ));
             continue;
         }
-        let raw = RawMesh {
-            positions: mesh
-                .positions
-                .chunks_exact(3)
-                .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
-                .collect(),
-            normals: (!mesh.normals.is_empty()).then(|| {
-                mesh.normals
-                    .chunks_exact(3)
-                    .map(|n| DVec3::new(n[0].into(), n[1].into(), n[2].into()))
-                    .collect()
-            }),
-            uvs: (!mesh.texcoords.is_empty()).then(|| {
-                mesh.texcoords
-                    .chunks_exact(2)
-                    .map(|t| DVec2::new(t[0].into(), 1.0 - f64::from(t[1])))
-                    .collect()
-            }),
-            colors: (!mesh.vertex_color.is_empty()).then(|| {
-                mesh.vertex_color
-                    .chunks_exact(3)
-                    .map(|c| [c[0], c[1], c[2], 1.0])
-                    .collect()
-            }),
-            triangles: mesh
-                .indices
-                .chunks_exact(3)
-                .map(|t| [t[0], t[1], t[2]])
-                .collect(),
-        };
-        let Some(built) = raw.build(&label, &mut warnings)? else {
+        let Some(built) = raw_mesh(&mesh).build(&label, &mut warnings)? else {
             continue;
         };
         let material = match mesh
@@ -159,6 +73,129 @@ pub(super) fn load(
         });
     }
     Ok(Model { parts, warnings })
+}
+
+/// What `tobj` read of an OBJ file and its material libraries.
+struct Parsed {
+    /// The objects/groups, split by material.
+    models: Vec<tobj::Model>,
+    /// The materials (none if a library failed, which was warned about).
+    materials: Vec<tobj::Material>,
+    /// Material name → folder of its MTL file, for texture paths.
+    material_dirs: HashMap<String, PathBuf>,
+    /// Problems worked around so far.
+    warnings: Vec<String>,
+}
+
+/// Repairs the text, checks and counts it in a first pass (charging triangles and vertices to
+/// `budget`), and parses it and its material libraries (relative to `path`'s folder) with
+/// `tobj`.
+fn parse(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Parsed, ImportFailure> {
+    let invalid = |message| ImportFailure::Invalid {
+        format: "OBJ",
+        message,
+    };
+    let base = path.parent().unwrap_or_else(|| Path::new(""));
+    let material_dirs = RefCell::new(HashMap::<String, PathBuf>::new());
+    let warnings = RefCell::new(Vec::<String>::new());
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (text, note) = normalize_text(bytes, Kind::Obj);
+    if let Some(note) = note {
+        warnings.borrow_mut().push(format!("the OBJ file {note}"));
+    }
+    let counts = prescan(&text).map_err(invalid)?;
+    budget.charge_mesh(counts.triangles, counts.vertices)?;
+    let mut cursor = Cursor::new(text.as_bytes());
+    let (models, materials) = tobj::load_obj_buf(&mut cursor, &options, |library: &Path| {
+        load_library(&base.join(library), &material_dirs, &warnings)
+    })
+    .map_err(|e| invalid(describe_error(&e, &text, stopped_at(&cursor), Kind::Obj)))?;
+    Ok(Parsed {
+        models,
+        // A failed library was warned about; the materials that did load are kept by tobj only
+        // when all succeeded.
+        materials: materials.unwrap_or_default(),
+        material_dirs: material_dirs.into_inner(),
+        warnings: warnings.into_inner(),
+    })
+}
+
+/// Reads the material library at `full` for `tobj`, noting its materials' folder in
+/// `material_dirs`; a library that cannot be loaded is a warning (default materials are used).
+fn load_library(
+    full: &Path,
+    material_dirs: &RefCell<HashMap<String, PathBuf>>,
+    warnings: &RefCell<Vec<String>>,
+) -> tobj::MTLLoadResult {
+    let loaded = input_file::read(full, FileKind::Model)
+        .map_err(|e| e.to_string())
+        .and_then(|bytes| {
+            let (text, note) = normalize_text(&bytes, Kind::Mtl);
+            if let Some(note) = note {
+                warnings
+                    .borrow_mut()
+                    .push(format!("material library \"{}\" {note}", full.display()));
+            }
+            let mut cursor = Cursor::new(text.as_bytes());
+            tobj::load_mtl_buf(&mut cursor)
+                .map_err(|e| describe_error(&e, &text, stopped_at(&cursor), Kind::Mtl))
+        });
+    match loaded {
+        Ok((materials, names)) => {
+            let dir = full.parent().map(Path::to_path_buf).unwrap_or_default();
+            let mut dirs = material_dirs.borrow_mut();
+            for material in &materials {
+                dirs.insert(material.name.clone(), dir.clone());
+            }
+            Ok((materials, names))
+        }
+        Err(error) => {
+            warnings.borrow_mut().push(format!(
+                "material library \"{}\" cannot be loaded ({error}); default materials are used",
+                full.display()
+            ));
+            Err(tobj::LoadError::OpenFileFailed)
+        }
+    }
+}
+
+/// The mesh of a `tobj` mesh: texture coordinates flipped to v = 0 at the top, colours opaque.
+fn raw_mesh(mesh: &tobj::Mesh) -> RawMesh {
+    RawMesh {
+        positions: mesh
+            .positions
+            .chunks_exact(3)
+            .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
+            .collect(),
+        normals: (!mesh.normals.is_empty()).then(|| {
+            mesh.normals
+                .chunks_exact(3)
+                .map(|n| DVec3::new(n[0].into(), n[1].into(), n[2].into()))
+                .collect()
+        }),
+        uvs: (!mesh.texcoords.is_empty()).then(|| {
+            mesh.texcoords
+                .chunks_exact(2)
+                .map(|t| DVec2::new(t[0].into(), 1.0 - f64::from(t[1])))
+                .collect()
+        }),
+        colors: (!mesh.vertex_color.is_empty()).then(|| {
+            mesh.vertex_color
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2], 1.0])
+                .collect()
+        }),
+        triangles: mesh
+            .indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+    }
 }
 
 /// Which kind of file [`normalize_text`] prepares.

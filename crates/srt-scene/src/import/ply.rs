@@ -15,15 +15,16 @@
 
 use std::io::{BufReader, Cursor};
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 use ply_rs_bw::parser::{ParseError, Parser, Reader};
-use ply_rs_bw::ply::{Encoding, Property, PropertyAccess};
+use ply_rs_bw::ply::{Encoding, Header, Property, PropertyAccess};
 
 use super::texture::TextureCache;
 use super::{ImportFailure, Model, RawMesh, fan};
 use crate::limits::{Budget, MAX_SCENE_TRIANGLES, OverBudget};
-use crate::mesh::{Material, Part};
+use crate::mesh::{Material, Part, Texture};
 use crate::message::quote;
 
 /// One vertex as read.
@@ -176,7 +177,16 @@ fn repair_header(bytes: Vec<u8>, warnings: &mut Vec<String>) -> Vec<u8> {
     out
 }
 
-/// Loads a `.ply` file.
+/// The `ImportFailure::Invalid` of a PLY file saying `message`.
+fn invalid(message: String) -> ImportFailure {
+    ImportFailure::Invalid {
+        format: "PLY",
+        message,
+    }
+}
+
+/// Loads a `.ply` file: reads and checks the header, reads the vertex and face elements, and
+/// builds one part from them.
 pub(super) fn load(
     path: &Path,
     bytes: Vec<u8>,
@@ -185,15 +195,51 @@ pub(super) fn load(
     let mut warnings = Vec::new();
     let file_bytes = bytes.len();
     let bytes = repair_header(bytes, &mut warnings);
-    let invalid = |message: String| ImportFailure::Invalid {
-        format: "PLY",
-        message,
-    };
     let mut reader = Reader::new(BufReader::new(Cursor::new(bytes)));
+    let header = read_header(&mut reader, file_bytes, budget)?;
+    let Elements { vertices, faces } = read_elements(&mut reader, &header)?;
+    let vertices = vertices.ok_or_else(|| invalid("the file has no vertex element".to_owned()))?;
+    let Some(faces) = faces else {
+        warnings.push("the file has no face element (a point cloud)".to_owned());
+        return Ok(Model {
+            parts: Vec::new(),
+            warnings,
+        });
+    };
+    let triangles = triangulate(&faces, budget, &mut warnings)?;
+    let Some(mesh) =
+        vertex_mesh(&vertices, triangles).build("the vertex/face data", &mut warnings)?
+    else {
+        warnings.push("the faces give no triangles".to_owned());
+        return Ok(Model {
+            parts: Vec::new(),
+            warnings,
+        });
+    };
+    let material = Material {
+        texture: texture_file(path, &header, budget, &mut warnings),
+        ..Material::default()
+    };
+    Ok(Model {
+        parts: vec![Part { mesh, material }],
+        warnings,
+    })
+}
+
+/// The file's reader, positioned after the header.
+type PlyReader = Reader<BufReader<Cursor<Vec<u8>>>>;
+
+/// Reads the header and checks the counts it declares before any payload is read: vertices and
+/// faces against the scene's budget (charged with the one part), every element against the
+/// file's `file_bytes`.
+fn read_header(
+    reader: &mut PlyReader,
+    file_bytes: usize,
+    budget: &mut Budget,
+) -> Result<Header, ImportFailure> {
     let header = Parser::<Vertex>::new()
-        .read_header(&mut reader)
+        .read_header(reader)
         .map_err(|e| invalid(describe(&e, true)))?;
-    let ascii = header.encoding == Encoding::Ascii;
     if let Some(vertex) = header.elements.get("vertex") {
         budget.charge_vertices(vertex.count as u64)?;
     }
@@ -219,6 +265,21 @@ pub(super) fn load(
         }
     }
     budget.charge_parts(1)?;
+    Ok(header)
+}
+
+/// The elements of a PLY file that are read (`None`: the file has none).
+struct Elements {
+    /// The first `vertex` element.
+    vertices: Option<Vec<Vertex>>,
+    /// The first `face` element.
+    faces: Option<Vec<Face>>,
+}
+
+/// Reads the elements in the header's order up to the first `vertex` and `face` ones (the
+/// others are skipped over).
+fn read_elements(reader: &mut PlyReader, header: &Header) -> Result<Elements, ImportFailure> {
+    let ascii = header.encoding == Encoding::Ascii;
     let mut vertices = None;
     let mut faces = None;
     for (name, element) in &header.elements {
@@ -231,33 +292,34 @@ pub(super) fn load(
             "vertex" if vertices.is_none() => {
                 vertices = Some(
                     Parser::<Vertex>::new()
-                        .read_payload_for_element(&mut reader, element, &header)
+                        .read_payload_for_element(reader, element, header)
                         .map_err(context)?,
                 );
             }
             "face" if faces.is_none() => {
                 faces = Some(
                     Parser::<Face>::new()
-                        .read_payload_for_element(&mut reader, element, &header)
+                        .read_payload_for_element(reader, element, header)
                         .map_err(context)?,
                 );
             }
             _ => {
                 Parser::<Skipped>::new()
-                    .read_payload_for_element(&mut reader, element, &header)
+                    .read_payload_for_element(reader, element, header)
                     .map_err(context)?;
             }
         }
     }
-    let vertices = vertices.ok_or_else(|| invalid("the file has no vertex element".to_owned()))?;
-    let Some(faces) = faces else {
-        warnings.push("the file has no face element (a point cloud)".to_owned());
-        return Ok(Model {
-            parts: Vec::new(),
-            warnings,
-        });
-    };
+    Ok(Elements { vertices, faces })
+}
 
+/// The faces' polygons fan-triangulated, charged to the budget; faces with fewer than three
+/// vertices are skipped with a warning.
+fn triangulate(
+    faces: &[Face],
+    budget: &mut Budget,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<[u32; 3]>, ImportFailure> {
     let mut triangle_count = 0u64;
     let mut short_faces = 0usize;
     for (i, face) in faces.iter().enumerate() {
@@ -273,7 +335,7 @@ pub(super) fn load(
     }
     budget.charge_mesh(triangle_count, 0)?;
     let mut triangles = Vec::with_capacity(usize::try_from(triangle_count).unwrap_or(0));
-    for face in &faces {
+    for face in faces {
         fan(&face.indices, &mut triangles);
     }
     if short_faces > 0 {
@@ -281,6 +343,12 @@ pub(super) fn load(
             "{short_faces} faces with fewer than 3 vertices are ignored"
         ));
     }
+    Ok(triangles)
+}
+
+/// The mesh of `vertices` and `triangles`: normals, texture coordinates and colours where every
+/// vertex has them.
+fn vertex_mesh(vertices: &[Vertex], triangles: Vec<[u32; 3]>) -> RawMesh {
     let all = |f: &dyn Fn(&Vertex) -> bool| !vertices.is_empty() && vertices.iter().all(f);
     let normals = all(&|v| v.normal.iter().all(Option::is_some)).then(|| {
         vertices
@@ -304,7 +372,7 @@ pub(super) fn load(
             .map(|v| v.color.map(|c| c.unwrap_or(1.0).clamp(0.0, 1.0) as f32))
             .collect()
     });
-    let raw = RawMesh {
+    RawMesh {
         positions: vertices
             .iter()
             .map(|v| DVec3::from_array(v.position))
@@ -313,36 +381,24 @@ pub(super) fn load(
         uvs,
         colors,
         triangles,
-    };
-    let Some(mesh) = raw.build("the vertex/face data", &mut warnings)? else {
-        warnings.push("the faces give no triangles".to_owned());
-        return Ok(Model {
-            parts: Vec::new(),
-            warnings,
-        });
-    };
-    let texture = header
+    }
+}
+
+/// The texture a MeshLab-style `comment TextureFile NAME` header line names (relative to the
+/// file's folder); `None`, with a warning if it cannot be loaded.
+fn texture_file(
+    path: &Path,
+    header: &Header,
+    budget: &mut Budget,
+    warnings: &mut Vec<String>,
+) -> Option<Arc<Texture>> {
+    let name = header
         .comments
         .iter()
         .find_map(|c| c.trim().strip_prefix("TextureFile").map(str::trim))
-        .filter(|name| !name.is_empty())
-        .and_then(|name| {
-            let dir = path.parent().unwrap_or_else(|| Path::new(""));
-            TextureCache::default().file(
-                &dir.join(name),
-                "the TextureFile comment",
-                &mut warnings,
-                budget,
-            )
-        });
-    let material = Material {
-        texture,
-        ..Material::default()
-    };
-    Ok(Model {
-        parts: vec![Part { mesh, material }],
-        warnings,
-    })
+        .filter(|name| !name.is_empty())?;
+    let dir = path.parent().unwrap_or_else(|| Path::new(""));
+    TextureCache::default().file(&dir.join(name), "the TextureFile comment", warnings, budget)
 }
 
 /// A `ply-rs` parse error in words, on one line: "line N: " (when `with_line` and the parser
