@@ -192,12 +192,16 @@ fn measure(
 /// A line of the report and a row of the table.
 struct Line {
     text: String,
+    /// The table row without its last cell, the validation's (see [`Validation::cell`]).
     row: String,
+    /// The frames the line times, by name and size, as `validate --bench-frames` records them.
+    frames: Vec<(String, (u32, u32))>,
 }
 
 fn static_line(case: &Case, (width, height): (u32, u32), m: &Measurement) -> Line {
     let tris = case.scene.triangle_count();
     Line {
+        frames: vec![(case.name.clone(), (width, height))],
         text: format!(
             "scene={} size={width}x{height} tris={tris} {}",
             case.name,
@@ -259,6 +263,10 @@ fn sweep(
     let tris = scene.triangle_count();
     let frames_swept = times.len();
     Ok(Line {
+        frames: times
+            .iter()
+            .map(|&ct| (at_time(name, scene, ct).name, (width, height)))
+            .collect(),
         text: format!(
             "sweep={name} size={width}x{height} tris={tris} frames={frames_swept} method=auto worst_ratio={:.2} worst_ct={:.2} median_ratio={median_ratio:.2} worst_lrt_ratio={:.2} worst_rt_ratio={:.2} slowest_auto_ms={:.2} slowest_lrt_ms={:.2} slowest_rt_ms={:.2} worst_shaded_per_pixel={:.2}",
             worst.1.ratio(),
@@ -283,6 +291,71 @@ fn sweep(
             worst_of(Method::Rt),
         ),
     })
+}
+
+/// What the last `cargo xtask validate --bench-frames` recorded
+/// ([`crate::validate::BENCH_FRAMES_RECORD`]) and the commit the bench measures.
+struct Validation {
+    /// The commit and date the record was made at, if there is a record.
+    made: Option<(String, String)>,
+    /// Each recorded frame: name, `WxH`, whether it passed.
+    frames: Vec<(String, String, bool)>,
+    /// The commit being measured.
+    commit: String,
+}
+
+impl Validation {
+    /// Reads the record, if any.
+    fn read(workspace: &Path) -> Self {
+        let text = std::fs::read_to_string(workspace.join(crate::validate::BENCH_FRAMES_RECORD))
+            .unwrap_or_default();
+        let mut lines = text.lines();
+        let made = lines.next().and_then(|header| {
+            let header = header.strip_prefix("# commit=")?;
+            let (commit, date) = header.split_once(" date=")?;
+            Some((commit.to_owned(), date.to_owned()))
+        });
+        let frames = lines
+            .filter_map(|line| {
+                let mut fields = line.split('\t');
+                Some((
+                    fields.next()?.to_owned(),
+                    fields.next()?.to_owned(),
+                    fields.next()? == "pass",
+                ))
+            })
+            .collect();
+        Self {
+            made,
+            frames,
+            commit: crate::provenance::commit(workspace),
+        }
+    }
+
+    /// The table cell for a line timing `frames`: validated (and when) only if every frame
+    /// passed in a record made at the commit being measured.
+    fn cell(&self, frames: &[(String, (u32, u32))]) -> String {
+        let Some((commit, date)) = &self.made else {
+            return "no (run `cargo xtask validate --bench-frames`)".to_owned();
+        };
+        if *commit != self.commit || commit.ends_with("-dirty") {
+            return format!("no (the record is of {commit})");
+        }
+        let passed = frames
+            .iter()
+            .filter(|(name, (width, height))| {
+                let size = format!("{width}x{height}");
+                self.frames
+                    .iter()
+                    .any(|(n, s, pass)| n == name && *s == size && *pass)
+            })
+            .count();
+        if passed == frames.len() {
+            format!("yes, {date} ({commit})")
+        } else {
+            format!("no: {passed} of {} frames passed", frames.len())
+        }
+    }
 }
 
 /// Three engines side by side, each approaching at 0.9c.
@@ -312,6 +385,73 @@ fn with_spectral_colour(case: Case) -> Case {
     }
 }
 
+/// The built-in scene `name` as a case.
+fn builtin(name: &str) -> anyhow::Result<Case> {
+    builtin_cases()?
+        .into_iter()
+        .find(|c| c.name == name)
+        .with_context(|| format!("{name} is a built-in scene"))
+}
+
+/// The static cases, each timed at every size of [`SIZES`].
+fn static_cases() -> anyhow::Result<Vec<Case>> {
+    Ok(vec![
+        builtin("fig10-cube50")?,
+        builtin("fig10-cube200")?,
+        model_case("OBJ/spider.obj", 0.9)?,
+        model_case(ENGINE, 0.9)?,
+        builtin("teaser")?,
+        three_engines()?,
+        with_spectral_colour(builtin("teaser")?),
+        builtin("flythrough")?,
+    ])
+}
+
+/// The fly-by sweeps: name, scene and the observation times of their frames, timed at the first
+/// size of [`SIZES`].
+fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
+    Ok(vec![
+        ("teaser", builtin("teaser")?.scene, teaser_sweep_times()),
+        (
+            "engine-beside",
+            shifted(&model_case(ENGINE, 0.9)?.scene, ENGINE_BESIDE),
+            engine_sweep_times(),
+        ),
+        (
+            "flythrough",
+            builtin("flythrough")?.scene,
+            flythrough_sweep_times(),
+        ),
+    ])
+}
+
+/// Every frame the bench times, named as the bench prints it (`NAME@ct=T` for a sweep's
+/// frames), with its size: what `cargo xtask validate --bench-frames` checks.
+///
+/// # Errors
+/// Missing models.
+pub fn timed_frames() -> anyhow::Result<Vec<(Case, (u32, u32))>> {
+    let static_cases = static_cases()?;
+    let mut frames = Vec::new();
+    for size in SIZES {
+        frames.extend(static_cases.iter().map(|case| {
+            let case = Case {
+                name: case.name.clone(),
+                scene: case.scene.clone(),
+            };
+            (case, size)
+        }));
+    }
+    for (name, scene, times) in sweeps()? {
+        frames.extend(
+            times
+                .iter()
+                .map(|&ct| (at_time(name, &scene, ct), SIZES[0])),
+        );
+    }
+    Ok(frames)
+}
+
 /// Runs the benchmark with `frames` timed frames per measurement and updates
 /// `docs/performance.md`; with `only`, runs the cases whose name contains it and leaves the
 /// document alone.
@@ -324,27 +464,7 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
         GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
     let adapter = ctx.adapter_summary();
     println!("adapter: {adapter}");
-    let builtins = builtin_cases()?;
-    let builtin = |name: &str| -> anyhow::Result<Case> {
-        builtins
-            .iter()
-            .find(|c| c.name == name)
-            .map(|c| Case {
-                name: c.name.clone(),
-                scene: c.scene.clone(),
-            })
-            .with_context(|| format!("{name} is a built-in scene"))
-    };
-    let static_cases = [
-        builtin("fig10-cube50")?,
-        builtin("fig10-cube200")?,
-        model_case("OBJ/spider.obj", 0.9)?,
-        model_case(ENGINE, 0.9)?,
-        builtin("teaser")?,
-        three_engines()?,
-        with_spectral_colour(builtin("teaser")?),
-        builtin("flythrough")?,
-    ];
+    let static_cases = static_cases()?;
     let mut lines = Vec::new();
     for size in SIZES {
         for case in static_cases.iter().filter(|c| selected(&c.name)) {
@@ -361,18 +481,7 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
             lines.push(line);
         }
     }
-    let teaser = builtin("teaser")?;
-    let engine = model_case(ENGINE, 0.9)?;
-    let flythrough = builtin("flythrough")?;
-    for (name, scene, times) in [
-        ("teaser", teaser.scene, teaser_sweep_times()),
-        (
-            "engine-beside",
-            shifted(&engine.scene, ENGINE_BESIDE),
-            engine_sweep_times(),
-        ),
-        ("flythrough", flythrough.scene, flythrough_sweep_times()),
-    ] {
+    for (name, scene, times) in sweeps()? {
         if !selected(name) {
             continue;
         }
@@ -390,11 +499,11 @@ pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<
     };
     let mut table = format!(
         "{TABLE_START}\nAdapter: {adapter}. Median of {frames} frames after {WARM_UP} warm-up frames per measurement, timed by {timing}.\n\n\
-         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n"
     );
+    let validation = Validation::read(workspace);
     for line in &lines {
-        table += &line.row;
-        table.push('\n');
+        table += &format!("{} {} |\n", line.row, validation.cell(&line.frames));
     }
     table += TABLE_END;
     let doc = workspace.join("docs/performance.md");

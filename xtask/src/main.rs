@@ -4,6 +4,7 @@ mod bench;
 mod cases;
 mod figures;
 mod plot;
+mod provenance;
 mod validate;
 
 use std::path::PathBuf;
@@ -33,6 +34,10 @@ enum Command {
         /// Only the image cases whose scene name contains this text (kernels always run).
         #[arg(long)]
         only: Option<String>,
+        /// Instead of the image cases: every frame `cargo xtask bench` times, at its sizes, with
+        /// every exact method, recorded for the bench's table.
+        #[arg(long)]
+        bench_frames: bool,
     },
     /// Measure the paper's Table 1 and scenes in motion on the current adapter and update
     /// docs/performance.md.
@@ -62,7 +67,13 @@ fn main() -> anyhow::Result<()> {
                 println!("wrote {}", path.display());
             }
         }
-        Command::Validate { only } => validate::run(&workspace_root(), only.as_deref())?,
+        Command::Validate { only, bench_frames } => {
+            if bench_frames {
+                validate::run_bench_frames(&workspace_root(), only.as_deref())?;
+            } else {
+                validate::run(&workspace_root(), only.as_deref())?;
+            }
+        }
         Command::Bench { frames, only } => bench::run(&workspace_root(), frames, only.as_deref())?,
     }
     Ok(())

@@ -90,18 +90,13 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
         }
     }
     for case in fly_by_cases()? {
-        let speed = case
-            .scene
-            .objects
-            .iter()
-            .map(|o| o.frame.beta().length())
-            .fold(0.0, f64::max);
+        let speed = fastest(&case.scene);
         cases.push((case, speed));
     }
     cases.retain(|(case, _)| only.is_none_or(|o| case.name.contains(o)));
     for (case, speed) in &cases {
         failures.extend(validate_footprints(&ctx, case)?);
-        failures.extend(validate_image(&ctx, case, *speed, &out)?);
+        failures.extend(validate_image(&ctx, case, *speed, (WIDTH, HEIGHT), &out)?);
     }
     ctx.take_errors()?;
     if failures.is_empty() {
@@ -114,6 +109,67 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
         anyhow::bail!("validate failed:\n  {}", failures.join("\n  "))
     }
 }
+
+/// The largest speed of `scene`'s objects, for the report.
+fn fastest(scene: &Scene) -> f64 {
+    scene
+        .objects
+        .iter()
+        .map(|o| o.frame.beta().length())
+        .fold(0.0, f64::max)
+}
+
+/// `cargo xtask validate --bench-frames`: every frame `cargo xtask bench` times, at its size,
+/// rendered by every exact method and compared with the CPU reference under the rules of the
+/// image cases. Records each frame's verdict, with the commit and the date, in
+/// [`BENCH_FRAMES_RECORD`], from which the bench's table says which lines were validated.
+///
+/// # Errors
+/// When no GPU is available, a model is missing, or a frame disagrees.
+pub fn run_bench_frames(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
+    let ctx = GpuContext::new()
+        .context("cargo xtask validate needs a GPU adapter (software ones count)")?;
+    println!("adapter: {}", ctx.adapter_summary());
+    let out = workspace.join("target/validate/bench-frames");
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let mut failures = Vec::new();
+    let mut record = format!(
+        "# commit={} date={}\n",
+        crate::provenance::commit(workspace),
+        crate::provenance::today()
+    );
+    let frames = crate::bench::timed_frames()?;
+    let frames: Vec<_> = frames
+        .into_iter()
+        .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))
+        .collect();
+    for (case, size) in &frames {
+        let failed = validate_image(&ctx, case, fastest(&case.scene), *size, &out)?;
+        let verdict = if failed.is_empty() { "pass" } else { "FAIL" };
+        record += &format!("{}\t{}x{}\t{verdict}\n", case.name, size.0, size.1);
+        failures.extend(failed);
+    }
+    ctx.take_errors()?;
+    let path = workspace.join(BENCH_FRAMES_RECORD);
+    std::fs::write(&path, record).with_context(|| format!("cannot write {}", path.display()))?;
+    if failures.is_empty() {
+        println!(
+            "validate --bench-frames: all {} frames the bench times agree (recorded in {})",
+            frames.len(),
+            path.display()
+        );
+        Ok(())
+    } else {
+        anyhow::bail!(
+            "validate --bench-frames failed:\n  {}",
+            failures.join("\n  ")
+        )
+    }
+}
+
+/// Where `validate --bench-frames` records its verdicts (relative to the workspace): a header
+/// line `# commit=HASH date=YYYY-MM-DD`, then one line per frame, `NAME<TAB>WxH<TAB>pass|FAIL`.
+pub const BENCH_FRAMES_RECORD: &str = "target/validate/bench-frames.tsv";
 
 /// Physics kernels, colour-table sampling and spectral colour.
 fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
@@ -329,18 +385,19 @@ fn validate_image(
     ctx: &GpuContext,
     case: &Case,
     speed: f64,
+    (width, height): (u32, u32),
     out: &Path,
 ) -> anyhow::Result<Vec<String>> {
     let scene: &Scene = &case.scene;
     let reference = Tracer::new(scene).render(
         RenderSettings {
-            width: WIDTH,
-            height: HEIGHT,
+            width,
+            height,
             samples: 1,
         },
         &|_| {},
     );
-    let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT)?;
+    let renderer = GpuRenderer::new(ctx, scene, width, height)?;
     let [lrt_rgb, rt_rgb, auto_rgb, polygon_rgb] =
         [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon]
             .map(|method| renderer.render(ctx, scene, method, FootprintShape::Hull))
@@ -356,7 +413,7 @@ fn validate_image(
         .filter(|l| l.is_some_and(|l| l > srt_gpu::ray_tracing::AUTO_LAYERS))
         .count();
     println!(
-        "scene={} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}",
+        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}",
         case.name,
         mismatch.fraction(),
         rt_mismatch.fraction(),
@@ -364,20 +421,40 @@ fn validate_image(
         polygon_mismatch.fraction()
     );
     let stem = format!(
-        "{}_b{speed:.2}",
+        "{}_{width}x{height}_b{speed:.2}",
         case.name.replace(['.', ' ', '@', '='], "_")
     );
     let reference_rgb = reference.to_rgb8();
-    save(out.join(format!("{stem}_reference.png")), &reference_rgb)?;
-    save(out.join(format!("{stem}_actual.png")), &lrt_rgb)?;
-    save(out.join(format!("{stem}_rt.png")), &rt_rgb)?;
-    save(out.join(format!("{stem}_polygon.png")), &polygon_rgb)?;
+    save(
+        out.join(format!("{stem}_reference.png")),
+        width,
+        height,
+        &reference_rgb,
+    )?;
+    save(
+        out.join(format!("{stem}_actual.png")),
+        width,
+        height,
+        &lrt_rgb,
+    )?;
+    save(out.join(format!("{stem}_rt.png")), width, height, &rt_rgb)?;
+    save(
+        out.join(format!("{stem}_polygon.png")),
+        width,
+        height,
+        &polygon_rgb,
+    )?;
     let difference: Vec<[u8; 3]> = reference_rgb
         .iter()
         .zip(&lrt_rgb)
         .map(|(a, b)| [0, 1, 2].map(|c| a[c].abs_diff(b[c]).saturating_mul(16)))
         .collect();
-    save(out.join(format!("{stem}_difference.png")), &difference)?;
+    save(
+        out.join(format!("{stem}_difference.png")),
+        width,
+        height,
+        &difference,
+    )?;
     Ok([
         ("LRT", mismatch),
         ("RT", rt_mismatch),
@@ -387,7 +464,7 @@ fn validate_image(
     .filter(|(_, m)| m.fraction() > MAX_MISMATCH)
     .map(|(method, m)| {
         format!(
-            "{} at {speed}c: {method} mismatch {:.6} > {MAX_MISMATCH}",
+            "{} at {width}x{height}, {speed}c: {method} mismatch {:.6} > {MAX_MISMATCH}",
             case.name,
             m.fraction()
         )
@@ -395,9 +472,9 @@ fn validate_image(
     .collect())
 }
 
-fn save(path: PathBuf, pixels: &[[u8; 3]]) -> anyhow::Result<()> {
+fn save(path: PathBuf, width: u32, height: u32, pixels: &[[u8; 3]]) -> anyhow::Result<()> {
     let bytes = pixels.iter().flatten().copied().collect();
-    RgbImage::from_raw(WIDTH, HEIGHT, bytes)
+    RgbImage::from_raw(width, height, bytes)
         .context("image size")?
         .save(&path)
         .with_context(|| format!("cannot write {}", path.display()))
