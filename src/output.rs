@@ -154,7 +154,8 @@ pub fn write_image(
     }
     .with_context(|| format!("cannot encode {}", path.display()))?;
     file.flush(writer)?;
-    file.commit()
+    file.commit()?;
+    Ok(())
 }
 
 /// Encodes an 8-bit sRGB PNG with `record` in an iTXt chunk before the pixels.

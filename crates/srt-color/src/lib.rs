@@ -59,3 +59,8 @@ pub use spectral::{
     emitted_light, fit_rgb, reflected_display_rgb, reflected_light, srgb_coefficient_table,
 };
 pub use tonemap::{SEARCHLIGHT_REFERENCE_K, ToneMap, colour_table, searchlight_reference_ln_y};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

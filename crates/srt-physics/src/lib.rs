@@ -42,3 +42,8 @@ pub use light::{
 };
 pub use lorentz::{compose_velocities, lorentz_factor, lorentz_matrix, rapidity, validate_beta};
 pub use observer::{MovingObserver, Poincare, RelativeFrame, boost_and_rotation};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -672,3 +672,8 @@ pub fn near_bound(clip: &[DVec4]) -> Option<NearBound> {
     }
     best.map(NearBound::At)
 }
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

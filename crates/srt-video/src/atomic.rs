@@ -6,17 +6,18 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use anyhow::anyhow;
-use srt_scene::message::io_reason;
 use tempfile::NamedTempFile;
+
+use crate::WriteError;
 
 /// A new, empty temporary file in `path`'s folder (removed when dropped), created with the
 /// permissions any new file gets there: 0o666 less the umask on Unix, not `tempfile`'s private
 /// 0o600, which would otherwise survive the rename into place.
 ///
 /// # Errors
-/// If no file can be created there; the message names `path`, the folder and the reason.
-pub fn temporary_file_beside(path: &Path) -> anyhow::Result<NamedTempFile> {
+/// [`WriteError::CreateFile`] if no file can be created there; the message names `path`, the
+/// folder and the reason.
+pub fn temporary_file_beside(path: &Path) -> Result<NamedTempFile, WriteError> {
     let folder = parent_folder(path);
     let mut builder = tempfile::Builder::new();
     builder.prefix(".srt-").suffix(".partial");
@@ -25,14 +26,13 @@ pub fn temporary_file_beside(path: &Path) -> anyhow::Result<NamedTempFile> {
         use std::os::unix::fs::PermissionsExt as _;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    builder.tempfile_in(folder).map_err(|error| {
-        anyhow!(
-            "cannot write {}: cannot create a file in folder {} ({})",
-            path.display(),
-            folder.display(),
-            io_reason(&error)
-        )
-    })
+    builder
+        .tempfile_in(folder)
+        .map_err(|error| WriteError::CreateFile {
+            path: path.to_owned(),
+            folder: folder.to_owned(),
+            error,
+        })
 }
 
 /// The folder `path` is in (`.` for a bare file name).
@@ -47,6 +47,7 @@ pub fn parent_folder(path: &Path) -> &Path {
 /// A file being written in its destination's folder: [`AtomicFile::commit`] renames it into
 /// place; dropped before that (an error, a panic), it is removed and the destination is
 /// untouched.
+#[derive(Debug)]
 pub struct AtomicFile {
     temp: NamedTempFile,
     path: PathBuf,
@@ -56,8 +57,8 @@ impl AtomicFile {
     /// Starts writing `path`.
     ///
     /// # Errors
-    /// If no file can be created in `path`'s folder.
-    pub fn create(path: &Path) -> anyhow::Result<Self> {
+    /// [`WriteError::CreateFile`] if no file can be created in `path`'s folder.
+    pub fn create(path: &Path) -> Result<Self, WriteError> {
         Ok(Self {
             temp: temporary_file_beside(path)?,
             path: path.to_owned(),
@@ -67,49 +68,47 @@ impl AtomicFile {
     /// A buffered writer to the temporary file; finish it with [`AtomicFile::flush`].
     ///
     /// # Errors
-    /// If the file handle cannot be duplicated.
-    pub fn writer(&self) -> anyhow::Result<BufWriter<File>> {
+    /// [`WriteError::Io`] if the file handle cannot be duplicated.
+    pub fn writer(&self) -> Result<BufWriter<File>, WriteError> {
         let file = self
             .temp
             .as_file()
             .try_clone()
-            .map_err(|error| self.io_error(&error))?;
+            .map_err(|error| self.io_error(error))?;
         Ok(BufWriter::new(file))
     }
 
     /// Flushes what an encoder left in `writer`.
     ///
     /// # Errors
-    /// If writing fails (a full disk, say).
-    pub fn flush(&self, writer: BufWriter<File>) -> anyhow::Result<()> {
+    /// [`WriteError::Io`] if writing fails (a full disk, say).
+    pub fn flush(&self, writer: BufWriter<File>) -> Result<(), WriteError> {
         writer
             .into_inner()
             .map(drop)
-            .map_err(|error| self.io_error(error.error()))
+            .map_err(|error| self.io_error(error.into_error()))
     }
 
     /// Renames the finished file into place.
     ///
     /// # Errors
-    /// If the rename fails; the temporary file is then removed.
-    pub fn commit(self) -> anyhow::Result<()> {
+    /// [`WriteError::Io`] if the rename fails; the temporary file is then removed.
+    pub fn commit(self) -> Result<(), WriteError> {
         let path = self.path;
-        self.temp.persist(&path).map_err(|error| {
-            anyhow!(
-                "cannot write {} ({})",
-                path.display(),
-                io_reason(&error.error)
-            )
-        })?;
-        Ok(())
+        match self.temp.persist(&path) {
+            Ok(_) => Ok(()),
+            Err(error) => Err(WriteError::Io {
+                path,
+                error: error.error,
+            }),
+        }
     }
 
     /// "cannot write PATH (reason)".
-    fn io_error(&self, error: &std::io::Error) -> anyhow::Error {
-        anyhow!(
-            "cannot write {} ({})",
-            self.path.display(),
-            io_reason(error)
-        )
+    fn io_error(&self, error: std::io::Error) -> WriteError {
+        WriteError::Io {
+            path: self.path.clone(),
+            error,
+        }
     }
 }

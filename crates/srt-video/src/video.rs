@@ -7,7 +7,6 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context as _, anyhow, bail};
 use image::RgbImage;
 use muxide::api::{Muxer, MuxerBuilder, VideoCodec};
 use openh264::OpenH264API;
@@ -18,6 +17,7 @@ use openh264::encoder::{
 use openh264::formats::{RgbSliceU8, YUVBuffer};
 
 use crate::atomic::AtomicFile;
+use crate::error::{EncoderError, WriteError};
 
 /// Bits per pixel and frame the H.264 encoder's buffer model is set up for (about 5.5 Mbit/s at
 /// 1280×720 and 24 fps).
@@ -64,38 +64,43 @@ const MAX_H264_SIZE: (u32, u32) = (3840, 2160);
 /// `origin` says where the size came from (options or a file) for the message.
 ///
 /// # Errors
-/// If it cannot; the message names `path`, the size and `origin`.
+/// [`WriteError::OddSize`], [`WriteError::TooLargeForH264`] or [`WriteError::TooLargeForGif`] if
+/// it cannot; the message names `path`, the size and `origin`.
 pub fn check_size(
     path: &Path,
     format: VideoFormat,
     width: u32,
     height: u32,
     origin: &str,
-) -> anyhow::Result<()> {
+) -> Result<(), WriteError> {
+    let path = path.to_owned();
+    let origin = origin.to_owned();
     match format {
-        VideoFormat::Mp4 if width % 2 == 1 || height % 2 == 1 => bail!(
-            "cannot write {}: H.264 video needs an even width and height, and {origin} is \
-             {width}x{height}",
-            path.display()
-        ),
+        VideoFormat::Mp4 if width % 2 == 1 || height % 2 == 1 => Err(WriteError::OddSize {
+            path,
+            origin,
+            width,
+            height,
+        }),
         VideoFormat::Mp4
             if width.max(height) > MAX_H264_SIZE.0 || width.min(height) > MAX_H264_SIZE.1 =>
         {
-            bail!(
-                "cannot write {}: the H.264 encoder takes at most {}x{} (or {}x{}), and {origin} \
-                 is {width}x{height}",
-                path.display(),
-                MAX_H264_SIZE.0,
-                MAX_H264_SIZE.1,
-                MAX_H264_SIZE.1,
-                MAX_H264_SIZE.0
-            )
+            Err(WriteError::TooLargeForH264 {
+                path,
+                origin,
+                width,
+                height,
+                max: MAX_H264_SIZE,
+            })
         }
-        VideoFormat::Gif if width > u32::from(u16::MAX) || height > u32::from(u16::MAX) => bail!(
-            "cannot write {}: a GIF is at most 65535 pixels a side, and {origin} is \
-             {width}x{height}",
-            path.display()
-        ),
+        VideoFormat::Gif if width > u32::from(u16::MAX) || height > u32::from(u16::MAX) => {
+            Err(WriteError::TooLargeForGif {
+                path,
+                origin,
+                width,
+                height,
+            })
+        }
         _ => Ok(()),
     }
 }
@@ -109,6 +114,22 @@ pub struct VideoWriter {
     height: u32,
     frames: u32,
     encoder: VideoEncoder,
+}
+
+impl std::fmt::Debug for VideoWriter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let format = match self.encoder {
+            VideoEncoder::Mp4 { .. } => VideoFormat::Mp4,
+            VideoEncoder::Gif { .. } => VideoFormat::Gif,
+        };
+        f.debug_struct("VideoWriter")
+            .field("path", &self.path)
+            .field("format", &format)
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("frames", &self.frames)
+            .finish_non_exhaustive()
+    }
 }
 
 /// The encoder of one format.
@@ -131,19 +152,18 @@ impl VideoWriter {
     /// extension (.mp4 or .gif).
     ///
     /// # Errors
-    /// If `path` is not a video format or the size does not fit it ([`check_size`]), or the
-    /// file or encoder cannot be set up.
-    pub fn create(path: &Path, width: u32, height: u32, fps: u32) -> anyhow::Result<Self> {
+    /// [`WriteError::NotAVideo`] if `path` is not a video format, the errors of [`check_size`]
+    /// if the size does not fit it, and others if the file or encoder cannot be set up.
+    pub fn create(path: &Path, width: u32, height: u32, fps: u32) -> Result<Self, WriteError> {
         let Some(format) = VideoFormat::for_path(path) else {
-            bail!(
-                "cannot write {}: a video must end in .mp4 or .gif",
-                path.display()
-            );
+            return Err(WriteError::NotAVideo {
+                path: path.to_owned(),
+            });
         };
         check_size(path, format, width, height, "the picture")?;
         let file = AtomicFile::create(path)?;
         let writer = file.writer()?;
-        let cannot = || format!("cannot write {}", path.display());
+        let cannot = |error| encode_error(path, None, error);
         let encoder = match format {
             VideoFormat::Mp4 => {
                 let rate = f64::from(width) * f64::from(height) * f64::from(fps) * BITS_PER_PIXEL;
@@ -159,11 +179,14 @@ impl VideoWriter {
                     // OpenH264's RGB to YUV conversion is BT.601, limited range.
                     .vui(VuiConfig::bt601());
                 let encoder = Encoder::with_api_config(OpenH264API::from_source(), config)
-                    .with_context(|| format!("{}: the H.264 encoder failed to start", cannot()))?;
+                    .map_err(|error| WriteError::EncoderStart {
+                        path: path.to_owned(),
+                        error: error.into(),
+                    })?;
                 let muxer = MuxerBuilder::new(writer)
                     .video(VideoCodec::H264, width, height, f64::from(fps))
                     .build()
-                    .map_err(|error| anyhow!("{}: {error}", cannot()))?;
+                    .map_err(|error| cannot(error.into()))?;
                 VideoEncoder::Mp4 {
                     encoder: Box::new(encoder),
                     muxer: Box::new(muxer),
@@ -173,10 +196,10 @@ impl VideoWriter {
             VideoFormat::Gif => {
                 // `check_size` has bounded the size to 16 bits.
                 let mut encoder = gif::Encoder::new(writer, width as u16, height as u16, &[])
-                    .with_context(cannot)?;
+                    .map_err(|error| cannot(error.into()))?;
                 encoder
                     .set_repeat(gif::Repeat::Infinite)
-                    .with_context(cannot)?;
+                    .map_err(|error| cannot(error.into()))?;
                 VideoEncoder::Gif {
                     encoder: Box::new(encoder),
                     delay: (100.0 / f64::from(fps)).round().max(2.0) as u16,
@@ -196,25 +219,18 @@ impl VideoWriter {
     /// Appends a frame.
     ///
     /// # Errors
-    /// If its size differs from the video's, or encoding or writing fails.
-    pub fn push(&mut self, frame: &RgbImage) -> anyhow::Result<()> {
+    /// [`WriteError::FrameSize`] if its size differs from the video's, [`WriteError::Encode`]
+    /// if encoding or writing fails.
+    pub fn push(&mut self, frame: &RgbImage) -> Result<(), WriteError> {
         if frame.dimensions() != (self.width, self.height) {
-            bail!(
-                "cannot add a {}x{} frame to {}, a {}x{} video",
-                frame.width(),
-                frame.height(),
-                self.path.display(),
-                self.width,
-                self.height
-            );
+            return Err(WriteError::FrameSize {
+                path: self.path.clone(),
+                frame: frame.dimensions(),
+                video: (self.width, self.height),
+            });
         }
-        let cannot = || {
-            format!(
-                "cannot write frame {} of {}",
-                self.frames,
-                self.path.display()
-            )
-        };
+        let (path, index) = (&self.path, self.frames);
+        let cannot = |error| encode_error(path, Some(index), error);
         match &mut self.encoder {
             VideoEncoder::Mp4 {
                 encoder,
@@ -223,13 +239,13 @@ impl VideoWriter {
             } => {
                 let size = (self.width as usize, self.height as usize);
                 let yuv = YUVBuffer::from_rgb8_source(RgbSliceU8::new(frame.as_raw(), size));
-                let bitstream = encoder.encode(&yuv).with_context(cannot)?;
+                let bitstream = encoder.encode(&yuv).map_err(|error| cannot(error.into()))?;
                 let keyframe = bitstream.frame_type() == FrameType::IDR;
                 let data = bitstream.to_vec();
                 let seconds = f64::from(self.frames) / f64::from(*fps);
                 muxer
                     .write_video(seconds, &data, keyframe)
-                    .map_err(|error| anyhow!("{}: {error}", cannot()))?;
+                    .map_err(|error| cannot(error.into()))?;
             }
             VideoEncoder::Gif { encoder, delay } => {
                 let mut gif_frame = gif::Frame::from_rgb_speed(
@@ -239,7 +255,9 @@ impl VideoWriter {
                     GIF_QUANTISER_SPEED,
                 );
                 gif_frame.delay = *delay;
-                encoder.write_frame(&gif_frame).with_context(cannot)?;
+                encoder
+                    .write_frame(&gif_frame)
+                    .map_err(|error| cannot(error.into()))?;
             }
         }
         self.frames += 1;
@@ -249,27 +267,36 @@ impl VideoWriter {
     /// Completes the container and renames the file into place; returns the number of frames.
     ///
     /// # Errors
-    /// If the video has no frames, or finishing or writing fails; nothing is then left at the
-    /// path.
-    pub fn finish(self) -> anyhow::Result<u32> {
+    /// [`WriteError::NoFrames`] if the video has no frames, [`WriteError::Encode`] or
+    /// [`WriteError::Io`] if finishing or writing fails; nothing is then left at the path.
+    pub fn finish(self) -> Result<u32, WriteError> {
         if self.frames == 0 {
-            bail!(
-                "cannot write {}: a video needs at least one frame",
-                self.path.display()
-            );
+            return Err(WriteError::NoFrames { path: self.path });
         }
-        let cannot = || format!("cannot write {}", self.path.display());
+        let path = &self.path;
+        let cannot = |error| encode_error(path, None, error);
         let writer = match self.encoder {
             VideoEncoder::Mp4 { mut muxer, .. } => {
                 muxer
                     .finish_in_place()
-                    .map_err(|error| anyhow!("{}: {error}", cannot()))?;
+                    .map_err(|error| cannot(error.into()))?;
                 (*muxer).into_writer()
             }
-            VideoEncoder::Gif { encoder, .. } => (*encoder).into_inner().with_context(cannot)?,
+            VideoEncoder::Gif { encoder, .. } => (*encoder)
+                .into_inner()
+                .map_err(|error| cannot(error.into()))?,
         };
         self.file.flush(writer)?;
         self.file.commit()?;
         Ok(self.frames)
+    }
+}
+
+/// [`WriteError::Encode`] about frame `frame` (or the file, when `None`) of `path`.
+fn encode_error(path: &Path, frame: Option<u32>, error: EncoderError) -> WriteError {
+    WriteError::Encode {
+        path: path.to_owned(),
+        frame,
+        error,
     }
 }
