@@ -3,31 +3,31 @@
 //! value lives here, in Rust, and the pipeline cannot be created without it).
 
 /// Shared physics (mirror of srt-physics).
-pub const PHYSICS: &str = include_str!("../../../shaders/physics.wgsl");
+pub const PHYSICS: &str = include_str!("../shaders/physics.wgsl");
 /// Shared data layouts (twins of [`crate::types`]).
-pub const TYPES: &str = include_str!("../../../shaders/types.wgsl");
+pub const TYPES: &str = include_str!("../shaders/types.wgsl");
 /// Kernel probes (see [`crate::probe`]).
-pub const PROBE: &str = include_str!("../../../shaders/probe.wgsl");
+pub const PROBE: &str = include_str!("../shaders/probe.wgsl");
 /// Colour-table sampling (mirror of `TemperatureLut::sample`).
-pub const COLOUR: &str = include_str!("../../../shaders/colour.wgsl");
+pub const COLOUR: &str = include_str!("../shaders/colour.wgsl");
 /// Spectral surface colour (mirror of srt-color's spectral path).
-pub const SPECTRAL: &str = include_str!("../../../shaders/spectral.wgsl");
+pub const SPECTRAL: &str = include_str!("../shaders/spectral.wgsl");
 /// Bindings and helpers shared by the render passes.
-pub const RENDER_BINDINGS: &str = include_str!("../../../shaders/render_bindings.wgsl");
+pub const RENDER_BINDINGS: &str = include_str!("../shaders/render_bindings.wgsl");
 /// Intersection and shading (mirror of srt-trace).
-pub const SURFACE: &str = include_str!("../../../shaders/surface.wgsl");
+pub const SURFACE: &str = include_str!("../shaders/surface.wgsl");
 /// The footprint compute pass (mirror of srt-proxy).
-pub const PROXY: &str = include_str!("../../../shaders/proxy.wgsl");
+pub const PROXY: &str = include_str!("../shaders/proxy.wgsl");
 /// The local ray tracing pass.
-pub const LRT: &str = include_str!("../../../shaders/lrt.wgsl");
+pub const LRT: &str = include_str!("../shaders/lrt.wgsl");
 /// The GPU ray tracer's visibility pass (composed after [`LRT`]).
-pub const RT: &str = include_str!("../../../shaders/rt.wgsl");
+pub const RT: &str = include_str!("../shaders/rt.wgsl");
 /// The polygon-rendering baseline pass.
-pub const POLYGON: &str = include_str!("../../../shaders/polygon.wgsl");
+pub const POLYGON: &str = include_str!("../shaders/polygon.wgsl");
 /// The stars and the image of the sky.
-pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
+pub const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The pinhole camera: viewing directions through pixels and back.
-pub const CAMERA: &str = include_str!("../../../shaders/camera.wgsl");
+pub const CAMERA: &str = include_str!("../shaders/camera.wgsl");
 
 /// Invocations per workgroup of every compute entry point (WGSL `override WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;
