@@ -8,7 +8,7 @@ use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
 use glam::{DMat4, DVec2, DVec3};
 use srt_color::ToneMap;
-use srt_physics::{Event, Frame};
+use srt_physics::{Event, Frame, RelativeFrame};
 
 use crate::mesh::Part;
 
@@ -212,6 +212,22 @@ impl Object {
     }
 }
 
+/// What of a scene follows the observer's motion, computed from a description by
+/// [`crate::SceneDescription::kinematics`]: everything an observer's edit (camera, time,
+/// velocity) changes, as long as no object's geometry turns with it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Kinematics {
+    /// The observer at rest in S.
+    pub observer: Observer,
+    /// The light at rest in S.
+    pub light: Light,
+    /// Every object's frame relative to the observer, in order, with the Wigner rotation its
+    /// rest-frame geometry is turned by.
+    pub frames: Vec<RelativeFrame>,
+    /// The velocity of the sky's rest frame W relative to S (`None`: the scene has no sky).
+    pub sky_beta: Option<DVec3>,
+}
+
 /// Everything needed to render one picture.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -250,5 +266,30 @@ impl Scene {
     pub fn set_effects(&mut self, effects: Effects) {
         self.effects = effects;
         self.tone_map = effects.default_tone_map();
+    }
+
+    /// Moves the scene to `kinematics`, computed from the description it was built from after
+    /// an edit of the observer alone: the observer, the light, every object's frame and the
+    /// sky's velocity change; meshes, textures and stars stay. The result equals a fresh build
+    /// of the edited description when each object's Wigner rotation ([`RelativeFrame::rotation`])
+    /// is the one its geometry was built with (always so for an observer at rest in W, and
+    /// while the observer's velocity is unchanged); the caller checks that.
+    ///
+    /// # Panics
+    /// If `kinematics` has a different number of objects than the scene.
+    pub fn follow(&mut self, kinematics: &Kinematics) {
+        assert_eq!(
+            kinematics.frames.len(),
+            self.objects.len(),
+            "kinematics of a description with other objects"
+        );
+        self.observer = kinematics.observer;
+        self.light = kinematics.light;
+        for (object, relative) in self.objects.iter_mut().zip(&kinematics.frames) {
+            object.frame = relative.frame;
+        }
+        if let Some(beta) = kinematics.sky_beta {
+            self.sky.beta = beta;
+        }
     }
 }

@@ -145,3 +145,51 @@ fn a_resting_observer_changes_nothing() {
     assert_eq!(scene.objects[1].frame.offset(), DVec3::new(-2.0, 1.0, 0.0));
     assert_eq!(scene.light.position, DVec3::new(1.0, -6.0, 4.0));
 }
+
+/// The scene text with a star field, so that the sky's velocity follows the observer too.
+fn scene_with_sky(beta: &str) -> String {
+    format!("{}\n[sky]\nstar_field = 50\n", scene(beta))
+}
+
+#[test]
+fn a_built_scene_follows_an_observer_edit_as_a_fresh_build_would_give_it() {
+    let mut description = parse(&scene_with_sky("[0.0, 0.5, 0.0]"));
+    let (mut built, _) = description.build(Path::new(".")).unwrap();
+    let rotations_before: Vec<DMat3> = description
+        .kinematics()
+        .unwrap()
+        .frames
+        .iter()
+        .map(|f| f.rotation)
+        .collect();
+    // One step of an observer's flight at constant velocity: along its worldline, turned.
+    let observer = &mut description.observer;
+    observer.ct += 3.0;
+    observer.position[1] += 0.5 * 3.0;
+    observer.direction = Some([0.3, 1.0, 0.1]);
+    let kinematics = description.kinematics().unwrap();
+    let (fresh, _) = description.build(Path::new(".")).unwrap();
+    assert_ne!(built, fresh, "the edit moves the scene");
+    // The moving sphere's geometry is turned by a Wigner rotation, the same after the step.
+    let rotations: Vec<DMat3> = kinematics.frames.iter().map(|f| f.rotation).collect();
+    assert!(rotations[1] != DMat3::IDENTITY);
+    assert_eq!(rotations, rotations_before);
+    built.follow(&kinematics);
+    assert_eq!(built, fresh);
+}
+
+#[test]
+fn kinematics_are_what_the_build_places_the_scene_with() {
+    let description = parse(&scene_with_sky("[0.3, 0.4, 0.0]"));
+    let (built, _) = description.build(Path::new(".")).unwrap();
+    let kinematics = description.kinematics().unwrap();
+    assert_eq!(kinematics.observer, built.observer);
+    assert_eq!(kinematics.light, built.light);
+    assert_eq!(kinematics.sky_beta, Some(built.sky.beta));
+    assert!((built.sky.beta + DVec3::new(0.3, 0.4, 0.0)).length() < 1e-15);
+    for (relative, object) in kinematics.frames.iter().zip(&built.objects) {
+        assert_eq!(relative.frame, object.frame);
+    }
+    let without_sky = parse(&scene("[0.3, 0.4, 0.0]"));
+    assert_eq!(without_sky.kinematics().unwrap().sky_beta, None);
+}

@@ -9,8 +9,10 @@
 //! Bringing the runtime scene in step never reads a file again: each runtime object remembers the
 //! geometry it was built from (its description without motion, name and wireframe), and an
 //! object whose geometry is unchanged keeps its parts. Only new objects (or objects whose
-//! geometry changed) are built, by [`SceneDescription::build`]; so dragging a slider costs no
-//! more than a validation. [`Editor::structure_version`] tells the renderer when the set of
+//! geometry changed) are built, by [`SceneDescription::build`]. An edit of the observer alone
+//! (time, camera, a flight's step: what runs every frame) builds nothing: the runtime scene
+//! follows it ([`Scene::follow`]) unless the observer's new velocity turns an object's geometry
+//! (the Wigner rotation). So dragging a slider or playing time costs no more than a validation. [`Editor::structure_version`] tells the renderer when the set of
 //! meshes changed and must be uploaded again.
 //!
 //! Arguments and files are resolved by [`srt_scene::resolve`], as `srt render` resolves them.
@@ -121,6 +123,8 @@ pub struct Editor {
     directions: Vec<DVec3>,
     home: Observer,
     structure_version: u64,
+    /// Scenes built by edits so far (an edit of the observer alone builds none).
+    builds: u64,
 }
 
 /// Where each object of an edited description gets its parts: `Some(index)` of the runtime
@@ -175,6 +179,7 @@ impl Editor {
             scene,
             directions,
             structure_version: 0,
+            builds: 0,
         };
         (editor, warnings)
     }
@@ -326,13 +331,46 @@ impl Editor {
     ) -> Result<Vec<String>, EditError> {
         let mut description = self.description.clone();
         change(&mut description)?;
+        self.rebuild(description)
+    }
+
+    /// Makes `description` the description if the scene file's rules accept it, building the
+    /// runtime scene's settings and the objects whose geometry is new; otherwise nothing
+    /// changes. Returns the warnings met building new objects.
+    fn rebuild(&mut self, description: SceneDescription) -> Result<Vec<String>, EditError> {
         description.validate()?;
         let frames = description.relative_frames()?;
         let geometry = geometries(&description, &frames);
         let plan = self.plan(&geometry);
         let (built, warnings) = self.build_new_objects(&description, &plan)?;
+        self.builds += 1;
         self.commit(description, &plan, built, &frames, geometry);
         Ok(warnings)
+    }
+
+    /// Applies `change` to the observer (camera, time, velocity): the edit made every frame
+    /// while time runs or the observer flies. Judged by the scene file's rules as every edit;
+    /// then, when every object's geometry keeps its Wigner rotation (always for an observer at
+    /// rest in W, and while the observer's velocity stays), the runtime scene follows the
+    /// edit ([`Scene::follow`]) and nothing is built; otherwise as [`Editor::apply`].
+    fn move_observer(
+        &mut self,
+        change: impl FnOnce(&mut ObserverDescription),
+    ) -> Result<(), EditError> {
+        let mut description = self.description.clone();
+        change(&mut description.observer);
+        description.validate()?;
+        let kinematics = description.kinematics()?;
+        let same_geometry = kinematics.frames.len() == self.built_from.len()
+            && (kinematics.frames.iter())
+                .zip(&self.built_from)
+                .all(|(frame, built)| frame.rotation == built.rotation);
+        if !same_geometry {
+            return self.rebuild(description).map(|_no_new_objects| ());
+        }
+        self.scene.follow(&kinematics);
+        self.description = description;
+        Ok(())
     }
 
     /// [`Editor::apply`] for edits that add no object (and so meet no warning).
@@ -682,17 +720,16 @@ impl Editor {
     /// vector parallel to it, a field of view outside (0°, 180°), a position or time that is not
     /// finite…); the observer is then unchanged.
     pub fn set_observer(&mut self, observer: Observer) -> Result<(), EditError> {
-        self.edit(|description| {
-            description.observer = ObserverDescription {
+        self.move_observer(|description| {
+            *description = ObserverDescription {
                 position: observer.position.to_array(),
                 look_at: None,
                 direction: Some(observer.direction.to_array()),
-                beta: description.observer.beta,
+                beta: description.beta,
                 up: observer.up.to_array(),
                 fov_y_deg: observer.fov_y_deg,
                 ct: observer.ct,
             };
-            Ok(())
         })
     }
 
@@ -702,15 +739,13 @@ impl Editor {
     /// # Errors
     /// [`EditError::Scene`] for a time the scene file's rules refuse (not finite, too large).
     pub fn set_time(&mut self, ct: f64) -> Result<(), EditError> {
-        self.edit(|description| {
-            let observer = &mut description.observer;
+        self.move_observer(|observer| {
             // A time the rules refuse is refused by its own name, not by a position made from it.
             if observer.beta != [0.0; 3] && ct.is_finite() {
                 let moved = DVec3::from_array(observer.beta) * (ct - observer.ct);
                 observer.position = (DVec3::from_array(observer.position) + moved).to_array();
             }
             observer.ct = ct;
-            Ok(())
         })
     }
 
@@ -720,10 +755,7 @@ impl Editor {
     /// # Errors
     /// [`EditError::Scene`] for a velocity the scene file's rules refuse (|β| ≥ 1, not finite).
     pub fn set_observer_beta(&mut self, beta: DVec3) -> Result<(), EditError> {
-        self.edit(|description| {
-            description.observer.beta = beta.to_array();
-            Ok(())
-        })
+        self.move_observer(|observer| observer.beta = beta.to_array())
     }
 
     /// The observation event in the world frame W (the description's observer position and ct).
@@ -741,15 +773,13 @@ impl Editor {
     /// time that is not finite or too large); the observer is then unchanged.
     pub fn set_observer_motion(&mut self, event: Event, beta: DVec3) -> Result<(), EditError> {
         let direction = self.scene.observer.direction;
-        self.edit(|description| {
-            let observer = &mut description.observer;
+        self.move_observer(|observer| {
             // A point looked at would turn the camera as it moves: keep today's direction.
             observer.look_at = None;
             observer.direction = Some(direction.to_array());
             observer.position = event.position.to_array();
             observer.ct = event.ct;
             observer.beta = beta.to_array();
-            Ok(())
         })
     }
 
@@ -879,6 +909,7 @@ fn absolutize_object(object: &mut ObjectDescription, base_dir: &Path) {
 
 #[cfg(test)]
 mod tests {
+    use crate::camera;
     use srt_scene::load_scene_file;
     use srt_scene::resolve::DEFAULT_MODEL_SPEED;
 
@@ -1304,6 +1335,50 @@ mod tests {
     fn assert_matches_a_fresh_build(editor: &Editor) {
         let (fresh, _) = editor.description().build(&editor.base_dir).unwrap();
         assert_eq!(editor.scene(), &fresh);
+    }
+
+    /// What runs every frame while time plays or the observer flies (time, camera, a flight's
+    /// step) moves the runtime scene without building it, and gives what a fresh build of the
+    /// edited description gives; a change of the observer's velocity that turns moving
+    /// objects' geometry (the Wigner rotation) builds, as it must.
+    #[test]
+    fn time_and_flight_move_the_scene_without_building_it() {
+        for name in ["teaser", "flythrough"] {
+            let (mut editor, _) = Editor::open(name).unwrap();
+            let builds = editor.builds;
+            for step in 1..=3 {
+                editor.set_time(0.5 * f64::from(step)).unwrap();
+                assert_matches_a_fresh_build(&editor);
+            }
+            let observer = camera::turn(&editor.scene().observer, 0.1, -0.05);
+            editor.set_observer(observer).unwrap();
+            assert_matches_a_fresh_build(&editor);
+            // A coasting flight: the observer moves on along its worldline, velocity unchanged.
+            let beta = editor.observer_beta();
+            let event = editor.observer_event();
+            let next = Event::new(event.ct + 0.25, event.position + beta * 0.25);
+            editor.set_observer_motion(next, beta).unwrap();
+            assert_matches_a_fresh_build(&editor);
+            assert_eq!(
+                editor.builds, builds,
+                "{name}: an observer edit built the scene"
+            );
+        }
+        // Thrust changes the observer's velocity: the teaser's moving objects turn, so it builds.
+        let (mut editor, _) = Editor::open("teaser").unwrap();
+        let builds = editor.builds;
+        editor
+            .set_observer_motion(editor.observer_event(), DVec3::new(0.0, 0.1, 0.0))
+            .unwrap();
+        assert_eq!(editor.builds, builds + 1);
+        assert_matches_a_fresh_build(&editor);
+        // A time the rules refuse is refused on the fast path too, changing nothing.
+        let before = editor.scene().clone();
+        assert!(matches!(
+            editor.set_time(f64::NAN),
+            Err(EditError::Scene(_))
+        ));
+        assert_eq!(editor.scene(), &before);
     }
 
     /// With a moving observer, edits are made in the world frame, and parts turned by the

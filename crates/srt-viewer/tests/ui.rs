@@ -199,6 +199,7 @@ fn changing_the_speed_changes_the_image_and_switching_effects_changes_its_colour
     assert_eq!(image(&harness).dimensions(), before.dimensions());
     click(&mut harness, "Split screen (both)");
     assert_eq!(changed_pixels(&image(&harness), &split), 0);
+    harness.state().take_gpu_errors().expect("no GPU errors");
 }
 
 #[test]
@@ -237,6 +238,7 @@ fn adding_and_removing_a_model_reuploads_the_scene() {
         changed < 50,
         "{changed} pixels differ from the scene before the model was added"
     );
+    harness.state().take_gpu_errors().expect("no GPU errors");
 }
 
 /// A file as the window system hands it to egui when it is dropped.
@@ -478,6 +480,7 @@ fn two_views_side_by_side_and_the_probe_tells_what_a_pixel_shows() {
         Some(None),
         "a click at the edge: background"
     );
+    harness.state().take_gpu_errors().expect("no GPU errors");
 }
 
 /// A binary STL file with one tetrahedron (4 triangles), shared with the unit tests.
@@ -532,4 +535,5 @@ fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
     assert_eq!(decoded, frames);
     assert!(changed, "the objects move while the video plays");
     assert!(!harness.state().is_recording());
+    harness.state().take_gpu_errors().expect("no GPU errors");
 }

@@ -26,7 +26,7 @@ use crate::input_file::{self, FileKind};
 use crate::limits::{Budget, MAX_COORDINATE, OverBudget};
 use crate::mesh::{Material, Mesh, MeshError, Part, Texture};
 use crate::message::one_line;
-use crate::scene::{Emission, Light, Object, Observer, Scene, Shading, SurfaceOptics};
+use crate::scene::{Emission, Kinematics, Light, Object, Observer, Scene, Shading, SurfaceOptics};
 use crate::sky::{self, Sky};
 use crate::{shapes, textures};
 
@@ -87,36 +87,26 @@ impl SceneDescription {
             textures: HashMap::new(),
             warnings: Vec::new(),
         };
-        let observer = self.observer.to_observer();
-        let motion = self.moving_observer().map_err(fail)?;
-        let light = self.light.as_ref().map_or(
-            Light {
-                position: observer.position,
-                temperature_k: DEFAULT_LIGHT_TEMPERATURE_K,
-            },
-            |l| Light {
-                // At rest relative to the observer, where W says it is at W's observation time.
-                position: motion
-                    .to_observer(Event::new(observer.ct, DVec3::from_array(l.position)))
-                    .position,
-                temperature_k: l.temperature_k,
-            },
-        );
+        let Kinematics {
+            observer,
+            light,
+            frames,
+            sky_beta,
+        } = self.kinematics()?;
         let objects = self
             .objects
             .iter()
+            .zip(&frames)
             .enumerate()
-            .map(|(index, object)| object.build(index, &motion, &mut builder))
+            .map(|(index, (object, relative))| object.build(index, relative, &mut builder))
             .collect::<Result<Vec<_>, _>>()
             .map_err(fail)?;
-        let sky = self
-            .sky
-            .as_ref()
-            .map_or_else(
-                || Ok(Sky::default()),
-                |d| d.build(base_dir, &motion, &mut builder.budget),
-            )
-            .map_err(fail)?;
+        let sky = match (&self.sky, sky_beta) {
+            (Some(description), Some(beta)) => description
+                .build(base_dir, beta, &mut builder.budget)
+                .map_err(fail)?,
+            _ => Sky::default(),
+        };
         let mut warnings: Vec<String> = builder.warnings.iter().map(|w| one_line(w)).collect();
         if objects.is_empty() {
             warnings.push("the scene has no objects".to_owned());
@@ -183,16 +173,65 @@ impl SceneDescription {
             })
             .collect()
     }
+
+    /// What of the built scene follows the observer's motion ([`Kinematics`]): the observer,
+    /// the light resting beside it, every object's frame relative to it and the sky's velocity.
+    /// [`SceneDescription::build`] places the scene with it; an editor that changes only the
+    /// observer moves a built scene with [`Scene::follow`] instead of building it again.
+    ///
+    /// # Errors
+    /// As [`SceneDescription::relative_frames`].
+    pub fn kinematics(&self) -> Result<Kinematics, SceneError> {
+        let fail = |kind| SceneError::new(self.origin(), kind);
+        let motion = self.moving_observer().map_err(fail)?;
+        let observer = self.observer.to_observer();
+        let light = self.light.as_ref().map_or(
+            Light {
+                position: observer.position,
+                temperature_k: DEFAULT_LIGHT_TEMPERATURE_K,
+            },
+            |l| Light {
+                // At rest relative to the observer, where W says it is at W's observation time.
+                position: motion
+                    .to_observer(Event::new(observer.ct, DVec3::from_array(l.position)))
+                    .position,
+                temperature_k: l.temperature_k,
+            },
+        );
+        // The sky rests in W, which moves relative to the observer as an object at rest in W
+        // does ([`MovingObserver::relative_frame`]: velocity −β_o, no rotation).
+        let sky_beta = self
+            .sky
+            .as_ref()
+            .map(|_| {
+                Frame::new(DVec3::ZERO, DVec3::ZERO)
+                    .and_then(|rest| motion.relative_frame(&rest))
+                    .map(|world| world.frame.beta())
+            })
+            .transpose()
+            .map_err(|error| {
+                fail(invalid_velocity(
+                    ValueName::Key("observer.beta"),
+                    motion.beta(),
+                    &error,
+                ))
+            })?;
+        Ok(Kinematics {
+            observer,
+            light,
+            frames: self.relative_frames()?,
+            sky_beta,
+        })
+    }
 }
 
 impl SkyDescription {
     /// The stars, seen from the observer's frame: the built-in field's and the file's, resting
-    /// in W, which moves relative to the observer as an object at rest in W does
-    /// ([`MovingObserver::relative_frame`]: velocity −β_o, no rotation).
+    /// in W, which moves with `beta` relative to the observer ([`Kinematics::sky_beta`]).
     fn build(
         &self,
         base_dir: &Path,
-        observer: &MovingObserver,
+        beta: DVec3,
         budget: &mut Budget,
     ) -> Result<Sky, SceneErrorKind> {
         let on_disk = |key: &str, path: &str| match assets::resolve(base_dir, path) {
@@ -221,13 +260,8 @@ impl SkyDescription {
                 ));
             }
         }
-        let world = observer
-            .relative_frame(&Frame::new(DVec3::ZERO, DVec3::ZERO).expect("a frame at rest"))
-            .map_err(|error| {
-                invalid_velocity(ValueName::Key("observer.beta"), observer.beta(), &error)
-            })?;
         Ok(Sky {
-            beta: world.frame.beta(),
+            beta,
             stars,
             saturation_magnitude: self.saturation_magnitude,
             image,
@@ -335,15 +369,10 @@ impl ObjectDescription {
     fn build(
         &self,
         index: usize,
-        observer: &MovingObserver,
+        relative: &RelativeFrame,
         builder: &mut Builder<'_>,
     ) -> Result<Object, SceneErrorKind> {
         let label = self.label(index);
-        let frame_error = |error| SceneErrorKind::Frame {
-            object: label.clone(),
-            error,
-        };
-        let relative = self.relative_frame(observer).map_err(frame_error)?;
         let too_large = |key: &str, error: OverBudget| {
             value_error(
                 format!("{key} of {label}"),
