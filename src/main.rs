@@ -7,6 +7,7 @@
 
 mod cli;
 mod encode;
+mod exr_range;
 mod output;
 mod progress;
 mod provenance;

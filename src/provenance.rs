@@ -1,6 +1,7 @@
 //! How an image was made: the scene (name, or file name and SHA-256 of its content), observation
 //! time, velocities, effects, view, renderer and srt version, stored in every PNG (an iTXt chunk)
-//! and EXR (a text attribute) that `srt render` writes, and printed by `srt info`.
+//! and EXR (a text attribute) that `srt render` writes, and printed by `srt info` (with, for an
+//! EXR, the range of its pixels: [`crate::exr_range`]).
 //!
 //! The record is one text block of `key: value` lines under the name [`KEY`], so its bytes do not
 //! depend on the order a container keeps its entries in. It holds nothing that differs between
@@ -13,6 +14,8 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail};
 use srt_scene::message::io_reason;
+
+use crate::exr_range::PixelRange;
 
 /// The PNG keyword and EXR attribute name the record is stored under.
 pub const KEY: &str = "srt";
@@ -167,11 +170,28 @@ fn exr_record(file: File) -> Result<Option<String>, String> {
 /// As [`Provenance::read`].
 pub fn print_info(path: &Path) -> anyhow::Result<()> {
     let record = Provenance::read(path)?;
-    let width = record.entries().map(|(k, _)| k.len()).max().unwrap_or(0);
-    for (key, value) in record.entries() {
+    let mut lines: Vec<(String, String)> = record
+        .entries()
+        .map(|(key, value)| (key.to_owned(), value.to_owned()))
+        .collect();
+    if is_exr(path)? {
+        let range = PixelRange::read(path)?;
+        lines.extend((range.lines().into_iter()).map(|(key, value)| (key.to_owned(), value)));
+    }
+    let width = lines.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+    for (key, value) in &lines {
         println!("{key:width$}  {value}");
     }
     Ok(())
+}
+
+/// Whether the file at `path` starts as an OpenEXR image does.
+fn is_exr(path: &Path) -> anyhow::Result<bool> {
+    let mut start = [0_u8; 4];
+    let read = File::open(path)
+        .and_then(|mut file| read_up_to(&mut file, &mut start))
+        .map_err(|error| anyhow!("cannot read {} ({})", path.display(), io_reason(&error)))?;
+    Ok(start[..read].starts_with(EXR_MAGIC))
 }
 
 #[cfg(test)]

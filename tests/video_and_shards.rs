@@ -304,7 +304,14 @@ fn info_prints_how_an_image_was_made() {
         "{png}"
     );
     assert!(!entries.contains_key("scene sha256"), "{png}");
-    assert_eq!(srt_ok(&["info", "a.exr"], dir.path()), png);
+    // An EXR's record is the PNG's; below it, the range of its pixels.
+    let exr = srt_ok(&["info", "a.exr"], dir.path());
+    let (record, range) = exr.split_at(png.len());
+    assert_eq!(record, png);
+    assert!(
+        range.contains("pixel range") && range.contains("pixels above 1.0"),
+        "{exr}"
+    );
 
     // A scene file is named by its file name and the SHA-256 of its content; a moving observer
     // is recorded.
