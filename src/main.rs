@@ -24,7 +24,7 @@ use crate::cli::{Cli, Command};
 /// Runs `srt view`.
 #[cfg(feature = "viewer")]
 fn view(scenes: &[String]) -> anyhow::Result<()> {
-    srt_viewer::run(scenes)
+    Ok(srt_viewer::run(scenes)?)
 }
 
 /// Without the `viewer` feature there is no window.

@@ -31,13 +31,27 @@ pub mod view;
 
 use std::sync::Arc;
 
-use anyhow::Context as _;
 use eframe::{egui, egui_wgpu};
 use srt_gpu::GpuContext;
 
 pub use app::{Level, Status, ViewerApp};
 pub use edit::{EditError, Editor, parse_speed};
 pub use view::{Pane, ViewMethod};
+
+/// Why `srt view` could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewerError {
+    /// An argument that cannot be opened (unknown name, missing or invalid file).
+    #[error(transparent)]
+    Open(#[from] EditError),
+    /// The window or its GPU could not be opened (no display, no adapter).
+    #[error(
+        "cannot open the viewer's window: {0} (it needs a display and a GPU adapter; without a \
+         GPU, install Mesa's lavapipe: `apt-get install mesa-vulkan-drivers`, then \
+         WGPU_BACKEND=vulkan)"
+    )]
+    Window(String),
+}
 
 /// Initial size of the window in points.
 pub const WINDOW_SIZE: [f32; 2] = [1600.0, 900.0];
@@ -68,9 +82,10 @@ fn wgpu_options() -> egui_wgpu::WgpuConfiguration {
 /// objects to it. Returns when the window is closed.
 ///
 /// # Errors
-/// An argument that cannot be opened (unknown name, missing or invalid file), or a window or
-/// GPU that cannot be opened (no display, no adapter).
-pub fn run(arguments: &[String]) -> anyhow::Result<()> {
+/// [`ViewerError::Open`] for an argument that cannot be opened (unknown name, missing or invalid
+/// file), [`ViewerError::Window`] for a window or GPU that cannot be opened (no display, no
+/// adapter).
+pub fn run(arguments: &[String]) -> Result<(), ViewerError> {
     let (editor, warnings) = Editor::from_arguments(arguments)?;
     let title = format!("srt view — {}", editor.scene().name);
     let options = eframe::NativeOptions {
@@ -101,9 +116,5 @@ pub fn run(arguments: &[String]) -> anyhow::Result<()> {
             )))
         }),
     )
-    .map_err(|error| anyhow::anyhow!("{error}"))
-    .context(
-        "cannot open the viewer's window (it needs a display and a GPU adapter; without a GPU, \
-         install Mesa's lavapipe: `apt-get install mesa-vulkan-drivers`, then WGPU_BACKEND=vulkan)",
-    )
+    .map_err(|error| ViewerError::Window(error.to_string()))
 }
