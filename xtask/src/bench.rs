@@ -16,12 +16,21 @@
 //! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
 //!   `flythrough` (a moving observer under 6 000 stars).
 //!
-//! Prints one line per case and rewrites the tables in `docs/performance.md`.
+//! Prints one line per case. A full run rewrites the generated blocks of `docs/performance.md`
+//! (the table and the summary sentences, [`document`]) and saves every measurement as
+//! `docs/performance-results.json` ([`results`]); `--results PATH` saves them elsewhere too, on
+//! any run, and `--compare OLD NEW` puts two saved runs side by side ([`compare`]).
+
+mod compare;
+mod document;
+mod results;
+mod summary;
 
 use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Context as _;
+use srt_gpu::ray_tracing::AUTO_LAYERS;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_scene::{Scene, SurfaceColour};
 use srt_trace::{RenderSettings, Tracer};
@@ -30,72 +39,12 @@ use crate::cases::{
     Case, ENGINE, ENGINE_BESIDE, at_time, builtin_cases, engine_sweep_times,
     flythrough_sweep_times, model_case, shifted, teaser_sweep_times,
 };
+use results::{CaseResult, Machine, Measurement, Results, SweepFrame, SweepResult, median};
 
 /// Image sizes of the static cases; the first is also that of the sweeps.
 const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
+/// Frames rendered by every method before timing starts.
 const WARM_UP: u32 = 2;
-const TABLE_START: &str = "<!-- table1:start (written by cargo xtask bench) -->";
-const TABLE_END: &str = "<!-- table1:end -->";
-
-/// One measured frame: a scene at one size.
-struct Measurement {
-    lrt_ms: f64,
-    proxy_ms: f64,
-    rt_ms: f64,
-    /// `auto`: each object by LRT or the ray tracer, as `Method::Auto` chooses.
-    auto_ms: f64,
-    polygon_ms: f64,
-    /// LRT visibility fragments per covered pixel.
-    overdraw_hull: f64,
-    /// Ray-tracer visibility fragments per covered pixel.
-    overdraw_rt: f64,
-    /// Visibility fragments of `auto` per covered pixel.
-    overdraw_auto: f64,
-    /// Pixels shaded per covered pixel (the most of the exact methods; they share the
-    /// shading pass).
-    shaded_per_pixel: f64,
-}
-
-impl Measurement {
-    /// Frame time of `method`.
-    fn ms(&self, method: Method) -> f64 {
-        match method {
-            Method::Auto => self.auto_ms,
-            Method::Lrt => self.lrt_ms,
-            Method::Rt => self.rt_ms,
-            Method::Polygon => self.polygon_ms,
-        }
-    }
-
-    /// The exact method the program uses (`auto`) against the polygon method.
-    fn ratio(&self) -> f64 {
-        self.auto_ms / self.polygon_ms
-    }
-
-    /// The report's `key=value` fields of the measurement.
-    fn fields(&self) -> String {
-        format!(
-            "method=auto ratio={:.2} auto_ms={:.2} lrt_ms={:.2} proxy_ms={:.2} rt_ms={:.2} polygon_ms={:.2} lrt_ratio={:.2} rt_ratio={:.2} shaded_per_pixel={:.2} overdraw_auto={:.2} overdraw_hull={:.2} overdraw_rt={:.2}",
-            self.ratio(),
-            self.auto_ms,
-            self.lrt_ms,
-            self.proxy_ms,
-            self.rt_ms,
-            self.polygon_ms,
-            self.lrt_ms / self.polygon_ms,
-            self.rt_ms / self.polygon_ms,
-            self.shaded_per_pixel,
-            self.overdraw_auto,
-            self.overdraw_hull,
-            self.overdraw_rt
-        )
-    }
-}
-
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
 
 /// Median frame time in ms of each of `methods` (GPU timestamps where supported, else wall
 /// clock of render + readback) and median time of its proxy pass (0 where unknown). The
@@ -189,173 +138,91 @@ fn measure(
     })
 }
 
-/// A line of the report and a row of the table.
-struct Line {
-    text: String,
-    /// The table row without its last cell, the validation's (see [`Validation::cell`]).
-    row: String,
-    /// The frames the line times, by name and size, as `validate --bench-frames` records them.
-    frames: Vec<(String, (u32, u32))>,
+/// The objects of `renderer`'s scene that `auto` draws by the ray tracer.
+fn traced_objects(renderer: &GpuRenderer) -> usize {
+    renderer
+        .object_layers()
+        .iter()
+        .filter(|layers| layers.is_some_and(|l| l > AUTO_LAYERS))
+        .count()
 }
 
-fn static_line(case: &Case, (width, height): (u32, u32), m: &Measurement) -> Line {
-    let tris = case.scene.triangle_count();
-    Line {
-        frames: vec![(case.name.clone(), (width, height))],
-        text: format!(
-            "scene={} size={width}x{height} tris={tris} {}",
-            case.name,
-            m.fields()
-        ),
-        row: format!(
-            "| {} | {width}×{height} | {tris} | {:.2} | {:.2} | {:.2} | {:.2} | **{:.2}** | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
-            case.name,
-            m.auto_ms,
-            m.lrt_ms,
-            m.rt_ms,
-            m.polygon_ms,
-            m.ratio(),
-            m.lrt_ms / m.polygon_ms,
-            m.rt_ms / m.polygon_ms,
-            m.shaded_per_pixel,
-            m.overdraw_auto,
-            m.overdraw_hull,
-            m.overdraw_rt
-        ),
-    }
+/// Measures `case` with `renderer` (made for its scene's structure) as a result.
+fn measure_case(
+    ctx: &GpuContext,
+    renderer: &mut GpuRenderer,
+    case: &Case,
+    frames: u32,
+) -> anyhow::Result<CaseResult> {
+    let measurement = measure(ctx, renderer, &case.scene, frames)?;
+    let (width, height) = renderer.size();
+    Ok(CaseResult {
+        name: case.name.clone(),
+        width,
+        height,
+        triangles: case.scene.triangle_count(),
+        traced_objects: traced_objects(renderer),
+        measurement,
+    })
 }
 
-/// Measures `scene` at each of `times` (one renderer for the whole sweep, as a viewer would
-/// use) and summarises the sweep in one line: the worst ratio and slowest LRT frame.
+/// A static case's report line.
+fn case_text(case: &CaseResult) -> String {
+    format!(
+        "scene={} size={}x{} tris={} {}",
+        case.name,
+        case.width,
+        case.height,
+        case.triangles,
+        case.measurement.fields()
+    )
+}
+
+/// A sweep's report line: the worst frame, each method's worst ratio and slowest frame.
+fn sweep_text(sweep: &SweepResult) -> String {
+    let Some(worst) = sweep.worst_frame() else {
+        return format!("sweep={} frames=0", sweep.name);
+    };
+    format!(
+        "sweep={} size={}x{} tris={} frames={} method=auto worst_ratio={:.2} worst_ct={:.2} median_ratio={:.2} worst_lrt_ratio={:.2} worst_rt_ratio={:.2} slowest_auto_ms={:.2} slowest_lrt_ms={:.2} slowest_rt_ms={:.2} worst_shaded_per_pixel={:.2}",
+        sweep.name,
+        worst.case.width,
+        worst.case.height,
+        worst.case.triangles,
+        sweep.frames.len(),
+        worst.case.measurement.ratio(),
+        worst.ct,
+        sweep.median_ratio(),
+        sweep.worst_ratio_of(Method::Lrt),
+        sweep.worst_ratio_of(Method::Rt),
+        sweep.slowest(Method::Auto),
+        sweep.slowest(Method::Lrt),
+        sweep.slowest(Method::Rt),
+        sweep.worst_shaded(),
+    )
+}
+
+/// Measures `scene` at each of `times` with one renderer for the whole sweep, as a viewer
+/// would use, printing each frame.
 fn sweep(
     ctx: &GpuContext,
     name: &str,
     scene: &Scene,
     times: &[f64],
     frames: u32,
-) -> anyhow::Result<Line> {
+) -> anyhow::Result<SweepResult> {
     let (width, height) = SIZES[0];
     let mut renderer = GpuRenderer::new(ctx, scene, width, height)?;
     let mut measured = Vec::new();
     for &ct in times {
-        let case = at_time(name, scene, ct);
-        let m = measure(ctx, &mut renderer, &case.scene, frames)?;
-        println!("  {} {}", case.name, m.fields());
-        measured.push((ct, m));
+        let case = measure_case(ctx, &mut renderer, &at_time(name, scene, ct), frames)?;
+        println!("  {} {}", case.name, case.measurement.fields());
+        measured.push(SweepFrame { ct, case });
     }
-    let worst = measured
-        .iter()
-        .max_by(|a, b| a.1.ratio().total_cmp(&b.1.ratio()))
-        .context("a sweep has frames")?;
-    let slowest = |method| {
-        measured
-            .iter()
-            .map(|(_, m)| m.ms(method))
-            .fold(0.0, f64::max)
-    };
-    let worst_of = |method| {
-        measured
-            .iter()
-            .map(|(_, m)| m.ms(method) / m.polygon_ms)
-            .fold(0.0, f64::max)
-    };
-    let median_ratio = median(measured.iter().map(|(_, m)| m.ratio()).collect());
-    let tris = scene.triangle_count();
-    let frames_swept = times.len();
-    Ok(Line {
-        frames: times
-            .iter()
-            .map(|&ct| (at_time(name, scene, ct).name, (width, height)))
-            .collect(),
-        text: format!(
-            "sweep={name} size={width}x{height} tris={tris} frames={frames_swept} method=auto worst_ratio={:.2} worst_ct={:.2} median_ratio={median_ratio:.2} worst_lrt_ratio={:.2} worst_rt_ratio={:.2} slowest_auto_ms={:.2} slowest_lrt_ms={:.2} slowest_rt_ms={:.2} worst_shaded_per_pixel={:.2}",
-            worst.1.ratio(),
-            worst.0,
-            worst_of(Method::Lrt),
-            worst_of(Method::Rt),
-            slowest(Method::Auto),
-            slowest(Method::Lrt),
-            slowest(Method::Rt),
-            measured
-                .iter()
-                .map(|(_, m)| m.shaded_per_pixel)
-                .fold(0.0, f64::max)
-        ),
-        row: format!(
-            "| {name} (sweep, {frames_swept} frames) | {width}×{height} | {tris} | ≤ {:.2} | ≤ {:.2} | ≤ {:.2} | | worst {:.2} | worst {:.2} | worst {:.2} | | | | |",
-            slowest(Method::Auto),
-            slowest(Method::Lrt),
-            slowest(Method::Rt),
-            worst_of(Method::Auto),
-            worst_of(Method::Lrt),
-            worst_of(Method::Rt),
-        ),
+    Ok(SweepResult {
+        name: name.to_owned(),
+        frames: measured,
     })
-}
-
-/// What the last `cargo xtask validate --bench-frames` recorded
-/// ([`crate::validate::BENCH_FRAMES_RECORD`]) and the commit the bench measures.
-struct Validation {
-    /// The commit and date the record was made at, if there is a record.
-    made: Option<(String, String)>,
-    /// Each recorded frame: name, `WxH`, whether it passed.
-    frames: Vec<(String, String, bool)>,
-    /// The commit being measured.
-    commit: String,
-}
-
-impl Validation {
-    /// Reads the record, if any.
-    fn read(workspace: &Path) -> Self {
-        let text = std::fs::read_to_string(workspace.join(crate::validate::BENCH_FRAMES_RECORD))
-            .unwrap_or_default();
-        let mut lines = text.lines();
-        let made = lines.next().and_then(|header| {
-            let header = header.strip_prefix("# commit=")?;
-            let (commit, date) = header.split_once(" date=")?;
-            Some((commit.to_owned(), date.to_owned()))
-        });
-        let frames = lines
-            .filter_map(|line| {
-                let mut fields = line.split('\t');
-                Some((
-                    fields.next()?.to_owned(),
-                    fields.next()?.to_owned(),
-                    fields.next()? == "pass",
-                ))
-            })
-            .collect();
-        Self {
-            made,
-            frames,
-            commit: crate::provenance::commit(workspace),
-        }
-    }
-
-    /// The table cell for a line timing `frames`: validated (and when) only if every frame
-    /// passed in a record made at the commit being measured.
-    fn cell(&self, frames: &[(String, (u32, u32))]) -> String {
-        let Some((commit, date)) = &self.made else {
-            return "no (run `cargo xtask validate --bench-frames`)".to_owned();
-        };
-        if *commit != self.commit || commit.ends_with("-dirty") {
-            return format!("no (the record is of {commit})");
-        }
-        let passed = frames
-            .iter()
-            .filter(|(name, (width, height))| {
-                let size = format!("{width}x{height}");
-                self.frames
-                    .iter()
-                    .any(|(n, s, pass)| n == name && *s == size && *pass)
-            })
-            .count();
-        if passed == frames.len() {
-            format!("yes, {date} ({commit})")
-        } else {
-            format!("no: {passed} of {} frames passed", frames.len())
-        }
-    }
 }
 
 /// Three engines side by side, each approaching at 0.9c.
@@ -452,70 +319,92 @@ pub fn timed_frames() -> anyhow::Result<Vec<(Case, (u32, u32))>> {
     Ok(frames)
 }
 
-/// Runs the benchmark with `frames` timed frames per measurement and updates
-/// `docs/performance.md`; with `only`, runs the cases whose name contains it and leaves the
-/// document alone.
-///
-/// # Errors
-/// No GPU, missing models, or an unwritable document.
-pub fn run(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<()> {
-    let selected = |name: &str| only.is_none_or(|o| name.contains(o));
-    let ctx =
-        GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
-    let adapter = ctx.adapter_summary();
-    println!("adapter: {adapter}");
+/// Measures the static cases whose name `selected` accepts, at every size, printing each.
+fn static_results(
+    ctx: &GpuContext,
+    frames: u32,
+    selected: impl Fn(&str) -> bool,
+) -> anyhow::Result<Vec<CaseResult>> {
     let static_cases = static_cases()?;
-    let mut lines = Vec::new();
-    for size in SIZES {
+    let mut measured = Vec::new();
+    for (width, height) in SIZES {
         for case in static_cases.iter().filter(|c| selected(&c.name)) {
-            let mut renderer = GpuRenderer::new(&ctx, &case.scene, size.0, size.1)?;
-            let m = measure(&ctx, &mut renderer, &case.scene, frames)?;
+            let mut renderer = GpuRenderer::new(ctx, &case.scene, width, height)?;
+            let result = measure_case(ctx, &mut renderer, case, frames)?;
             let layers: Vec<String> = renderer
                 .object_layers()
                 .iter()
                 .map(|l| l.map_or_else(|| "-".to_owned(), |l| format!("{l:.2}")))
                 .collect();
             println!("  layers per object: {}", layers.join(" "));
-            let line = static_line(case, size, &m);
-            println!("{}", line.text);
-            lines.push(line);
+            println!("{}", case_text(&result));
+            measured.push(result);
         }
     }
+    Ok(measured)
+}
+
+/// Runs the benchmark with `frames` timed frames per measurement, rewrites the generated
+/// blocks of `docs/performance.md` and saves `docs/performance-results.json`; with `only`, runs
+/// the cases whose name contains it and leaves both alone. With `results`, also saves the
+/// results there (on any run).
+///
+/// # Errors
+/// No GPU, missing models, or an unwritable file.
+pub fn run(
+    workspace: &Path,
+    frames: u32,
+    only: Option<&str>,
+    results: Option<&Path>,
+) -> anyhow::Result<()> {
+    let selected = |name: &str| only.is_none_or(|o| name.contains(o));
+    let ctx =
+        GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
+    let adapter = ctx.adapter_summary();
+    println!("adapter: {adapter}");
+    let cases = static_results(&ctx, frames, selected)?;
+    let mut swept = Vec::new();
     for (name, scene, times) in sweeps()? {
-        if !selected(name) {
-            continue;
+        if selected(name) {
+            let result = sweep(&ctx, name, &scene, &times, frames)?;
+            println!("{}", sweep_text(&result));
+            swept.push(result);
         }
-        let line = sweep(&ctx, name, &scene, &times, frames)?;
-        println!("{}", line.text);
-        lines.push(line);
-    }
-    if only.is_some() {
-        return Ok(());
     }
     let timing = if ctx.timestamps {
         "GPU timestamp queries"
     } else {
         "wall clock of render + readback"
     };
-    let mut table = format!(
-        "{TABLE_START}\nAdapter: {adapter}. Median of {frames} frames after {WARM_UP} warm-up frames per measurement, timed by {timing}.\n\n\
-         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n"
-    );
-    let validation = Validation::read(workspace);
-    for line in &lines {
-        table += &format!("{} {} |\n", line.row, validation.cell(&line.frames));
-    }
-    table += TABLE_END;
-    let doc = workspace.join("docs/performance.md");
-    let text =
-        std::fs::read_to_string(&doc).with_context(|| format!("cannot read {}", doc.display()))?;
-    let updated = match (text.find(TABLE_START), text.find(TABLE_END)) {
-        (Some(a), Some(b)) if a < b => {
-            format!("{}{table}{}", &text[..a], &text[b + TABLE_END.len()..])
-        }
-        _ => format!("{text}\n{table}\n"),
+    let measured = Results {
+        machine: Machine::this(),
+        adapter,
+        timing: timing.to_owned(),
+        commit: crate::provenance::commit(workspace),
+        date: crate::provenance::today(),
+        frames,
+        warm_up: WARM_UP,
+        cases,
+        sweeps: swept,
     };
-    std::fs::write(&doc, updated).with_context(|| format!("cannot write {}", doc.display()))?;
-    println!("updated {}", doc.display());
+    if let Some(path) = results {
+        measured.save(path)?;
+        println!("wrote {}", path.display());
+    }
+    if only.is_none() {
+        document::write(workspace, &measured)?;
+    }
+    Ok(())
+}
+
+/// Prints the Markdown comparison of the results saved in `old` and `new`.
+///
+/// # Errors
+/// A missing or malformed results file.
+pub fn run_compare(old: &Path, new: &Path) -> anyhow::Result<()> {
+    print!(
+        "{}",
+        compare::compare(&Results::load(old)?, &Results::load(new)?)
+    );
     Ok(())
 }

@@ -39,15 +39,31 @@ enum Command {
         #[arg(long)]
         bench_frames: bool,
     },
-    /// Measure the paper's Table 1 and scenes in motion on the current adapter and update
-    /// docs/performance.md.
+    /// Measure the paper's Table 1 and scenes in motion on the current adapter; a full run
+    /// rewrites the generated blocks of docs/performance.md (table and summary) and saves every
+    /// measurement as docs/performance-results.json.
     Bench {
         /// Frames measured per scene and method (after warm-up).
         #[arg(long, default_value_t = 5)]
         frames: u32,
-        /// Only the cases whose name contains this text, printed without updating the document.
+        /// Only the cases whose name contains this text, printed without updating the document
+        /// or docs/performance-results.json.
         #[arg(long)]
         only: Option<String>,
+        /// Also save the run's results as JSON at PATH, on any run (`--only` included), e.g. to
+        /// compare a subset before and after a change.
+        #[arg(long, value_name = "PATH")]
+        results: Option<PathBuf>,
+        /// Measure nothing: print a Markdown table comparing two saved results files (each
+        /// method's old ms, new ms and new / old per case, matched by name and size; cases in
+        /// only one file listed apart). Needs no GPU.
+        #[arg(
+            long,
+            num_args = 2,
+            value_names = ["OLD", "NEW"],
+            conflicts_with_all = ["frames", "only", "results"]
+        )]
+        compare: Option<Vec<PathBuf>>,
     },
 }
 
@@ -74,7 +90,21 @@ fn main() -> anyhow::Result<()> {
                 validate::run(&workspace_root(), only.as_deref())?;
             }
         }
-        Command::Bench { frames, only } => bench::run(&workspace_root(), frames, only.as_deref())?,
+        Command::Bench {
+            compare: Some(files),
+            ..
+        } => bench::run_compare(&files[0], &files[1])?,
+        Command::Bench {
+            frames,
+            only,
+            results,
+            compare: None,
+        } => bench::run(
+            &workspace_root(),
+            frames,
+            only.as_deref(),
+            results.as_deref(),
+        )?,
     }
     Ok(())
 }

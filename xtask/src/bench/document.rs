@@ -1,0 +1,240 @@
+//! The generated blocks of `docs/performance.md` — the table and the summary sentences — made
+//! from a run's [`Results`], and whether each line's frames were validated
+//! (`cargo xtask validate --bench-frames`).
+
+use std::path::Path;
+
+use anyhow::Context as _;
+use srt_gpu::Method;
+
+use super::results::{CaseResult, METHODS, Results, SweepResult};
+use super::summary::summary;
+
+/// The document the bench updates, relative to the workspace.
+pub const DOCUMENT: &str = "docs/performance.md";
+/// The raw results saved beside it, relative to the workspace.
+pub const RESULTS: &str = "docs/performance-results.json";
+/// First line of the table block.
+const TABLE_START: &str = "<!-- table1:start (written by cargo xtask bench) -->";
+/// Last line of the table block.
+const TABLE_END: &str = "<!-- table1:end -->";
+/// First line of the summary block.
+const SUMMARY_START: &str = "<!-- summary:start (written by cargo xtask bench) -->";
+/// Last line of the summary block.
+const SUMMARY_END: &str = "<!-- summary:end -->";
+
+/// What the last `cargo xtask validate --bench-frames` recorded
+/// ([`crate::validate::BENCH_FRAMES_RECORD`]) and the commit the bench measures.
+pub struct Validation {
+    /// The commit and date the record was made at, if there is a record.
+    made: Option<(String, String)>,
+    /// Each recorded frame: name, `WxH`, whether it passed.
+    frames: Vec<(String, String, bool)>,
+    /// The commit being measured.
+    commit: String,
+}
+
+impl Validation {
+    /// Reads the record, if any.
+    pub fn read(workspace: &Path) -> Self {
+        let text = std::fs::read_to_string(workspace.join(crate::validate::BENCH_FRAMES_RECORD))
+            .unwrap_or_default();
+        Self::parse(&text, crate::provenance::commit(workspace))
+    }
+
+    /// The record `text` (a `# commit=… date=…` header, then `name\tWxH\tpass|fail` lines),
+    /// judged for `commit`.
+    fn parse(text: &str, commit: String) -> Self {
+        let mut lines = text.lines();
+        let made = lines.next().and_then(|header| {
+            let header = header.strip_prefix("# commit=")?;
+            let (commit, date) = header.split_once(" date=")?;
+            Some((commit.to_owned(), date.to_owned()))
+        });
+        let frames = lines
+            .filter_map(|line| {
+                let mut fields = line.split('\t');
+                Some((
+                    fields.next()?.to_owned(),
+                    fields.next()?.to_owned(),
+                    fields.next()? == "pass",
+                ))
+            })
+            .collect();
+        Self {
+            made,
+            frames,
+            commit,
+        }
+    }
+
+    /// The table cell for a line timing `frames`: validated (and when) only if every frame
+    /// passed in a record made at the commit being measured.
+    fn cell<'a>(&self, frames: impl IntoIterator<Item = &'a CaseResult>) -> String {
+        let Some((commit, date)) = &self.made else {
+            return "no (run `cargo xtask validate --bench-frames`)".to_owned();
+        };
+        if *commit != self.commit || commit.ends_with("-dirty") {
+            return format!("no (the record is of {commit})");
+        }
+        let (mut passed, mut total) = (0, 0);
+        for case in frames {
+            let size = format!("{}x{}", case.width, case.height);
+            total += 1;
+            passed += usize::from(
+                self.frames
+                    .iter()
+                    .any(|(n, s, pass)| *n == case.name && *s == size && *pass),
+            );
+        }
+        if passed == total {
+            format!("yes, {date} ({commit})")
+        } else {
+            format!("no: {passed} of {total} frames passed")
+        }
+    }
+}
+
+/// A static case's row, without its last cell (the validation's).
+fn case_row(case: &CaseResult) -> String {
+    let m = &case.measurement;
+    format!(
+        "| {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | **{:.2}** | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+        case.name,
+        case.size(),
+        case.triangles,
+        m.auto_ms,
+        m.lrt_ms,
+        m.rt_ms,
+        m.polygon_ms,
+        m.ratio(),
+        m.ratio_of(Method::Lrt),
+        m.ratio_of(Method::Rt),
+        m.shaded_per_pixel,
+        m.overdraw_auto,
+        m.overdraw_hull,
+        m.overdraw_rt
+    )
+}
+
+/// A sweep's row (each method's slowest frame and worst ratio), without its last cell.
+fn sweep_row(sweep: &SweepResult) -> Option<String> {
+    let first = &sweep.frames.first()?.case;
+    let slowest: Vec<String> = METHODS[..3]
+        .iter()
+        .map(|&method| format!("≤ {:.2}", sweep.slowest(method)))
+        .collect();
+    let worst: Vec<String> = METHODS[..3]
+        .iter()
+        .map(|&method| format!("worst {:.2}", sweep.worst_ratio_of(method)))
+        .collect();
+    Some(format!(
+        "| {} (sweep, {} frames) | {} | {} | {} | | {} | | | | |",
+        sweep.name,
+        sweep.frames.len(),
+        first.size(),
+        first.triangles,
+        slowest.join(" | "),
+        worst.join(" | "),
+    ))
+}
+
+/// The table block, markers included.
+fn table(results: &Results, validation: &Validation) -> String {
+    let mut table = format!(
+        "{TABLE_START}\nAdapter: {}. Median of {} frames after {} warm-up frames per measurement, timed by {}.\n\n\
+         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        results.adapter, results.frames, results.warm_up, results.timing
+    );
+    for case in &results.cases {
+        table += &format!("{} {} |\n", case_row(case), validation.cell([case]));
+    }
+    for sweep in &results.sweeps {
+        if let Some(row) = sweep_row(sweep) {
+            let frames = sweep.frames.iter().map(|f| &f.case);
+            table += &format!("{row} {} |\n", validation.cell(frames));
+        }
+    }
+    table + TABLE_END
+}
+
+/// `text` with the block from `start` to `end` (markers included) replaced by `block`, or with
+/// `block` appended where the markers are missing.
+fn replace_block(text: &str, start: &str, end: &str, block: &str) -> String {
+    match (text.find(start), text.find(end)) {
+        (Some(a), Some(b)) if a < b => {
+            format!("{}{block}{}", &text[..a], &text[b + end.len()..])
+        }
+        _ => format!("{text}\n{block}\n"),
+    }
+}
+
+/// The document `text` with its generated blocks (table and summary) rewritten from `results`.
+#[must_use]
+pub fn update(text: &str, results: &Results, validation: &Validation) -> String {
+    let summary = format!("{SUMMARY_START}\n{}{SUMMARY_END}", summary(results));
+    let text = replace_block(text, SUMMARY_START, SUMMARY_END, &summary);
+    replace_block(&text, TABLE_START, TABLE_END, &table(results, validation))
+}
+
+/// Rewrites the generated blocks of [`DOCUMENT`] and saves the results as [`RESULTS`].
+///
+/// # Errors
+/// An unreadable or unwritable file.
+pub fn write(workspace: &Path, results: &Results) -> anyhow::Result<()> {
+    let doc = workspace.join(DOCUMENT);
+    let text =
+        std::fs::read_to_string(&doc).with_context(|| format!("cannot read {}", doc.display()))?;
+    let updated = update(&text, results, &Validation::read(workspace));
+    std::fs::write(&doc, updated).with_context(|| format!("cannot write {}", doc.display()))?;
+    println!("updated {}", doc.display());
+    let json = workspace.join(RESULTS);
+    results.save(&json)?;
+    println!("wrote {}", json.display());
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{SUMMARY_END, SUMMARY_START, TABLE_END, TABLE_START, Validation, update};
+    use crate::bench::results::tests::results;
+
+    /// A document with both blocks holding stale text between hand-written prose.
+    fn document() -> String {
+        format!(
+            "# Performance\n\nProse.\n\n{SUMMARY_START}\nstale summary\n{SUMMARY_END}\n\nMore prose.\n\n{TABLE_START}\nstale table\n{TABLE_END}\n\nEnd.\n"
+        )
+    }
+
+    #[test]
+    fn both_blocks_are_rewritten_and_the_prose_kept() {
+        let validation = Validation::parse(
+            "# commit=abc date=2026-01-01\ncube\t1280x720\tpass\nspider\t1280x720\tfail\nfly@ct=0\t1280x720\tpass\nfly@ct=6\t1280x720\tpass\n",
+            "abc".to_owned(),
+        );
+        let text = update(&document(), &results(), &validation);
+        assert!(!text.contains("stale"));
+        for kept in ["Prose.", "More prose.", "End.", SUMMARY_END, TABLE_END] {
+            assert_eq!(text.matches(kept).count(), 1, "{kept}");
+        }
+        assert!(text.contains("every sweep frame: missed** at fly@ct=6 1280×720 (2.50)"));
+        assert!(
+            text.contains("| cube | 1280×720 | 300 | 10.00 | 11.00 | 22.00 | 10.00 | **1.00** |")
+        );
+        assert!(text.contains("| 1.50 | 1.50 | 1.20 | yes, 2026-01-01 (abc) |"));
+        assert!(text.contains("| 1.50 | 1.50 | 1.20 | no: 0 of 1 frames passed |"));
+        assert!(text.contains(
+            "| fly (sweep, 2 frames) | 1280×720 | 300 | ≤ 25.00 | ≤ 20.00 | ≤ 40.00 | | worst 2.50 | worst 2.00 | worst 4.00 | | | | | yes, 2026-01-01 (abc) |"
+        ));
+        assert_eq!(update(&text, &results(), &validation), text);
+    }
+
+    #[test]
+    fn missing_blocks_are_appended() {
+        let validation = Validation::parse("", "abc".to_owned());
+        let text = update("# Performance\n", &results(), &validation);
+        assert!(text.starts_with("# Performance\n"));
+        assert!(text.contains(SUMMARY_START) && text.contains(TABLE_START));
+        assert!(text.contains("no (run `cargo xtask validate --bench-frames`)"));
+    }
+}
