@@ -29,10 +29,11 @@ use crate::types::{
 };
 
 /// Above this many layers of triangles (an object's surface over its box's surface,
-/// [`ObjectRayTracing::preferred`]) `auto` traces an object through its BVH. Measured with
-/// `cargo xtask bench` on lavapipe (docs/performance.md): the 2CylinderEngine (2.80 layers)
-/// renders 2.2× faster traced at 1280×720; the fig10 cubes (1.00) 2.6–3.5× and the spider
-/// (0.29) 5.6–6.7× slower.
+/// [`ObjectRayTracing::preferred`]) `auto` traces an object through its BVH. Chosen from
+/// `cargo xtask bench` on lavapipe, whose LRT and RT columns show the choice per scene
+/// (docs/performance.md; the measurements it was chosen from are in docs/performance-log.md):
+/// deep models such as the 2CylinderEngine (2.80 layers) render faster traced, the fig10 cubes
+/// (1.00) and the spider (0.29) faster by LRT.
 pub const AUTO_LAYERS: f64 = 2.0;
 
 /// Triangles of an object's box.
