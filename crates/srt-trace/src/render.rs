@@ -14,7 +14,7 @@ use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 use srt_color::{TemperatureLut, quantize_8bit};
 use srt_physics::{Event, Frame, RestRay};
-use srt_scene::{Part, Scene};
+use srt_scene::{Mesh, Object, Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::shade::{Illumination, SurfacePoint, shade};
@@ -58,11 +58,12 @@ impl RenderedImage {
     }
 }
 
-/// A triangle as a BVH leaf.
+/// A triangle of one of an object's parts, as a leaf of the object's BVH.
 #[derive(Debug, Clone)]
 struct TriangleBox {
     aabb: Aabb<f64, 3>,
-    index: u32,
+    part: u32,
+    triangle: u32,
     node: usize,
 }
 
@@ -82,80 +83,108 @@ impl BHShape<f64, 3> for TriangleBox {
     }
 }
 
-/// One part with its acceleration structure and filtered texture.
+/// One part's material: its filtered texture and base colour.
 struct PreparedPart<'a> {
     part: &'a Part,
-    boxes: Vec<TriangleBox>,
-    bvh: Bvh<f64, 3>,
     texture: Option<MipChain>,
     base_color: DVec4,
 }
 
 impl<'a> PreparedPart<'a> {
     fn new(part: &'a Part) -> Self {
-        let mesh = &part.mesh;
-        let (lo, hi) = mesh.bounds();
-        // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
-        // boxes, which slab tests can miss.
-        let pad = 1e-9 * (hi - lo).length().max(1.0);
-        let mut boxes: Vec<TriangleBox> = (0..mesh.triangles().len())
-            .map(|i| {
-                let [a, b, c] = mesh.triangle_positions(i);
-                let min = a.min(b).min(c) - pad;
-                let max = a.max(b).max(c) + pad;
-                TriangleBox {
-                    aabb: Aabb::with_bounds(
-                        Point3::new(min.x, min.y, min.z),
-                        Point3::new(max.x, max.y, max.z),
-                    ),
-                    index: i as u32,
-                    node: 0,
-                }
-            })
-            .collect();
-        let bvh = Bvh::build(&mut boxes);
         let [r, g, b, a] = part.material.base_color.map(f64::from);
         Self {
             part,
-            boxes,
-            bvh,
             texture: part.material.texture.as_deref().map(MipChain::new),
             base_color: DVec4::new(r, g, b, a),
         }
     }
+}
 
-    /// Closest hit along a rest-frame ray.
-    fn closest_hit(&self, ray: &RestRay) -> Option<(u32, TriangleHit)> {
+/// One rigid object: its frame, its parts and one BVH over the triangles of all of them (in
+/// its rest frame S′, where it is static), so a ray walks one hierarchy per object, not one per
+/// part.
+struct PreparedObject<'a> {
+    frame: Frame,
+    parts: Vec<PreparedPart<'a>>,
+    boxes: Vec<TriangleBox>,
+    /// `None` for an object without triangles.
+    bvh: Option<Bvh<f64, 3>>,
+    wireframe: Option<f64>,
+}
+
+impl<'a> PreparedObject<'a> {
+    fn new(object: &'a Object) -> Self {
+        let meshes = || object.parts.iter().map(|part| &part.mesh);
+        let (lo, hi) = meshes()
+            .filter(|mesh| !mesh.triangles().is_empty())
+            .map(Mesh::bounds)
+            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
+            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
+        // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
+        // boxes, which slab tests can miss.
+        let pad = 1e-9 * (hi - lo).length().max(1.0);
+        let mut boxes: Vec<TriangleBox> = meshes()
+            .enumerate()
+            .flat_map(|(part, mesh)| {
+                (0..mesh.triangles().len()).map(move |i| {
+                    let [a, b, c] = mesh.triangle_positions(i);
+                    let min = a.min(b).min(c) - pad;
+                    let max = a.max(b).max(c) + pad;
+                    TriangleBox {
+                        aabb: Aabb::with_bounds(
+                            Point3::new(min.x, min.y, min.z),
+                            Point3::new(max.x, max.y, max.z),
+                        ),
+                        part: part as u32,
+                        triangle: i as u32,
+                        node: 0,
+                    }
+                })
+            })
+            .collect();
+        let bvh = (!boxes.is_empty()).then(|| Bvh::build(&mut boxes));
+        Self {
+            frame: object.frame,
+            parts: object.parts.iter().map(PreparedPart::new).collect(),
+            boxes,
+            bvh,
+            wireframe: object.wireframe,
+        }
+    }
+
+    /// Closest hit along a rest-frame ray: (part, triangle, hit). Of hits at the same
+    /// distance the one with the lowest (part, triangle) wins, whatever the traversal order.
+    fn closest_hit(&self, ray: &RestRay) -> Option<(u32, u32, TriangleHit)> {
+        let bvh = self.bvh.as_ref()?;
         let query = Ray::new(
             Point3::new(ray.origin.x, ray.origin.y, ray.origin.z),
             Vector3::new(ray.direction.x, ray.direction.y, ray.direction.z),
         );
-        let mut best: Option<(u32, TriangleHit)> = None;
+        let mut best: Option<(u32, u32, TriangleHit)> = None;
         // Leaves come in increasing order of their box's entry distance: stop once a box
         // starts beyond the best hit.
-        for leaf in self.bvh.nearest_traverse_iterator(&query, &self.boxes) {
-            if let (Some((_, hit)), Some((entry, _))) =
+        for leaf in bvh.nearest_traverse_iterator(&query, &self.boxes) {
+            if let (Some((_, _, hit)), Some((entry, _))) =
                 (best, query.intersection_slice_for_aabb(&leaf.aabb))
                 && entry > hit.distance
             {
                 break;
             }
-            let corners = self.part.mesh.triangle_positions(leaf.index as usize);
-            if let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
-                && best.is_none_or(|(_, b)| hit.distance < b.distance)
-            {
-                best = Some((leaf.index, hit));
+            let mesh = &self.parts[leaf.part as usize].part.mesh;
+            let corners = mesh.triangle_positions(leaf.triangle as usize);
+            let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners) else {
+                continue;
+            };
+            let closer = best.is_none_or(|(part, triangle, b)| {
+                (hit.distance, leaf.part, leaf.triangle) < (b.distance, part, triangle)
+            });
+            if closer {
+                best = Some((leaf.part, leaf.triangle, hit));
             }
         }
         best
     }
-}
-
-/// One object: its frame, the observation event in S′, and its parts.
-struct PreparedObject<'a> {
-    frame: Frame,
-    parts: Vec<PreparedPart<'a>>,
-    wireframe: Option<f64>,
 }
 
 /// The closest surface point along one viewing direction.
@@ -190,15 +219,7 @@ impl<'a> Tracer<'a> {
     /// Prepares `scene` (builds one BVH per part, the mip chains and the colour table).
     #[must_use]
     pub fn new(scene: &'a Scene) -> Self {
-        let objects = scene
-            .objects
-            .iter()
-            .map(|object| PreparedObject {
-                frame: object.frame,
-                parts: object.parts.iter().map(PreparedPart::new).collect(),
-                wireframe: object.wireframe,
-            })
-            .collect();
+        let objects = scene.objects.iter().map(PreparedObject::new).collect();
         Self {
             scene,
             objects,
@@ -225,25 +246,23 @@ impl<'a> Tracer<'a> {
         let mut best: Option<Hit> = None;
         for (object_index, object) in self.objects.iter().enumerate() {
             let ray = object.frame.backward_ray(observer, view_direction);
-            for (part_index, part) in object.parts.iter().enumerate() {
-                let Some((triangle, rest_hit)) = part.closest_hit(&ray) else {
-                    continue;
-                };
-                let emission_rest = ray.event_at(rest_hit.distance);
-                let emission = object.frame.to_observer(emission_rest);
-                let apparent_distance = object.frame.apparent_distance(&ray, rest_hit.distance);
-                if best.is_none_or(|b| apparent_distance < b.apparent_distance) {
-                    best = Some(Hit {
-                        object: object_index,
-                        part: part_index,
-                        triangle: triangle as usize,
-                        rest_hit,
-                        ray,
-                        emission_rest,
-                        emission,
-                        apparent_distance,
-                    });
-                }
+            let Some((part, triangle, rest_hit)) = object.closest_hit(&ray) else {
+                continue;
+            };
+            let emission_rest = ray.event_at(rest_hit.distance);
+            let emission = object.frame.to_observer(emission_rest);
+            let apparent_distance = object.frame.apparent_distance(&ray, rest_hit.distance);
+            if best.is_none_or(|b| apparent_distance < b.apparent_distance) {
+                best = Some(Hit {
+                    object: object_index,
+                    part: part as usize,
+                    triangle: triangle as usize,
+                    rest_hit,
+                    ray,
+                    emission_rest,
+                    emission,
+                    apparent_distance,
+                });
             }
         }
         best
@@ -467,5 +486,59 @@ mod tests {
         assert!(hits > 0 && hits < width * height, "{hits} pixels hit");
         assert!(tracer.hit_at_pixel(width, height, width, 0).is_none());
         assert!(tracer.hit_at_pixel(0, 0, 0, 0).is_none());
+    }
+
+    /// One BVH per object finds what a search of every triangle of every part finds: the
+    /// teaser, whose first object (the spider) is given the other objects' parts as parts of
+    /// its own, seen along a grid of directions.
+    #[test]
+    fn the_object_bvh_finds_the_closest_triangle_of_any_part() {
+        let (mut scene, _) = srt_scene::builtin::find_builtin("teaser")
+            .unwrap()
+            .build()
+            .unwrap();
+        let others: Vec<Part> = (scene.objects[1..].iter())
+            .flat_map(|o| o.parts.clone())
+            .collect();
+        scene.objects[0].parts.extend(others);
+        assert!(scene.objects[0].parts.len() >= 3 && scene.objects.len() >= 3);
+        let tracer = Tracer::new(&scene);
+        let observer = scene.observer.event();
+        let (width, height) = (48, 27);
+        let mut hits = 0;
+        for y in 0..height {
+            for x in 0..width {
+                let direction = pixel_direction(
+                    &scene,
+                    width,
+                    height,
+                    f64::from(x) + 0.5,
+                    f64::from(y) + 0.5,
+                );
+                // Every triangle of every part of every object, in its own rest frame.
+                let brute = (scene.objects.iter().enumerate())
+                    .filter_map(|(object, o)| {
+                        let ray = o.frame.backward_ray(observer, direction);
+                        let closest = (o.parts.iter().enumerate())
+                            .flat_map(|(part, p)| {
+                                (0..p.mesh.triangles().len()).filter_map(move |t| {
+                                    let corners = p.mesh.triangle_positions(t);
+                                    intersect_triangle(ray.origin, ray.direction, corners)
+                                        .map(|hit| (hit.distance, part, t))
+                                })
+                            })
+                            .min_by(|a, b| a.partial_cmp(b).unwrap())?;
+                        let apparent = o.frame.apparent_distance(&ray, closest.0);
+                        Some((apparent, object, closest.1, closest.2))
+                    })
+                    .min_by(|a, b| a.partial_cmp(b).unwrap());
+                let traced = tracer
+                    .trace(direction)
+                    .map(|h| (h.apparent_distance, h.object, h.part, h.triangle));
+                assert_eq!(traced, brute, "pixel ({x}, {y})");
+                hits += usize::from(traced.is_some());
+            }
+        }
+        assert!(hits > 100, "only {hits} pixels hit something");
     }
 }
