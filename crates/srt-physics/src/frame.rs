@@ -198,15 +198,22 @@ impl Frame {
     #[must_use]
     pub fn backward_ray(&self, observer: Event, view_direction: DVec3) -> RestRay {
         let observer_rest = self.to_rest(observer);
+        RestRay {
+            origin: observer_rest.position,
+            direction: self.rest_direction(view_direction),
+            ct_origin: observer_rest.ct,
+        }
+    }
+
+    /// The unit direction in S′ back along the light seen looking along `view_direction` (in S,
+    /// need not be normalised): Eq. 3 applied to the incoming light. It depends on the velocity
+    /// alone, so a renderer computes it once per ray for all objects moving alike.
+    #[must_use]
+    pub fn rest_direction(&self, view_direction: DVec3) -> DVec3 {
         // Light arrives travelling opposite to the viewing direction; in S′ it travels along the
         // aberrated direction, and we follow it backwards.
         let propagation = -view_direction.normalize();
-        let propagation_rest = aberrate(-self.beta, propagation).normalize();
-        RestRay {
-            origin: observer_rest.position,
-            direction: -propagation_rest,
-            ct_origin: observer_rest.ct,
-        }
+        -aberrate(-self.beta, propagation).normalize()
     }
 }
 
