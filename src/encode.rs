@@ -9,7 +9,7 @@ use image::{DynamicImage, RgbImage};
 use srt_color::{quantize_8bit, srgb_encode};
 
 use crate::cli::EncodeArgs;
-use crate::output::{OutputFormat, check_writable};
+use crate::output::{EXR_DISPLAY_CHANNELS, OutputFormat, check_writable};
 use crate::progress::DelayedBar;
 use srt_video::{VideoWriter, check_size};
 
@@ -73,9 +73,13 @@ pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Reads a frame as 8-bit display colours: a PNG as it is, a floating-point image (srt's linear
-/// EXR) through the sRGB encoding.
+/// Reads a frame as 8-bit display colours: a PNG as it is; srt's EXR by its displayed image
+/// (the [`EXR_DISPLAY_CHANNELS`], linear light) through the sRGB encoding; another
+/// floating-point image by its R, G, B the same way.
 fn read_frame(path: &Path) -> anyhow::Result<RgbImage> {
+    if let Some(display) = read_exr_display(path) {
+        return Ok(display);
+    }
     let image = image::open(path)
         .map_err(|error| anyhow!("cannot read frame {} ({error})", path.display()))?;
     Ok(match image {
@@ -91,4 +95,40 @@ fn read_frame(path: &Path) -> anyhow::Result<RgbImage> {
         }
         other => other.into_rgb8(),
     })
+}
+
+/// The displayed image of an EXR written by `srt render` (its [`EXR_DISPLAY_CHANNELS`]) as 8-bit
+/// sRGB, or `None` when `path` is not an EXR with those channels.
+fn read_exr_display(path: &Path) -> Option<RgbImage> {
+    use exr::prelude::{ReadChannels as _, ReadLayers as _, ReadSpecificChannel as _, read};
+    let [r, g, b] = EXR_DISPLAY_CHANNELS;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required(r)
+        .required(g)
+        .required(b)
+        .collect_pixels(
+            |size, _| (size.width(), vec![[0.0_f32; 3]; size.area()]),
+            |(width, pixels): &mut (usize, Vec<[f32; 3]>), position, (r, g, b): (f32, f32, f32)| {
+                pixels[position.y() * *width + position.x()] = [r, g, b];
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .ok()?;
+    let size = image.layer_data.size;
+    let (_, pixels) = image.layer_data.channel_data.pixels;
+    let bytes = pixels
+        .iter()
+        .flatten()
+        .map(|&c| quantize_8bit(srgb_encode(f64::from(c).clamp(0.0, 1.0))))
+        .collect();
+    RgbImage::from_raw(
+        u32::try_from(size.width()).ok()?,
+        u32::try_from(size.height()).ok()?,
+        bytes,
+    )
 }

@@ -23,7 +23,7 @@ use crate::provenance::{self, Provenance};
 pub enum OutputFormat {
     /// 8-bit sRGB PNG.
     Png,
-    /// 32-bit float OpenEXR with linear-light values.
+    /// 32-bit float OpenEXR: the radiance (R, G, B) and the displayed image (`display.R`…).
     Exr,
     /// H.264 video in an MP4 container.
     Mp4,
@@ -129,26 +129,43 @@ pub fn display_rgb8(width: u32, height: u32, pixels: &[DVec3]) -> RgbImage {
     RgbImage::from_raw(width, height, bytes).expect("one colour per pixel")
 }
 
-/// Writes a `width` × `height` image of display colours (sRGB-encoded, [0, 1], row-major from
-/// the top) to `path` (format by extension) atomically, with `record` stored in it.
+/// The channels of the displayed image in srt's EXR (linear light), beside R, G, B (radiance).
+pub const EXR_DISPLAY_CHANNELS: [&str; 3] = ["display.R", "display.G", "display.B"];
+
+/// What the R, G, B channels of srt's EXR hold, as its record says.
+pub const EXR_RADIANCE_NOTE: &str = "R, G, B: radiance before the tone map and exposure (linear BT.709, unclamped; \
+     luminance 1 = a white surface at rest facing the observer's lamp), from the exact CPU \
+     tracer; display.R, display.G, display.B: the image the PNG shows, as linear light";
+
+/// Writes a `width` × `height` image to `path` (format by extension) atomically, with `record`
+/// stored in it: a PNG of `display` (display colours, sRGB-encoded, [0, 1], row-major from the
+/// top), or an EXR of `radiance` (R, G, B) and `display` (as linear light, the
+/// [`EXR_DISPLAY_CHANNELS`]).
 ///
 /// # Errors
-/// If `path` is not an image format, or encoding or writing fails; the destination is then
-/// untouched.
+/// If `path` is not an image format, an EXR is asked for without its radiance, or encoding or
+/// writing fails; the destination is then untouched.
 pub fn write_image(
     width: u32,
     height: u32,
-    pixels: &[DVec3],
+    display: &[DVec3],
+    radiance: Option<&[DVec3]>,
     record: &Provenance,
     path: &Path,
 ) -> anyhow::Result<()> {
     let format = OutputFormat::for_path(path)?;
     let file = AtomicFile::create(path)?;
     let mut writer = file.writer()?;
-    match format {
-        OutputFormat::Png => write_png(&display_rgb8(width, height, pixels), record, &mut writer),
-        OutputFormat::Exr => write_exr(width, height, pixels, record, &mut writer),
-        OutputFormat::Mp4 | OutputFormat::Gif => {
+    match (format, radiance) {
+        (OutputFormat::Png, _) => {
+            write_png(&display_rgb8(width, height, display), record, &mut writer)
+        }
+        (OutputFormat::Exr, Some(radiance)) => {
+            let record = record.with(&[("exr channels", EXR_RADIANCE_NOTE.to_owned())]);
+            write_exr(width, height, radiance, display, &record, &mut writer)
+        }
+        (OutputFormat::Exr, None) => bail!("cannot write {}: no radiance", path.display()),
+        (OutputFormat::Mp4 | OutputFormat::Gif, _) => {
             bail!("cannot write {}: a video needs --frames", path.display())
         }
     }
@@ -174,12 +191,15 @@ fn write_png(
     Ok(())
 }
 
-/// Encodes a linear-light 32-bit float EXR (ZIP-compressed scan lines, written in increasing
-/// order so the bytes do not depend on thread scheduling) with `record` as a text attribute.
+/// Encodes a 32-bit float EXR (ZIP-compressed scan lines, written in increasing order so the
+/// bytes do not depend on thread scheduling): `radiance` as R, G, B and `display` (display
+/// colours, decoded to linear light) as the [`EXR_DISPLAY_CHANNELS`], with `record` as a text
+/// attribute.
 fn write_exr(
     width: u32,
     height: u32,
-    pixels: &[DVec3],
+    radiance: &[DVec3],
+    display: &[DVec3],
     record: &Provenance,
     writer: &mut BufWriter<File>,
 ) -> anyhow::Result<()> {
@@ -188,11 +208,29 @@ fn write_exr(
         WritableImage as _,
     };
     let size = Vec2(width as usize, height as usize);
-    let linear = |c: f64| srgb_decode(c.clamp(0.0, 1.0)) as f32;
-    let channels = SpecificChannels::rgb(|position: Vec2<usize>| {
-        let p = pixels[position.flat_index_for_size(size)];
-        (linear(p.x), linear(p.y), linear(p.z))
-    });
+    #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
+    let float = |c: f64| c as f32;
+    let linear = |c: f64| float(srgb_decode(c.clamp(0.0, 1.0)));
+    let [display_r, display_g, display_b] = EXR_DISPLAY_CHANNELS;
+    let channels = SpecificChannels::build()
+        .with_channel("R")
+        .with_channel("G")
+        .with_channel("B")
+        .with_channel(display_r)
+        .with_channel(display_g)
+        .with_channel(display_b)
+        .with_pixel_fn(|position: Vec2<usize>| {
+            let index = position.flat_index_for_size(size);
+            let (r, d) = (radiance[index], display[index]);
+            (
+                float(r.x),
+                float(r.y),
+                float(r.z),
+                linear(d.x),
+                linear(d.y),
+                linear(d.z),
+            )
+        });
     let mut attributes = LayerAttributes::default();
     attributes.other.insert(
         Text::from(provenance::KEY),

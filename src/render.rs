@@ -123,8 +123,17 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
         let pixels = render_pixels(&mut engine, &first, settings, true)?;
+        let radiance = radiance_for(&output, &first, settings);
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
-        write_image(settings.width, settings.height, &pixels, &record, &output)?;
+        let (width, height) = (settings.width, settings.height);
+        write_image(
+            width,
+            height,
+            &pixels,
+            radiance.as_deref(),
+            &record,
+            &output,
+        )?;
         println!("{}", wrote(&output, settings, &engine, start));
         return Ok(());
     };
@@ -162,13 +171,16 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             for frame in share {
                 let frame_start = Instant::now();
                 scene.observer.ct = time_of(frame);
-                let pixels = render_pixels(&mut engine, &*viewed(view, &scene)?, settings, false)?;
+                let frame_scene = viewed(view, &scene)?;
+                let pixels = render_pixels(&mut engine, &frame_scene, settings, false)?;
                 let record = record.with(&[
                     ("time", format!("{:?}", scene.observer.ct)),
                     ("frame", format!("{frame} of 0 to {}", frames - 1)),
                 ]);
                 let path = numbered(&output, frame, digits);
-                write_image(settings.width, settings.height, &pixels, &record, &path)?;
+                let radiance = radiance_for(&path, &frame_scene, settings);
+                let (width, height) = (settings.width, settings.height);
+                write_image(width, height, &pixels, radiance.as_deref(), &record, &path)?;
                 bar.println(&wrote(&path, settings, &engine, frame_start));
                 bar.inc();
             }
@@ -265,6 +277,7 @@ fn base_record(
         .collect();
     record.push("velocities", velocities.join("; "));
     record.push("effects", scene.effects.name());
+    record.push("tone map", scene.tone_map.name());
     record.push("colour", scene.colour.name());
     record.push("exposure", format!("{:?}", scene.exposure));
     record.push("view", view.name());
@@ -445,6 +458,14 @@ fn render_pixels(
             downsample(&image.pixels, settings.width, settings.height, *scale)
         }
     })
+}
+
+/// The radiance an image written to `path` holds, if its format holds one (EXR): rendered by
+/// the exact CPU tracer whichever engine renders the display colours (the GPU passes do not
+/// compute radiance yet).
+fn radiance_for(path: &Path, scene: &Scene, settings: RenderSettings) -> Option<Vec<DVec3>> {
+    (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr))
+        .then(|| Tracer::new(scene).render_radiance(settings, &|_| {}).pixels)
 }
 
 /// The exact CPU render, with a progress bar of rows once it takes more than a second.

@@ -39,6 +39,117 @@ fn renders_a_builtin_scene_on_the_cpu_and_says_where() {
     );
 }
 
+/// The display channels of an EXR `srt render` wrote, as linear light, row-major.
+fn exr_display(path: &std::path::Path) -> Vec<[f32; 3]> {
+    use exr::prelude::{ReadChannels as _, ReadLayers as _, ReadSpecificChannel as _, read};
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required("display.R")
+        .required("display.G")
+        .required("display.B")
+        .collect_pixels(
+            |size, _| (size.width(), vec![[0.0_f32; 3]; size.area()]),
+            |(width, pixels): &mut (usize, Vec<[f32; 3]>), position, (r, g, b): (f32, f32, f32)| {
+                pixels[position.y() * *width + position.x()] = [r, g, b];
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .expect("srt's EXR has display channels");
+    image.layer_data.channel_data.pixels.1
+}
+
+/// BT.709 luminance of linear RGB.
+fn luminance(rgb: [f32; 3]) -> f64 {
+    0.2126 * f64::from(rgb[0]) + 0.7152 * f64::from(rgb[1]) + 0.0722 * f64::from(rgb[2])
+}
+
+/// Renders the teaser at 160×90 on the CPU with `effects` to `t.exr` and `t.png` in `dir`;
+/// returns the EXR's radiance and display channels and the PNG.
+fn teaser_exr_and_png(
+    dir: &std::path::Path,
+    effects: &str,
+) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, image::RgbImage) {
+    let common = [
+        "render",
+        "teaser",
+        "--effects",
+        effects,
+        "--backend",
+        "cpu",
+        "--width",
+        "160",
+        "--height",
+        "90",
+    ];
+    for name in ["t.exr", "t.png"] {
+        let output = srt(&[&common[..], &["-o", name]].concat(), dir);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let radiance = image::open(dir.join("t.exr")).unwrap().into_rgb32f();
+    let radiance = radiance.pixels().map(|p| p.0).collect();
+    let png = image::open(dir.join("t.png")).unwrap().into_rgb8();
+    (radiance, exr_display(&dir.join("t.exr")), png)
+}
+
+/// An EXR holds the radiance (R, G, B) beside the displayed image: finite, unclamped — the
+/// searchlight makes the approaching spider far brighter than a white surface under the lamp
+/// (luminance 1) — and its display channels are the PNG of the same render.
+#[test]
+fn exr_holds_radiance_beside_the_displayed_image() {
+    let dir = folder();
+    let (radiance, display, png) = teaser_exr_and_png(dir.path(), "searchlight");
+    assert!(
+        radiance
+            .iter()
+            .flatten()
+            .all(|c| c.is_finite() && *c >= 0.0)
+    );
+    let brightest = radiance.iter().map(|&p| luminance(p)).fold(0.0, f64::max);
+    assert!(brightest > 10.0, "brightest luminance {brightest}");
+    for (shown, png) in display.iter().zip(png.pixels()) {
+        let encoded = shown.map(|c| srt_color::quantize_8bit(srt_color::srgb_encode(f64::from(c))));
+        assert_eq!(encoded, png.0);
+    }
+}
+
+/// Of two pixels with the same colour of light (chromaticity to 0.002), the brighter in the EXR
+/// is never the darker on screen, with the Doppler effect (the luminance tone map). With the
+/// searchlight tone map this holds only below its saturation: the paper's colour multiplies
+/// the *tone-mapped* colour by the reflection factor, so beyond about 3600 K, where the table is
+/// white, the display follows that factor alone (docs/colour.md).
+#[test]
+fn brighter_light_is_never_shown_darker() {
+    let dir = folder();
+    let (radiance, display, _) = teaser_exr_and_png(dir.path(), "doppler");
+    let mut by_colour: std::collections::HashMap<(i64, i64), Vec<(f64, f64)>> =
+        std::collections::HashMap::new();
+    for (light, shown) in radiance.iter().zip(&display) {
+        let sum: f32 = light.iter().sum();
+        if sum > 1e-3 {
+            #[expect(clippy::cast_possible_truncation, reason = "a bin index")]
+            let key = (
+                (f64::from(light[0] / sum) * 500.0).round() as i64,
+                (f64::from(light[1] / sum) * 500.0).round() as i64,
+            );
+            let entry = (luminance(*light), luminance(*shown));
+            by_colour.entry(key).or_default().push(entry);
+        }
+    }
+    let mut compared = 0;
+    for pixels in by_colour.values_mut() {
+        pixels.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for pair in pixels.windows(2) {
+            compared += 1;
+            assert!(pair[1].1 >= pair[0].1 - 0.01, "{pair:?}");
+        }
+    }
+    assert!(compared > 1000, "{compared} pairs compared");
+}
+
 #[test]
 fn writes_linear_exr_and_numbered_animation_frames() {
     let dir = folder();

@@ -18,6 +18,9 @@
 //!    RGB → reflectance spectra (Jakob & Hanika 2019), light reflected under two Doppler factors
 //!    ([`reflected_display_rgb`]), emitters ([`emitted_display_rgb`]); [`ToneMap::display_rgb_xyz`]
 //!    tone-maps any light with an exposure.
+//! 8. [`RadianceTable`] and [`RadianceScale`] — the same light as radiance (linear BT.709,
+//!    unclamped, luminance 1 = a white surface at rest facing the lamp), what an EXR holds
+//!    beside the displayed image (docs/colour.md, "Radiance and display").
 //!
 //! ```
 //! use srt_color::{TemperatureLut, ToneMap};
@@ -37,6 +40,7 @@ mod cie;
 mod error;
 mod lut;
 mod planck;
+mod radiance;
 mod rgb;
 pub mod spectral;
 mod tonemap;
@@ -50,6 +54,7 @@ pub use lut::{LutError, TemperatureLut};
 pub use planck::{
     BOLTZMANN_CONSTANT, PLANCK_CONSTANT, SECOND_RADIATION_CONSTANT, SPEED_OF_LIGHT, planck_radiance,
 };
+pub use radiance::{RadianceScale, RadianceTable};
 pub use rgb::{
     SRGB_LINEAR_THRESHOLD, SRGB_OFFSET, XYZ_TO_LINEAR_BT709, quantize_8bit, srgb_decode,
     srgb_encode, xyz_to_linear_rgb,

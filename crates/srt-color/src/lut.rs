@@ -66,9 +66,80 @@ pub enum LutError {
 #[derive(Clone, Debug, PartialEq)]
 pub struct TemperatureLut {
     tone_map: ToneMap,
+    table: LogTable,
+}
+
+/// Texels uniform in ln T over `t_min_k ..= t_max_k`, sampled by the module's rule: what the
+/// colour table and the radiance table ([`crate::RadianceTable`]) share.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct LogTable {
     t_min_k: f64,
     t_max_k: f64,
     texels: Vec<[f32; 4]>,
+}
+
+impl LogTable {
+    /// `size` texels from `t_min_k` to `t_max_k`, texel i holding `texel(Tᵢ)`.
+    ///
+    /// # Errors
+    /// As [`TemperatureLut::build`].
+    pub(crate) fn build(
+        size: usize,
+        t_min_k: f64,
+        t_max_k: f64,
+        texel: impl Fn(f64) -> [f32; 4],
+    ) -> Result<Self, LutError> {
+        if size < 2 {
+            return Err(LutError::TooFewTexels { size });
+        }
+        if size > TemperatureLut::MAX_SIZE {
+            return Err(LutError::TooManyTexels { size });
+        }
+        let valid =
+            t_min_k.is_finite() && t_max_k.is_finite() && t_min_k > 0.0 && t_min_k < t_max_k;
+        if !valid {
+            return Err(LutError::InvalidRange { t_min_k, t_max_k });
+        }
+        let texels = (0..size)
+            .map(|i| texel(texel_temperature(t_min_k, t_max_k, size, i)))
+            .collect();
+        Ok(Self {
+            t_min_k,
+            t_max_k,
+            texels,
+        })
+    }
+
+    /// The texels, texel 0 at `t_min`.
+    pub(crate) fn texels(&self) -> &[[f32; 4]] {
+        &self.texels
+    }
+
+    /// Normalised position u ∈ [0, 1] of `temperature_k` in ln T (step 1 of the sampling rule).
+    fn normalised(&self, temperature_k: f64) -> f64 {
+        if !(temperature_k.is_finite() && temperature_k > 0.0) {
+            return 0.0;
+        }
+        let u = (temperature_k / self.t_min_k).ln() / (self.t_max_k / self.t_min_k).ln();
+        u.clamp(0.0, 1.0)
+    }
+
+    /// Step 3 of the sampling rule (see [`TemperatureLut::sample`]).
+    pub(crate) fn sample(&self, temperature_k: f64) -> [f32; 4] {
+        let last = self.texels.len() - 1;
+        let mut x = self.normalised(temperature_k) * last as f64;
+        // Snap to a texel centre what only rounding in ln/exp moved off it, so that sampling at
+        // `texel_temperature(i)` returns texel i exactly (GPU filter weights are far coarser).
+        let nearest = x.round();
+        if (x - nearest).abs() < 1e-9 {
+            x = nearest;
+        }
+        let i = (x.floor() as usize).min(last);
+        let t = (x - i as f64) as f32;
+        let a = self.texels[i];
+        let b = self.texels[(i + 1).min(last)];
+        std::array::from_fn(|k| (1.0 - t) * a[k] + t * b[k])
+    }
 }
 
 impl TemperatureLut {
@@ -105,30 +176,11 @@ impl TemperatureLut {
         t_min_k: f64,
         t_max_k: f64,
     ) -> Result<Self, LutError> {
-        if size < 2 {
-            return Err(LutError::TooFewTexels { size });
-        }
-        if size > Self::MAX_SIZE {
-            return Err(LutError::TooManyTexels { size });
-        }
-        let valid =
-            t_min_k.is_finite() && t_max_k.is_finite() && t_min_k > 0.0 && t_min_k < t_max_k;
-        if !valid {
-            return Err(LutError::InvalidRange { t_min_k, t_max_k });
-        }
-        let texels = (0..size)
-            .map(|i| {
-                let t = texel_temperature(t_min_k, t_max_k, size, i);
-                let [r, g, b] = tone_map.display_rgb(t).as_vec3().to_array();
-                [r, g, b, 1.0]
-            })
-            .collect();
-        Ok(Self {
-            tone_map,
-            t_min_k,
-            t_max_k,
-            texels,
-        })
+        let table = LogTable::build(size, t_min_k, t_max_k, |t| {
+            let [r, g, b] = tone_map.display_rgb(t).as_vec3().to_array();
+            [r, g, b, 1.0]
+        })?;
+        Ok(Self { tone_map, table })
     }
 
     /// [`TemperatureLut::build`] with [`Self::DEFAULT_SIZE`] and [`Self::DEFAULT_RANGE_K`].
@@ -148,25 +200,25 @@ impl TemperatureLut {
     /// The RGBA texels, texel 0 at `t_min`; alpha is always 1.
     #[must_use]
     pub fn texels(&self) -> &[[f32; 4]] {
-        &self.texels
+        self.table.texels()
     }
 
     /// The lower end of the range in kelvin (texel 0).
     #[must_use]
     pub fn t_min(&self) -> f64 {
-        self.t_min_k
+        self.table.t_min_k
     }
 
     /// The upper end of the range in kelvin (texel N − 1).
     #[must_use]
     pub fn t_max(&self) -> f64 {
-        self.t_max_k
+        self.table.t_max_k
     }
 
     /// The number of texels N.
     #[must_use]
     pub fn size(&self) -> usize {
-        self.texels.len()
+        self.table.texels.len()
     }
 
     /// The tone map the texels were computed with.
@@ -180,24 +232,15 @@ impl TemperatureLut {
     /// at the ends.
     #[must_use]
     pub fn texel_temperature(&self, index: usize) -> f64 {
-        texel_temperature(self.t_min_k, self.t_max_k, self.texels.len(), index)
-    }
-
-    /// Normalised position u ∈ [0, 1] of `temperature_k` in ln T (step 1 of the sampling rule).
-    fn normalised(&self, temperature_k: f64) -> f64 {
-        if !(temperature_k.is_finite() && temperature_k > 0.0) {
-            return 0.0;
-        }
-        let u = (temperature_k / self.t_min_k).ln() / (self.t_max_k / self.t_min_k).ln();
-        u.clamp(0.0, 1.0)
+        texel_temperature(self.t_min(), self.t_max(), self.size(), index)
     }
 
     /// The 1D texture coordinate s = (0.5 + u · (N − 1)) / N at which a linearly filtered GPU
     /// texture returns [`Self::sample`]`(temperature_k)`; in [0.5/N, 1 − 0.5/N].
     #[must_use]
     pub fn texture_coordinate(&self, temperature_k: f64) -> f32 {
-        let n = self.texels.len() as f64;
-        ((0.5 + self.normalised(temperature_k) * (n - 1.0)) / n) as f32
+        let n = self.size() as f64;
+        ((0.5 + self.table.normalised(temperature_k) * (n - 1.0)) / n) as f32
     }
 
     /// The colour of `temperature_k` as a linearly filtered 1D texture returns it (see the module
@@ -205,19 +248,7 @@ impl TemperatureLut {
     /// non-finite or non-positive temperature gives texel 0.
     #[must_use]
     pub fn sample(&self, temperature_k: f64) -> [f32; 4] {
-        let last = self.texels.len() - 1;
-        let mut x = self.normalised(temperature_k) * last as f64;
-        // Snap to a texel centre what only rounding in ln/exp moved off it, so that sampling at
-        // `texel_temperature(i)` returns texel i exactly (GPU filter weights are far coarser).
-        let nearest = x.round();
-        if (x - nearest).abs() < 1e-9 {
-            x = nearest;
-        }
-        let i = (x.floor() as usize).min(last);
-        let t = (x - i as f64) as f32;
-        let a = self.texels[i];
-        let b = self.texels[(i + 1).min(last)];
-        std::array::from_fn(|k| (1.0 - t) * a[k] + t * b[k])
+        self.table.sample(temperature_k)
     }
 }
 

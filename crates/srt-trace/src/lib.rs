@@ -26,8 +26,9 @@ mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
-pub use shade::{GREY_WEIGHTS, Illumination, SurfacePoint, grey_value, shade};
+pub use shade::{Arriving, GREY_WEIGHTS, Illumination, SurfacePoint, arriving, grey_value, shade};
 pub use sky::{
-    StarImage, project, sky_image_colour, star_colour, star_image, star_layer, tent_splat,
+    StarImage, project, sky_image_colour, sky_image_light, star_colour, star_image, star_layer,
+    star_light, tent_splat,
 };
 pub use texture::sample_trilinear;

@@ -18,13 +18,13 @@ use bvh::ray::Ray;
 use glam::{DVec2, DVec3, DVec4};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
-use srt_color::{TemperatureLut, quantize_8bit};
+use srt_color::{RadianceScale, RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
 use srt_physics::{Event, Frame, RestRay};
-use srt_scene::{Mesh, Object, Part, Scene};
+use srt_scene::{Effects, Mesh, Object, Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
-use crate::shade::{Illumination, SurfacePoint, shade};
-use crate::sky::{sky_image_colour, star_layer};
+use crate::shade::{Arriving, Illumination, SurfacePoint, arriving};
+use crate::sky::{sky_image_light, star_layer};
 use crate::texture::sample_trilinear;
 use srt_scene::mip::MipChain;
 
@@ -62,6 +62,15 @@ impl RenderedImage {
             .map(|p| p.to_array().map(quantize_8bit))
             .collect()
     }
+}
+
+/// What a render's pixels hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Output {
+    /// Display colours through the tone map, in [0, 1].
+    Display,
+    /// Radiance, unclamped.
+    Radiance,
 }
 
 /// A triangle of one of an object's parts, as a leaf of the object's BVH.
@@ -362,6 +371,14 @@ impl<'a> Tracer<'a> {
     /// the right and one pixel down, for texture filtering (ray differentials).
     #[must_use]
     pub fn shade(&self, hit: &Hit, neighbour_directions: [DVec3; 2]) -> DVec3 {
+        (self.light(hit, neighbour_directions))
+            .display(&self.lut, self.scene.exposure)
+            .clamp(DVec3::ZERO, DVec3::ONE)
+    }
+
+    /// The light a hit sends to the observer ([`Tracer::shade`] shows it).
+    #[must_use]
+    pub fn light(&self, hit: &Hit, neighbour_directions: [DVec3; 2]) -> Arriving {
         let object = &self.objects[hit.object];
         let part = &object.parts[hit.part];
         let mesh = &part.part.mesh;
@@ -428,17 +445,39 @@ impl<'a> Tracer<'a> {
             albedo,
             optics: self.scene.objects[hit.object].optics,
         };
-        shade(&point, &illumination)
+        arriving(&point, &illumination)
     }
 
-    /// Renders the image; `progress` is called with the number of finished rows (from worker
-    /// threads, in no particular order). Deterministic: the result does not depend on the
-    /// number of threads.
+    /// Renders the image as it is shown (display colours, the tone map's, in [0, 1]); `progress`
+    /// is called with the number of finished rows (from worker threads, in no particular order).
+    /// Deterministic: the result does not depend on the number of threads.
     #[must_use]
     pub fn render(
         &self,
         settings: RenderSettings,
         progress: &(dyn Fn(u32) + Sync),
+    ) -> RenderedImage {
+        self.render_as(settings, progress, Output::Display)
+    }
+
+    /// Renders the image's radiance: linear BT.709, unclamped, luminance 1 for a white surface
+    /// at rest facing the lamp (srt-color's `radiance` module); the background's display colour
+    /// counts as its linear light. As [`Tracer::render`] otherwise.
+    #[must_use]
+    pub fn render_radiance(
+        &self,
+        settings: RenderSettings,
+        progress: &(dyn Fn(u32) + Sync),
+    ) -> RenderedImage {
+        self.render_as(settings, progress, Output::Radiance)
+    }
+
+    /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says.
+    fn render_as(
+        &self,
+        settings: RenderSettings,
+        progress: &(dyn Fn(u32) + Sync),
+        output: Output,
     ) -> RenderedImage {
         let RenderSettings {
             width,
@@ -447,7 +486,27 @@ impl<'a> Tracer<'a> {
         } = settings;
         let direction_at = |x: f64, y: f64| pixel_direction(self.scene, width, height, x, y);
         let offsets = sample_offsets(samples.max(1));
-        let stars = star_layer(self.scene, &self.lut, width, height);
+        let table = RadianceTable::shared();
+        let shading = self.scene.shading;
+        let scale = RadianceScale::new(
+            table,
+            self.scene.effects == Effects::Searchlight,
+            self.scene.light.temperature_k,
+            shading.ambient + shading.diffuse + shading.specular,
+        );
+        let value = |light: &Arriving| match output {
+            Output::Display => light.display(&self.lut, self.scene.exposure),
+            Output::Radiance => light.radiance(table, &scale),
+        };
+        let background = match output {
+            Output::Display => self.scene.background,
+            Output::Radiance => self.scene.background.map(srgb_decode),
+        };
+        let finish = |colour: DVec3| match output {
+            Output::Display => colour.clamp(DVec3::ZERO, DVec3::ONE),
+            Output::Radiance => colour,
+        };
+        let stars = star_layer(self.scene, width, height, &value);
         let finished = AtomicU32::new(0);
         let rows: Vec<(Vec<DVec3>, Vec<u32>)> = (0..height)
             .into_par_iter()
@@ -463,22 +522,17 @@ impl<'a> Tracer<'a> {
                         if k == 0 {
                             first_object = hit.map_or(0, |h| h.object as u32 + 1);
                         }
-                        sum += hit.map_or_else(
+                        sum += finish(hit.map_or_else(
                             || {
-                                let sky =
-                                    sky_image_colour(self.scene, &self.lut, direction_at(sx, sy));
-                                (self.scene.background
-                                    + sky
-                                    + stars[y as usize * width as usize + x as usize])
-                                    .clamp(DVec3::ZERO, DVec3::ONE)
+                                let sky = value(&sky_image_light(self.scene, direction_at(sx, sy)));
+                                background + sky + stars[y as usize * width as usize + x as usize]
                             },
                             |h| {
-                                self.shade(
-                                    &h,
-                                    [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)],
-                                )
+                                let neighbours =
+                                    [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)];
+                                value(&self.light(&h, neighbours))
                             },
-                        );
+                        ));
                     }
                     colours.push(sum / offsets.len() as f64);
                     coverage.push(first_object);

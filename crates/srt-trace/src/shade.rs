@@ -15,8 +15,8 @@
 
 use glam::{DVec3, DVec4};
 use srt_color::{
-    Reflectance, TemperatureLut, emitted_display_rgb, reflected_display_rgb,
-    srgb_coefficient_table, srgb_decode,
+    RadianceScale, RadianceTable, Reflectance, ScaledXyz, TemperatureLut, emitted_light,
+    reflected_light, srgb_coefficient_table, srgb_decode,
 };
 use srt_physics::{aberrate, doppler_factor, receiver_doppler};
 use srt_scene::{Effects, Emission, Shading, SurfaceColour, SurfaceOptics};
@@ -67,9 +67,76 @@ pub fn grey_value(colour: DVec4) -> f64 {
     colour.truncate().dot(DVec3::from_array(GREY_WEIGHTS))
 }
 
-/// Display colour (sRGB-encoded RGB in [0, 1]) of a surface point.
+/// The light a renderer draws somewhere, before it is shown ([`Arriving::display`]) or
+/// measured ([`Arriving::radiance`]): the two are computed from it, never one from the other
+/// (srt-color's `radiance` module says why).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Arriving {
+    /// The colour-table light `factor` · C(`temperature_k`): the paper's colour (f_ar of
+    /// Eq. 18 at D·T), an emitter with the paper's colour, a star, a sky texel's grey value.
+    Table {
+        /// k.
+        factor: f64,
+        /// The apparent temperature T.
+        temperature_k: f64,
+    },
+    /// A spectrum (spectral colour): its XYZ per unit `factor`, and the light the luminance
+    /// tone map divides by (the white reflector in its place, or the emitter at brightness 1).
+    Spectrum {
+        /// XYZ of the light.
+        light: ScaledXyz,
+        /// The luminance reference.
+        white: ScaledXyz,
+        /// The geometric factor (f_amb + f_diff + f_spec, or a sky texel's brightness).
+        factor: f64,
+    },
+    /// No light.
+    Dark,
+}
+
+impl Arriving {
+    /// Display colour (sRGB-encoded, not clamped) through the colour table `lut` and its tone
+    /// map, spectra with `exposure`.
+    #[must_use]
+    pub fn display(&self, lut: &TemperatureLut, exposure: f64) -> DVec3 {
+        match *self {
+            Self::Table {
+                factor,
+                temperature_k,
+            } => factor * lut_colour(lut, temperature_k),
+            Self::Spectrum {
+                light,
+                white,
+                factor,
+            } => lut
+                .tone_map()
+                .display_rgb_xyz(light, white, exposure * factor)
+                .unwrap_or(DVec3::ZERO),
+            Self::Dark => DVec3::ZERO,
+        }
+    }
+
+    /// Radiance (linear BT.709, the unit of srt-color's `radiance` module), exposure left out.
+    #[must_use]
+    pub fn radiance(&self, table: &RadianceTable, scale: &RadianceScale) -> DVec3 {
+        match *self {
+            Self::Table {
+                factor,
+                temperature_k,
+            } => scale.of_table_light(table, factor, temperature_k),
+            Self::Spectrum {
+                light,
+                white,
+                factor,
+            } => scale.of_spectrum(light, white, factor),
+            Self::Dark => DVec3::ZERO,
+        }
+    }
+}
+
+/// The light a surface point sends to the observer.
 #[must_use]
-pub fn shade(point: &SurfacePoint, light: &Illumination<'_>) -> DVec3 {
+pub fn arriving(point: &SurfacePoint, light: &Illumination<'_>) -> Arriving {
     let incident = (point.apparent_position - light.light_position).normalize();
     let outgoing = (light.observer - point.apparent_position).normalize();
     // Eq. 17 in its two factors: light → surface and surface → observer.
@@ -105,10 +172,10 @@ pub fn shade(point: &SurfacePoint, light: &Illumination<'_>) -> DVec3 {
     };
     let geometry = light.shading.ambient + diffuse + specular;
     match light.colour {
-        SurfaceColour::Paper => {
-            let f_ar = 0.5 * (grey_value(point.albedo) + 1.0) * geometry;
-            f_ar * lut_colour(light.lut, d_in * d_out * light.light_temperature_k)
-        }
+        SurfaceColour::Paper => Arriving::Table {
+            factor: 0.5 * (grey_value(point.albedo) + 1.0) * geometry,
+            temperature_k: d_in * d_out * light.light_temperature_k,
+        },
         SurfaceColour::Spectral => {
             let linear = point.albedo.truncate().map(srgb_decode);
             let reflectance = srgb_coefficient_table()
@@ -123,39 +190,46 @@ pub fn shade(point: &SurfacePoint, light: &Illumination<'_>) -> DVec3 {
             // A surface that reflects nothing (no light on it, a zero exposure), or a
             // temperature no table reaches, is black.
             reflectance
-                .and_then(|r| {
-                    reflected_display_rgb(
-                        light.lut.tone_map(),
-                        &r,
-                        light.light_temperature_k,
-                        d_in,
-                        d_out,
-                        light.exposure * geometry,
-                    )
+                .and_then(|r| reflected_light(&r, light.light_temperature_k, d_in, d_out))
+                .map_or(Arriving::Dark, |reflected| Arriving::Spectrum {
+                    light: reflected.light,
+                    white: reflected.white,
+                    factor: geometry,
                 })
-                .unwrap_or(DVec3::ZERO)
         }
     }
-    .clamp(DVec3::ZERO, DVec3::ONE)
 }
 
-/// The colour of an emitting surface seen with Doppler factor `d_out`: the black body at
+/// Display colour (sRGB-encoded RGB in [0, 1]) of a surface point.
+#[must_use]
+pub fn shade(point: &SurfacePoint, light: &Illumination<'_>) -> DVec3 {
+    arriving(point, light)
+        .display(light.lut, light.exposure)
+        .clamp(DVec3::ZERO, DVec3::ONE)
+}
+
+/// The light of an emitting surface seen with Doppler factor `d_out`: the black body at
 /// D_out·T_e, `brightness` times the luminance tone map's white — through the colour table with
-/// the paper's colour, computed from the spectrum with spectral colour.
-fn emitted(emission: Emission, d_out: f64, light: &Illumination<'_>) -> DVec3 {
+/// the paper's colour, as a spectrum with spectral colour.
+fn emitted(emission: Emission, d_out: f64, light: &Illumination<'_>) -> Arriving {
     let apparent = d_out * emission.temperature_k;
     match light.colour {
-        SurfaceColour::Paper => emission.brightness * lut_colour(light.lut, apparent),
-        SurfaceColour::Spectral => emitted_display_rgb(
-            light.lut.tone_map(),
-            emission.temperature_k,
-            emission.brightness,
-            d_out,
-            light.exposure,
-        )
-        .unwrap_or(DVec3::ZERO),
+        SurfaceColour::Paper => Arriving::Table {
+            factor: emission.brightness,
+            temperature_k: apparent,
+        },
+        SurfaceColour::Spectral => {
+            let seen = |brightness| emitted_light(emission.temperature_k, brightness, d_out);
+            match (seen(emission.brightness), seen(1.0)) {
+                (Ok(light), Ok(white)) => Arriving::Spectrum {
+                    light,
+                    white,
+                    factor: 1.0,
+                },
+                _ => Arriving::Dark,
+            }
+        }
     }
-    .clamp(DVec3::ZERO, DVec3::ONE)
 }
 
 /// The colour table's colour C_sRGB(T).

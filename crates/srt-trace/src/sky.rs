@@ -7,29 +7,44 @@
 //! Doppler-shifted like a surface's. The sky shows where no object is hit.
 
 use glam::{DVec2, DVec3};
-use srt_color::{Reflectance, TemperatureLut, reflected_display_rgb, srgb_coefficient_table};
+use srt_color::{Reflectance, TemperatureLut, reflected_light, srgb_coefficient_table};
 use srt_physics::distant_source_image;
 use srt_scene::sky::SKY_IMAGE_WHITE_K;
 use srt_scene::{Effects, Observer, Scene, Sky, Star, SurfaceColour};
 
-use crate::shade::{grey_value, lut_colour};
+use crate::shade::{Arriving, grey_value};
 
 /// Where one star lands in an image and with what colour.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StarImage {
     /// Position in pixels (x right, y down; pixel centres at half-integers).
     pub pixel: DVec2,
-    /// Display colour (sRGB-encoded) the star adds, spread over the four pixels around `pixel`.
-    pub colour: DVec3,
+    /// The light the star adds, spread over the four pixels around `pixel`
+    /// ([`star_light`]).
+    pub light: Arriving,
     /// Doppler factor of its light.
     pub doppler: f64,
 }
 
-/// The display colour a star adds to the image: its colour weight ([`Sky::weight`]) times the
-/// colour table at D·T, the colour a surface lit by a black body at D·T gets (§4.2). With
+/// The light a star adds to the image: its colour weight ([`Sky::weight`]) times the colour
+/// table at D·T, the colour a surface lit by a black body at D·T gets (§4.2). With
 /// [`Effects::Geometry`] D is 1; with [`Effects::Searchlight`] the weight is divided by D², the
 /// factor by which aberration shrinks the solid angle of the star, so that its flux grows as
 /// D⁴/D² = D² (the table's brightness carries the D⁴ of the radiance at D·T).
+#[must_use]
+pub fn star_light(star: &Star, doppler: f64, sky: &Sky, effects: Effects) -> Arriving {
+    let (doppler, solid_angle) = match effects {
+        Effects::Geometry => (1.0, 1.0),
+        Effects::Doppler => (doppler, 1.0),
+        Effects::Searchlight => (doppler, 1.0 / (doppler * doppler)),
+    };
+    Arriving::Table {
+        factor: sky.weight(star.magnitude) * solid_angle,
+        temperature_k: doppler * star.temperature_k,
+    }
+}
+
+/// The display colour a star adds to the image: [`star_light`] through the colour table.
 #[must_use]
 pub fn star_colour(
     star: &Star,
@@ -38,36 +53,25 @@ pub fn star_colour(
     effects: Effects,
     lut: &TemperatureLut,
 ) -> DVec3 {
-    let (doppler, solid_angle) = match effects {
-        Effects::Geometry => (1.0, 1.0),
-        Effects::Doppler => (doppler, 1.0),
-        Effects::Searchlight => (doppler, 1.0 / (doppler * doppler)),
-    };
-    sky.weight(star.magnitude) * solid_angle * lut_colour(lut, doppler * star.temperature_k)
+    star_light(star, doppler, sky, effects).display(lut, 1.0)
 }
 
 /// Where `star` is seen from `observer` in an image of `width` × `height` pixels (`None` when it
-/// is behind the camera), with its colour.
+/// is behind the camera), with its light.
 #[must_use]
-pub fn star_image(
-    star: &Star,
-    scene: &Scene,
-    lut: &TemperatureLut,
-    width: u32,
-    height: u32,
-) -> Option<StarImage> {
+pub fn star_image(star: &Star, scene: &Scene, width: u32, height: u32) -> Option<StarImage> {
     let rest_direction = (scene.sky.direction_map * star.direction).normalize();
     let (direction, doppler) = distant_source_image(scene.sky.beta, rest_direction);
     let pixel = project(&scene.observer, direction, width, height)?;
     Some(StarImage {
         pixel,
-        colour: star_colour(star, doppler, &scene.sky, scene.effects, lut),
+        light: star_light(star, doppler, &scene.sky, scene.effects),
         doppler,
     })
 }
 
-/// The display colour (sRGB-encoded, not clamped) the sky image shows in the viewing direction
-/// `direction` (in S; any length); black without an image.
+/// The light the sky image shows in the viewing direction `direction` (in S; any length);
+/// none without an image.
 ///
 /// The direction is taken back into the sky's frame (`distant_source_image` with −β gives the
 /// direction there and the reciprocal Doppler factor) and through the inverse of the sky's
@@ -76,12 +80,12 @@ pub fn star_image(
 /// [`SKY_IMAGE_WHITE_K`] filtered by the texel's colour, seen with the Doppler factor D (1 for
 /// geometry only): with the paper's colour, its grey value 𝒢 (Eq. 18) times the colour table at
 /// D·T; with spectral colour, the texel's reflectance spectrum (Jakob & Hanika) under that black
-/// body, shifted by D, its brightness s = the largest channel carried as exposure ×s.
+/// body, shifted by D, its brightness s = the largest channel as its factor.
 #[must_use]
-pub fn sky_image_colour(scene: &Scene, lut: &TemperatureLut, direction: DVec3) -> DVec3 {
+pub fn sky_image_light(scene: &Scene, direction: DVec3) -> Arriving {
     let sky = &scene.sky;
     let Some(image) = &sky.image else {
-        return DVec3::ZERO;
+        return Arriving::Dark;
     };
     let (rest_direction, inverse_doppler) = distant_source_image(-sky.beta, direction.normalize());
     let world = (sky.direction_map.inverse() * rest_direction).normalize();
@@ -91,30 +95,40 @@ pub fn sky_image_colour(scene: &Scene, lut: &TemperatureLut, direction: DVec3) -
         Effects::Doppler | Effects::Searchlight => 1.0 / inverse_doppler,
     };
     match scene.colour {
-        SurfaceColour::Paper => {
-            grey_value(radiance.extend(1.0)) * lut_colour(lut, doppler * SKY_IMAGE_WHITE_K)
-        }
+        SurfaceColour::Paper => Arriving::Table {
+            factor: grey_value(radiance.extend(1.0)),
+            temperature_k: doppler * SKY_IMAGE_WHITE_K,
+        },
         SurfaceColour::Spectral => {
             let brightness = radiance.max_element();
             // Black (and a NaN, which the image loader refuses anyway) shows nothing.
             if brightness.is_nan() || brightness <= 0.0 {
-                return DVec3::ZERO;
+                return Arriving::Dark;
             }
             srgb_coefficient_table()
                 .lookup((radiance / brightness).clamp(DVec3::ZERO, DVec3::ONE))
                 .and_then(|polynomial| {
-                    reflected_display_rgb(
-                        lut.tone_map(),
+                    reflected_light(
                         &Reflectance::new(polynomial),
                         SKY_IMAGE_WHITE_K,
                         1.0,
                         doppler,
-                        scene.exposure * brightness,
                     )
                 })
-                .unwrap_or(DVec3::ZERO)
+                .map_or(Arriving::Dark, |reflected| Arriving::Spectrum {
+                    light: reflected.light,
+                    white: reflected.white,
+                    factor: brightness,
+                })
         }
     }
+}
+
+/// The display colour (sRGB-encoded, not clamped) the sky image shows in the viewing direction
+/// `direction`: [`sky_image_light`] through the colour table, spectra with the scene's exposure.
+#[must_use]
+pub fn sky_image_colour(scene: &Scene, lut: &TemperatureLut, direction: DVec3) -> DVec3 {
+    sky_image_light(scene, direction).display(lut, scene.exposure)
 }
 
 /// The pixel position of the direction `direction` (in S) in the image of `observer`: the inverse
@@ -165,14 +179,21 @@ pub fn tent_splat(pixel: DVec2, width: u32, height: u32) -> impl Iterator<Item =
         })
 }
 
-/// The light the stars add to every pixel (display sRGB, not clamped), row-major from the top.
+/// The light the stars add to every pixel, each star's [`Arriving`] light turned into a pixel
+/// value by `value` (display colour or radiance; not clamped), row-major from the top.
 #[must_use]
-pub fn star_layer(scene: &Scene, lut: &TemperatureLut, width: u32, height: u32) -> Vec<DVec3> {
+pub fn star_layer(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    value: &dyn Fn(&Arriving) -> DVec3,
+) -> Vec<DVec3> {
     let mut layer = vec![DVec3::ZERO; width as usize * height as usize];
     for star in &scene.sky.stars {
-        if let Some(image) = star_image(star, scene, lut, width, height) {
+        if let Some(image) = star_image(star, scene, width, height) {
+            let colour = value(&image.light);
             for (index, weight) in tent_splat(image.pixel, width, height) {
-                layer[index] += weight * image.colour;
+                layer[index] += weight * colour;
             }
         }
     }
