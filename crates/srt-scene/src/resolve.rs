@@ -107,6 +107,46 @@ pub struct LocatedDescription {
     pub base_dir: PathBuf,
 }
 
+impl LocatedDescription {
+    /// Loads a description that no file or built-in scene holds (scene text a script gave) with
+    /// `overrides` in place of its values: validated, built from [`LocatedDescription::base_dir`]
+    /// and named in messages as a bare model's scene is ([`SceneDescription::origin`]).
+    ///
+    /// # Errors
+    /// As [`SceneSource::load_with`].
+    pub fn load_with(self, overrides: &Overrides) -> Result<LoadedScene, SceneError> {
+        load_overridden(self, overrides, SceneDescription::origin, build_located)
+    }
+}
+
+/// Applies `overrides` to `source`'s description (judged by its validation, named by
+/// `origin`), builds it with `build` and sets the overridden time on the built scene: the one
+/// route of [`Overrides`] into a scene.
+fn load_overridden(
+    mut source: LocatedDescription,
+    overrides: &Overrides,
+    origin: impl FnOnce(&SceneDescription) -> String,
+    build: impl FnOnce(LocatedDescription) -> Result<LoadedScene, SceneError>,
+) -> Result<LoadedScene, SceneError> {
+    let origin = origin(&source.description);
+    overrides
+        .apply(&mut source.description, &origin)
+        .map_err(|kind| SceneError::new(origin, kind))?;
+    let mut loaded = build(source)?;
+    overrides.apply_to_scene(&mut loaded.scene);
+    Ok(loaded)
+}
+
+/// Builds a description from its base folder, errors naming it by [`SceneDescription::origin`].
+fn build_located(source: LocatedDescription) -> Result<LoadedScene, SceneError> {
+    let (scene, warnings) = source.description.build(&source.base_dir)?;
+    Ok(LoadedScene {
+        scene,
+        source,
+        warnings,
+    })
+}
+
 /// A scene loaded from a [`SceneSource`]: the runtime scene with its description.
 #[derive(Debug, Clone)]
 pub struct LoadedScene {
@@ -191,14 +231,27 @@ impl SceneSource {
     /// by the option's name ([`SceneErrorKind::Override`](crate::SceneErrorKind::Override)),
     /// before any model or texture is read.
     pub fn load_with(&self, overrides: &Overrides) -> Result<LoadedScene, SceneError> {
-        let mut source = self.description(overrides.beta)?;
-        let origin = self.origin(&source.description);
-        overrides
-            .apply(&mut source.description, &origin)
-            .map_err(|kind| SceneError::new(origin, kind))?;
-        let mut loaded = self.build(source)?;
-        overrides.apply_to_scene(&mut loaded.scene);
-        Ok(loaded)
+        self.load_edited(self.description(overrides.beta)?, overrides)
+    }
+
+    /// Loads `source`, this source's description as a front end holds it (perhaps edited since
+    /// [`SceneSource::description`] gave it, as a Python script edits a scene), with
+    /// `overrides` in place of its values, exactly as [`SceneSource::load_with`] loads the
+    /// source's own description.
+    ///
+    /// # Errors
+    /// As [`SceneSource::load_with`].
+    pub fn load_edited(
+        &self,
+        source: LocatedDescription,
+        overrides: &Overrides,
+    ) -> Result<LoadedScene, SceneError> {
+        load_overridden(
+            source,
+            overrides,
+            |d| self.origin(d),
+            |source| self.build(source),
+        )
     }
 
     /// Builds `source`, this scene's description (perhaps edited), as the scene is built: a scene
@@ -211,7 +264,7 @@ impl SceneSource {
                 (scene, warnings)
             }
             Self::Builtin(builtin) => builtin.build_description(&source.description)?,
-            Self::Model(_) => source.description.build(&source.base_dir)?,
+            Self::Model(_) => return build_located(source),
         };
         Ok(LoadedScene {
             scene,

@@ -255,3 +255,36 @@ fn the_time_rule_is_the_scene_files() {
         )
     );
 }
+
+/// A description a front end edited (or read from text) loads as the source's own would with
+/// the same values given as overrides.
+#[test]
+fn an_edited_description_loads_as_the_overridden_source() {
+    let source = SceneSource::resolve("fig4").unwrap();
+    let mut edited = source.description(None).unwrap();
+    edited.description.observer.ct = 4.4;
+    let from_edit = source
+        .load_edited(edited.clone(), &Overrides::default())
+        .unwrap();
+    let overridden = source
+        .load_with(&Overrides {
+            time: Some(4.4),
+            ..Overrides::default()
+        })
+        .unwrap();
+    assert_eq!(from_edit.scene.observer.ct, overridden.scene.observer.ct);
+    assert_eq!(from_edit.source.description, edited.description);
+    // Text without a file: built from its base folder, named as a scene without a file.
+    let text = edited.clone().load_with(&Overrides::default()).unwrap();
+    assert_eq!(text.scene.observer.ct, 4.4);
+    let mut broken = edited;
+    broken.description.observer.fov_y_deg = 200.0;
+    let message = broken
+        .load_with(&Overrides::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with("scene \"fig4\": observer.fov_y_deg"),
+        "{message}"
+    );
+}

@@ -25,7 +25,7 @@ mod sky;
 mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
-pub use render::{Hit, RenderSettings, RenderedImage, Tracer, sample_offsets};
+pub use render::{Hit, Output, RenderSettings, RenderedImage, Tracer, sample_offsets};
 pub use shade::{Arriving, GREY_WEIGHTS, Illumination, SurfacePoint, arriving, grey_value, shade};
 pub use sky::{
     StarImage, project, sky_image_colour, sky_image_light, star_colour, star_image, star_layer,

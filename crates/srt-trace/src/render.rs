@@ -9,7 +9,7 @@
 //! that a ray costs about one box test per object it misses. None of this changes a result:
 //! ties go to the lowest (object, part, triangle) whatever the order of the search.
 
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 use bvh::aabb::{Aabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
@@ -66,7 +66,7 @@ impl RenderedImage {
 
 /// What a render's pixels hold.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Output {
+pub enum Output {
     /// Display colours through the tone map, in [0, 1].
     Display,
     /// Radiance, unclamped.
@@ -457,7 +457,8 @@ impl<'a> Tracer<'a> {
         settings: RenderSettings,
         progress: &(dyn Fn(u32) + Sync),
     ) -> RenderedImage {
-        self.render_as(settings, progress, Output::Display)
+        self.render_as(settings, progress, Output::Display, None)
+            .unwrap_or_else(|| unreachable!("a render without a stop flag finishes"))
     }
 
     /// Renders the image's radiance: linear BT.709, unclamped, luminance 1 for a white surface
@@ -469,16 +470,34 @@ impl<'a> Tracer<'a> {
         settings: RenderSettings,
         progress: &(dyn Fn(u32) + Sync),
     ) -> RenderedImage {
-        self.render_as(settings, progress, Output::Radiance)
+        self.render_as(settings, progress, Output::Radiance, None)
+            .unwrap_or_else(|| unreachable!("a render without a stop flag finishes"))
     }
 
-    /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says.
+    /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says, that gives up when
+    /// `stop` is set (checked before each row: a caller's Ctrl-C). `None` if it gave up; the
+    /// image otherwise, the same as theirs.
+    #[must_use]
+    pub fn render_stoppable(
+        &self,
+        settings: RenderSettings,
+        output: Output,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> Option<RenderedImage> {
+        self.render_as(settings, progress, output, Some(stop))
+    }
+
+    /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says; `None` if `stop` was
+    /// set before some row began.
     fn render_as(
         &self,
         settings: RenderSettings,
         progress: &(dyn Fn(u32) + Sync),
         output: Output,
-    ) -> RenderedImage {
+        stop: Option<&AtomicBool>,
+    ) -> Option<RenderedImage> {
+        let stopped = || stop.is_some_and(|stop| stop.load(Ordering::Relaxed));
         let RenderSettings {
             width,
             height,
@@ -511,6 +530,9 @@ impl<'a> Tracer<'a> {
         let rows: Vec<(Vec<DVec3>, Vec<u32>)> = (0..height)
             .into_par_iter()
             .map(|y| {
+                if stopped() {
+                    return (Vec::new(), Vec::new());
+                }
                 let mut colours = Vec::with_capacity(width as usize);
                 let mut coverage = Vec::with_capacity(width as usize);
                 for x in 0..width {
@@ -541,6 +563,12 @@ impl<'a> Tracer<'a> {
                 (colours, coverage)
             })
             .collect();
+        if rows
+            .iter()
+            .any(|(colours, _)| colours.len() < width as usize)
+        {
+            return None; // a row was skipped
+        }
         let (pixels, coverage) =
             rows.into_iter()
                 .fold((Vec::new(), Vec::new()), |(mut p, mut c), (rp, rc)| {
@@ -548,12 +576,12 @@ impl<'a> Tracer<'a> {
                     c.extend(rc);
                     (p, c)
                 });
-        RenderedImage {
+        Some(RenderedImage {
             width,
             height,
             pixels,
             coverage,
-        }
+        })
     }
 }
 
