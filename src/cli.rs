@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::DVec3;
+use srt::engine::{MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 /// srt: see what an observer really sees of objects flying at near light speed.
 #[derive(Debug, Parser)]
@@ -116,10 +117,10 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Image width in pixels.
-    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
     pub width: u32,
     /// Image height in pixels.
-    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
     pub height: u32,
     /// Renderer.
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
@@ -153,7 +154,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_vector, allow_hyphen_values = true)]
     pub observer_beta: Option<DVec3>,
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: u32,
     /// Render an animation of N frames, sweeping the observation time from --t0 to --t1.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use image::RgbImage;
-use srt_color::{quantize_8bit, srgb_decode};
+use srt::engine::{display_as_linear, radiance_as_f32};
+use srt_color::quantize_8bit;
 use srt_scene::message::io_reason;
 
 use srt_video::{
@@ -208,9 +209,7 @@ fn write_exr(
         WritableImage as _,
     };
     let size = Vec2(width as usize, height as usize);
-    #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
-    let float = |c: f64| c as f32;
-    let linear = |c: f64| float(srgb_decode(c.clamp(0.0, 1.0)));
+    let (float, linear) = (radiance_as_f32, display_as_linear);
     let [display_r, display_g, display_b] = EXR_DISPLAY_CHANNELS;
     let channels = SpecificChannels::build()
         .with_channel("R")

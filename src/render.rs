@@ -6,68 +6,23 @@ use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use std::sync::atomic::AtomicBool;
+
 use anyhow::{Context as _, bail};
 use glam::DVec3;
-use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
+use srt::engine::{Backend, Engine};
+use srt_gpu::Method;
 use srt_scene::description::observation_time;
 use srt_scene::{Effects, OverrideNames, Overrides, Scene, SurfaceColour, ValueName, View};
-use srt_trace::{RenderSettings, Tracer};
+use srt_trace::RenderSettings;
 
-use crate::cli::{Backend, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
+use crate::cli::{Backend as BackendArg, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
 use crate::output::{OutputFormat, check_writable, display_rgb8, numbered, write_image};
 use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
 use crate::shard::Shard;
 use crate::source::{SceneOrigin, load_scene};
 use srt_video::{VideoWriter, check_size};
-
-/// A renderer ready to produce frames of one scene.
-enum Engine {
-    /// The exact CPU reference.
-    Cpu,
-    /// The GPU local ray tracer (or polygon method), rendering at `scale`× the output size.
-    Gpu {
-        context: Box<GpuContext>,
-        renderer: Box<GpuRenderer>,
-        scale: u32,
-        method: Method,
-    },
-}
-
-impl Engine {
-    fn name(&self) -> String {
-        match self {
-            Self::Cpu => "cpu".into(),
-            Self::Gpu {
-                context, method, ..
-            } => format!("gpu {} on {}", method.name(), context.adapter_info.name),
-        }
-    }
-
-    /// The backend, method and adapter entries of the provenance record.
-    fn record_entries(&self) -> [(&'static str, String); 3] {
-        match self {
-            Self::Cpu => [
-                ("backend", "cpu".into()),
-                ("method", "lrt (exact CPU ray tracer)".into()),
-                ("adapter", "none".into()),
-            ],
-            Self::Gpu {
-                context, method, ..
-            } => [
-                ("backend", "gpu".into()),
-                ("method", method.name().into()),
-                (
-                    "adapter",
-                    format!(
-                        "{} ({:?})",
-                        context.adapter_info.name, context.adapter_info.backend
-                    ),
-                ),
-            ],
-        }
-    }
-}
 
 /// What an animation writes: numbered images (this machine's share of them) or one video.
 enum Animation {
@@ -111,7 +66,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
     let first = viewed(view, &scene)?;
-    let mut engine = choose_engine(args, &first)?;
+    let mut engine = choose_engine(args, &first, settings)?;
     let record = base_record(
         &loaded.origin,
         loaded.observer_beta,
@@ -311,65 +266,6 @@ fn details(settings: RenderSettings, engine: &Engine, start: Instant) -> String 
     )
 }
 
-/// Picks the renderer: `cpu`, `gpu` (an error without an adapter) or `auto` (the GPU when
-/// there is one, otherwise the CPU with a one-line notice).
-fn choose_engine(args: &RenderArgs, scene: &Scene) -> anyhow::Result<Engine> {
-    let method = match args.method {
-        MethodArg::Auto => Method::Auto,
-        MethodArg::Lrt => Method::Lrt,
-        MethodArg::Rt => Method::Rt,
-        MethodArg::Polygon => Method::Polygon,
-    };
-    let context = match args.backend {
-        Backend::Cpu if method == Method::Polygon => {
-            bail!("the polygon method runs on the GPU only; use --backend gpu or auto")
-        }
-        Backend::Cpu => return Ok(Engine::Cpu),
-        Backend::Gpu => GpuContext::new().context("--backend gpu")?,
-        Backend::Auto => match GpuContext::new() {
-            Ok(context) => context,
-            Err(error) if method.is_exact() => {
-                eprintln!("note: {error}; rendering on the CPU instead");
-                return Ok(Engine::Cpu);
-            }
-            Err(error) => bail!("the polygon method needs a GPU: {error}"),
-        },
-    };
-    // Supersampling on the GPU: render at ⌈√N⌉× the size and average.
-    let scale = f64::from(args.samples).sqrt().ceil() as u32;
-    let (width, height) = (args.width * scale, args.height * scale);
-    let mut renderer = match GpuRenderer::new(&context, scene, width, height) {
-        Ok(renderer) => renderer,
-        Err(error @ GpuError::ExceedsLimit { .. })
-            if args.backend == Backend::Auto && method.is_exact() =>
-        {
-            eprintln!(
-                "note: the GPU cannot render {}x{} at {} samples (a {width}x{height} target): \
-                 {error}; rendering on the CPU instead",
-                args.width, args.height, args.samples
-            );
-            return Ok(Engine::Cpu);
-        }
-        Err(error) => {
-            return Err(error).with_context(|| {
-                format!(
-                    "cannot prepare scene {} for the GPU ({}x{} at {} samples needs a \
-                     {width}x{height} target; use fewer pixels or samples, or --backend cpu)",
-                    scene.name, args.width, args.height, args.samples
-                )
-            });
-        }
-    };
-    // Each output pixel averages scale² rendered pixels; a star lands in one of them.
-    renderer.set_star_light_scale(f64::from(scale * scale));
-    Ok(Engine::Gpu {
-        context: Box::new(context),
-        renderer: Box::new(renderer),
-        scale,
-        method,
-    })
-}
-
 /// The scene-model view for --view.
 const fn view_of(view: ViewArg) -> View {
     match view {
@@ -436,6 +332,31 @@ fn file_safe(name: &str) -> String {
     }
 }
 
+/// Picks the renderer for --backend and --method (a note on standard error when `auto` falls
+/// back to the CPU).
+fn choose_engine(
+    args: &RenderArgs,
+    scene: &Scene,
+    settings: RenderSettings,
+) -> anyhow::Result<Engine> {
+    let backend = match args.backend {
+        BackendArg::Cpu => Backend::Cpu,
+        BackendArg::Gpu => Backend::Gpu,
+        BackendArg::Auto => Backend::Auto,
+    };
+    let method = match args.method {
+        MethodArg::Auto => Method::Auto,
+        MethodArg::Lrt => Method::Lrt,
+        MethodArg::Rt => Method::Rt,
+        MethodArg::Polygon => Method::Polygon,
+    };
+    let chosen = Engine::choose(backend, method, settings, scene)?;
+    if let Some(note) = chosen.note {
+        eprintln!("note: {note}");
+    }
+    Ok(chosen.engine)
+}
+
 /// Renders one frame with `engine`: display colours, row-major from the top. `show_rows` shows
 /// the CPU renderer's row progress (for single images; animations count frames instead).
 fn render_pixels(
@@ -444,61 +365,31 @@ fn render_pixels(
     settings: RenderSettings,
     show_rows: bool,
 ) -> anyhow::Result<Vec<DVec3>> {
-    Ok(match engine {
-        Engine::Cpu => render_cpu(scene, settings, show_rows),
-        Engine::Gpu {
-            context,
-            renderer,
-            scale,
-            method,
-        } => {
-            let (image, _) = renderer
-                .render(context, scene, *method, FootprintShape::Hull)
-                .with_context(|| format!("GPU rendering of {} failed", scene.name))?;
-            downsample(&image.pixels, settings.width, settings.height, *scale)
+    let never = AtomicBool::new(false);
+    let bar = (show_rows && matches!(engine, Engine::Cpu)).then(|| {
+        DelayedBar::new(
+            u64::from(settings.height),
+            "rows",
+            format!("rendering {}", scene.name),
+        )
+    });
+    let progress = |rows: u32| {
+        if let Some(bar) = &bar {
+            bar.set_position(u64::from(rows));
         }
-    })
+    };
+    let pixels = engine.render_display(scene, settings, &progress, &never)?;
+    if let Some(bar) = bar {
+        bar.finish();
+    }
+    Ok(pixels.expect("a render that is never stopped finishes"))
 }
 
-/// The radiance an image written to `path` holds, if its format holds one (EXR): rendered by
-/// the exact CPU tracer whichever engine renders the display colours (the GPU passes do not
-/// compute radiance yet).
+/// The radiance an image written to `path` holds, if its format holds one (EXR;
+/// [`srt::engine::render_radiance`]).
 fn radiance_for(path: &Path, scene: &Scene, settings: RenderSettings) -> Option<Vec<DVec3>> {
-    (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr))
-        .then(|| Tracer::new(scene).render_radiance(settings, &|_| {}).pixels)
-}
-
-/// The exact CPU render, with a progress bar of rows once it takes more than a second.
-fn render_cpu(scene: &Scene, settings: RenderSettings, show_rows: bool) -> Vec<DVec3> {
-    let tracer = Tracer::new(scene);
-    if !show_rows {
-        return tracer.render(settings, &|_| {}).pixels;
-    }
-    let bar = DelayedBar::new(
-        u64::from(settings.height),
-        "rows",
-        format!("rendering {}", scene.name),
-    );
-    let image = tracer.render(settings, &|rows| bar.set_position(u64::from(rows)));
-    bar.finish();
-    image.pixels
-}
-
-/// Box-filters an image rendered at `scale`× the size down to `width` × `height`.
-fn downsample(pixels: &[[f32; 4]], width: u32, height: u32, scale: u32) -> Vec<DVec3> {
-    let big_width = (width * scale) as usize;
-    let mut out = Vec::with_capacity((width * height) as usize);
-    for y in 0..height as usize {
-        for x in 0..width as usize {
-            let mut sum = DVec3::ZERO;
-            for dy in 0..scale as usize {
-                for dx in 0..scale as usize {
-                    let p = pixels[(y * scale as usize + dy) * big_width + x * scale as usize + dx];
-                    sum += DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
-                }
-            }
-            out.push(sum / f64::from(scale * scale));
-        }
-    }
-    out
+    (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr)).then(|| {
+        srt::engine::render_radiance(scene, settings, &|_| {}, &AtomicBool::new(false))
+            .expect("a render that is never stopped finishes")
+    })
 }

@@ -1,0 +1,255 @@
+//! The renderer behind `srt render` (and `srt.render` in Python): which backend draws a scene's
+//! display colours, how a GPU image is supersampled down to the output size, and the radiance an
+//! EXR holds. One piece of code, so that the command and every other front end produce the same
+//! pixels for the same arguments.
+
+use std::sync::atomic::AtomicBool;
+
+use anyhow::{Context as _, bail};
+use glam::DVec3;
+use srt_color::srgb_decode;
+use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
+use srt_scene::Scene;
+use srt_trace::{Output, RenderSettings, Tracer};
+
+/// The largest image width or height `srt render` accepts, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The most samples per pixel `srt render` accepts.
+pub const MAX_SAMPLES: u32 = 1024;
+
+/// Which renderer draws the display colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Backend {
+    /// The exact CPU ray tracer (srt-trace).
+    Cpu,
+    /// The GPU; an error without an adapter.
+    Gpu,
+    /// The GPU if an adapter exists (and can hold the target), otherwise the CPU.
+    #[default]
+    Auto,
+}
+
+/// A renderer ready to produce frames of one scene.
+pub enum Engine {
+    /// The exact CPU reference.
+    Cpu,
+    /// The GPU local ray tracer (or polygon method), rendering at `scale`× the output size.
+    Gpu {
+        /// The adapter and device.
+        context: Box<GpuContext>,
+        /// The scene's geometry on the GPU, with targets `scale`× the output size.
+        renderer: Box<GpuRenderer>,
+        /// Supersampling: each output pixel averages `scale`² rendered pixels.
+        scale: u32,
+        /// The method the GPU draws with.
+        method: Method,
+    },
+}
+
+/// An [`Engine`] and why it is not the one asked for, if it is not (`auto` fell back to the
+/// CPU): a one-line note for the user.
+pub struct Chosen {
+    /// The engine.
+    pub engine: Engine,
+    /// "the GPU …; rendering on the CPU instead", when `auto` fell back.
+    pub note: Option<String>,
+}
+
+impl Engine {
+    /// Picks the renderer for `scene` at `settings`: `cpu`, `gpu` (an error without an adapter)
+    /// or `auto` (the GPU when there is one that can hold the supersampled target, otherwise the
+    /// CPU, with a note). The GPU supersamples by rendering at ⌈√samples⌉× the size.
+    ///
+    /// # Errors
+    /// The polygon method on the CPU or without a GPU, `gpu` without an adapter, or a scene the
+    /// GPU cannot prepare (a target beyond its limits when `gpu` was asked for).
+    pub fn choose(
+        backend: Backend,
+        method: Method,
+        settings: RenderSettings,
+        scene: &Scene,
+    ) -> anyhow::Result<Chosen> {
+        let cpu = |note: Option<String>| {
+            Ok(Chosen {
+                engine: Self::Cpu,
+                note,
+            })
+        };
+        let context = match backend {
+            Backend::Cpu if method == Method::Polygon => {
+                bail!("the polygon method runs on the GPU only; use --backend gpu or auto")
+            }
+            Backend::Cpu => return cpu(None),
+            Backend::Gpu => GpuContext::new().context("--backend gpu")?,
+            Backend::Auto => match GpuContext::new() {
+                Ok(context) => context,
+                Err(error) if method.is_exact() => {
+                    return cpu(Some(format!("{error}; rendering on the CPU instead")));
+                }
+                Err(error) => bail!("the polygon method needs a GPU: {error}"),
+            },
+        };
+        let RenderSettings {
+            width,
+            height,
+            samples,
+        } = settings;
+        let scale = f64::from(samples).sqrt().ceil() as u32;
+        let (big_width, big_height) = (width * scale, height * scale);
+        let mut renderer = match GpuRenderer::new(&context, scene, big_width, big_height) {
+            Ok(renderer) => renderer,
+            Err(error @ GpuError::ExceedsLimit { .. })
+                if backend == Backend::Auto && method.is_exact() =>
+            {
+                return cpu(Some(format!(
+                    "the GPU cannot render {width}x{height} at {samples} samples (a \
+                     {big_width}x{big_height} target): {error}; rendering on the CPU instead"
+                )));
+            }
+            Err(error) => {
+                return Err(error).with_context(|| {
+                    format!(
+                        "cannot prepare scene {} for the GPU ({width}x{height} at {samples} \
+                         samples needs a {big_width}x{big_height} target; use fewer pixels or \
+                         samples, or --backend cpu)",
+                        scene.name
+                    )
+                });
+            }
+        };
+        // Each output pixel averages scale² rendered pixels; a star lands in one of them.
+        renderer.set_star_light_scale(f64::from(scale * scale));
+        Ok(Chosen {
+            engine: Self::Gpu {
+                context: Box::new(context),
+                renderer: Box::new(renderer),
+                scale,
+                method,
+            },
+            note: None,
+        })
+    }
+
+    /// "cpu" or "gpu METHOD on ADAPTER".
+    #[must_use]
+    pub fn name(&self) -> String {
+        match self {
+            Self::Cpu => "cpu".into(),
+            Self::Gpu {
+                context, method, ..
+            } => format!("gpu {} on {}", method.name(), context.adapter_info.name),
+        }
+    }
+
+    /// The backend, method and adapter entries of an image's provenance record.
+    #[must_use]
+    pub fn record_entries(&self) -> [(&'static str, String); 3] {
+        match self {
+            Self::Cpu => [
+                ("backend", "cpu".into()),
+                ("method", "lrt (exact CPU ray tracer)".into()),
+                ("adapter", "none".into()),
+            ],
+            Self::Gpu {
+                context, method, ..
+            } => [
+                ("backend", "gpu".into()),
+                ("method", method.name().into()),
+                (
+                    "adapter",
+                    format!(
+                        "{} ({:?})",
+                        context.adapter_info.name, context.adapter_info.backend
+                    ),
+                ),
+            ],
+        }
+    }
+
+    /// Renders one frame's display colours (the tone map's, sRGB-encoded, in [0, 1], row-major
+    /// from the top). The CPU reports finished rows to `progress` and gives up (`Ok(None)`) once
+    /// `stop` is set; the GPU finishes the frame.
+    ///
+    /// # Errors
+    /// A GPU failure (device lost, out of memory).
+    pub fn render_display(
+        &mut self,
+        scene: &Scene,
+        settings: RenderSettings,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> anyhow::Result<Option<Vec<DVec3>>> {
+        Ok(match self {
+            Self::Cpu => Tracer::new(scene)
+                .render_stoppable(settings, Output::Display, progress, stop)
+                .map(|image| image.pixels),
+            Self::Gpu {
+                context,
+                renderer,
+                scale,
+                method,
+            } => {
+                let (image, _) = renderer
+                    .render(context, scene, *method, FootprintShape::Hull)
+                    .with_context(|| format!("GPU rendering of {} failed", scene.name))?;
+                Some(downsample(
+                    &image.pixels,
+                    settings.width,
+                    settings.height,
+                    *scale,
+                ))
+            }
+        })
+    }
+}
+
+/// The radiance of a frame, what an EXR's R, G, B hold (linear BT.709, unclamped; srt-color's
+/// `radiance` module): rendered by the exact CPU tracer whichever engine draws the display
+/// colours (the GPU passes do not compute radiance yet). `None` if `stop` was set.
+#[must_use]
+pub fn render_radiance(
+    scene: &Scene,
+    settings: RenderSettings,
+    progress: &(dyn Fn(u32) + Sync),
+    stop: &AtomicBool,
+) -> Option<Vec<DVec3>> {
+    Tracer::new(scene)
+        .render_stoppable(settings, Output::Radiance, progress, stop)
+        .map(|image| image.pixels)
+}
+
+/// A display colour (sRGB-encoded) as the linear light an EXR's display channels hold.
+#[must_use]
+pub fn display_as_linear(colour: f64) -> f32 {
+    #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
+    let linear = srgb_decode(colour.clamp(0.0, 1.0)) as f32;
+    linear
+}
+
+/// A radiance value as an EXR's 32-bit float channel holds it.
+#[must_use]
+pub fn radiance_as_f32(value: f64) -> f32 {
+    #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
+    let float = value as f32;
+    float
+}
+
+/// Box-filters an image rendered at `scale`× the size down to `width` × `height`.
+fn downsample(pixels: &[[f32; 4]], width: u32, height: u32, scale: u32) -> Vec<DVec3> {
+    let big_width = (width * scale) as usize;
+    let mut out = Vec::with_capacity((width * height) as usize);
+    for y in 0..height as usize {
+        for x in 0..width as usize {
+            let mut sum = DVec3::ZERO;
+            for dy in 0..scale as usize {
+                for dx in 0..scale as usize {
+                    let p = pixels[(y * scale as usize + dy) * big_width + x * scale as usize + dx];
+                    sum += DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
+                }
+            }
+            out.push(sum / f64::from(scale * scale));
+        }
+    }
+    out
+}
