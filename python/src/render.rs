@@ -1,0 +1,364 @@
+//! `srt.render`: a scene rendered to numpy arrays, exactly as `srt render … -o x.exr` writes it
+//! (the same loading, overrides, view and renderer: the `srt` library's
+//! [`engine`](srt::engine)), with the GIL released and Ctrl-C honoured; and `srt.to_srgb8`.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use glam::DVec3;
+use numpy::ndarray::{Array3, ArrayD};
+use numpy::{IntoPyArray as _, PyArray3, PyArrayDyn, PyReadonlyArrayDyn};
+use pyo3::exceptions::PyUserWarning;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use srt::engine::{
+    Backend, Engine, MAX_IMAGE_SIDE, MAX_SAMPLES, display_as_linear, radiance_as_f32,
+    render_radiance,
+};
+use srt_color::{quantize_8bit, srgb_encode};
+use srt_gpu::Method;
+use srt_scene::{Effects, LoadedScene, OverrideNames, Overrides, SceneSource, SurfaceColour, View};
+use srt_trace::RenderSettings;
+
+use crate::errors;
+use crate::scene::Scene;
+
+/// What messages call the overriding arguments of `srt.render`.
+const ARGUMENT_NAMES: OverrideNames = OverrideNames {
+    colour: "colour",
+    exposure: "exposure",
+    time: "time",
+    beta: "beta",
+    observer_beta: "observer_beta",
+};
+
+/// How often the waiting Python thread looks for Ctrl-C while a render runs.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// The scene argument of `srt.render`: a name or path as `srt render` takes it, a path object,
+/// or a Scene.
+#[derive(FromPyObject)]
+pub enum SceneArgument<'py> {
+    /// A `srt.Scene`.
+    Scene(Bound<'py, Scene>),
+    /// A built-in scene's name, a scene file or a model file.
+    Name(String),
+    /// A scene file or model file as a path object (never a built-in scene).
+    Path(std::path::PathBuf),
+}
+
+/// What one render produced.
+struct Rendered {
+    /// Radiance, row-major from the top.
+    radiance: Vec<DVec3>,
+    /// Display colours (sRGB-encoded, [0, 1]) when asked for.
+    display: Option<Vec<DVec3>>,
+    /// Warnings met loading the scene, and the engine's note.
+    warnings: Vec<String>,
+}
+
+/// Why a render stopped without an image.
+enum Failure {
+    /// A Python exception to raise.
+    Raise(PyErr),
+    /// Ctrl-C: the render was stopped.
+    Stopped,
+}
+
+impl From<PyErr> for Failure {
+    fn from(error: PyErr) -> Self {
+        Self::Raise(error)
+    }
+}
+
+/// Renders `scene` to a float32 array (height, width, 3) of linear radiance (the EXR's R, G, B);
+/// with `aov=True`, a dict of layers: "radiance" and "display" (the displayed image as linear
+/// light, the EXR's display.R, display.G, display.B).
+#[pyfunction]
+#[pyo3(signature = (
+    scene, *, width=1280, height=720, time=None, beta=None, observer_beta=None, effects=None,
+    colour=None, exposure=None, samples=1, backend="auto", method="auto", view="seen", aov=false
+))]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "Python keyword arguments, as the issue names them"
+)]
+pub fn render<'py>(
+    py: Python<'py>,
+    scene: SceneArgument<'py>,
+    width: u32,
+    height: u32,
+    time: Option<f64>,
+    beta: Option<[f64; 3]>,
+    observer_beta: Option<[f64; 3]>,
+    effects: Option<&str>,
+    colour: Option<&str>,
+    exposure: Option<f64>,
+    samples: u32,
+    backend: &str,
+    method: &str,
+    view: &str,
+    aov: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let settings = settings(width, height, samples)?;
+    let overrides = Overrides {
+        effects: effects.map(parse_effects).transpose()?,
+        colour: colour.map(parse_colour).transpose()?,
+        exposure,
+        time,
+        beta: beta.map(DVec3::from_array),
+        observer_beta: observer_beta.map(DVec3::from_array),
+        names: ARGUMENT_NAMES,
+    };
+    let backend = parse_backend(backend)?;
+    let method = parse_method(method)?;
+    if backend == Backend::Cpu && method == Method::Polygon {
+        return Err(errors::value(
+            "the polygon method runs on the GPU only; use backend=\"gpu\" or \"auto\"",
+        ));
+    }
+    let view = parse_view(view)?;
+    let loaded = match &scene {
+        SceneArgument::Name(name) => SceneSource::resolve(name)
+            .map_err(|e| errors::resolve(&e))
+            .and_then(|source| {
+                py.detach(|| source.load_with(&overrides))
+                    .map_err(|e| errors::scene(&e))
+            }),
+        SceneArgument::Path(path) => crate::scene::file_source(path).and_then(|source| {
+            py.detach(|| source.load_with(&overrides))
+                .map_err(|e| errors::scene(&e))
+        }),
+        SceneArgument::Scene(scene) => {
+            let described = scene.borrow().described().clone();
+            py.detach(|| described.load(&overrides))
+                .map_err(|e| errors::scene(&e))
+        }
+    }?;
+    let request = Request {
+        settings,
+        backend,
+        method,
+        view,
+        aov,
+    };
+    let rendered = match run_interruptible(py, |stop| request.run(loaded, stop)) {
+        Ok(rendered) => rendered,
+        Err(Failure::Raise(error)) => return Err(error),
+        Err(Failure::Stopped) => {
+            // check_signals raised KeyboardInterrupt and the render has stopped; raise it again.
+            return Err(py.check_signals().err().unwrap_or_else(|| {
+                pyo3::exceptions::PyKeyboardInterrupt::new_err("render stopped")
+            }));
+        }
+    };
+    for warning in &rendered.warnings {
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &std::ffi::CString::new(warning.as_str()).unwrap_or_default(),
+            1,
+        )?;
+    }
+    let shape = (height as usize, width as usize, 3);
+    let radiance = image_array(py, shape, &rendered.radiance, radiance_as_f32);
+    let Some(display) = rendered.display else {
+        return Ok(radiance.into_any());
+    };
+    let layers = PyDict::new(py);
+    layers.set_item("radiance", radiance)?;
+    layers.set_item(
+        "display",
+        image_array(py, shape, &display, display_as_linear),
+    )?;
+    Ok(layers.into_any())
+}
+
+/// The parts of a render request that do not name the scene.
+struct Request {
+    /// Size and samples per pixel.
+    settings: RenderSettings,
+    /// Who draws the display layer.
+    backend: Backend,
+    /// How the GPU draws it.
+    method: Method,
+    /// Which picture.
+    view: View,
+    /// Whether the display layer is asked for.
+    aov: bool,
+}
+
+impl Request {
+    /// Renders `loaded` (no GIL held), giving up once `stop` is set.
+    fn run(&self, loaded: LoadedScene, stop: &AtomicBool) -> Result<Rendered, Failure> {
+        let mut warnings = loaded.warnings;
+        let scene = if self.view == View::Seen {
+            loaded.scene
+        } else {
+            self.view.apply(&loaded.scene).map_err(|error| {
+                Failure::Raise(errors::value(format!(
+                    "cannot draw scene {} in the {} view: {error}",
+                    loaded.scene.name,
+                    self.view.name()
+                )))
+            })?
+        };
+        // The display layer needs the engine `srt render` would choose; the radiance is the
+        // CPU tracer's whichever engine that is (srt::engine::render_radiance).
+        let display = if self.aov {
+            let chosen = Engine::choose(self.backend, self.method, self.settings, &scene)
+                .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
+            warnings.extend(chosen.note.map(|note| format!("note: {note}")));
+            let mut engine = chosen.engine;
+            let pixels = engine
+                .render_display(&scene, self.settings, &|_| {}, stop)
+                .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
+            Some(pixels.ok_or(Failure::Stopped)?)
+        } else {
+            None
+        };
+        let radiance =
+            render_radiance(&scene, self.settings, &|_| {}, stop).ok_or(Failure::Stopped)?;
+        Ok(Rendered {
+            radiance,
+            display,
+            warnings,
+        })
+    }
+}
+
+/// Runs `work` on another thread with the GIL released, looking for Ctrl-C meanwhile: on one,
+/// sets the stop flag `work` watches and waits for it to give up.
+fn run_interruptible<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&AtomicBool) -> Result<T, Failure> + Send,
+) -> Result<T, Failure> {
+    let stop = AtomicBool::new(false);
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(|| work(&stop));
+        loop {
+            if worker.is_finished() {
+                return worker
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            }
+            py.detach(|| std::thread::sleep(SIGNAL_POLL));
+            if let Err(interrupt) = py.check_signals() {
+                stop.store(true, Ordering::Relaxed);
+                let _ = worker.join();
+                return Err(Failure::Raise(interrupt));
+            }
+        }
+    })
+}
+
+/// `pixels` as a float32 array of `shape`, each channel converted by `channel`.
+fn image_array<'py>(
+    py: Python<'py>,
+    shape: (usize, usize, usize),
+    pixels: &[DVec3],
+    channel: fn(f64) -> f32,
+) -> Bound<'py, PyArray3<f32>> {
+    let values: Vec<f32> = pixels
+        .iter()
+        .flat_map(|p| p.to_array().map(channel))
+        .collect();
+    Array3::from_shape_vec(shape, values)
+        .expect("one colour per pixel")
+        .into_pyarray(py)
+}
+
+/// Linear light (any shape, float64) as 8-bit sRGB: clamped to [0, 1], encoded (IEC
+/// 61966-2-1) and quantised as srt's PNGs are.
+#[pyfunction]
+pub fn to_srgb8<'py>(
+    py: Python<'py>,
+    linear: PyReadonlyArrayDyn<'py, f64>,
+) -> Bound<'py, PyArrayDyn<u8>> {
+    let encoded: ArrayD<u8> = linear
+        .as_array()
+        .mapv(|c| quantize_8bit(srgb_encode(c.clamp(0.0, 1.0))));
+    encoded.into_pyarray(py)
+}
+
+/// The size and samples, within `srt render`'s limits.
+fn settings(width: u32, height: u32, samples: u32) -> PyResult<RenderSettings> {
+    for (name, value) in [("width", width), ("height", height)] {
+        if !(1..=MAX_IMAGE_SIDE).contains(&value) {
+            return Err(errors::value(format!(
+                "{name} must be 1 to {MAX_IMAGE_SIDE} pixels, got {value}"
+            )));
+        }
+    }
+    if !(1..=MAX_SAMPLES).contains(&samples) {
+        return Err(errors::value(format!(
+            "samples must be 1 to {MAX_SAMPLES}, got {samples}"
+        )));
+    }
+    Ok(RenderSettings {
+        width,
+        height,
+        samples,
+    })
+}
+
+/// "one of "a", "b"": the names a value may take, for messages.
+fn one_of(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| format!("{n:?}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The effect mode called `name`.
+fn parse_effects(name: &str) -> PyResult<Effects> {
+    Effects::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Effects::ALL.iter().map(|e| e.name()).collect();
+        errors::value(format!("effects {name:?} is none of {}", one_of(&names)))
+    })
+}
+
+/// The surface colour called `name`.
+fn parse_colour(name: &str) -> PyResult<SurfaceColour> {
+    SurfaceColour::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = SurfaceColour::ALL.iter().map(|c| c.name()).collect();
+        errors::value(format!("colour {name:?} is none of {}", one_of(&names)))
+    })
+}
+
+/// The backend called `name`.
+fn parse_backend(name: &str) -> PyResult<Backend> {
+    Ok(match name {
+        "auto" => Backend::Auto,
+        "cpu" => Backend::Cpu,
+        "gpu" => Backend::Gpu,
+        _ => {
+            return Err(errors::value(format!(
+                "backend {name:?} is none of {}",
+                one_of(&["auto", "cpu", "gpu"])
+            )));
+        }
+    })
+}
+
+/// The method called `name`.
+fn parse_method(name: &str) -> PyResult<Method> {
+    let methods = [Method::Auto, Method::Lrt, Method::Rt, Method::Polygon];
+    methods
+        .into_iter()
+        .find(|m| m.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+            errors::value(format!("method {name:?} is none of {}", one_of(&names)))
+        })
+}
+
+/// The picture called `name`.
+fn parse_view(name: &str) -> PyResult<View> {
+    let views = [View::Seen, View::Measured, View::Newtonian];
+    views.into_iter().find(|v| v.name() == name).ok_or_else(|| {
+        let names: Vec<&str> = views.iter().map(|v| v.name()).collect();
+        errors::value(format!("view {name:?} is none of {}", one_of(&names)))
+    })
+}

@@ -1,0 +1,440 @@
+//! `srt.Scene`: a scene description (as a scene file holds it) that Python reads and edits, with
+//! the scene file's validation and messages, and that `srt.render` loads the way `srt render`
+//! loads its SCENE argument ([`srt_scene::SceneSource`]). `Observer` and `SceneObject` are views
+//! of a scene's observer and objects: setting one of their fields edits the scene.
+
+use pyo3::prelude::*;
+use srt_scene::description::LightDescription;
+use srt_scene::resolve::LocatedDescription;
+use srt_scene::{Effects, LoadedScene, Overrides, SceneDescription, SceneSource, SurfaceColour};
+
+use crate::errors;
+
+/// How messages name scene text given to `Scene.from_toml`.
+const TEXT_ORIGIN: &str = "scene text";
+
+/// The built-in scenes' names, in `srt scenes` order.
+#[pyfunction]
+pub fn scenes() -> Vec<&'static str> {
+    srt_scene::builtin_scenes().iter().map(|s| s.name).collect()
+}
+
+/// What the file at `path` is, by its extension (a path is never a built-in scene's name);
+/// a file that does not exist is refused here, naming it.
+pub fn file_source(path: &std::path::Path) -> PyResult<SceneSource> {
+    if !path.exists() {
+        return Err(errors::SceneFileError::new_err(format!(
+            "cannot open {}: no such file",
+            path.display()
+        )));
+    }
+    SceneSource::from_path(path).map_err(|e| errors::resolve(&e))
+}
+
+/// A scene description: what a scene file holds, plus where it came from.
+#[pyclass(module = "srt")]
+pub struct Scene {
+    /// The description and its origin.
+    described: Described,
+}
+
+/// A scene description as edited so far and where it came from: what loading it needs.
+#[derive(Clone)]
+pub struct Described {
+    /// The built-in scene, scene file or model it came from; `None` for scene text.
+    source: Option<SceneSource>,
+    /// Its description, and the folder relative paths start from.
+    located: LocatedDescription,
+}
+
+impl Described {
+    /// Loads the scene with `overrides` as `srt render` loads a scene (srt-scene's one route).
+    pub fn load(&self, overrides: &Overrides) -> Result<LoadedScene, srt_scene::SceneError> {
+        match &self.source {
+            Some(source) => source.load_edited(self.located.clone(), overrides),
+            None => self.located.clone().load_with(overrides),
+        }
+    }
+}
+
+impl Scene {
+    /// The description and its origin, to load the scene from.
+    pub const fn described(&self) -> &Described {
+        &self.described
+    }
+
+    /// Applies `change` to the description if the result passes the scene file's validation;
+    /// otherwise leaves the scene as it was and raises its message.
+    fn edit(&mut self, change: impl FnOnce(&mut SceneDescription)) -> PyResult<()> {
+        let mut edited = self.described.located.description.clone();
+        change(&mut edited);
+        edited.validate().map_err(|e| errors::scene(&e))?;
+        self.described.located.description = edited;
+        Ok(())
+    }
+
+    /// A scene from `source`, its description read (a bare model moving with `beta`) and the
+    /// whole scene built once, so that a missing or broken file is reported now.
+    fn from_source(source: SceneSource, beta: Option<[f64; 3]>) -> PyResult<Self> {
+        let beta = beta.map(glam::DVec3::from_array);
+        let located = source.description(beta).map_err(|e| errors::scene(&e))?;
+        let described = Described {
+            source: Some(source),
+            located,
+        };
+        described
+            .load(&Overrides::default())
+            .map_err(|e| errors::scene(&e))?;
+        Ok(Self { described })
+    }
+}
+
+#[pymethods]
+impl Scene {
+    /// The built-in scene `name` (see `srt.scenes()`).
+    #[staticmethod]
+    fn builtin(name: &str) -> PyResult<Self> {
+        let builtin = srt_scene::builtin::find_builtin(name).ok_or_else(|| {
+            errors::value(format!(
+                "{name:?} is not a built-in scene; built-in scenes: {}",
+                scenes().join(", ")
+            ))
+        })?;
+        Self::from_source(SceneSource::Builtin(builtin), None)
+    }
+
+    /// The scene file (.toml) or model (.gltf, .glb, .obj, .ply, .stl) at `path`; a bare model
+    /// is placed in front of the observer, moving with `beta` or approaching at 0.9c.
+    #[staticmethod]
+    #[pyo3(signature = (path, *, beta=None))]
+    fn load(path: std::path::PathBuf, beta: Option<[f64; 3]>) -> PyResult<Self> {
+        Self::from_source(file_source(&path)?, beta)
+    }
+
+    /// A scene from scene-file text (docs/scene-format.md); relative paths start from the
+    /// current folder.
+    #[staticmethod]
+    fn from_toml(text: &str) -> PyResult<Self> {
+        let description =
+            SceneDescription::from_toml_str(text, TEXT_ORIGIN).map_err(|e| errors::scene(&e))?;
+        let described = Described {
+            source: None,
+            located: LocatedDescription {
+                description,
+                base_dir: ".".into(),
+            },
+        };
+        described
+            .load(&Overrides::default())
+            .map_err(|e| errors::scene(&e))?;
+        Ok(Self { described })
+    }
+
+    /// The description as scene-file text that `Scene.from_toml` reads back.
+    fn to_toml(&self) -> String {
+        self.described.located.description.to_toml_string()
+    }
+
+    /// The scene's name (`None` if its description gives none).
+    #[getter]
+    fn name(&self) -> Option<String> {
+        match (
+            &self.described.located.description.name,
+            &self.described.source,
+        ) {
+            (Some(name), _) => Some(name.clone()),
+            (None, Some(SceneSource::Builtin(builtin))) => Some(builtin.name.to_owned()),
+            (None, _) => None,
+        }
+    }
+
+    /// The effect mode: "geometry", "doppler" or "searchlight" (setting it also gives the
+    /// scene the mode's own tone map, as `srt render --effects` does).
+    #[getter]
+    fn effects(&self) -> &'static str {
+        self.described.located.description.render.effects.name()
+    }
+
+    #[setter]
+    fn set_effects(&mut self, name: &str) -> PyResult<()> {
+        let effects = Effects::from_name(name).ok_or_else(|| {
+            errors::value(format!(
+                "effects {name:?} is none of \"geometry\", \"doppler\", \"searchlight\""
+            ))
+        })?;
+        self.edit(|d| {
+            d.render.effects = effects;
+            d.render.tone_map = None;
+        })
+    }
+
+    /// How lit surfaces are coloured: "paper" (the paper's Eq. 18) or "spectral".
+    #[getter]
+    fn colour(&self) -> &'static str {
+        self.described.located.description.render.colour.name()
+    }
+
+    #[setter]
+    fn set_colour(&mut self, name: &str) -> PyResult<()> {
+        let colour = SurfaceColour::from_name(name).ok_or_else(|| {
+            errors::value(format!(
+                "colour {name:?} is neither \"paper\" nor \"spectral\""
+            ))
+        })?;
+        self.edit(|d| d.render.colour = colour)
+    }
+
+    /// The multiplier on the light before the tone map (spectral colour only).
+    #[getter]
+    fn exposure(&self) -> f64 {
+        self.described.located.description.render.exposure
+    }
+
+    #[setter]
+    fn set_exposure(&mut self, exposure: f64) -> PyResult<()> {
+        self.edit(|d| d.render.exposure = exposure)
+    }
+
+    /// The observation time ct_obs (`observer.ct`).
+    #[getter]
+    fn time(&self) -> f64 {
+        self.described.located.description.observer.ct
+    }
+
+    #[setter]
+    fn set_time(&mut self, ct: f64) -> PyResult<()> {
+        self.edit(|d| d.observer.ct = ct)
+    }
+
+    /// The lamp's position and black-body temperature in kelvin, `None` without a lamp.
+    #[getter]
+    fn light(&self) -> Option<([f64; 3], f64)> {
+        self.described.located.description.light.as_ref().map(
+            |LightDescription {
+                 position,
+                 temperature_k,
+             }| (*position, *temperature_k),
+        )
+    }
+
+    /// The observer (a view: setting its fields edits this scene).
+    #[getter]
+    fn observer(slf: Py<Self>) -> Observer {
+        Observer { scene: slf }
+    }
+
+    /// The objects, in scene-file order (views: setting their fields edits this scene).
+    #[getter]
+    fn objects(slf: Py<Self>, py: Python<'_>) -> Vec<SceneObject> {
+        let count = slf.borrow(py).described.located.description.objects.len();
+        (0..count)
+            .map(|index| SceneObject {
+                scene: slf.clone_ref(py),
+                index,
+            })
+            .collect()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<srt.Scene {} ({} objects, {})>",
+            self.name().unwrap_or_else(|| "untitled".into()),
+            self.described.located.description.objects.len(),
+            self.effects()
+        )
+    }
+}
+
+/// The observer of a scene (a view of `Scene.observer`).
+#[pyclass(module = "srt")]
+pub struct Observer {
+    /// The scene it belongs to.
+    scene: Py<Scene>,
+}
+
+impl Observer {
+    /// A value of the observer's description.
+    fn get<T>(
+        &self,
+        py: Python<'_>,
+        field: impl FnOnce(&srt_scene::ObserverDescription) -> T,
+    ) -> T {
+        field(&self.scene.borrow(py).described.located.description.observer)
+    }
+
+    /// Edits the observer's description (validated as the scene file is).
+    fn set(
+        &self,
+        py: Python<'_>,
+        change: impl FnOnce(&mut srt_scene::ObserverDescription),
+    ) -> PyResult<()> {
+        self.scene.borrow_mut(py).edit(|d| change(&mut d.observer))
+    }
+}
+
+#[pymethods]
+impl Observer {
+    /// Position in the scene's world frame.
+    #[getter]
+    fn position(&self, py: Python<'_>) -> [f64; 3] {
+        self.get(py, |o| o.position)
+    }
+
+    #[setter]
+    fn set_position(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| o.position = value)
+    }
+
+    /// Velocity through the world frame in units of c (|beta| < 1).
+    #[getter]
+    fn beta(&self, py: Python<'_>) -> [f64; 3] {
+        self.get(py, |o| o.beta)
+    }
+
+    #[setter]
+    fn set_beta(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| o.beta = value)
+    }
+
+    /// The point looked at (`None` when a direction is given instead); setting it clears the
+    /// direction.
+    #[getter]
+    fn look_at(&self, py: Python<'_>) -> Option<[f64; 3]> {
+        self.get(py, |o| o.look_at)
+    }
+
+    #[setter]
+    fn set_look_at(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| {
+            o.look_at = Some(value);
+            o.direction = None;
+        })
+    }
+
+    /// The viewing direction (`None` when a point looked at is given instead); setting it
+    /// clears the point.
+    #[getter]
+    fn direction(&self, py: Python<'_>) -> Option<[f64; 3]> {
+        self.get(py, |o| o.direction)
+    }
+
+    #[setter]
+    fn set_direction(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| {
+            o.direction = Some(value);
+            o.look_at = None;
+        })
+    }
+
+    /// The camera's up direction.
+    #[getter]
+    fn up(&self, py: Python<'_>) -> [f64; 3] {
+        self.get(py, |o| o.up)
+    }
+
+    #[setter]
+    fn set_up(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| o.up = value)
+    }
+
+    /// Vertical field of view in degrees, in (0, 180).
+    #[getter]
+    fn fov_y_deg(&self, py: Python<'_>) -> f64 {
+        self.get(py, |o| o.fov_y_deg)
+    }
+
+    #[setter]
+    fn set_fov_y_deg(&self, py: Python<'_>, value: f64) -> PyResult<()> {
+        self.set(py, |o| o.fov_y_deg = value)
+    }
+
+    /// The observation time ct_obs (the same as `Scene.time`).
+    #[getter]
+    fn ct(&self, py: Python<'_>) -> f64 {
+        self.get(py, |o| o.ct)
+    }
+
+    #[setter]
+    fn set_ct(&self, py: Python<'_>, value: f64) -> PyResult<()> {
+        self.set(py, |o| o.ct = value)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        self.get(py, |o| {
+            format!(
+                "<srt.Observer at {:?}, beta {:?}, ct {:?}>",
+                o.position, o.beta, o.ct
+            )
+        })
+    }
+}
+
+/// One object of a scene (a view of an item of `Scene.objects`).
+#[pyclass(module = "srt")]
+pub struct SceneObject {
+    /// The scene it belongs to.
+    scene: Py<Scene>,
+    /// Its place in the scene's objects.
+    index: usize,
+}
+
+impl SceneObject {
+    /// A value of the object's description.
+    fn get<T>(&self, py: Python<'_>, field: impl FnOnce(&srt_scene::ObjectDescription) -> T) -> T {
+        field(&self.scene.borrow(py).described.located.description.objects[self.index])
+    }
+
+    /// Edits the object's description (validated as the scene file is).
+    fn set(
+        &self,
+        py: Python<'_>,
+        change: impl FnOnce(&mut srt_scene::ObjectDescription),
+    ) -> PyResult<()> {
+        let index = self.index;
+        self.scene
+            .borrow_mut(py)
+            .edit(|d| change(&mut d.objects[index]))
+    }
+}
+
+#[pymethods]
+impl SceneObject {
+    /// The object's name as messages give it (`object "NAME"` or `object N`).
+    #[getter]
+    fn name(&self, py: Python<'_>) -> String {
+        let index = self.index;
+        self.get(py, |o| o.name.clone().unwrap_or_else(|| o.label(index)))
+    }
+
+    /// Velocity of its rest frame S′ in units of c (|beta| < 1), relative to the world frame.
+    #[getter]
+    fn beta(&self, py: Python<'_>) -> [f64; 3] {
+        self.get(py, |o| o.beta)
+    }
+
+    #[setter]
+    fn set_beta(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| o.beta = value)
+    }
+
+    /// Where the origin of S′ is at t = t′ = 0 (the paper's a, Fig. 2).
+    #[getter]
+    fn offset(&self, py: Python<'_>) -> [f64; 3] {
+        self.get(py, |o| o.offset)
+    }
+
+    #[setter]
+    fn set_offset(&self, py: Python<'_>, value: [f64; 3]) -> PyResult<()> {
+        self.set(py, |o| o.offset = value)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let name = self.name(py);
+        self.get(py, |o| {
+            format!(
+                "<srt.SceneObject {name}, beta {:?}, offset {:?}>",
+                o.beta, o.offset
+            )
+        })
+    }
+}

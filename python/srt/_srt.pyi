@@ -1,0 +1,126 @@
+"""Type stubs of srt._srt, the Rust extension behind the srt package (python/src)."""
+
+from __future__ import annotations
+
+import os
+from typing import Literal, Sequence, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Vector = Sequence[float]
+EffectsName = Literal["geometry", "doppler", "searchlight"]
+ColourName = Literal["paper", "spectral"]
+
+class SceneError(ValueError):
+    """A scene or value srt refuses; the message is srt's own one line."""
+
+class SceneFileError(OSError):
+    """A scene, model, texture or star file that cannot be found, read or imported."""
+
+class GpuError(RuntimeError):
+    """No GPU adapter where one was asked for, or the GPU failed."""
+
+def scenes() -> list[str]:
+    """The built-in scenes' names."""
+
+class Scene:
+    """A scene description (what a scene file holds) that Python reads and edits."""
+
+    @staticmethod
+    def builtin(name: str) -> Scene:
+        """The built-in scene ``name`` (see :func:`scenes`)."""
+    @staticmethod
+    def load(path: str | os.PathLike[str], *, beta: Vector | None = None) -> Scene:
+        """A scene file (.toml) or model (.gltf, .glb, .obj, .ply, .stl); a bare model moves
+        with ``beta`` or approaches the observer at 0.9c."""
+    @staticmethod
+    def from_toml(text: str) -> Scene:
+        """A scene from scene-file text (docs/scene-format.md)."""
+    def to_toml(self) -> str:
+        """The description as scene-file text that :meth:`from_toml` reads back."""
+    @property
+    def name(self) -> str | None: ...
+    effects: EffectsName
+    colour: ColourName
+    exposure: float
+    time: float
+    @property
+    def light(self) -> tuple[list[float], float] | None:
+        """The lamp's position and temperature in kelvin."""
+    @property
+    def observer(self) -> Observer:
+        """The observer (a view: setting its fields edits the scene)."""
+    @property
+    def objects(self) -> list[SceneObject]:
+        """The objects (views: setting their fields edits the scene)."""
+
+class Observer:
+    """The observer of a :class:`Scene`; setting a field edits the scene (validated)."""
+
+    position: Vector
+    beta: Vector
+    look_at: Vector | None
+    direction: Vector | None
+    up: Vector
+    fov_y_deg: float
+    ct: float
+
+class SceneObject:
+    """One object of a :class:`Scene`; setting a field edits the scene (validated)."""
+
+    @property
+    def name(self) -> str: ...
+    beta: Vector
+    offset: Vector
+
+@overload
+def render(
+    scene: str | Scene,
+    *,
+    width: int = 1280,
+    height: int = 720,
+    time: float | None = None,
+    beta: Vector | None = None,
+    observer_beta: Vector | None = None,
+    effects: EffectsName | None = None,
+    colour: ColourName | None = None,
+    exposure: float | None = None,
+    samples: int = 1,
+    backend: Literal["auto", "cpu", "gpu"] = "auto",
+    method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
+    view: Literal["seen", "measured", "newtonian"] = "seen",
+    aov: Literal[False] = False,
+) -> npt.NDArray[np.float32]: ...
+@overload
+def render(
+    scene: str | Scene,
+    *,
+    width: int = 1280,
+    height: int = 720,
+    time: float | None = None,
+    beta: Vector | None = None,
+    observer_beta: Vector | None = None,
+    effects: EffectsName | None = None,
+    colour: ColourName | None = None,
+    exposure: float | None = None,
+    samples: int = 1,
+    backend: Literal["auto", "cpu", "gpu"] = "auto",
+    method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
+    view: Literal["seen", "measured", "newtonian"] = "seen",
+    aov: Literal[True],
+) -> dict[str, npt.NDArray[np.float32]]: ...
+def to_srgb8(linear: npt.NDArray[np.float64]) -> npt.NDArray[np.uint8]: ...
+def lorentz_boost(beta: Vector) -> npt.NDArray[np.float64]: ...
+def apparent_positions(
+    points: npt.NDArray[np.float64], beta: Vector, offset: Vector, observer: Vector, ct: float
+) -> npt.NDArray[np.float64]: ...
+def doppler_factors(beta: Vector, directions: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+def aberrate_directions(
+    directions: npt.NDArray[np.float64], beta: Vector
+) -> npt.NDArray[np.float64]: ...
+def blackbody_colours(
+    temperatures: npt.NDArray[np.float64], tone_map: str
+) -> npt.NDArray[np.float64]: ...

@@ -1,0 +1,221 @@
+"""srt.render against the `srt` command: the same arguments give the EXR's pixels to the bit."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import numpy as np
+import pytest
+from conftest import cli_render, require_gpu, run_srt
+
+import srt
+
+SMALL = {"width": 96, "height": 54}
+
+
+def test_the_readme_example_has_the_shape_it_says():
+    img = srt.render("fig7", width=64, height=64, backend="cpu")
+    assert img.shape == (64, 64, 3)
+    assert img.dtype == np.float32
+    assert np.isfinite(img).all()
+    assert img.max() > 0.0, "the lit cube is in the picture"
+
+
+@pytest.mark.parametrize(
+    ("scene", "arguments", "cli"),
+    [
+        ("fig7", {}, []),
+        ("teaser", {"effects": "searchlight"}, ["--effects", "searchlight"]),
+        ("fig4", {"time": 5.66, "samples": 4}, ["--time", "5.66", "--samples", "4"]),
+        ("fig7", {"beta": (0.0, 0.5, 0.0), "colour": "spectral", "exposure": 2.0},
+         ["--beta", "0,0.5,0", "--colour", "spectral", "--exposure", "2"]),
+        ("flythrough", {"observer_beta": (0.6, 0.0, 0.0)}, ["--observer-beta", "0.6,0,0"]),
+        ("fig10-cube50", {"view": "measured"}, ["--view", "measured"]),
+    ],
+)
+def test_cpu_render_equals_the_commands_exr_to_the_bit(tmp_path, scene, arguments, cli):
+    size = ["--width", str(SMALL["width"]), "--height", str(SMALL["height"])]
+    expected = cli_render(tmp_path, scene, *size, "--backend", "cpu", *cli)
+    layers = srt.render(scene, **SMALL, backend="cpu", aov=True, **arguments)
+    for name in ("radiance", "display"):
+        assert layers[name].dtype == np.float32
+        assert layers[name].shape == expected[name].shape
+        assert np.array_equal(layers[name], expected[name]), f"{scene} {arguments}: {name}"
+    plain = srt.render(scene, **SMALL, backend="cpu", **arguments)
+    assert np.array_equal(plain, expected["radiance"])
+
+
+def test_the_searchlight_radiance_goes_beyond_a_white_surfaces(tmp_path):
+    layers = srt.render("teaser", **SMALL, backend="cpu", effects="searchlight", aov=True)
+    assert layers["radiance"].max() > 1.0, "the searchlight brightens beyond a white surface"
+    assert layers["display"].max() <= 1.0
+
+
+def test_the_display_layer_encodes_to_the_commands_png(tmp_path):
+    from PIL import Image
+
+    png = tmp_path / "cli.png"
+    size = ["--width", str(SMALL["width"]), "--height", str(SMALL["height"])]
+    run_srt("render", "fig7", *size, "--backend", "cpu", "-o", str(png))
+    display = srt.render("fig7", **SMALL, backend="cpu", aov=True)["display"]
+    ours = srt.to_srgb8(display)
+    theirs = np.asarray(Image.open(png).convert("RGB"))
+    assert ours.dtype == np.uint8 and ours.shape == theirs.shape
+    # The PNG quantises the display colour itself; ours goes through its f32 linear light and
+    # back, which can round a value sitting on a step's edge the other way.
+    difference = np.abs(ours.astype(int) - theirs.astype(int))
+    assert difference.max() <= 1
+    assert (difference > 0).mean() < 0.001
+
+
+def test_to_srgb8_keeps_the_shape_scalars_included():
+    assert srt.to_srgb8(0.5).shape == ()
+    assert int(srt.to_srgb8(0.5)) == 188  # sRGB encoding of linear 0.5
+    assert srt.to_srgb8([[0.0, 1.0, 2.0]]).tolist() == [[0, 255, 255]]
+
+
+def test_path_objects_name_files(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(srt.Scene.builtin("fig7").to_toml())
+    assert np.array_equal(
+        srt.render(path, **SMALL, backend="cpu"), srt.render(str(path), **SMALL, backend="cpu")
+    )
+    with pytest.raises(srt.SceneFileError, match="cannot open .*absent.toml: no such file"):
+        srt.render(tmp_path / "absent.toml", **SMALL, backend="cpu")
+
+
+def test_a_scene_object_renders_as_its_name_does():
+    by_name = srt.render("fig4", **SMALL, backend="cpu")
+    by_scene = srt.render(srt.Scene.builtin("fig4"), **SMALL, backend="cpu")
+    assert np.array_equal(by_name, by_scene)
+
+
+def test_an_edited_scene_renders_as_the_override_does():
+    scene = srt.Scene.builtin("fig4")
+    scene.time = 4.4
+    edited = srt.render(scene, **SMALL, backend="cpu")
+    overridden = srt.render("fig4", **SMALL, backend="cpu", time=4.4)
+    assert np.array_equal(edited, overridden)
+    assert not np.array_equal(edited, srt.render("fig4", **SMALL, backend="cpu"))
+
+
+def test_the_gpu_draws_the_display_layer_near_the_cpu():
+    try:
+        gpu = srt.render("fig7", **SMALL, backend="gpu", aov=True)
+    except srt.GpuError as error:
+        require_gpu(f"no GPU adapter for srt.render(backend='gpu'): {error}")
+    cpu = srt.render("fig7", **SMALL, backend="cpu", aov=True)
+    # The radiance is the CPU tracer's whichever backend draws the display layer.
+    assert np.array_equal(gpu["radiance"], cpu["radiance"])
+    difference = np.abs(gpu["display"] - cpu["display"]).max(axis=-1)
+    assert (difference > 0.01).mean() < 0.01, "the GPU mirrors the CPU but for a few edge pixels"
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        ({"beta": (0.0, 0.0, 1.0)}, "beta 0.0,0.0,1.0 is not a valid velocity"),
+        ({"beta": (float("nan"), 0.0, 0.0)}, "beta NaN,0.0,0.0 is not a valid velocity"),
+        ({"time": float("inf")}, "time must be a finite number"),
+        ({"exposure": 2.0}, "exposure"),
+        ({"effects": "glow"}, 'effects "glow" is none of "geometry", "doppler", "searchlight"'),
+        ({"colour": "sepia"}, 'colour "sepia" is none of "paper", "spectral"'),
+        ({"width": 0}, "width must be 1 to 16384 pixels, got 0"),
+        ({"samples": 5000}, "samples must be 1 to 1024, got 5000"),
+        ({"backend": "tpu"}, 'backend "tpu" is none of "auto", "cpu", "gpu"'),
+        ({"method": "polygon", "backend": "cpu"}, "the polygon method runs on the GPU only"),
+        ({"view": "sideways"}, 'view "sideways" is none of "seen", "measured", "newtonian"'),
+    ],
+)
+def test_bad_arguments_raise_value_errors_with_srts_message(arguments, message):
+    with pytest.raises(srt.SceneError, match=None) as raised:
+        srt.render("fig7", **{**SMALL, "backend": "cpu", **arguments})
+    assert isinstance(raised.value, ValueError)
+    assert message in str(raised.value), str(raised.value)
+    assert "\n" not in str(raised.value)
+
+
+def test_unknown_scenes_and_missing_files_raise_os_errors(tmp_path):
+    with pytest.raises(srt.SceneFileError) as raised:
+        srt.render(str(tmp_path / "nowhere.glb"), **SMALL, backend="cpu")
+    assert isinstance(raised.value, OSError)
+    assert "nowhere.glb" in str(raised.value)
+    broken = tmp_path / "broken.obj"
+    broken.write_text("v 0 0 0\nf 1 2 3\n")
+    with pytest.raises(srt.SceneFileError) as raised:
+        srt.render(str(broken), **SMALL, backend="cpu")
+    assert "broken.obj" in str(raised.value)
+    with pytest.raises(srt.SceneError, match="must end in .toml"):
+        notes = tmp_path / "notes.txt"
+        notes.write_text("hello")
+        srt.render(str(notes), **SMALL, backend="cpu")
+
+
+def test_the_gil_is_released_while_rendering():
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        srt.render("teaser", width=480, height=270, backend="cpu")
+    finally:
+        done.set()
+        counter.join()
+    assert ticks > 10, "another Python thread ran while srt rendered"
+
+
+def test_ctrl_c_stops_a_long_render(tmp_path):
+    import subprocess
+    import sys
+
+    script = """
+import os, signal, threading, time, srt
+threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+start = time.monotonic()
+try:
+    srt.render("teaser", width=4096, height=4096, samples=16, backend="cpu")
+    print("finished")
+except KeyboardInterrupt:
+    print(f"interrupted after {time.monotonic() - start:.1f} s")
+"""
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=False
+    )
+    assert done.stdout.startswith("interrupted after"), done.stdout + done.stderr
+    seconds = float(done.stdout.split()[2])
+    # The whole render takes minutes; the stop comes within the rows already begun.
+    assert seconds < 30, done.stdout
+
+
+def test_no_runtime_dir_warning_without_xdg_runtime_dir():
+    """Mesa's Vulkan layer makes libwayland complain on every GPU render without a valid
+    XDG_RUNTIME_DIR; srt gives the process a private one, as the command does."""
+    import os
+    import subprocess
+    import sys
+
+    script = """
+import srt
+try:
+    srt.render("fig7", width=16, height=16, backend="gpu", aov=True)
+    print("rendered on the GPU")
+except srt.GpuError as error:
+    print(f"no GPU: {error}")
+"""
+    environment = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, env=environment,
+        timeout=120, check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    if not done.stdout.startswith("rendered on the GPU"):
+        require_gpu(done.stdout.strip())
+    assert "XDG_RUNTIME_DIR" not in done.stderr, done.stderr
