@@ -26,6 +26,12 @@ pub struct Poincare {
 }
 
 impl Poincare {
+    /// The identity: every event keeps its coordinates.
+    pub const IDENTITY: Self = Self {
+        lorentz: DMat4::IDENTITY,
+        translation: DVec4::ZERO,
+    };
+
     /// The transformation S′ → S of `frame`: x = Λ_β x′ + (0, **a**) (Eq. 1).
     #[must_use]
     pub fn of_frame(frame: &Frame) -> Self {
@@ -174,6 +180,22 @@ impl MovingObserver {
         self.world_to_observer.apply(world)
     }
 
+    /// The transformation S → W, the inverse of [`MovingObserver::world_to_observer`]:
+    /// x_W = Λ_β_o (x_S − E) + E (Eq. 1 with the observer's frame as S′). The identity, to the
+    /// last bit, for an observer at rest (β_o = 0 exactly).
+    #[must_use]
+    pub fn observer_to_world(&self) -> Poincare {
+        if self.beta == DVec3::ZERO {
+            return Poincare::IDENTITY;
+        }
+        let to_event = self.event.to_four_vector();
+        let boost = lorentz_matrix(self.beta);
+        Poincare {
+            lorentz: boost,
+            translation: to_event - boost * to_event,
+        }
+    }
+
     /// The rest frame of an object whose frame relative to W is `world_frame`, as this observer
     /// describes it.
     ///
@@ -230,6 +252,24 @@ mod tests {
         assert_eq!(relative.frame, frame);
         assert_eq!(relative.rotation, DMat3::IDENTITY);
         assert_eq!(relative.rest_time_shift, 0.0);
+    }
+
+    #[test]
+    fn the_way_back_to_the_world_undoes_the_way_in() {
+        let event = Event::new(4.0, DVec3::new(1.0, -2.0, 0.5));
+        let observer = MovingObserver::new(DVec3::new(0.3, 0.6, -0.2), event).unwrap();
+        for world in [
+            Event::new(-7.0, DVec3::new(3.0, 1.0, 2.0)),
+            Event::new(12.5, DVec3::new(-40.0, 0.0, 9.0)),
+        ] {
+            let back = observer
+                .observer_to_world()
+                .apply(observer.to_observer(world));
+            assert_relative_eq!(back.ct, world.ct, epsilon = 1e-12);
+            assert!((back.position - world.position).length() < 1e-12);
+        }
+        let resting = MovingObserver::new(DVec3::ZERO, event).unwrap();
+        assert_eq!(resting.observer_to_world(), Poincare::IDENTITY);
     }
 
     #[test]

@@ -8,7 +8,7 @@ use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
 use glam::{DMat4, DVec2, DVec3};
 use srt_color::ToneMap;
-use srt_physics::{Event, Frame, RelativeFrame};
+use srt_physics::{Event, Frame, Poincare, RelativeFrame};
 
 use crate::mesh::Part;
 
@@ -198,6 +198,10 @@ pub struct Object {
     pub parts: Vec<Part>,
     /// The rest frame S′ (velocity β and offset **a**).
     pub frame: Frame,
+    /// How far the clock of `frame`'s rest coordinates runs ahead of the object's own proper
+    /// time (ct″ = ct′ + shift; [`RelativeFrame`](srt_physics::RelativeFrame)): 0 unless the
+    /// observer moves through the world frame.
+    pub rest_time_shift: f64,
     /// Draw triangle edges of this width (in S′ units) instead of the texture (Fig. 10 bottom).
     pub wireframe: Option<f64>,
     /// Ultraviolet and infrared reflectances, emission.
@@ -226,6 +230,8 @@ pub struct Kinematics {
     pub frames: Vec<RelativeFrame>,
     /// The velocity of the sky's rest frame W relative to S (`None`: the scene has no sky).
     pub sky_beta: Option<DVec3>,
+    /// The transformation from S to the world frame W ([`Scene::world`]).
+    pub world: Poincare,
 }
 
 /// Everything needed to render one picture.
@@ -253,6 +259,10 @@ pub struct Scene {
     pub colour: SurfaceColour,
     /// Multiplier on the light before the tone map (spectral colour; 1 for the paper's).
     pub exposure: f64,
+    /// The transformation from the observer's frame S to the scene's world frame W (the frame
+    /// the scene file's times and positions are given in): the identity for an observer at rest
+    /// in W ([`MovingObserver::observer_to_world`](srt_physics::MovingObserver)).
+    pub world: Poincare,
 }
 
 impl Scene {
@@ -285,8 +295,10 @@ impl Scene {
         );
         self.observer = kinematics.observer;
         self.light = kinematics.light;
+        self.world = kinematics.world;
         for (object, relative) in self.objects.iter_mut().zip(&kinematics.frames) {
             object.frame = relative.frame;
+            object.rest_time_shift = relative.rest_time_shift;
         }
         if let Some(beta) = kinematics.sky_beta {
             self.sky.beta = beta;

@@ -23,6 +23,7 @@ use srt_physics::{Event, Frame, RestRay};
 use srt_scene::{Effects, Mesh, Object, Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
+use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving};
 use crate::sky::{sky_image_light, star_layer};
 use crate::texture::sample_trilinear;
@@ -497,7 +498,6 @@ impl<'a> Tracer<'a> {
         output: Output,
         stop: Option<&AtomicBool>,
     ) -> Option<RenderedImage> {
-        let stopped = || stop.is_some_and(|stop| stop.load(Ordering::Relaxed));
         let RenderSettings {
             width,
             height,
@@ -526,49 +526,35 @@ impl<'a> Tracer<'a> {
             Output::Radiance => colour,
         };
         let stars = star_layer(self.scene, width, height, &value);
-        let finished = AtomicU32::new(0);
-        let rows: Vec<(Vec<DVec3>, Vec<u32>)> = (0..height)
-            .into_par_iter()
-            .map(|y| {
-                if stopped() {
-                    return (Vec::new(), Vec::new());
-                }
-                let mut colours = Vec::with_capacity(width as usize);
-                let mut coverage = Vec::with_capacity(width as usize);
-                for x in 0..width {
-                    let mut sum = DVec3::ZERO;
-                    let mut first_object = 0;
-                    for (k, offset) in offsets.iter().enumerate() {
-                        let (sx, sy) = (f64::from(x) + offset.x, f64::from(y) + offset.y);
-                        let hit = self.trace(direction_at(sx, sy));
-                        if k == 0 {
-                            first_object = hit.map_or(0, |h| h.object as u32 + 1);
-                        }
-                        sum += finish(hit.map_or_else(
-                            || {
-                                let sky = value(&sky_image_light(self.scene, direction_at(sx, sy)));
-                                background + sky + stars[y as usize * width as usize + x as usize]
-                            },
-                            |h| {
-                                let neighbours =
-                                    [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)];
-                                value(&self.light(&h, neighbours))
-                            },
-                        ));
+        let rows = rows_in_parallel(height, progress, stop, |y| {
+            let mut colours = Vec::with_capacity(width as usize);
+            let mut coverage = Vec::with_capacity(width as usize);
+            for x in 0..width {
+                let mut sum = DVec3::ZERO;
+                let mut first_object = 0;
+                for (k, offset) in offsets.iter().enumerate() {
+                    let (sx, sy) = (f64::from(x) + offset.x, f64::from(y) + offset.y);
+                    let hit = self.trace(direction_at(sx, sy));
+                    if k == 0 {
+                        first_object = hit.map_or(0, |h| h.object as u32 + 1);
                     }
-                    colours.push(sum / offsets.len() as f64);
-                    coverage.push(first_object);
+                    sum += finish(hit.map_or_else(
+                        || {
+                            let sky = value(&sky_image_light(self.scene, direction_at(sx, sy)));
+                            background + sky + stars[y as usize * width as usize + x as usize]
+                        },
+                        |h| {
+                            let neighbours =
+                                [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)];
+                            value(&self.light(&h, neighbours))
+                        },
+                    ));
                 }
-                progress(finished.fetch_add(1, Ordering::Relaxed) + 1);
-                (colours, coverage)
-            })
-            .collect();
-        if rows
-            .iter()
-            .any(|(colours, _)| colours.len() < width as usize)
-        {
-            return None; // a row was skipped
-        }
+                colours.push(sum / offsets.len() as f64);
+                coverage.push(first_object);
+            }
+            (colours, coverage)
+        })?;
         let (pixels, coverage) =
             rows.into_iter()
                 .fold((Vec::new(), Vec::new()), |(mut p, mut c), (rp, rc)| {
@@ -583,6 +569,54 @@ impl<'a> Tracer<'a> {
             coverage,
         })
     }
+}
+
+impl Tracer<'_> {
+    /// What the centre of each pixel of a `width` × `height` image sees of time
+    /// ([`SeenEvent`]), row-major from the top; `None` for a pixel that sees no object. Gives
+    /// up (`None`) once `stop` is set, as [`Tracer::render_stoppable`].
+    #[must_use]
+    pub fn render_seen_events(
+        &self,
+        width: u32,
+        height: u32,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> Option<Vec<Option<SeenEvent>>> {
+        let rows = rows_in_parallel(height, progress, Some(stop), |y| {
+            (0..width)
+                .map(|x| {
+                    self.hit_at_pixel(width, height, x, y)
+                        .map(|hit| self.seen_event(&hit))
+                })
+                .collect::<Vec<_>>()
+        })?;
+        Some(rows.into_iter().flatten().collect())
+    }
+}
+
+/// Runs `row` for every row 0..`height` on rayon's threads and returns the rows in order;
+/// `progress` hears the number of finished rows. `None` once `stop` is set: rows not yet begun
+/// are skipped.
+fn rows_in_parallel<T: Send>(
+    height: u32,
+    progress: &(dyn Fn(u32) + Sync),
+    stop: Option<&AtomicBool>,
+    row: impl Fn(u32) -> T + Sync,
+) -> Option<Vec<T>> {
+    let finished = AtomicU32::new(0);
+    let rows: Vec<Option<T>> = (0..height)
+        .into_par_iter()
+        .map(|y| {
+            if stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {
+                return None;
+            }
+            let done = row(y);
+            progress(finished.fetch_add(1, Ordering::Relaxed) + 1);
+            Some(done)
+        })
+        .collect();
+    rows.into_iter().collect()
 }
 
 /// The viewing direction (in S, unnormalised) through the point (`x`, `y`) of a `width` ×

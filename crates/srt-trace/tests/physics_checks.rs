@@ -4,7 +4,7 @@
 
 use glam::{DVec2, DVec3};
 use srt_color::ToneMap;
-use srt_physics::{Event, Frame, aberrate};
+use srt_physics::{Event, Frame, Poincare, aberrate};
 use srt_scene::shapes::{cube, uv_sphere};
 use srt_scene::{
     Effects, Light, Material, Mesh, Object, Observer, Part, Scene, Shading, Sky, SurfaceColour,
@@ -28,6 +28,7 @@ fn scene(objects: Vec<Object>, observer: Observer) -> Scene {
         sky: Sky::default(),
         colour: SurfaceColour::Paper,
         exposure: 1.0,
+        world: Poincare::IDENTITY,
     }
 }
 
@@ -42,6 +43,7 @@ fn object(mesh: Mesh, beta: DVec3, offset: DVec3, base_color: [f32; 4]) -> Objec
             },
         }],
         frame: Frame::new(beta, offset).unwrap(),
+        rest_time_shift: 0.0,
         wireframe: None,
         optics: SurfaceOptics::default(),
     }

@@ -42,6 +42,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
         },
         colour: SurfaceColour::Paper,
         exposure: 1.0,
+        world: srt_physics::Poincare::IDENTITY,
     }
 }
 

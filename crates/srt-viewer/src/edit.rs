@@ -465,6 +465,7 @@ impl Editor {
                 }
                 .expect("the plan takes each runtime object once and builds the rest"),
                 frame: frame.frame,
+                rest_time_shift: frame.rest_time_shift,
                 wireframe: object.wireframe,
                 optics: object.optics(),
             })

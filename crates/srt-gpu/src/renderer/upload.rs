@@ -400,6 +400,7 @@ mod tests {
                 part(cube(1.0, 1), Some(&texture)),
             ],
             frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
+            rest_time_shift: 0.0,
             wireframe: None,
             optics: SurfaceOptics::default(),
         };
@@ -427,6 +428,7 @@ mod tests {
             name: "cubes".to_owned(),
             parts: (0..3).map(|_| part(cube(1.0, 4), None)).collect(),
             frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
+            rest_time_shift: 0.0,
             wireframe: None,
             optics: SurfaceOptics::default(),
         };

@@ -92,6 +92,7 @@ impl SceneDescription {
             light,
             frames,
             sky_beta,
+            world,
         } = self.kinematics()?;
         let objects = self
             .objects
@@ -131,6 +132,7 @@ impl SceneDescription {
             sky,
             colour: render.colour,
             exposure: render.exposure,
+            world,
         };
         Ok((scene, warnings))
     }
@@ -221,6 +223,7 @@ impl SceneDescription {
             light,
             frames: self.relative_frames()?,
             sky_beta,
+            world: motion.observer_to_world(),
         })
     }
 }
@@ -468,6 +471,7 @@ impl ObjectDescription {
             name: self.name.clone().unwrap_or(label),
             parts,
             frame: relative.frame,
+            rest_time_shift: relative.rest_time_shift,
             wireframe: self.wireframe,
             optics: self.optics(),
         })
