@@ -156,6 +156,10 @@ pub struct RenderArgs {
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: u32,
+    /// Add per-pixel channels to an EXR beside R, G, B: what each pixel sees of time
+    /// (emission_ct, proper_time, distance, doppler, object; docs/scene-format.md).
+    #[arg(long)]
+    pub aov: bool,
     /// Render an animation of N frames, sweeping the observation time from --t0 to --t1.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: Option<u32>,
@@ -234,6 +238,7 @@ impl Default for RenderArgs {
             beta: None,
             observer_beta: None,
             samples: 1,
+            aov: false,
             frames: None,
             t0: None,
             t1: None,

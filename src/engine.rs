@@ -10,7 +10,7 @@ use glam::DVec3;
 use srt_color::srgb_decode;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_scene::Scene;
-use srt_trace::{Output, RenderSettings, Tracer};
+use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
@@ -219,6 +219,51 @@ pub fn render_radiance(
         .map(|image| image.pixels)
 }
 
+/// The per-pixel channels `--aov` adds to an EXR (and `srt.render(aov=True)` returns), in the
+/// order of [`aov_values`]: what each pixel's centre sees of time ([`SeenEvent`];
+/// docs/scene-format.md, "Per-pixel channels").
+pub const AOV_CHANNELS: [&str; 5] = [
+    "emission_ct",
+    "proper_time",
+    "distance",
+    "doppler",
+    "object",
+];
+
+/// What each pixel's centre sees of time, row-major from the top (`None`: no object), from the
+/// exact CPU tracer whichever engine draws the display colours (the GPU passes do not write
+/// these channels yet). `None` if `stop` was set.
+#[must_use]
+pub fn render_seen_events(
+    scene: &Scene,
+    settings: RenderSettings,
+    progress: &(dyn Fn(u32) + Sync),
+    stop: &AtomicBool,
+) -> Option<Vec<Option<SeenEvent>>> {
+    Tracer::new(scene).render_seen_events(settings.width, settings.height, progress, stop)
+}
+
+/// A pixel's [`AOV_CHANNELS`] values as 32-bit floats: the object's index in scene order, or −1
+/// with every other channel 0 where no object is seen.
+#[must_use]
+pub fn aov_values(seen: Option<&SeenEvent>) -> [f32; 5] {
+    seen.map_or([0.0, 0.0, 0.0, 0.0, -1.0], |event| {
+        #[expect(
+            clippy::cast_precision_loss,
+            reason = "object indices are far below 2^24"
+        )]
+        let object = event.object as f32;
+        let float = channel_f32;
+        [
+            float(event.emission_ct),
+            float(event.proper_time),
+            float(event.distance),
+            float(event.doppler),
+            object,
+        ]
+    })
+}
+
 /// A display colour (sRGB-encoded) as the linear light an EXR's display channels hold.
 #[must_use]
 pub fn display_as_linear(colour: f64) -> f32 {
@@ -227,9 +272,9 @@ pub fn display_as_linear(colour: f64) -> f32 {
     linear
 }
 
-/// A radiance value as an EXR's 32-bit float channel holds it.
+/// A value (radiance, a time, a factor) as an EXR's 32-bit float channel holds it.
 #[must_use]
-pub fn radiance_as_f32(value: f64) -> f32 {
+pub fn channel_f32(value: f64) -> f32 {
     #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
     let float = value as f32;
     float

@@ -1,10 +1,12 @@
 //! What `srt info` reports of an EXR's pixels: the range of its R, G, B values and of their
 //! luminance, how many pixels are brighter than 1.0 and how many are not finite — what someone
-//! who measures, re-exposes or tone maps the file needs to know first.
+//! who measures, re-exposes or tone maps the file needs to know first — and the range of each
+//! per-pixel channel `--aov` wrote ([`aov_lines`]).
 
 use std::path::Path;
 
 use anyhow::anyhow;
+use srt::engine::AOV_CHANNELS;
 use srt_color::XYZ_TO_LINEAR_BT709;
 
 /// Statistics of an EXR's first RGB layer.
@@ -106,6 +108,66 @@ impl PixelRange {
             ("non-finite pixels", self.non_finite.to_string()),
         ]
     }
+}
+
+/// One line per [`AOV_CHANNELS`] channel the EXR at `path` holds: its range over the pixels
+/// that see an object (`object` ≥ 0), and for `object` how many pixels see one. Empty for an
+/// EXR written without `--aov`.
+///
+/// # Errors
+/// A message naming the file when its channels cannot be read.
+pub fn aov_lines(path: &Path) -> anyhow::Result<Vec<(String, String)>> {
+    use exr::prelude::{FlatSamples, ReadChannels as _, ReadLayers as _};
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|error| anyhow!("cannot read the channels of {} ({error})", path.display()))?;
+    let channels = &image.layer_data.channel_data.list;
+    let values = |name: &str| -> Option<Vec<f32>> {
+        channels
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .map(|c| match &c.sample_data {
+                FlatSamples::F32(v) => v.clone(),
+                FlatSamples::F16(v) => v.iter().map(|h| h.to_f32()).collect(),
+                #[expect(clippy::cast_precision_loss, reason = "reported, not computed with")]
+                FlatSamples::U32(v) => v.iter().map(|&u| u as f32).collect(),
+            })
+    };
+    let Some(object) = values("object") else {
+        return Ok(Vec::new());
+    };
+    let seen: Vec<bool> = object.iter().map(|&o| o >= 0.0).collect();
+    let count = seen.iter().filter(|&&s| s).count();
+    let mut lines = Vec::new();
+    for name in AOV_CHANNELS {
+        let Some(channel) = values(name) else {
+            continue;
+        };
+        let (low, high) = channel
+            .iter()
+            .zip(&seen)
+            .filter(|&(_, &s)| s)
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), (&v, _)| {
+                (lo.min(v), hi.max(v))
+            });
+        let value = if name == "object" {
+            format!(
+                "{low} to {high}; {count} of {} pixels see an object (-1 elsewhere)",
+                object.len()
+            )
+        } else if count == 0 {
+            "no pixel sees an object".to_owned()
+        } else {
+            format!("{low} to {high} where an object is seen")
+        };
+        lines.push((name.to_owned(), value));
+    }
+    Ok(lines)
 }
 
 #[cfg(test)]

@@ -9,9 +9,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use image::RgbImage;
-use srt::engine::{display_as_linear, radiance_as_f32};
+use srt::engine::{AOV_CHANNELS, aov_values, channel_f32, display_as_linear};
 use srt_color::quantize_8bit;
 use srt_scene::message::io_reason;
+use srt_trace::SeenEvent;
 
 use srt_video::{
     AtomicFile, VideoFormat, lowercase_extension, parent_folder, temporary_file_beside,
@@ -138,32 +139,51 @@ pub const EXR_RADIANCE_NOTE: &str = "R, G, B: radiance before the tone map and e
      luminance 1 = a white surface at rest facing the observer's lamp), from the exact CPU \
      tracer; display.R, display.G, display.B: the image the PNG shows, as linear light";
 
+/// What an EXR holds beside the display colours: the radiance and, with `--aov`, what each
+/// pixel sees of time.
+pub struct ExrLayers {
+    /// Radiance, R, G, B, row-major from the top.
+    pub radiance: Vec<DVec3>,
+    /// Each pixel's emission event, for the [`AOV_CHANNELS`] (`None`: not asked for).
+    pub seen: Option<Vec<Option<SeenEvent>>>,
+}
+
+/// What the [`AOV_CHANNELS`] of srt's EXR hold, appended to [`EXR_RADIANCE_NOTE`] in its record.
+pub const EXR_AOV_NOTE: &str = "; emission_ct, proper_time, distance, doppler, object: what each \
+     pixel's centre sees of time (the emission event's world time ct, the object's proper time \
+     ct' there, the apparent distance, the Doppler factor of its light, the object's index or \
+     -1; docs/scene-format.md), from the exact CPU tracer";
+
 /// Writes a `width` × `height` image to `path` (format by extension) atomically, with `record`
 /// stored in it: a PNG of `display` (display colours, sRGB-encoded, [0, 1], row-major from the
-/// top), or an EXR of `radiance` (R, G, B) and `display` (as linear light, the
-/// [`EXR_DISPLAY_CHANNELS`]).
+/// top), or an EXR of `exr`'s layers (radiance as R, G, B, the display colours as linear light,
+/// the [`EXR_DISPLAY_CHANNELS`], and the [`AOV_CHANNELS`] when given).
 ///
 /// # Errors
-/// If `path` is not an image format, an EXR is asked for without its radiance, or encoding or
+/// If `path` is not an image format, an EXR is asked for without its layers, or encoding or
 /// writing fails; the destination is then untouched.
 pub fn write_image(
     width: u32,
     height: u32,
     display: &[DVec3],
-    radiance: Option<&[DVec3]>,
+    exr: Option<&ExrLayers>,
     record: &Provenance,
     path: &Path,
 ) -> anyhow::Result<()> {
     let format = OutputFormat::for_path(path)?;
     let file = AtomicFile::create(path)?;
     let mut writer = file.writer()?;
-    match (format, radiance) {
+    match (format, exr) {
         (OutputFormat::Png, _) => {
             write_png(&display_rgb8(width, height, display), record, &mut writer)
         }
-        (OutputFormat::Exr, Some(radiance)) => {
-            let record = record.with(&[("exr channels", EXR_RADIANCE_NOTE.to_owned())]);
-            write_exr(width, height, radiance, display, &record, &mut writer)
+        (OutputFormat::Exr, Some(layers)) => {
+            let mut note = EXR_RADIANCE_NOTE.to_owned();
+            if layers.seen.is_some() {
+                note.push_str(EXR_AOV_NOTE);
+            }
+            let record = record.with(&[("exr channels", note)]);
+            write_exr(width, height, display, layers, &record, &mut writer)
         }
         (OutputFormat::Exr, None) => bail!("cannot write {}: no radiance", path.display()),
         (OutputFormat::Mp4 | OutputFormat::Gif, _) => {
@@ -193,53 +213,51 @@ fn write_png(
 }
 
 /// Encodes a 32-bit float EXR (ZIP-compressed scan lines, written in increasing order so the
-/// bytes do not depend on thread scheduling): `radiance` as R, G, B and `display` (display
-/// colours, decoded to linear light) as the [`EXR_DISPLAY_CHANNELS`], with `record` as a text
-/// attribute.
+/// bytes do not depend on thread scheduling): `radiance` as R, G, B, `display` (display
+/// colours, decoded to linear light) as the [`EXR_DISPLAY_CHANNELS`] and, when given, each
+/// pixel's [`AOV_CHANNELS`], with `record` as a text attribute.
 fn write_exr(
     width: u32,
     height: u32,
-    radiance: &[DVec3],
     display: &[DVec3],
+    layers: &ExrLayers,
     record: &Provenance,
     writer: &mut BufWriter<File>,
 ) -> anyhow::Result<()> {
     use exr::prelude::{
-        AttributeValue, Encoding, Image, Layer, LayerAttributes, SpecificChannels, Text, Vec2,
-        WritableImage as _,
+        AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Image, Layer,
+        LayerAttributes, SmallVec, Text, Vec2, WritableImage as _,
     };
-    let size = Vec2(width as usize, height as usize);
-    let (float, linear) = (radiance_as_f32, display_as_linear);
-    let [display_r, display_g, display_b] = EXR_DISPLAY_CHANNELS;
-    let channels = SpecificChannels::build()
-        .with_channel("R")
-        .with_channel("G")
-        .with_channel("B")
-        .with_channel(display_r)
-        .with_channel(display_g)
-        .with_channel(display_b)
-        .with_pixel_fn(|position: Vec2<usize>| {
-            let index = position.flat_index_for_size(size);
-            let (r, d) = (radiance[index], display[index]);
-            (
-                float(r.x),
-                float(r.y),
-                float(r.z),
-                linear(d.x),
-                linear(d.y),
-                linear(d.z),
-            )
-        });
+    let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
+    let component = |pixels: &[DVec3], index: usize, convert: fn(f64) -> f32| -> Vec<f32> {
+        pixels.iter().map(|p| convert(p[index])).collect()
+    };
+    let mut channels = Vec::new();
+    for (index, name) in ["R", "G", "B"].into_iter().enumerate() {
+        channels.push(channel(
+            name,
+            component(&layers.radiance, index, channel_f32),
+        ));
+    }
+    for (index, name) in EXR_DISPLAY_CHANNELS.into_iter().enumerate() {
+        channels.push(channel(name, component(display, index, display_as_linear)));
+    }
+    if let Some(seen) = &layers.seen {
+        let values: Vec<[f32; 5]> = seen.iter().map(|s| aov_values(s.as_ref())).collect();
+        for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
+            channels.push(channel(name, values.iter().map(|v| v[index]).collect()));
+        }
+    }
     let mut attributes = LayerAttributes::default();
     attributes.other.insert(
         Text::from(provenance::KEY),
         AttributeValue::Text(Text::from_slice_unchecked(record.to_text().as_bytes())),
     );
     Image::from_layer(Layer::new(
-        size,
+        Vec2(width as usize, height as usize),
         attributes,
         Encoding::SMALL_LOSSLESS,
-        channels,
+        AnyChannels::sort(SmallVec::from_vec(channels)),
     ))
     .write()
     .to_buffered(writer)?;

@@ -177,6 +177,7 @@ pub fn print_info(path: &Path) -> anyhow::Result<()> {
     if is_exr(path)? {
         let range = PixelRange::read(path)?;
         lines.extend((range.lines().into_iter()).map(|(key, value)| (key.to_owned(), value)));
+        lines.extend(crate::exr_range::aov_lines(path)?);
     }
     let width = lines.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
     for (key, value) in &lines {

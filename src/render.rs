@@ -17,7 +17,7 @@ use srt_scene::{Effects, OverrideNames, Overrides, Scene, SurfaceColour, ValueNa
 use srt_trace::RenderSettings;
 
 use crate::cli::{Backend as BackendArg, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
-use crate::output::{OutputFormat, check_writable, display_rgb8, numbered, write_image};
+use crate::output::{ExrLayers, OutputFormat, check_writable, display_rgb8, numbered, write_image};
 use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
 use crate::shard::Shard;
@@ -78,17 +78,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
         let pixels = render_pixels(&mut engine, &first, settings, true)?;
-        let radiance = radiance_for(&output, &first, settings);
+        let layers = exr_layers_for(&output, &first, settings, args.aov);
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         let (width, height) = (settings.width, settings.height);
-        write_image(
-            width,
-            height,
-            &pixels,
-            radiance.as_deref(),
-            &record,
-            &output,
-        )?;
+        write_image(width, height, &pixels, layers.as_ref(), &record, &output)?;
         println!("{}", wrote(&output, settings, &engine, start));
         return Ok(());
     };
@@ -133,9 +126,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
                     ("frame", format!("{frame} of 0 to {}", frames - 1)),
                 ]);
                 let path = numbered(&output, frame, digits);
-                let radiance = radiance_for(&path, &frame_scene, settings);
+                let layers = exr_layers_for(&path, &frame_scene, settings, args.aov);
                 let (width, height) = (settings.width, settings.height);
-                write_image(width, height, &pixels, radiance.as_deref(), &record, &path)?;
+                write_image(width, height, &pixels, layers.as_ref(), &record, &path)?;
                 bar.println(&wrote(&path, settings, &engine, frame_start));
                 bar.inc();
             }
@@ -177,6 +170,16 @@ fn check_animation(args: &RenderArgs) -> anyhow::Result<Option<Animation>> {
         .map(OutputFormat::for_path)
         .transpose()?;
     let shard = args.shard.map(Shard::new).transpose()?;
+    if args.aov && format != Some(OutputFormat::Exr) {
+        let output = args.output.as_ref().map_or_else(
+            || "the default SCENE.png".to_owned(),
+            |output| output.display().to_string(),
+        );
+        bail!(
+            "--aov writes per-pixel channels into an OpenEXR image, not into {output}: give -o \
+             NAME.exr"
+        );
+    }
     match (&args.output, format) {
         (Some(output), Some(format)) if let Some(video) = format.video() => {
             if args.frames.is_none() {
@@ -385,11 +388,21 @@ fn render_pixels(
     Ok(pixels.expect("a render that is never stopped finishes"))
 }
 
-/// The radiance an image written to `path` holds, if its format holds one (EXR;
-/// [`srt::engine::render_radiance`]).
-fn radiance_for(path: &Path, scene: &Scene, settings: RenderSettings) -> Option<Vec<DVec3>> {
-    (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr)).then(|| {
-        srt::engine::render_radiance(scene, settings, &|_| {}, &AtomicBool::new(false))
-            .expect("a render that is never stopped finishes")
+/// What an image written to `path` holds beside its display colours, if its format holds more
+/// (EXR): the radiance ([`srt::engine::render_radiance`]) and, with `aov`, what each pixel sees
+/// of time ([`srt::engine::render_seen_events`]).
+fn exr_layers_for(
+    path: &Path,
+    scene: &Scene,
+    settings: RenderSettings,
+    aov: bool,
+) -> Option<ExrLayers> {
+    let never = AtomicBool::new(false);
+    let finished = "a render that is never stopped finishes";
+    (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr)).then(|| ExrLayers {
+        radiance: srt::engine::render_radiance(scene, settings, &|_| {}, &never).expect(finished),
+        seen: aov.then(|| {
+            srt::engine::render_seen_events(scene, settings, &|_| {}, &never).expect(finished)
+        }),
     })
 }

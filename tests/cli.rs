@@ -116,6 +116,86 @@ fn exr_holds_radiance_beside_the_displayed_image() {
     }
 }
 
+/// `--aov` adds what each pixel sees of time beside R, G, B (the values are checked against an
+/// independent light-cone solution in srt-trace's tests/seen.rs); `srt info` reads them back;
+/// without an EXR to hold them, `--aov` is refused before anything is rendered or written.
+#[test]
+fn aov_channels_go_into_the_exr_and_nowhere_else() {
+    use exr::prelude::{FlatSamples, ReadChannels as _, ReadLayers as _, read};
+    let dir = folder();
+    let args = [
+        "render",
+        "fig4",
+        "--backend",
+        "cpu",
+        "--width",
+        "64",
+        "--height",
+        "48",
+    ];
+    let output = srt(&[&args[..], &["--aov", "-o", "t.exr"]].concat(), dir.path());
+    assert!(output.status.success(), "{}", stderr(&output));
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(dir.path().join("t.exr"))
+        .unwrap();
+    let channel = |name: &str| -> Vec<f32> {
+        let found = image.layer_data.channel_data.list.iter();
+        match &found
+            .clone()
+            .find(|c| c.name.to_string() == name)
+            .unwrap()
+            .sample_data
+        {
+            FlatSamples::F32(values) => values.clone(),
+            other => panic!("{name} is not f32: {other:?}"),
+        }
+    };
+    let (object, emission, distance) = (
+        channel("object"),
+        channel("emission_ct"),
+        channel("distance"),
+    );
+    let seen: Vec<usize> = (0..object.len()).filter(|&i| object[i] >= 0.0).collect();
+    assert!(!seen.is_empty() && seen.len() < object.len());
+    for &i in &seen {
+        // Fig. 4 is observed at ct = 5.12: light left `distance` earlier.
+        assert!((emission[i] - (5.12 - distance[i])).abs() < 1e-5);
+    }
+    assert!(object.iter().all(|&o| o == 0.0 || o == -1.0));
+    let info = srt(&["info", "t.exr"], dir.path());
+    let text = String::from_utf8_lossy(&info.stdout);
+    for name in ["emission_ct", "proper_time", "distance", "doppler"] {
+        assert!(
+            text.contains(&format!("{name} ")),
+            "{name} missing from:\n{text}"
+        );
+    }
+    assert!(
+        text.contains(&format!("{} of 3072 pixels see an object", seen.len())),
+        "{text}"
+    );
+    for refused in ["t.png", "t.mp4"] {
+        let output = srt(
+            &[&args[..], &["--aov", "--frames", "2", "-o", refused]].concat(),
+            dir.path(),
+        );
+        assert_clean_failure(&output, &["--aov", "OpenEXR", refused]);
+    }
+    assert!(!dir.path().join("t.png").exists() && !dir.path().join("t_0000.png").exists());
+    // Without --aov the EXR holds R, G, B and the display channels only.
+    let plain = srt(&[&args[..], &["-o", "plain.exr"]].concat(), dir.path());
+    assert!(plain.status.success());
+    assert!(
+        !String::from_utf8_lossy(&srt(&["info", "plain.exr"], dir.path()).stdout)
+            .contains("emission_ct")
+    );
+}
+
 /// Of two pixels with the same colour of light (chromaticity to 0.002), the brighter in the EXR
 /// is never the darker on screen, with the Doppler effect (the luminance tone map). With the
 /// searchlight tone map this holds only below its saturation: the paper's colour multiplies

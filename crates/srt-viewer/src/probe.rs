@@ -5,7 +5,7 @@
 //! [`Probe`], and [`Probe::lines`] words it for the panel.
 
 use glam::DVec3;
-use srt_physics::{doppler_factor, reflection_doppler};
+use srt_physics::reflection_doppler;
 use srt_scene::Scene;
 use srt_trace::Tracer;
 
@@ -21,12 +21,16 @@ pub struct Probe {
     pub beta: DVec3,
     /// Where the point is seen (the emission event's position in S, Eq. 8).
     pub apparent_position: DVec3,
-    /// Time ct (in the observer's frame S) at which the light seen left the surface (Eq. 7–8).
+    /// World time ct (in the scene's frame W, the observer's when it rests there) at which the
+    /// light seen left the surface (Eq. 7–8; [`srt_trace::SeenEvent`], as `srt render --aov`).
     pub emission_ct: f64,
+    /// The object's proper time there: what a clock resting on the surface showed as the light
+    /// left it.
+    pub proper_time: f64,
     /// How far the light travelled to the observer (= ct_obs − ct_emission, Eq. 6).
     pub apparent_distance: f64,
     /// Doppler factor D = ω_received/ω_emitted of light leaving the surface towards the
-    /// observer (Eq. 4, [`doppler_factor`]).
+    /// observer (Eq. 4, [`srt_physics::doppler_factor`]).
     pub doppler: f64,
     /// Combined Doppler factor of light from the scene's light source reflected here to the
     /// observer (Eq. 17, [`reflection_doppler`]); it sets the colour the renderers show.
@@ -63,6 +67,10 @@ impl Probe {
                 self.emission_ct, self.apparent_distance
             ),
             format!(
+                "its own clock read ct' = {:.3} then (its proper time)",
+                self.proper_time
+            ),
+            format!(
                 "Doppler factor from the surface to you D = {:.4}; searchlight D^4 = {:.4} \
                  (radiance)",
                 self.doppler,
@@ -93,6 +101,7 @@ pub fn probe(scene: &Scene, width: u32, height: u32, x: u32, y: u32) -> Option<P
     let object = scene.objects.get(hit.object)?;
     let beta = object.frame.beta();
     let apparent_position = hit.emission.position;
+    let seen = tracer.seen_event(&hit);
     // Propagation directions in S, as the shading uses them (§4.2): light → surface and
     // surface → observer.
     let incident = (apparent_position - scene.light.position).normalize_or_zero();
@@ -101,9 +110,10 @@ pub fn probe(scene: &Scene, width: u32, height: u32, x: u32, y: u32) -> Option<P
         object: object.name.clone(),
         beta,
         apparent_position,
-        emission_ct: hit.emission.ct,
-        apparent_distance: hit.apparent_distance,
-        doppler: doppler_factor(beta, outgoing),
+        emission_ct: seen.emission_ct,
+        proper_time: seen.proper_time,
+        apparent_distance: seen.distance,
+        doppler: seen.doppler,
         reflected_doppler: reflection_doppler(beta, incident, outgoing),
     })
 }
@@ -134,6 +144,7 @@ pub fn format_band((low, high): (f64, f64)) -> String {
 
 #[cfg(test)]
 mod tests {
+    use srt_physics::doppler_factor;
     use srt_scene::builtin::find_builtin;
 
     use super::*;
