@@ -6,19 +6,19 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use glam::DVec3;
-use numpy::ndarray::{Array3, ArrayD};
+use numpy::ndarray::{Array2, Array3, ArrayD};
 use numpy::{IntoPyArray as _, PyArray3, PyArrayDyn, PyReadonlyArrayDyn};
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use srt::engine::{
-    Backend, Engine, MAX_IMAGE_SIDE, MAX_SAMPLES, display_as_linear, radiance_as_f32,
-    render_radiance,
+    AOV_CHANNELS, Backend, Engine, MAX_IMAGE_SIDE, MAX_SAMPLES, aov_values, channel_f32,
+    display_as_linear, render_radiance, render_seen_events,
 };
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
 use srt_scene::{Effects, LoadedScene, OverrideNames, Overrides, SceneSource, SurfaceColour, View};
-use srt_trace::RenderSettings;
+use srt_trace::{RenderSettings, SeenEvent};
 
 use crate::errors;
 use crate::scene::Scene;
@@ -53,6 +53,8 @@ struct Rendered {
     radiance: Vec<DVec3>,
     /// Display colours (sRGB-encoded, [0, 1]) when asked for.
     display: Option<Vec<DVec3>>,
+    /// What each pixel sees of time, when asked for.
+    seen: Option<Vec<Option<SeenEvent>>>,
     /// Warnings met loading the scene, and the engine's note.
     warnings: Vec<String>,
 }
@@ -72,8 +74,9 @@ impl From<PyErr> for Failure {
 }
 
 /// Renders `scene` to a float32 array (height, width, 3) of linear radiance (the EXR's R, G, B);
-/// with `aov=True`, a dict of layers: "radiance" and "display" (the displayed image as linear
-/// light, the EXR's display.R, display.G, display.B).
+/// with `aov=True`, a dict of layers: "radiance", "display" (the displayed image as linear
+/// light, the EXR's display.R, display.G, display.B) and the (height, width) channels
+/// `srt render --aov` writes (emission_ct, proper_time, distance, doppler, object).
 #[pyfunction]
 #[pyo3(signature = (
     scene, *, width=1280, height=720, time=None, beta=None, observer_beta=None, effects=None,
@@ -161,7 +164,7 @@ pub fn render<'py>(
         )?;
     }
     let shape = (height as usize, width as usize, 3);
-    let radiance = image_array(py, shape, &rendered.radiance, radiance_as_f32);
+    let radiance = image_array(py, shape, &rendered.radiance, channel_f32);
     let Some(display) = rendered.display else {
         return Ok(radiance.into_any());
     };
@@ -171,6 +174,19 @@ pub fn render<'py>(
         "display",
         image_array(py, shape, &display, display_as_linear),
     )?;
+    let values: Vec<[f32; 5]> = rendered
+        .seen
+        .unwrap_or_default()
+        .iter()
+        .map(|event| aov_values(event.as_ref()))
+        .collect();
+    for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
+        let channel: Vec<f32> = values.iter().map(|v| v[index]).collect();
+        let array = Array2::from_shape_vec((shape.0, shape.1), channel)
+            .expect("one value per pixel")
+            .into_pyarray(py);
+        layers.set_item(name, array)?;
+    }
     Ok(layers.into_any())
 }
 
@@ -219,9 +235,16 @@ impl Request {
         };
         let radiance =
             render_radiance(&scene, self.settings, &|_| {}, stop).ok_or(Failure::Stopped)?;
+        let seen = if self.aov {
+            let events = render_seen_events(&scene, self.settings, &|_| {}, stop);
+            Some(events.ok_or(Failure::Stopped)?)
+        } else {
+            None
+        };
         Ok(Rendered {
             radiance,
             display,
+            seen,
             warnings,
         })
     }

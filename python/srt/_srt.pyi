@@ -111,7 +111,9 @@ def render(
     method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
     view: Literal["seen", "measured", "newtonian"] = "seen",
     aov: Literal[True],
-) -> dict[str, npt.NDArray[np.float32]]: ...
+) -> dict[str, npt.NDArray[np.float32]]:
+    """With aov=True: "radiance" and "display" (height, width, 3), and the (height, width)
+    channels "emission_ct", "proper_time", "distance", "doppler", "object" (-1: no object)."""
 def to_srgb8(linear: npt.NDArray[np.float64]) -> npt.NDArray[np.uint8]: ...
 def lorentz_boost(beta: Vector) -> npt.NDArray[np.float64]: ...
 def apparent_positions(

@@ -13,6 +13,9 @@ import pytest
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 
+#: The per-pixel channels `srt render --aov` writes and `srt.render(aov=True)` returns.
+AOV_CHANNELS = ("emission_ct", "proper_time", "distance", "doppler", "object")
+
 
 def srt_command() -> str:
     """The `srt` binary: $SRT_BIN, else the repository's release or debug build, else PATH."""
@@ -45,11 +48,16 @@ def read_exr(path: Path) -> dict[str, np.ndarray]:
 
 def cli_render(tmp_path: Path, scene: str, *args: str) -> dict[str, np.ndarray]:
     """`srt render SCENE ARGS -o x.exr` as (height, width, 3) arrays: "radiance" (R, G, B) and
-    "display" (display.R, display.G, display.B)."""
+    "display" (display.R, display.G, display.B); and the (height, width) AOV channels the EXR
+    holds (with --aov)."""
     out = tmp_path / "cli.exr"
     run_srt("render", scene, *args, "-o", str(out))
     channels = read_exr(out)
-    return {"radiance": rgb(channels, ""), "display": rgb(channels, "display.")}
+    layers = {"radiance": rgb(channels, ""), "display": rgb(channels, "display.")}
+    for name in AOV_CHANNELS:
+        if name in channels:
+            layers[name] = channels[name]
+    return layers
 
 
 def rgb(channels: dict[str, np.ndarray], prefix: str) -> np.ndarray:

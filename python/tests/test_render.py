@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 import pytest
-from conftest import cli_render, require_gpu, run_srt
+from conftest import AOV_CHANNELS, cli_render, require_gpu, run_srt
 
 import srt
 
@@ -36,14 +36,48 @@ def test_the_readme_example_has_the_shape_it_says():
 )
 def test_cpu_render_equals_the_commands_exr_to_the_bit(tmp_path, scene, arguments, cli):
     size = ["--width", str(SMALL["width"]), "--height", str(SMALL["height"])]
-    expected = cli_render(tmp_path, scene, *size, "--backend", "cpu", *cli)
+    expected = cli_render(tmp_path, scene, *size, "--backend", "cpu", "--aov", *cli)
     layers = srt.render(scene, **SMALL, backend="cpu", aov=True, **arguments)
-    for name in ("radiance", "display"):
+    assert sorted(layers) == sorted(["radiance", "display", *AOV_CHANNELS])
+    for name in ("radiance", "display", *AOV_CHANNELS):
         assert layers[name].dtype == np.float32
         assert layers[name].shape == expected[name].shape
         assert np.array_equal(layers[name], expected[name]), f"{scene} {arguments}: {name}"
     plain = srt.render(scene, **SMALL, backend="cpu", **arguments)
     assert np.array_equal(plain, expected["radiance"])
+
+
+def test_the_time_channels_say_what_each_pixel_sees():
+    layers = srt.render("fig4", **SMALL, backend="cpu", aov=True)
+    seen = layers["object"] >= 0
+    assert 0 < seen.sum() < seen.size, "the cube and the background are both in the picture"
+    # Fig. 4 is observed at ct = 5.12; light arrives after travelling `distance`.
+    assert np.allclose(layers["emission_ct"][seen], 5.12 - layers["distance"][seen], atol=1e-5)
+    assert (layers["doppler"][seen] > 1.0).all(), "the cube approaches: every pixel is blue-shifted"
+    for name in ("emission_ct", "proper_time", "distance", "doppler"):
+        assert (layers[name][~seen] == 0.0).all(), name
+    assert (layers["object"][~seen] == -1.0).all()
+
+
+@pytest.mark.parametrize(("speed", "start"), [(0.9, 30.0), (-0.9, 3.0)])
+def test_a_clock_on_the_axis_is_seen_running_at_the_doppler_rate(speed, start):
+    """The centre of a face moving along the line of sight stays in the centre pixel; its
+    proper time, seen there, advances D times as fast as the observer's time (D = 4.36
+    approaching at 0.9c, 1/4.36 receding)."""
+    scene = srt.Scene.from_toml(
+        "[observer]\nposition = [0.0, 0.0, 0.0]\ndirection = [0.0, 1.0, 0.0]\n"
+        "[[object]]\nshape = { type = 'cube', size = 2.0 }\n"
+    )
+    scene.objects[0].beta = (0.0, -speed, 0.0)
+    scene.objects[0].offset = (0.0, start, 0.0)
+    before, after = (
+        srt.render(scene, width=33, height=33, backend="cpu", time=t, aov=True) for t in (0.0, 0.5)
+    )
+    assert before["object"][16, 16] == 0 and after["object"][16, 16] == 0
+    rate = (after["proper_time"][16, 16] - before["proper_time"][16, 16]) / 0.5
+    expected = np.sqrt((1 + speed) / (1 - speed))
+    assert rate == pytest.approx(expected, rel=1e-5)
+    assert before["doppler"][16, 16] == pytest.approx(expected, rel=1e-6)
 
 
 def test_the_searchlight_radiance_goes_beyond_a_white_surfaces(tmp_path):
