@@ -46,10 +46,46 @@ const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
 /// Frames rendered by every method before timing starts.
 const WARM_UP: u32 = 2;
 
-/// Median frame time in ms of each of `methods` (GPU timestamps where supported, else wall
-/// clock of render + readback) and median time of its proxy pass (0 where unknown). The
-/// methods take turns frame by frame, so that a slow spell of the machine (software adapters
-/// share its cores) falls on all of them alike.
+/// How the bench times a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Timing {
+    /// GPU timestamp queries from the frame's first pass to the end of its last.
+    Timestamps,
+    /// The wall clock from encoding the frame to the GPU's idle (no readback).
+    Wall,
+}
+
+impl Timing {
+    /// GPU timestamps where the adapter has them and they time the work, the wall clock
+    /// elsewhere. A CPU adapter (Mesa's lavapipe, llvmpipe) writes a render pass's end
+    /// timestamp once its draws are binned, before the deferred rasterisation runs, so the
+    /// fragment work that dominates LRT and RT escapes its timestamps (the flythrough's LRT
+    /// frame at 1280×720: 127 ms by timestamps, 494 ms from submit to idle; the polygon
+    /// method's, mostly vertex work: 118 ms and 164 ms with readback; performance-log.md).
+    fn for_adapter(ctx: &GpuContext) -> Self {
+        if ctx.timestamps && ctx.adapter_info.device_type != wgpu::DeviceType::Cpu {
+            Self::Timestamps
+        } else {
+            Self::Wall
+        }
+    }
+
+    /// How the results and docs/performance.md name it.
+    const fn describe(self) -> &'static str {
+        match self {
+            Self::Timestamps => "GPU timestamp queries",
+            Self::Wall => {
+                "the wall clock from encoding a frame to the GPU's idle, no readback (a CPU \
+                 adapter's timestamps miss its deferred rasterisation)"
+            }
+        }
+    }
+}
+
+/// Median frame time in ms of each of `methods` (timed as `timing` says) and median time of its
+/// proxy pass (0 where unknown: the wall clock cannot single it out). The methods take turns
+/// frame by frame, so that a slow spell of the machine (software adapters share its cores)
+/// falls on all of them alike.
 fn frame_times<const N: usize>(
     ctx: &GpuContext,
     renderer: &GpuRenderer,
@@ -57,6 +93,7 @@ fn frame_times<const N: usize>(
     methods: [Method; N],
     frames: u32,
 ) -> anyhow::Result<[(f64, f64); N]> {
+    let timing = Timing::for_adapter(ctx);
     for _ in 0..WARM_UP {
         for method in methods {
             renderer.render(ctx, scene, method, FootprintShape::Hull)?;
@@ -65,14 +102,45 @@ fn frame_times<const N: usize>(
     let mut times = [(); N].map(|()| (Vec::new(), Vec::new()));
     for _ in 0..frames {
         for (method, (time, proxy)) in methods.iter().zip(&mut times) {
-            let start = Instant::now();
-            let (_, stats) = renderer.render(ctx, scene, *method, FootprintShape::Hull)?;
-            let wall = start.elapsed().as_secs_f64() * 1e3;
-            time.push(stats.gpu_time_ms.unwrap_or(wall));
-            proxy.push(stats.proxy_time_ms.unwrap_or(0.0));
+            let (frame_ms, proxy_ms) = match timing {
+                Timing::Timestamps => {
+                    let start = Instant::now();
+                    let (_, stats) = renderer.render(ctx, scene, *method, FootprintShape::Hull)?;
+                    let wall = start.elapsed().as_secs_f64() * 1e3;
+                    (
+                        stats.gpu_time_ms.unwrap_or(wall),
+                        stats.proxy_time_ms.unwrap_or(0.0),
+                    )
+                }
+                Timing::Wall => (submit_to_idle_ms(ctx, renderer, scene, *method)?, 0.0),
+            };
+            time.push(frame_ms);
+            proxy.push(proxy_ms);
         }
     }
     Ok(times.map(|(time, proxy)| (median(time), median(proxy))))
+}
+
+/// Milliseconds from encoding one frame of `scene` with `method` to the GPU's idle, as the
+/// viewer draws a frame (encode, submit, wait; no readback).
+fn submit_to_idle_ms(
+    ctx: &GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    method: Method,
+) -> anyhow::Result<f64> {
+    let start = Instant::now();
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("xtask bench frame"),
+        });
+    renderer.encode(ctx, &mut encoder, scene, method, FootprintShape::Hull)?;
+    ctx.queue.submit([encoder.finish()]);
+    ctx.wait()?;
+    let elapsed = start.elapsed().as_secs_f64() * 1e3;
+    ctx.take_errors()?;
+    Ok(elapsed)
 }
 
 /// Times the methods on `scene` with `renderer` (made for this scene's structure), then counts
@@ -371,11 +439,7 @@ pub fn run(
             swept.push(result);
         }
     }
-    let timing = if ctx.timestamps {
-        "GPU timestamp queries"
-    } else {
-        "wall clock of render + readback"
-    };
+    let timing = Timing::for_adapter(&ctx).describe();
     let measured = Results {
         machine: Machine::this(),
         adapter,
