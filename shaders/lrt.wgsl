@@ -5,10 +5,14 @@
 //
 // 1. Visibility (`lrt_visibility`): a hit writes the apparent distance (Eq. 7–8) as depth and the
 //    triangle's id (part id, triangle) — the depth test keeps the nearest.
-// 2. Shading (`part_bound_vertex`, `lrt_shade`): one rectangle per part, its screen bound; a
-//    pixel where the visibility pass kept a triangle of this part shades it (Eq. 17–18), the
-//    others stop at once. So each pixel is shaded once, however deep the model, and the
-//    footprints are rasterised once.
+// 2. Part depth (`id_depth_vertex`, `id_depth`): one full-screen triangle writes, per pixel, the
+//    depth of the part the visibility pass kept there (`part_depth`; 0 where none).
+// 3. Shading (`part_bound_vertex`, `lrt_shade`): one rectangle per part, its screen bound, drawn
+//    at the part's depth with the depth test "equal": only the pixels where the visibility pass
+//    kept a triangle of this part pass, and they pass before the fragment shader runs, so the
+//    rest of the rectangle costs no shading (on a software rasteriser a fragment that ran and
+//    then stopped cost almost as much as one shaded). Each pixel is shaded once, however deep
+//    the model, and the footprints are rasterised once.
 //
 // Mirror: crates/srt-trace (Tracer::trace and Tracer::shade for a single triangle).
 
@@ -96,6 +100,28 @@ fn visible(id: vec2<u32>, ray: RestRay, distance: f32) -> VisibilityOutput {
     return out;
 }
 
+// Parts' ids per depth unit: part `id` is drawn and kept at depth id / 2²⁴, exact in f32 for every
+// id below 2²⁴ (ids count from 1; 0, the cleared depth, is "no part").
+const PART_DEPTH_UNITS: f32 = 16777216.0;
+
+// The depth at which part `id` is shaded (see the header: step 2 writes it, step 3 tests it).
+fn part_depth(id: u32) -> f32 {
+    return f32(id) / PART_DEPTH_UNITS;
+}
+
+// One triangle covering the viewport (step 2).
+@vertex
+fn id_depth_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+    let corner = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
+    return vec4<f32>(2.0 * corner - vec2<f32>(1.0), 0.0, 1.0);
+}
+
+// The depth of the part the visibility pass kept at this pixel (step 2).
+@fragment
+fn id_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
+    return part_depth(textureLoad(visible_ids, vec2<i32>(position.xy), 0).x);
+}
+
 // The part's screen bound as two triangles, drawn by the shading pass (after the ray tracer:
 // the bound of the object's box).
 @vertex
@@ -107,17 +133,20 @@ fn part_bound_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f
     let corners = array<vec2<f32>, 6>(lo, vec2<f32>(far.x, lo.y), far, lo, far, vec2<f32>(lo.x, far.y));
     let pixel = corners[min(v, 5u)];
     let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
-    return vec4<f32>(ndc, 0.5, 1.0);
+    return vec4<f32>(ndc, part_depth(part.id), 1.0);
 }
 
 @fragment
 fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let pixel = position.xy;
+    // The depth test let only this part's pixels through (the header's step 3). The counting
+    // variant's atomic is a side effect, which makes the test run after the shader: there the id
+    // decides (and only there: a discard would keep the test late in the normal variant too).
     let kept = textureLoad(visible_ids, vec2<i32>(pixel), 0).xy;
-    if (kept.x != part.id) {
-        discard;
-    }
     if (COUNT_FRAGMENTS) {
+        if (kept.x != part.id) {
+            discard;
+        }
         atomicAdd(&fragment_count[1], 1u);
     }
     let t = kept.y;

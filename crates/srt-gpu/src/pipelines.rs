@@ -420,16 +420,18 @@ const PROXY_ENTRY: &str = "footprint_main";
 const LRT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "lrt_visibility"];
 /// Entry points of the LRT shading pass (vertex, fragment).
 const LRT_SHADE_ENTRIES: [&str; 2] = ["part_bound_vertex", "lrt_shade"];
+/// Entry points of the LRT part-depth pass (vertex, fragment).
+const PART_DEPTH_ENTRIES: [&str; 2] = ["id_depth_vertex", "id_depth"];
 /// Entry points of the ray tracer's visibility pass (vertex, fragment).
 const RT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "rt_visibility"];
 /// Entry points of the polygon pass (vertex, fragment).
 const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
-/// The five pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
-/// shading, ray-tracer visibility (the three with the fragment counter when `counting`) and
-/// polygon.
+/// The six pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
+/// shading, ray-tracer visibility (the three with the fragment counter when `counting`),
+/// polygon, and the LRT part-depth pass between visibility and shading.
 #[must_use]
-pub fn specs(counting: bool) -> [PipelineSpec; 5] {
+pub fn specs(counting: bool) -> [PipelineSpec; 6] {
     let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
     [
         PipelineSpec {
@@ -462,6 +464,12 @@ pub fn specs(counting: bool) -> [PipelineSpec; 5] {
             entry_points: &POLYGON_ENTRIES,
             groups: vec![POLYGON_FRAME_GROUP, OBJECT_GROUP, PART_GROUP],
         },
+        PipelineSpec {
+            label: "srt lrt part depth",
+            shader: shaders::lrt(counting),
+            entry_points: &PART_DEPTH_ENTRIES,
+            groups: vec![SHADE_FRAME_GROUP],
+        },
     ]
 }
 
@@ -472,14 +480,16 @@ pub struct LrtPipelines {
     pub visibility: wgpu::RenderPipeline,
     /// Nearest hit per pixel through each batch's BVH: depth and id.
     pub rt_visibility: wgpu::RenderPipeline,
-    /// One shading per pixel.
+    /// One shading per pixel: each part's bound at the part's depth, tested for equality.
     pub shade: wgpu::RenderPipeline,
+    /// The depth of the part kept at each pixel, which the shading pass tests.
+    pub part_depth: wgpu::RenderPipeline,
 }
 
 impl LrtPipelines {
     fn new(
         device: &wgpu::Device,
-        [_, visibility, shade, rt_visibility, _]: &[PipelineSpec; 5],
+        [_, visibility, shade, rt_visibility, _, part_depth]: &[PipelineSpec; 6],
         color_format: wgpu::TextureFormat,
     ) -> Self {
         Self {
@@ -488,16 +498,23 @@ impl LrtPipelines {
                 visibility,
                 LRT_VISIBILITY_ENTRIES,
                 VISIBLE_ID_FORMAT,
-                true,
+                DepthTest::Nearest,
             ),
             rt_visibility: render_pipeline(
                 device,
                 rt_visibility,
                 RT_VISIBILITY_ENTRIES,
                 VISIBLE_ID_FORMAT,
-                true,
+                DepthTest::Nearest,
             ),
-            shade: render_pipeline(device, shade, LRT_SHADE_ENTRIES, color_format, false),
+            shade: render_pipeline(
+                device,
+                shade,
+                LRT_SHADE_ENTRIES,
+                color_format,
+                DepthTest::Equal,
+            ),
+            part_depth: depth_pipeline(device, part_depth, PART_DEPTH_ENTRIES),
         }
     }
 }
@@ -541,7 +558,7 @@ impl Pipelines {
     #[must_use]
     pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
         let specs = specs(false);
-        let [proxy_spec, _, _, _, polygon_spec] = &specs;
+        let [proxy_spec, _, _, _, polygon_spec, _] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(proxy_spec.label),
@@ -552,7 +569,13 @@ impl Pipelines {
             cache: None,
         });
         let lrt = LrtPipelines::new(device, &specs, color_format);
-        let polygon = render_pipeline(device, polygon_spec, POLYGON_ENTRIES, color_format, true);
+        let polygon = render_pipeline(
+            device,
+            polygon_spec,
+            POLYGON_ENTRIES,
+            color_format,
+            DepthTest::Nearest,
+        );
         Self {
             frame_layout: FRAME_GROUP.create_layout(device),
             object_layout: OBJECT_GROUP.create_layout(device),
@@ -593,14 +616,81 @@ pub(crate) fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgp
     })
 }
 
+/// The depth-only pipeline of `spec` with its `vertex` and `fragment` entry points: the fragment
+/// shader's depth is written whatever was there (no colour target).
+fn depth_pipeline(
+    device: &wgpu::Device,
+    spec: &PipelineSpec,
+    [vertex, fragment]: [&str; 2],
+) -> wgpu::RenderPipeline {
+    let module = spec.shader.module(device);
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(spec.label),
+        layout: Some(&pipeline_layout(device, spec)),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some(vertex),
+            compilation_options: spec.shader.compilation_options(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some(fragment),
+            compilation_options: spec.shader.compilation_options(),
+            targets: &[],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// The depth test of a render pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum DepthTest {
+    /// No depth attachment.
+    None,
+    /// The nearer fragment wins and writes its depth (visibility passes, polygon).
+    Nearest,
+    /// Only fragments at the depth already there pass, before the fragment shader; nothing is
+    /// written (LRT shading at the part's depth).
+    Equal,
+}
+
+impl DepthTest {
+    /// The pipeline's depth-stencil state.
+    fn state(self) -> Option<wgpu::DepthStencilState> {
+        let (write, compare) = match self {
+            Self::None => return None,
+            Self::Nearest => (true, wgpu::CompareFunction::Less),
+            Self::Equal => (false, wgpu::CompareFunction::Equal),
+        };
+        Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(write),
+            depth_compare: Some(compare),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        })
+    }
+}
+
 /// The render pipeline of `spec` with its `vertex` and `fragment` entry points, drawing into
-/// `color_format`, with a depth test (nearer wins, depth written) when `depth`.
+/// `color_format`, with the depth test `depth`.
 pub(crate) fn render_pipeline(
     device: &wgpu::Device,
     spec: &PipelineSpec,
     [vertex, fragment]: [&str; 2],
     color_format: wgpu::TextureFormat,
-    depth: bool,
+    depth: DepthTest,
 ) -> wgpu::RenderPipeline {
     let module = spec.shader.module(device);
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -616,13 +706,7 @@ pub(crate) fn render_pipeline(
             cull_mode: None,
             ..Default::default()
         },
-        depth_stencil: depth.then_some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: wgpu::StencilState::default(),
-            bias: wgpu::DepthBiasState::default(),
-        }),
+        depth_stencil: depth.state(),
         multisample: wgpu::MultisampleState::default(),
         fragment: Some(wgpu::FragmentState {
             module: &module,

@@ -15,8 +15,8 @@ use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::passes::begin_pass;
 use crate::pipelines::{
-    FRAME_GROUP, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP, SKY_STARS_ENTRY, SKY_STARS_GROUP,
-    pipeline_layout, render_pipeline, sky_specs, slots,
+    DepthTest, FRAME_GROUP, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP, SKY_STARS_ENTRY,
+    SKY_STARS_GROUP, pipeline_layout, render_pipeline, sky_specs, slots,
 };
 use crate::shaders::WORKGROUP_SIZE;
 use crate::textures::{Texture2d, upload_2d};
@@ -119,7 +119,7 @@ impl SkyResources {
             &compose_spec,
             SKY_COMPOSE_ENTRIES,
             ctx.color_format,
-            false,
+            DepthTest::None,
         );
         let uploaded = Uploaded {
             stars: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -491,9 +491,9 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        15,
-        "proxy, lrt visibility, lrt shading, rt visibility, polygon (twice: without and with \
-         counting), three probes and the sky's two passes"
+        17,
+        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (twice: \
+         without and with counting), three probes and the sky's two passes"
     );
     let mut failures = Vec::new();
     for spec in &specs {

@@ -281,12 +281,44 @@ impl super::GpuRenderer {
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
         self.draw_visibility(&mut pass, lrt, traced);
         drop(pass);
+        let part_depth_view = view(&self.targets.part_depth);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("srt lrt part depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &part_depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&lrt.part_depth);
+        pass.set_bind_group(
+            SHADE_FRAME_GROUP.index,
+            &self.targets.shade_frame_groups[tone],
+            &[],
+        );
+        pass.draw(0..3, 0..1);
+        drop(pass);
+        let tested = wgpu::RenderPassDepthStencilAttachment {
+            view: &part_depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: None,
+        };
         let mut pass = self.begin_pass(
             encoder,
             "srt lrt shading",
             &color_view,
             background,
-            None,
+            Some(tested),
             [None, Some(3)],
         );
         pass.set_pipeline(&lrt.shade);

@@ -12,6 +12,9 @@ pub(super) struct Targets {
     pub(super) depth: wgpu::Texture,
     /// The LRT visibility pass's (part id, triangle) per pixel.
     pub(super) ids: wgpu::Texture,
+    /// The depth of the part kept at each pixel (lrt.wgsl's `part_depth`), which the shading
+    /// pass tests for equality.
+    pub(super) part_depth: wgpu::Texture,
     /// [`SHADE_FRAME_GROUP`] per tone map, indexed as [`ToneMap::ALL`].
     pub(super) shade_frame_groups: Vec<wgpu::BindGroup>,
     pub(super) readback: TextureReadback,
@@ -81,6 +84,11 @@ impl Targets {
             ),
             depth: texture(
                 "srt depth",
+                DEPTH_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+            part_depth: texture(
+                "srt part depth",
                 DEPTH_FORMAT,
                 wgpu::TextureUsages::RENDER_ATTACHMENT,
             ),
