@@ -497,24 +497,30 @@ impl LrtPipelines {
                 device,
                 visibility,
                 LRT_VISIBILITY_ENTRIES,
-                VISIBLE_ID_FORMAT,
+                Some(VISIBLE_ID_FORMAT),
                 DepthTest::Nearest,
             ),
             rt_visibility: render_pipeline(
                 device,
                 rt_visibility,
                 RT_VISIBILITY_ENTRIES,
-                VISIBLE_ID_FORMAT,
+                Some(VISIBLE_ID_FORMAT),
                 DepthTest::Nearest,
             ),
             shade: render_pipeline(
                 device,
                 shade,
                 LRT_SHADE_ENTRIES,
-                color_format,
+                Some(color_format),
                 DepthTest::Equal,
             ),
-            part_depth: depth_pipeline(device, part_depth, PART_DEPTH_ENTRIES),
+            part_depth: render_pipeline(
+                device,
+                part_depth,
+                PART_DEPTH_ENTRIES,
+                None,
+                DepthTest::Overwrite,
+            ),
         }
     }
 }
@@ -573,7 +579,7 @@ impl Pipelines {
             device,
             polygon_spec,
             POLYGON_ENTRIES,
-            color_format,
+            Some(color_format),
             DepthTest::Nearest,
         );
         Self {
@@ -616,43 +622,6 @@ pub(crate) fn pipeline_layout(device: &wgpu::Device, spec: &PipelineSpec) -> wgp
     })
 }
 
-/// The depth-only pipeline of `spec` with its `vertex` and `fragment` entry points: the fragment
-/// shader's depth is written whatever was there (no colour target).
-fn depth_pipeline(
-    device: &wgpu::Device,
-    spec: &PipelineSpec,
-    [vertex, fragment]: [&str; 2],
-) -> wgpu::RenderPipeline {
-    let module = spec.shader.module(device);
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(spec.label),
-        layout: Some(&pipeline_layout(device, spec)),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some(vertex),
-            compilation_options: spec.shader.compilation_options(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Always),
-            stencil: wgpu::StencilState::default(),
-            bias: wgpu::DepthBiasState::default(),
-        }),
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some(fragment),
-            compilation_options: spec.shader.compilation_options(),
-            targets: &[],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
-}
-
 /// The depth test of a render pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum DepthTest {
@@ -663,6 +632,8 @@ pub(crate) enum DepthTest {
     /// Only fragments at the depth already there pass, before the fragment shader; nothing is
     /// written (LRT shading at the part's depth).
     Equal,
+    /// Every fragment writes its depth, whatever was there (LRT's part-depth pass).
+    Overwrite,
 }
 
 impl DepthTest {
@@ -672,6 +643,7 @@ impl DepthTest {
             Self::None => return None,
             Self::Nearest => (true, wgpu::CompareFunction::Less),
             Self::Equal => (false, wgpu::CompareFunction::Equal),
+            Self::Overwrite => (true, wgpu::CompareFunction::Always),
         };
         Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
@@ -684,15 +656,24 @@ impl DepthTest {
 }
 
 /// The render pipeline of `spec` with its `vertex` and `fragment` entry points, drawing into
-/// `color_format`, with the depth test `depth`.
+/// `color_format` (none: depth only), with the depth test `depth`.
 pub(crate) fn render_pipeline(
     device: &wgpu::Device,
     spec: &PipelineSpec,
     [vertex, fragment]: [&str; 2],
-    color_format: wgpu::TextureFormat,
+    color_format: Option<wgpu::TextureFormat>,
     depth: DepthTest,
 ) -> wgpu::RenderPipeline {
     let module = spec.shader.module(device);
+    let targets: Vec<Option<wgpu::ColorTargetState>> = color_format
+        .map(|format| wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })
+        .into_iter()
+        .map(Some)
+        .collect();
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(spec.label),
         layout: Some(&pipeline_layout(device, spec)),
@@ -712,11 +693,7 @@ pub(crate) fn render_pipeline(
             module: &module,
             entry_point: Some(fragment),
             compilation_options: spec.shader.compilation_options(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: color_format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+            targets: &targets,
         }),
         multiview_mask: None,
         cache: None,

@@ -118,7 +118,7 @@ impl SkyResources {
             device,
             &compose_spec,
             SKY_COMPOSE_ENTRIES,
-            ctx.color_format,
+            Some(ctx.color_format),
             DepthTest::None,
         );
         let uploaded = Uploaded {
