@@ -1,7 +1,7 @@
-//! `srt._srt`, the Rust half of the Python package `srt` (python/srt/): scenes
-//! ([`scene::Scene`]), rendering to numpy arrays ([`render::render`]) and srt's physics,
-//! vectorised ([`physics`]). The Python half wraps these with argument handling, docstrings and
-//! the `srt.physics` namespace; docs/python.md is the user's guide.
+//! `srt._srt`, the Rust half of the Python package `srt` (python/srt/): scenes (`scene.rs`),
+//! rendering to numpy arrays (`render.rs`) and srt's physics, vectorised (`physics.rs`). The
+//! Python half wraps these with argument handling, docstrings and the `srt.physics` namespace;
+//! docs/python.md is the user's guide.
 
 mod errors;
 mod physics;

@@ -199,7 +199,7 @@ pub struct Object {
     /// The rest frame S′ (velocity β and offset **a**).
     pub frame: Frame,
     /// How far the clock of `frame`'s rest coordinates runs ahead of the object's own proper
-    /// time (ct″ = ct′ + shift; [`RelativeFrame`](srt_physics::RelativeFrame)): 0 unless the
+    /// time (ct″ = ct′ + shift; [`RelativeFrame`]): 0 unless the
     /// observer moves through the world frame.
     pub rest_time_shift: f64,
     /// Draw triangle edges of this width (in S′ units) instead of the texture (Fig. 10 bottom).
