@@ -3,6 +3,7 @@
 //! EXR holds. One piece of code, so that the command and every other front end produce the same
 //! pixels for the same arguments.
 
+use std::cell::OnceCell;
 use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context as _, bail};
@@ -28,6 +29,38 @@ pub enum Backend {
     /// The GPU if an adapter exists (and can hold the target), otherwise the CPU.
     #[default]
     Auto,
+}
+
+/// One frame's scene, with the exact CPU tracer (its BVHs, textures and tables) built at most
+/// once for every layer of the frame that needs it: the CPU engine's display colours, the
+/// radiance and the time channels.
+pub struct Frame<'a> {
+    /// The scene at the frame's time, in the frame's view.
+    scene: &'a Scene,
+    /// The tracer, built on first use.
+    tracer: OnceCell<Tracer<'a>>,
+}
+
+impl<'a> Frame<'a> {
+    /// The frame of `scene`; nothing is built yet.
+    #[must_use]
+    pub const fn new(scene: &'a Scene) -> Self {
+        Self {
+            scene,
+            tracer: OnceCell::new(),
+        }
+    }
+
+    /// The scene.
+    #[must_use]
+    pub const fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
+    /// The CPU tracer of the scene, built on first use.
+    pub fn tracer(&self) -> &Tracer<'a> {
+        self.tracer.get_or_init(|| Tracer::new(self.scene))
+    }
 }
 
 /// A renderer ready to produce frames of one scene.
@@ -175,13 +208,15 @@ impl Engine {
     /// A GPU failure (device lost, out of memory).
     pub fn render_display(
         &mut self,
-        scene: &Scene,
+        frame: &Frame<'_>,
         settings: RenderSettings,
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> anyhow::Result<Option<Vec<DVec3>>> {
+        let scene = frame.scene();
         Ok(match self {
-            Self::Cpu => Tracer::new(scene)
+            Self::Cpu => frame
+                .tracer()
                 .render_stoppable(settings, Output::Display, progress, stop)
                 .map(|image| image.pixels),
             Self::Gpu {
@@ -209,12 +244,13 @@ impl Engine {
 /// colours (the GPU passes do not compute radiance yet). `None` if `stop` was set.
 #[must_use]
 pub fn render_radiance(
-    scene: &Scene,
+    frame: &Frame<'_>,
     settings: RenderSettings,
     progress: &(dyn Fn(u32) + Sync),
     stop: &AtomicBool,
 ) -> Option<Vec<DVec3>> {
-    Tracer::new(scene)
+    frame
+        .tracer()
         .render_stoppable(settings, Output::Radiance, progress, stop)
         .map(|image| image.pixels)
 }
@@ -235,12 +271,14 @@ pub const AOV_CHANNELS: [&str; 5] = [
 /// these channels yet). `None` if `stop` was set.
 #[must_use]
 pub fn render_seen_events(
-    scene: &Scene,
+    frame: &Frame<'_>,
     settings: RenderSettings,
     progress: &(dyn Fn(u32) + Sync),
     stop: &AtomicBool,
 ) -> Option<Vec<Option<SeenEvent>>> {
-    Tracer::new(scene).render_seen_events(settings.width, settings.height, progress, stop)
+    frame
+        .tracer()
+        .render_seen_events(settings.width, settings.height, progress, stop)
 }
 
 /// A pixel's [`AOV_CHANNELS`] values as 32-bit floats: the object's index in scene order, or −1

@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
-use srt::engine::{Backend, Engine};
+use srt::engine::{Backend, Engine, Frame};
 use srt_gpu::Method;
 use srt_scene::description::observation_time;
 use srt_scene::{Effects, OverrideNames, Overrides, Scene, SurfaceColour, ValueName, View};
@@ -77,8 +77,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     );
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
-        let pixels = render_pixels(&mut engine, &first, settings, true)?;
-        let layers = exr_layers_for(&output, &first, settings, args.aov);
+        let frame = Frame::new(&first);
+        let pixels = render_pixels(&mut engine, &frame, settings, true)?;
+        let layers = exr_layers_for(&output, &frame, settings, args.aov);
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         let (width, height) = (settings.width, settings.height);
         write_image(width, height, &pixels, layers.as_ref(), &record, &output)?;
@@ -120,13 +121,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
                 let frame_start = Instant::now();
                 scene.observer.ct = time_of(frame);
                 let frame_scene = viewed(view, &scene)?;
-                let pixels = render_pixels(&mut engine, &frame_scene, settings, false)?;
+                let traced = Frame::new(&frame_scene);
+                let pixels = render_pixels(&mut engine, &traced, settings, false)?;
                 let record = record.with(&[
                     ("time", format!("{:?}", scene.observer.ct)),
                     ("frame", format!("{frame} of 0 to {}", frames - 1)),
                 ]);
                 let path = numbered(&output, frame, digits);
-                let layers = exr_layers_for(&path, &frame_scene, settings, args.aov);
+                let layers = exr_layers_for(&path, &traced, settings, args.aov);
                 let (width, height) = (settings.width, settings.height);
                 write_image(width, height, &pixels, layers.as_ref(), &record, &path)?;
                 bar.println(&wrote(&path, settings, &engine, frame_start));
@@ -144,7 +146,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             );
             for frame in 0..frames {
                 scene.observer.ct = time_of(frame);
-                let pixels = render_pixels(&mut engine, &*viewed(view, &scene)?, settings, false)?;
+                let frame_scene = viewed(view, &scene)?;
+                let pixels =
+                    render_pixels(&mut engine, &Frame::new(&frame_scene), settings, false)?;
                 video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
                 bar.inc();
             }
@@ -364,7 +368,7 @@ fn choose_engine(
 /// the CPU renderer's row progress (for single images; animations count frames instead).
 fn render_pixels(
     engine: &mut Engine,
-    scene: &Scene,
+    frame: &Frame<'_>,
     settings: RenderSettings,
     show_rows: bool,
 ) -> anyhow::Result<Vec<DVec3>> {
@@ -373,7 +377,7 @@ fn render_pixels(
         DelayedBar::new(
             u64::from(settings.height),
             "rows",
-            format!("rendering {}", scene.name),
+            format!("rendering {}", frame.scene().name),
         )
     });
     let progress = |rows: u32| {
@@ -381,7 +385,7 @@ fn render_pixels(
             bar.set_position(u64::from(rows));
         }
     };
-    let pixels = engine.render_display(scene, settings, &progress, &never)?;
+    let pixels = engine.render_display(frame, settings, &progress, &never)?;
     if let Some(bar) = bar {
         bar.finish();
     }
@@ -393,16 +397,16 @@ fn render_pixels(
 /// of time ([`srt::engine::render_seen_events`]).
 fn exr_layers_for(
     path: &Path,
-    scene: &Scene,
+    frame: &Frame<'_>,
     settings: RenderSettings,
     aov: bool,
 ) -> Option<ExrLayers> {
     let never = AtomicBool::new(false);
     let finished = "a render that is never stopped finishes";
     (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr)).then(|| ExrLayers {
-        radiance: srt::engine::render_radiance(scene, settings, &|_| {}, &never).expect(finished),
+        radiance: srt::engine::render_radiance(frame, settings, &|_| {}, &never).expect(finished),
         seen: aov.then(|| {
-            srt::engine::render_seen_events(scene, settings, &|_| {}, &never).expect(finished)
+            srt::engine::render_seen_events(frame, settings, &|_| {}, &never).expect(finished)
         }),
     })
 }

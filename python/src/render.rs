@@ -12,7 +12,7 @@ use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use srt::engine::{
-    AOV_CHANNELS, Backend, Engine, MAX_IMAGE_SIDE, MAX_SAMPLES, aov_values, channel_f32,
+    AOV_CHANNELS, Backend, Engine, Frame, MAX_IMAGE_SIDE, MAX_SAMPLES, aov_values, channel_f32,
     display_as_linear, render_radiance, render_seen_events,
 };
 use srt_color::{quantize_8bit, srgb_encode};
@@ -219,6 +219,9 @@ impl Request {
                 )))
             })?
         };
+        // One CPU tracer for every layer that needs it (the CPU engine's display, the
+        // radiance, the time channels).
+        let frame = Frame::new(&scene);
         // The display layer needs the engine `srt render` would choose; the radiance is the
         // CPU tracer's whichever engine that is (srt::engine::render_radiance).
         let display = if self.aov {
@@ -227,16 +230,16 @@ impl Request {
             warnings.extend(chosen.note.map(|note| format!("note: {note}")));
             let mut engine = chosen.engine;
             let pixels = engine
-                .render_display(&scene, self.settings, &|_| {}, stop)
+                .render_display(&frame, self.settings, &|_| {}, stop)
                 .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
             Some(pixels.ok_or(Failure::Stopped)?)
         } else {
             None
         };
         let radiance =
-            render_radiance(&scene, self.settings, &|_| {}, stop).ok_or(Failure::Stopped)?;
+            render_radiance(&frame, self.settings, &|_| {}, stop).ok_or(Failure::Stopped)?;
         let seen = if self.aov {
-            let events = render_seen_events(&scene, self.settings, &|_| {}, stop);
+            let events = render_seen_events(&frame, self.settings, &|_| {}, stop);
             Some(events.ok_or(Failure::Stopped)?)
         } else {
             None
