@@ -4,11 +4,14 @@
 // Interface (stable; the LRT and polygon passes call it):
 //
 //   fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32>
+//   fn radiance_table_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32>
 //
-// - `table`: the LUT's N texels as an N × 1 `rgba32float` 2D texture (2D rather than 1D because
-//   naga's GLSL output mistranslates `texture_1d` function parameters), bound with sample type
-//   `float` (filterable: false) — no sampler: two `textureLoad`s and a lerp in f32, so no
-//   `float32-filterable` feature is needed and the filter weight is not quantised.
+// - `table`: the LUT's N texels as row 0 of an N × 2 `rgba32float` 2D texture (2D rather than
+//   1D because naga's GLSL output mistranslates `texture_1d` function parameters), bound with
+//   sample type `float` (filterable: false) — no sampler: two `textureLoad`s and a lerp in f32, so no
+//   `float32-filterable` feature is needed and the filter weight is not quantised. Row 1 holds
+//   the radiance table over the same temperatures (srt_color::RadianceTable: the black body's
+//   linear BT.709 colour at luminance 1, ln Y in alpha), read by `radiance_table_sample`.
 // - `params`: (ln T_min, ln T_max, N, unused), i.e. FrameUniforms.lut; srt_gpu::lut::lut_params
 //   builds it from a TemperatureLut.
 // - `t`: the temperature in kelvin (D · T_light, §4.2).
@@ -30,6 +33,16 @@ fn lut_is_positive_finite(t: f32) -> bool {
 
 // The colour of temperature `t` in the table `table` with parameters `params` (see above).
 fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
+    return lut_row_sample(table, params, t, 0);
+}
+
+// The radiance texel (colour at luminance 1, ln Y) of temperature `t` (row 1, see above).
+fn radiance_table_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
+    return lut_row_sample(table, params, t, 1);
+}
+
+// Row `row` of `table` at temperature `t`, interpolated by the rule above.
+fn lut_row_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32, row: i32) -> vec4<f32> {
     let last = max(i32(params.z) - 1, 0);
     var u = 0.0;
     if lut_is_positive_finite(t) {
@@ -38,8 +51,8 @@ fn lut_sample(table: texture_2d<f32>, params: vec4<f32>, t: f32) -> vec4<f32> {
     let x = u * f32(last);
     let i = min(i32(floor(x)), last);
     let f = x - f32(i);
-    let a = textureLoad(table, vec2<i32>(i, 0), 0);
-    let b = textureLoad(table, vec2<i32>(min(i + 1, last), 0), 0);
+    let a = textureLoad(table, vec2<i32>(i, row), 0);
+    let b = textureLoad(table, vec2<i32>(min(i + 1, last), row), 0);
     return (1.0 - f) * a + f * b;
 }
 

@@ -169,5 +169,5 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let emission = vec4<f32>(h.ray.ct_origin - hit.distance, h.ray.origin + hit.distance * h.ray.direction);
     let apparent = to_observer(object.frame, emission).yzw;
     let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy);
-    return vec4<f32>(shade(t, hit.zeta, hit.xi, apparent, albedo), 1.0);
+    return shade(t, hit.zeta, hit.xi, apparent, albedo);
 }

@@ -28,5 +28,5 @@ fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     let uv_ddx = dpdx(uv);
     let uv_ddy = dpdy(uv);
     let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, uv_ddx, uv_ddy);
-    return vec4<f32>(shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo), 1.0);
+    return shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo);
 }

@@ -1,22 +1,29 @@
 // sky.wgsl — the sky, in two passes (mirror: crates/srt-trace/src/sky.rs).
 //
-// 1. `sky_stars` (compute, one invocation per star): the star's aberrated direction and Doppler
-//    factor (distant_source_image, Eq. 4), its colour (the colour table at D·T, weighted by its
-//    magnitude and, with the searchlight effect, by 1/D² for its shrunken solid angle) and its
-//    tent splat over the four pixels around its exact image position, added to `star_light` in
-//    fixed point: integer additions are exact and commute, so the sum does not depend on the
-//    order in which invocations run.
+// 1. `sky_star_peaks` and `sky_stars` (compute, one invocation per star each): the star's
+//    aberrated direction and Doppler factor (distant_source_image, Eq. 4), its light (the colour
+//    table at D·T, weighted by its magnitude and, with the searchlight effect, by 1/D² for its
+//    shrunken solid angle) as the frame's output holds it (light.wgsl: display colour or
+//    radiance) and its tent splat over the four pixels around its exact image position. The
+//    first pass finds each pixel's largest contribution (its peak), the second adds every
+//    contribution to `star_light` in fixed point scaled to that peak: integer additions are exact
+//    and commute, so the sum does not depend on the order in which invocations run, and a pixel
+//    keeps 24 bits of precision whatever the range of light across the image (radiance spans
+//    many orders of magnitude).
 // 2. `sky_compose_vertex`, `sky_compose` (a full-screen triangle): background + the sky image
 //    (looked up along the pixel's viewing ray taken back into the sky's frame, its light
-//    Doppler-shifted like a surface's) + star light, clamped, into the colour target; the object
-//    passes then draw over it.
+//    Doppler-shifted like a surface's) + star light, as output_pixel writes it, into the colour
+//    target; the object passes then draw over it.
 
 @group(0) @binding(0) var<uniform> frame_uniforms: FrameUniforms;
 @group(0) @binding(1) var lut_table: texture_2d<f32>;
 
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
 @group(1) @binding(1) var<storage, read> stars: array<Star>;
-// Star light per pixel and channel (row-major, 3 per pixel) in units of 1/STAR_LIGHT_SCALE.
+// Star light per pixel (row-major, STAR_LIGHT_WORDS_PER_PIXEL words each): the peak (the f32
+// bits of the largest channel magnitude any contribution has there: non-negative floats order
+// as their bits), then R, G, B as i32 sums in units of 2^(e − STAR_LIGHT_BITS), 2^e the power of
+// two just above the peak.
 @group(1) @binding(2) var<storage, read_write> star_light: array<atomic<u32>>;
 // The same buffer, read by the compose pass.
 @group(1) @binding(3) var<storage, read> star_light_total: array<u32>;
@@ -29,12 +36,19 @@ override SKY_IMAGE_WHITE_K: f32;
 
 const PI: f32 = 3.14159265358979;
 
-// Fixed-point units per unit of display colour: 2⁻¹⁴ ≈ 6e-5 per added contribution (a 64th of
-// an 8-bit step), and up to 2¹⁸ full contributions per pixel before the u32 sum wraps.
-const STAR_LIGHT_SCALE: f32 = 16384.0;
+// u32 words of star light per pixel: the peak, then R, G, B (twin of
+// srt_gpu::sky::STAR_LIGHT_WORDS_PER_PIXEL).
+const STAR_LIGHT_WORDS_PER_PIXEL: u32 = 4u;
 
-// The display colour a star adds (mirror of srt_trace::star_colour).
-fn star_colour(star: Star, doppler: f32) -> vec3<f32> {
+// Bits of a pixel's fixed point below its peak's power of two: each contribution is under 2²⁴
+// units, so 127 of the largest fit an i32 sum, and each is resolved to 2⁻²⁴ of the peak.
+const STAR_LIGHT_BITS: i32 = 24;
+
+// Peaks below 2⁻¹⁰⁰ count as no light (their scale 2^(STAR_LIGHT_BITS − e) must stay within f32).
+const STAR_LIGHT_SMALLEST_PEAK: f32 = 7.8886091e-31;
+
+// The light a star adds (mirror of srt_trace::star_light).
+fn star_arriving(star: Star, doppler: f32) -> Arriving {
     var d = doppler;
     var solid_angle = 1.0;
     if (frame_uniforms.effects == EFFECTS_GEOMETRY) {
@@ -43,43 +57,122 @@ fn star_colour(star: Star, doppler: f32) -> vec3<f32> {
         solid_angle = 1.0 / (doppler * doppler);
     }
     let weight = pow(10.0, -0.4 * (star.magnitude.x - sky.beta_saturation.w));
-    let colour = lut_sample(lut_table, frame_uniforms.lut, d * star.direction_temperature.w).rgb;
-    return weight * solid_angle * colour;
+    return table_light(weight * solid_angle, d * star.direction_temperature.w);
 }
 
-@compute @workgroup_size(WORKGROUP_SIZE)
-fn sky_stars(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = id.x + id.y * groups.x * WORKGROUP_SIZE;
-    if (i >= sky.counts.x) {
-        return;
-    }
+// Where a star lands and what it adds: the pixel of its splat's lower corner, the tent
+// weights' fractions, and its light as the frame's output holds it; visible = false when it is
+// behind the camera.
+struct StarSplat {
+    visible: bool,
+    base: vec2<f32>,
+    fraction: vec2<f32>,
+    light: vec3<f32>,
+}
+
+// The splat of star `i` (see StarSplat).
+fn star_splat(i: u32) -> StarSplat {
     let star = stars[i];
     let rest = normalize(sky.direction_map * star.direction_temperature.xyz);
     let image = distant_source_image(sky.beta_saturation.xyz, rest);
     let projected = project_direction(image.direction);
-    if (projected.z == 0.0) {
-        return;
-    }
-    let colour = star_colour(star, image.doppler);
-    let size = frame_uniforms.viewport.xy;
     let corner = projected.xy - vec2<f32>(0.5);
     let base = floor(corner);
-    let fraction = corner - base;
+    let light = arriving_output(star_arriving(star, image.doppler));
+    return StarSplat(projected.z != 0.0, base, corner - base, light);
+}
+
+// Pixel `k` (0–3) of the splat `s`, and what the star adds there; index = −1 outside the image.
+struct SplatPixel {
+    index: i32,
+    added: vec3<f32>,
+}
+
+// Pixel `k` of the splat `s` (see SplatPixel).
+fn splat_pixel(s: StarSplat, k: u32) -> SplatPixel {
+    let offset = vec2<f32>(f32(k & 1u), f32(k >> 1u));
+    let p = s.base + offset;
+    let size = frame_uniforms.viewport.xy;
+    if (any(p < vec2<f32>(0.0)) || any(p >= size)) {
+        return SplatPixel(-1, vec3<f32>(0.0));
+    }
+    let w = select(1.0 - s.fraction, s.fraction, offset == vec2<f32>(1.0));
+    return SplatPixel(i32(u32(p.y) * u32(size.x) + u32(p.x)), w.x * w.y * s.light);
+}
+
+// The exponent e of the power of two 2^e just above `peak` (≥ STAR_LIGHT_SMALLEST_PEAK, a
+// normal f32 m·2^(e−1) with m in [1, 2)), read from its bits.
+fn peak_exponent(peak: f32) -> i32 {
+    return i32((bitcast<u32>(peak) >> 23u) & 0xffu) - 126;
+}
+
+// The star index of invocation `id`, or a number ≥ the star count.
+fn star_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
+    return id.x + id.y * groups.x * WORKGROUP_SIZE;
+}
+
+// Pass 1: each pixel's peak, the largest channel magnitude of any star's contribution there.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn sky_star_peaks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = star_index(id, groups);
+    if (i >= sky.counts.x) {
+        return;
+    }
+    let s = star_splat(i);
+    if (!s.visible) {
+        return;
+    }
     for (var k = 0u; k < 4u; k++) {
-        let offset = vec2<f32>(f32(k & 1u), f32(k >> 1u));
-        let p = base + offset;
-        if (any(p < vec2<f32>(0.0)) || any(p >= size)) {
-            continue;
-        }
-        let w = select(1.0 - fraction, fraction, offset == vec2<f32>(1.0));
-        // One contribution of 1 or more saturates the pixel whatever else is added, as the
-        // clamped CPU sum does; clamping it keeps the integer sum from wrapping.
-        let added = min(w.x * w.y * colour, vec3<f32>(1.0));
-        let index = 3u * (u32(p.y) * u32(size.x) + u32(p.x));
-        for (var c = 0u; c < 3u; c++) {
-            atomicAdd(&star_light[index + c], u32(round(added[c] * STAR_LIGHT_SCALE)));
+        let pixel = splat_pixel(s, k);
+        let magnitude = abs(pixel.added);
+        let peak = max(magnitude.x, max(magnitude.y, magnitude.z));
+        if (pixel.index >= 0 && peak >= STAR_LIGHT_SMALLEST_PEAK && all_finite(magnitude)) {
+            atomicMax(&star_light[STAR_LIGHT_WORDS_PER_PIXEL * u32(pixel.index)], bitcast<u32>(peak));
         }
     }
+}
+
+// Pass 2: every contribution added in its pixel's fixed point.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn sky_stars(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = star_index(id, groups);
+    if (i >= sky.counts.x) {
+        return;
+    }
+    let s = star_splat(i);
+    if (!s.visible) {
+        return;
+    }
+    for (var k = 0u; k < 4u; k++) {
+        let pixel = splat_pixel(s, k);
+        if (pixel.index < 0) {
+            continue;
+        }
+        let first = STAR_LIGHT_WORDS_PER_PIXEL * u32(pixel.index);
+        let peak = bitcast<f32>(atomicLoad(&star_light[first]));
+        if (!(peak >= STAR_LIGHT_SMALLEST_PEAK) || !all_finite(pixel.added)) {
+            continue;
+        }
+        let scale = exp2(f32(STAR_LIGHT_BITS - peak_exponent(peak)));
+        for (var c = 0u; c < 3u; c++) {
+            atomicAdd(&star_light[first + 1u + c], bitcast<u32>(i32(round(pixel.added[c] * scale))));
+        }
+    }
+}
+
+// The star light of pixel `pixel` (row-major index) in units of output.
+fn star_light_at(pixel: u32) -> vec3<f32> {
+    let first = STAR_LIGHT_WORDS_PER_PIXEL * pixel;
+    let peak = bitcast<f32>(star_light_total[first]);
+    if (!(peak >= STAR_LIGHT_SMALLEST_PEAK)) {
+        return vec3<f32>(0.0);
+    }
+    let sums = vec3<f32>(
+        f32(bitcast<i32>(star_light_total[first + 1u])),
+        f32(bitcast<i32>(star_light_total[first + 2u])),
+        f32(bitcast<i32>(star_light_total[first + 3u])),
+    );
+    return sums * exp2(f32(peak_exponent(peak) - STAR_LIGHT_BITS));
 }
 
 @vertex
@@ -119,14 +212,14 @@ fn sky_image_sample(d: vec3<f32>) -> vec3<f32> {
     return (1.0 - f.y) * top + f.y * bottom;
 }
 
-// The display colour the sky image shows along the viewing direction `direction` in S (mirror
-// of srt_trace::sky_image_colour): the light of a black body at SKY_IMAGE_WHITE_K filtered by the
-// texel, seen with Doppler factor D — the paper's colour: 𝒢 × colour table at D·T; spectral
-// colour: the texel's spectrum under that black body, shifted by D, its largest channel s
-// carried as exposure × s.
-fn sky_image_colour(direction: vec3<f32>) -> vec3<f32> {
+// The light the sky image shows along the viewing direction `direction` in S (mirror of
+// srt_trace::sky_image_light): the light of a black body at SKY_IMAGE_WHITE_K filtered by the
+// texel, seen with Doppler factor D — the paper's colour: 𝒢 × the colour table at D·T; spectral
+// colour: the texel's spectrum under that black body, shifted by D, its largest channel s its
+// factor.
+fn sky_image_light(direction: vec3<f32>) -> Arriving {
     if (sky.counts.w == 0u) {
-        return vec3<f32>(0.0);
+        return dark_light();
     }
     let back = distant_source_image(-sky.beta_saturation.xyz, normalize(direction));
     let world = normalize(sky.direction_unmap * back.direction);
@@ -136,26 +229,19 @@ fn sky_image_colour(direction: vec3<f32>) -> vec3<f32> {
         doppler = 1.0;
     }
     if (frame_uniforms.colour == SURFACE_COLOUR_PAPER) {
-        let t = doppler * SKY_IMAGE_WHITE_K;
-        return grey_value(vec4<f32>(radiance, 1.0)) * lut_sample(lut_table, frame_uniforms.lut, t).rgb;
+        return table_light(grey_value(vec4<f32>(radiance, 1.0)), doppler * SKY_IMAGE_WHITE_K);
     }
     let brightness = max(max(radiance.x, radiance.y), radiance.z);
     if (!(brightness > 0.0)) {
-        return vec3<f32>(0.0);
+        return dark_light();
     }
-    let view = SpectralView(frame_uniforms.tone_map, frame_uniforms.exposure * brightness, frame_uniforms.searchlight_ln_y);
-    return spectral_linear_reflected_display(radiance / brightness, -1.0, -1.0, SKY_IMAGE_WHITE_K, 1.0, doppler, view);
+    let reflected = spectral_linear_reflected(radiance / brightness, -1.0, -1.0, SKY_IMAGE_WHITE_K, 1.0, doppler);
+    return spectrum_light(reflected, brightness);
 }
 
 @fragment
 fn sky_compose(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let index = 3u * (u32(position.y) * u32(frame_uniforms.viewport.x) + u32(position.x));
-    let light = vec3<f32>(
-        f32(star_light_total[index]),
-        f32(star_light_total[index + 1u]),
-        f32(star_light_total[index + 2u]),
-    ) / STAR_LIGHT_SCALE;
-    let image = sky_image_colour(view_direction(position.xy));
-    let colour = frame_uniforms.background.rgb + image + light;
-    return vec4<f32>(clamp(colour, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+    let stars = star_light_at(u32(position.y) * u32(frame_uniforms.viewport.x) + u32(position.x));
+    let image = arriving_output(sky_image_light(view_direction(position.xy)));
+    return output_pixel(frame_uniforms.background.rgb + image + stars);
 }

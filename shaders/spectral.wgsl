@@ -241,13 +241,7 @@ fn spectral_tone_map(l: SpectralLight, view: SpectralView, ln_exposure: f32) -> 
         ln_gain += l.ln_scale - view.searchlight_ln_y;
     }
     let xyz = l.light / largest * exp(min(ln_gain, MAX_LN_GAIN_F32));
-    // Eq. 12, the BT.709 matrix as printed in the paper (srt_color::XYZ_TO_LINEAR_BT709).
-    let to_rgb = mat3x3<f32>(
-        vec3<f32>(3.2405, -0.9693, 0.0556),
-        vec3<f32>(-1.5372, 1.8760, -0.2040),
-        vec3<f32>(-0.4985, 0.0416, 1.0573),
-    );
-    let linear = max(to_rgb * xyz, vec3<f32>(0.0));
+    let linear = max(xyz_to_linear_bt709(xyz), vec3<f32>(0.0));
     var encoded = vec3<f32>(
         spectral_srgb_encode(linear.x),
         spectral_srgb_encode(linear.y),
@@ -259,10 +253,71 @@ fn spectral_tone_map(l: SpectralLight, view: SpectralView, ln_exposure: f32) -> 
     return clamp(encoded, vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
-// Display sRGB of black-body light at `temperature_k` reflected by a surface of sRGB-encoded
-// colour `albedo` with band constants `ultraviolet`, `infrared` (< 0: none), seen under D_in and
-// D_out, through `view` (whose exposure is the renderer's times the Phong factor): mirror of
-// srt_color::reflected_display_rgb after the table lookup of srt-trace's shade.
+// Linear BT.709 of CIE XYZ, Eq. 12 with the matrix as printed in the paper
+// (srt_color::XYZ_TO_LINEAR_BT709).
+fn xyz_to_linear_bt709(xyz: vec3<f32>) -> vec3<f32> {
+    let to_rgb = mat3x3<f32>(
+        vec3<f32>(3.2405, -0.9693, 0.0556),
+        vec3<f32>(-1.5372, 1.8760, -0.2040),
+        vec3<f32>(-0.4985, 0.0416, 1.0573),
+    );
+    return to_rgb * xyz;
+}
+
+// Black-body light at `temperature_k` reflected by a surface of sRGB-encoded colour `albedo`
+// with band constants `ultraviolet`, `infrared` (< 0: none), seen under D_in and D_out: the
+// reflectance of srt-trace's shade (table lookup of the decoded colour), then reflected_light.
+fn spectral_reflected(
+    albedo: vec3<f32>,
+    ultraviolet: f32,
+    infrared: f32,
+    temperature_k: f32,
+    d_in: f32,
+    d_out: f32,
+) -> SpectralLight {
+    let decoded = vec3<f32>(
+        spectral_srgb_decode(albedo.x),
+        spectral_srgb_decode(albedo.y),
+        spectral_srgb_decode(albedo.z),
+    );
+    return spectral_linear_reflected(decoded, ultraviolet, infrared, temperature_k, d_in, d_out);
+}
+
+// spectral_reflected of a linear-light colour `linear` (clamped to [0, 1]³).
+fn spectral_linear_reflected(
+    linear: vec3<f32>,
+    ultraviolet: f32,
+    infrared: f32,
+    temperature_k: f32,
+    d_in: f32,
+    d_out: f32,
+) -> SpectralLight {
+    let r = coefficient_lookup(clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0)), ultraviolet, infrared);
+    return reflected_light(r, temperature_k, d_in, d_out);
+}
+
+// The light of a black-body emitter at `temperature_k` and brightness 1 seen with Doppler factor
+// `d_out` (Eq. 9): the light of a white reflector lit by it, which is also its luminance white
+// (mirror of srt_color::emitted_light). Invalid where it has no luminance (the CPU's error).
+fn spectral_emitted(temperature_k: f32, d_out: f32) -> SpectralLight {
+    var l = reflected_light(Reflectance(vec3<f32>(0.0), 1.0, -1.0, -1.0), temperature_k, 1.0, d_out);
+    l.valid = l.valid && l.white.y > 0.0;
+    return l;
+}
+
+// Display sRGB in [0, 1] of the light `l` through `view`, whose exposure is the renderer's times
+// the light's factor: black for an exposure that is not positive (mirror of
+// ToneMap::display_rgb_xyz's refusal, which the CPU shows as black).
+fn spectral_display(l: SpectralLight, view: SpectralView) -> vec3<f32> {
+    if (!(view.exposure > 0.0)) {
+        return vec3<f32>(0.0);
+    }
+    return spectral_tone_map(l, view, log(view.exposure));
+}
+
+// Display sRGB of spectral_reflected(…) through `view` (whose exposure is the renderer's times
+// the Phong factor): mirror of srt_color::reflected_display_rgb after the table lookup of
+// srt-trace's shade.
 fn spectral_reflected_display(
     albedo: vec3<f32>,
     ultraviolet: f32,
@@ -272,42 +327,15 @@ fn spectral_reflected_display(
     d_out: f32,
     view: SpectralView,
 ) -> vec3<f32> {
-    let decoded = vec3<f32>(
-        spectral_srgb_decode(albedo.x),
-        spectral_srgb_decode(albedo.y),
-        spectral_srgb_decode(albedo.z),
-    );
-    return spectral_linear_reflected_display(decoded, ultraviolet, infrared, temperature_k, d_in, d_out, view);
-}
-
-// spectral_reflected_display of a linear-light colour `linear` (clamped to [0, 1]³).
-fn spectral_linear_reflected_display(
-    linear: vec3<f32>,
-    ultraviolet: f32,
-    infrared: f32,
-    temperature_k: f32,
-    d_in: f32,
-    d_out: f32,
-    view: SpectralView,
-) -> vec3<f32> {
-    if (!(view.exposure > 0.0)) {
-        return vec3<f32>(0.0);
-    }
-    let r = coefficient_lookup(clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0)), ultraviolet, infrared);
-    return spectral_tone_map(reflected_light(r, temperature_k, d_in, d_out), view, log(view.exposure));
+    return spectral_display(spectral_reflected(albedo, ultraviolet, infrared, temperature_k, d_in, d_out), view);
 }
 
 // Display sRGB of a black-body emitter at `temperature_k` with `brightness`, seen with Doppler
-// factor `d_out` through `view` (Eq. 9): the light of a white reflector lit by it, the tone map's white its own
-// light at brightness 1 (mirror of srt_color::emitted_display_rgb).
+// factor `d_out` through `view` (mirror of srt_color::emitted_display_rgb).
 fn spectral_emitted_display(temperature_k: f32, brightness: f32, d_out: f32, view: SpectralView) -> vec3<f32> {
-    if (!(view.exposure > 0.0) || !(brightness > 0.0)) {
+    if (!(brightness > 0.0)) {
         return vec3<f32>(0.0);
     }
-    let l = reflected_light(Reflectance(vec3<f32>(0.0), 1.0, -1.0, -1.0), temperature_k, 1.0, d_out);
-    // The CPU refuses an emitter whose light has no luminance (black).
-    if (!(l.white.y > 0.0)) {
-        return vec3<f32>(0.0);
-    }
-    return spectral_tone_map(l, view, log(view.exposure) + log(brightness));
+    let scaled = SpectralView(view.tone_map, view.exposure * brightness, view.searchlight_ln_y);
+    return spectral_display(spectral_emitted(temperature_k, d_out), scaled);
 }

@@ -122,13 +122,13 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
     return albedo;
 }
 
-// Display colour of a surface point (§4.2): Phong in S′ with aberrated directions and the
-// Doppler factors of Eq. 17 — D_in light → surface, D_out surface → observer (both 1 for
-// geometry only). The paper's colour: colour table at D_in·D_out·T_light, C = f_ar · C_sRGB
-// (Eq. 18); spectral colour (spectral.wgsl): the albedo's reflectance spectrum under the black
-// body at D_in·T_light, shifted by D_out, with exposure × (f_amb + f_diff + f_spec). An emitting
-// object shows its black body at D_out·T_e instead. Mirror of srt_trace::shade.
-fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> vec3<f32> {
+// The light a surface point sends to the observer (§4.2): Phong in S′ with aberrated directions
+// and the Doppler factors of Eq. 17 — D_in light → surface, D_out surface → observer (both 1 for
+// geometry only). The paper's colour: the colour table at D_in·D_out·T_light with
+// f_ar (Eq. 18); spectral colour (spectral.wgsl): the albedo's reflectance spectrum under the
+// black body at D_in·T_light, shifted by D_out, its factor f_amb + f_diff + f_spec. An emitting
+// object sends its black body at D_out·T_e instead. Mirror of srt_trace::arriving.
+fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> Arriving {
     let beta = object.frame.beta_gamma.xyz;
     let incident = normalize(apparent - frame_uniforms.light.xyz);
     let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
@@ -145,10 +145,9 @@ fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> 
     let optics = object.optics;
     if (optics.z > 0.0) {
         if (spectral) {
-            return spectral_emitted_display(optics.z, optics.w, d_out, spectral_view(frame_uniforms.exposure));
+            return spectrum_light(spectral_emitted(optics.z, d_out), optics.w);
         }
-        let glow = optics.w * lut_sample(lut_table, frame_uniforms.lut, d_out * optics.z).xyz;
-        return clamp(glow, vec3<f32>(0.0), vec3<f32>(1.0));
+        return table_light(optics.w, d_out * optics.z);
     }
     let to_light = -normalize(aberrate(-beta, incident));
     let to_observer = normalize(aberrate(-beta, outgoing));
@@ -169,15 +168,13 @@ fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> 
     }
     let geometry = s.x + diffuse + specular;
     if (spectral) {
-        let view = spectral_view(frame_uniforms.exposure * geometry);
-        return spectral_reflected_display(albedo.xyz, optics.x, optics.y, frame_uniforms.light.w, d_in, d_out, view);
+        let reflected = spectral_reflected(albedo.xyz, optics.x, optics.y, frame_uniforms.light.w, d_in, d_out);
+        return spectrum_light(reflected, geometry);
     }
-    let f_ar = 0.5 * (grey_value(albedo) + 1.0) * geometry;
-    let c = lut_sample(lut_table, frame_uniforms.lut, combined * frame_uniforms.light.w).xyz;
-    return clamp(f_ar * c, vec3<f32>(0.0), vec3<f32>(1.0));
+    return table_light(0.5 * (grey_value(albedo) + 1.0) * geometry, combined * frame_uniforms.light.w);
 }
 
-// The frame's tone map for spectral colour, with `exposure`.
-fn spectral_view(exposure: f32) -> SpectralView {
-    return SpectralView(frame_uniforms.tone_map, exposure, frame_uniforms.searchlight_ln_y);
+// The pixel a surface point gives: its light (surface_light) as the frame's output holds it.
+fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> vec4<f32> {
+    return output_pixel(arriving_output(surface_light(t, zeta, xi, apparent, albedo)));
 }

@@ -52,7 +52,8 @@ struct FrameUniforms {
     light: vec4<f32>,
     // Phong factors: ambient, diffuse, specular, shininess.
     shading: vec4<f32>,
-    // Background display colour (rgb), alpha 1.
+    // Background as the output holds it (rgb): the display colour, or its radiance (the colour
+    // sRGB-decoded); alpha 1.
     background: vec4<f32>,
     // Colour table: ln T_min, ln T_max, texel count, unused.
     lut: vec4<f32>,
@@ -72,7 +73,11 @@ struct FrameUniforms {
     exposure: f32,
     // ln Y(1500 K), the searchlight tone map's divisor (srt_color::searchlight_reference_ln_y).
     searchlight_ln_y: f32,
-    padding: u32,
+    // One of OUTPUT_* (light.wgsl): display colours or radiance.
+    output: u32,
+    // How light becomes radiance (light.wgsl, arriving_radiance): ln Y of the lamp's black body,
+    // 1/g, 1 where brightness follows luminance else 0, the largest value the target holds.
+    radiance: vec4<f32>,
 }
 
 // Per object: its rest frame and drawing style.

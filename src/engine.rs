@@ -1,6 +1,6 @@
 //! The renderer behind `srt render` (and `srt.render` in Python): which backend draws a scene's
-//! display colours, how a GPU image is supersampled down to the output size, and the radiance an
-//! EXR holds. One piece of code, so that the command and every other front end produce the same
+//! display colours and the radiance an EXR holds, and how a GPU image is supersampled down to
+//! the output size. One piece of code, so that the command and every other front end produce the same
 //! pixels for the same arguments.
 
 use std::cell::OnceCell;
@@ -200,16 +200,18 @@ impl Engine {
         }
     }
 
-    /// Renders one frame's display colours (the tone map's, sRGB-encoded, in [0, 1], row-major
-    /// from the top). The CPU reports finished rows to `progress` and gives up (`Ok(None)`) once
-    /// `stop` is set; the GPU finishes the frame.
+    /// Renders one frame's `output`, row-major from the top: display colours (the tone map's,
+    /// sRGB-encoded, in [0, 1]) or radiance (what an EXR's R, G, B hold: linear BT.709,
+    /// unclamped; srt-color's `radiance` module). The CPU reports finished rows to `progress`
+    /// and gives up (`Ok(None)`) once `stop` is set; the GPU finishes the frame.
     ///
     /// # Errors
     /// A GPU failure (device lost, out of memory).
-    pub fn render_display(
+    pub fn render(
         &mut self,
         frame: &Frame<'_>,
         settings: RenderSettings,
+        output: Output,
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> anyhow::Result<Option<Vec<DVec3>>> {
@@ -217,7 +219,7 @@ impl Engine {
         Ok(match self {
             Self::Cpu => frame
                 .tracer()
-                .render_stoppable(settings, Output::Display, progress, stop)
+                .render_stoppable(settings, output, progress, stop)
                 .map(|image| image.pixels),
             Self::Gpu {
                 context,
@@ -226,7 +228,7 @@ impl Engine {
                 method,
             } => {
                 let (image, _) = renderer
-                    .render(context, scene, *method, FootprintShape::Hull)
+                    .render_as(context, scene, *method, FootprintShape::Hull, output)
                     .with_context(|| format!("GPU rendering of {} failed", scene.name))?;
                 Some(downsample(
                     &image.pixels,
@@ -237,22 +239,6 @@ impl Engine {
             }
         })
     }
-}
-
-/// The radiance of a frame, what an EXR's R, G, B hold (linear BT.709, unclamped; srt-color's
-/// `radiance` module): rendered by the exact CPU tracer whichever engine draws the display
-/// colours (the GPU passes do not compute radiance yet). `None` if `stop` was set.
-#[must_use]
-pub fn render_radiance(
-    frame: &Frame<'_>,
-    settings: RenderSettings,
-    progress: &(dyn Fn(u32) + Sync),
-    stop: &AtomicBool,
-) -> Option<Vec<DVec3>> {
-    frame
-        .tracer()
-        .render_stoppable(settings, Output::Radiance, progress, stop)
-        .map(|image| image.pixels)
 }
 
 /// The per-pixel channels `--aov` adds to an EXR (and `srt.render(aov=True)` returns), in the
@@ -310,11 +296,14 @@ pub fn display_as_linear(colour: f64) -> f32 {
     linear
 }
 
-/// A value (radiance, a time, a factor) as an EXR's 32-bit float channel holds it.
+/// A value (radiance, a time, a factor) as an EXR's 32-bit float channel holds it: rounded to
+/// f32, a magnitude beyond f32's range held at its largest finite value (radiance can exceed it
+/// where the lamp is nearly invisible: docs/colour.md), so that every channel is finite.
 #[must_use]
 pub fn channel_f32(value: f64) -> f32 {
+    let largest = f64::from(f32::MAX);
     #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
-    let float = value as f32;
+    let float = value.clamp(-largest, largest) as f32;
     float
 }
 

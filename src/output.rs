@@ -136,8 +136,9 @@ pub const EXR_DISPLAY_CHANNELS: [&str; 3] = ["display.R", "display.G", "display.
 
 /// What the R, G, B channels of srt's EXR hold, as its record says.
 pub const EXR_RADIANCE_NOTE: &str = "R, G, B: radiance before the tone map and exposure (linear BT.709, unclamped; \
-     luminance 1 = a white surface at rest facing the observer's lamp), from the exact CPU \
-     tracer; display.R, display.G, display.B: the image the PNG shows, as linear light";
+     luminance 1 = a white surface at rest facing the observer's lamp; each channel within f32's \
+     range), drawn by the record's engine; display.R, display.G, display.B: the image the PNG \
+     shows, as linear light";
 
 /// What an EXR holds beside the display colours: the radiance and, with `--aov`, what each
 /// pixel sees of time.

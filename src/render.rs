@@ -14,7 +14,7 @@ use srt::engine::{Backend, Engine, Frame};
 use srt_gpu::Method;
 use srt_scene::description::observation_time;
 use srt_scene::{Effects, OverrideNames, Overrides, Scene, SurfaceColour, ValueName, View};
-use srt_trace::RenderSettings;
+use srt_trace::{Output, RenderSettings};
 
 use crate::cli::{Backend as BackendArg, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
 use crate::output::{ExrLayers, OutputFormat, check_writable, display_rgb8, numbered, write_image};
@@ -79,7 +79,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let start = Instant::now();
         let frame = Frame::new(&first);
         let pixels = render_pixels(&mut engine, &frame, settings, true)?;
-        let layers = exr_layers_for(&output, &frame, settings, args.aov);
+        let layers = exr_layers_for(&mut engine, &output, &frame, settings, args.aov)?;
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         let (width, height) = (settings.width, settings.height);
         write_image(width, height, &pixels, layers.as_ref(), &record, &output)?;
@@ -128,7 +128,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
                     ("frame", format!("{frame} of 0 to {}", frames - 1)),
                 ]);
                 let path = numbered(&output, frame, digits);
-                let layers = exr_layers_for(&path, &traced, settings, args.aov);
+                let layers = exr_layers_for(&mut engine, &path, &traced, settings, args.aov)?;
                 let (width, height) = (settings.width, settings.height);
                 write_image(width, height, &pixels, layers.as_ref(), &record, &path)?;
                 bar.println(&wrote(&path, settings, &engine, frame_start));
@@ -385,7 +385,7 @@ fn render_pixels(
             bar.set_position(u64::from(rows));
         }
     };
-    let pixels = engine.render_display(frame, settings, &progress, &never)?;
+    let pixels = engine.render(frame, settings, Output::Display, &progress, &never)?;
     if let Some(bar) = bar {
         bar.finish();
     }
@@ -393,20 +393,25 @@ fn render_pixels(
 }
 
 /// What an image written to `path` holds beside its display colours, if its format holds more
-/// (EXR): the radiance ([`srt::engine::render_radiance`]) and, with `aov`, what each pixel sees
-/// of time ([`srt::engine::render_seen_events`]).
+/// (EXR): the radiance, rendered by `engine` as the display colours are, and, with `aov`, what
+/// each pixel sees of time ([`srt::engine::render_seen_events`]).
 fn exr_layers_for(
+    engine: &mut Engine,
     path: &Path,
     frame: &Frame<'_>,
     settings: RenderSettings,
     aov: bool,
-) -> Option<ExrLayers> {
+) -> anyhow::Result<Option<ExrLayers>> {
+    if OutputFormat::for_path(path).ok() != Some(OutputFormat::Exr) {
+        return Ok(None);
+    }
     let never = AtomicBool::new(false);
     let finished = "a render that is never stopped finishes";
-    (OutputFormat::for_path(path).ok() == Some(OutputFormat::Exr)).then(|| ExrLayers {
-        radiance: srt::engine::render_radiance(frame, settings, &|_| {}, &never).expect(finished),
+    let radiance = engine.render(frame, settings, Output::Radiance, &|_| {}, &never)?;
+    Ok(Some(ExrLayers {
+        radiance: radiance.expect(finished),
         seen: aov.then(|| {
             srt::engine::render_seen_events(frame, settings, &|_| {}, &never).expect(finished)
         }),
-    })
+    }))
 }

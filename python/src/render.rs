@@ -13,12 +13,12 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use srt::engine::{
     AOV_CHANNELS, Backend, Engine, Frame, MAX_IMAGE_SIDE, MAX_SAMPLES, aov_values, channel_f32,
-    display_as_linear, render_radiance, render_seen_events,
+    display_as_linear, render_seen_events,
 };
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
 use srt_scene::{Effects, LoadedScene, OverrideNames, Overrides, SceneSource, SurfaceColour, View};
-use srt_trace::{RenderSettings, SeenEvent};
+use srt_trace::{Output, RenderSettings, SeenEvent};
 
 use crate::errors;
 use crate::scene::Scene;
@@ -219,25 +219,26 @@ impl Request {
                 )))
             })?
         };
-        // One CPU tracer for every layer that needs it (the CPU engine's display, the
-        // radiance, the time channels).
+        // One CPU tracer for every layer that needs it (the CPU engine's display and
+        // radiance, the time channels); the engine `srt render` would choose draws the
+        // radiance, and with `aov` the display colours too.
         let frame = Frame::new(&scene);
-        // The display layer needs the engine `srt render` would choose; the radiance is the
-        // CPU tracer's whichever engine that is (srt::engine::render_radiance).
+        let chosen = Engine::choose(self.backend, self.method, self.settings, &scene)
+            .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
+        warnings.extend(chosen.note.map(|note| format!("note: {note}")));
+        let mut engine = chosen.engine;
+        let mut render = |output| {
+            engine
+                .render(&frame, self.settings, output, &|_| {}, stop)
+                .map_err(|e| Failure::Raise(errors::gpu(&e)))?
+                .ok_or(Failure::Stopped)
+        };
         let display = if self.aov {
-            let chosen = Engine::choose(self.backend, self.method, self.settings, &scene)
-                .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
-            warnings.extend(chosen.note.map(|note| format!("note: {note}")));
-            let mut engine = chosen.engine;
-            let pixels = engine
-                .render_display(&frame, self.settings, &|_| {}, stop)
-                .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
-            Some(pixels.ok_or(Failure::Stopped)?)
+            Some(render(Output::Display)?)
         } else {
             None
         };
-        let radiance =
-            render_radiance(&frame, self.settings, &|_| {}, stop).ok_or(Failure::Stopped)?;
+        let radiance = render(Output::Radiance)?;
         let seen = if self.aov {
             let events = render_seen_events(&frame, self.settings, &|_| {}, stop);
             Some(events.ok_or(Failure::Stopped)?)

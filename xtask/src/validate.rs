@@ -21,7 +21,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use image::RgbImage;
 use srt_gpu::culling::BackFaceCulling;
 use srt_gpu::probe::{
@@ -32,8 +32,8 @@ use srt_gpu::projection::view_projection;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_proxy::{Viewport, footprint};
 use srt_scene::Scene;
-use srt_trace::compare::compare;
-use srt_trace::{RenderSettings, Tracer};
+use srt_trace::compare::{compare, compare_radiance};
+use srt_trace::{Output, RenderSettings, Tracer};
 
 use crate::cases::{Case, ENGINE, builtin_cases, fly_by_cases, model_case, with_speed};
 
@@ -45,6 +45,11 @@ const TOLERANCE: u8 = 2;
 const EDGE_MARGIN: u32 = 1;
 /// Largest mismatch of an exact method accepted.
 const MAX_MISMATCH: f64 = 0.001;
+/// Radiance: a pixel differs when a channel is off by more than this fraction of the reference
+/// pixel's largest channel, or of [`RADIANCE_FLOOR`] where that is smaller.
+const RADIANCE_TOLERANCE: f64 = 0.02;
+/// Radiance below which differences count absolutely: 1 % of a white surface facing the lamp.
+const RADIANCE_FLOOR: f64 = 0.01;
 /// Speeds of the image cases.
 const SPEEDS: [f64; 3] = [0.5, 0.9, 0.99];
 /// The assimp models of the image cases.
@@ -96,7 +101,14 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
     cases.retain(|(case, _)| only.is_none_or(|o| case.name.contains(o)));
     for (case, speed) in &cases {
         failures.extend(validate_footprints(&ctx, case)?);
-        failures.extend(validate_image(&ctx, case, *speed, (WIDTH, HEIGHT), &out)?);
+        failures.extend(validate_image(
+            &ctx,
+            case,
+            *speed,
+            (WIDTH, HEIGHT),
+            &out,
+            Compared::DisplayAndRadiance,
+        )?);
     }
     ctx.take_errors()?;
     if failures.is_empty() {
@@ -144,7 +156,14 @@ pub fn run_bench_frames(workspace: &Path, only: Option<&str>) -> anyhow::Result<
         .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))
         .collect();
     for (case, size) in &frames {
-        let failed = validate_image(&ctx, case, fastest(&case.scene), *size, &out)?;
+        let failed = validate_image(
+            &ctx,
+            case,
+            fastest(&case.scene),
+            *size,
+            &out,
+            Compared::Display,
+        )?;
         let verdict = if failed.is_empty() { "pass" } else { "FAIL" };
         record += &format!("{}\t{}x{}\t{verdict}\n", case.name, size.0, size.1);
         failures.extend(failed);
@@ -379,24 +398,34 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
     })
 }
 
+/// What [`validate_image`] compares with the CPU reference.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Compared {
+    /// Display colours.
+    Display,
+    /// Display colours and the exact methods' radiance.
+    DisplayAndRadiance,
+}
+
 /// GPU images of the exact methods (LRT, the ray tracer and `auto`, which picks one of them per
-/// object) and of the polygon method against the CPU reference.
+/// object) and of the polygon method against the CPU reference; with
+/// [`Compared::DisplayAndRadiance`], the exact methods' radiance too (relative, [`compare_radiance`]).
 fn validate_image(
     ctx: &GpuContext,
     case: &Case,
     speed: f64,
     (width, height): (u32, u32),
     out: &Path,
+    compared: Compared,
 ) -> anyhow::Result<Vec<String>> {
     let scene: &Scene = &case.scene;
-    let reference = Tracer::new(scene).render(
-        RenderSettings {
-            width,
-            height,
-            samples: 1,
-        },
-        &|_| {},
-    );
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    let tracer = Tracer::new(scene);
+    let reference = tracer.render(settings, &|_| {});
     let renderer = GpuRenderer::new(ctx, scene, width, height)?;
     let [lrt_rgb, rt_rgb, auto_rgb, polygon_rgb] =
         [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon]
@@ -407,13 +436,44 @@ fn validate_image(
     let rt_mismatch = compare(&reference, &rt_rgb, TOLERANCE, EDGE_MARGIN);
     let auto_mismatch = compare(&reference, &auto_rgb, TOLERANCE, EDGE_MARGIN);
     let polygon_mismatch = compare(&reference, &polygon_rgb, TOLERANCE, EDGE_MARGIN);
+    let mut radiance_mismatches = Vec::new();
+    if compared == Compared::DisplayAndRadiance {
+        let mut reference = tracer.render_radiance(settings, &|_| {});
+        // As the GPU's colour target holds it: each channel's magnitude at most its largest
+        // value (f32's, as an EXR holds it, or a half float's).
+        let largest = f64::from(srt_gpu::formats::largest_value(ctx.color_format));
+        for pixel in &mut reference.pixels {
+            *pixel = pixel.clamp(DVec3::splat(-largest), DVec3::splat(largest));
+        }
+        for method in [Method::Lrt, Method::Rt, Method::Auto] {
+            let (image, _) =
+                renderer.render_as(ctx, scene, method, FootprintShape::Hull, Output::Radiance)?;
+            let pixels: Vec<DVec3> = image
+                .pixels
+                .iter()
+                .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
+                .collect();
+            let mismatch = compare_radiance(
+                &reference,
+                &pixels,
+                RADIANCE_TOLERANCE,
+                RADIANCE_FLOOR,
+                EDGE_MARGIN,
+            );
+            radiance_mismatches.push((method.name(), mismatch));
+        }
+    }
     let traced = renderer
         .object_layers()
         .iter()
         .filter(|l| l.is_some_and(|l| l > srt_gpu::ray_tracing::AUTO_LAYERS))
         .count();
+    let radiance_report: String = radiance_mismatches
+        .iter()
+        .map(|(method, m)| format!(" {method}_radiance_mismatch={:.6}", m.fraction()))
+        .collect();
     println!(
-        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}",
+        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}{radiance_report}",
         case.name,
         mismatch.fraction(),
         rt_mismatch.fraction(),
@@ -455,21 +515,26 @@ fn validate_image(
         height,
         &difference,
     )?;
-    Ok([
-        ("LRT", mismatch),
-        ("RT", rt_mismatch),
-        ("auto", auto_mismatch),
+    let display = [
+        ("LRT", mismatch.fraction()),
+        ("RT", rt_mismatch.fraction()),
+        ("auto", auto_mismatch.fraction()),
     ]
-    .into_iter()
-    .filter(|(_, m)| m.fraction() > MAX_MISMATCH)
-    .map(|(method, m)| {
-        format!(
-            "{} at {width}x{height}, {speed}c: {method} mismatch {:.6} > {MAX_MISMATCH}",
-            case.name,
-            m.fraction()
-        )
-    })
-    .collect())
+    .map(|(method, fraction)| (method.to_owned(), fraction));
+    let radiance = radiance_mismatches
+        .iter()
+        .map(|(method, m)| (format!("{method} radiance"), m.fraction()));
+    Ok(display
+        .into_iter()
+        .chain(radiance)
+        .filter(|(_, fraction)| *fraction > MAX_MISMATCH)
+        .map(|(what, fraction)| {
+            format!(
+                "{} at {width}x{height}, {speed}c: {what} mismatch {fraction:.6} > {MAX_MISMATCH}",
+                case.name,
+            )
+        })
+        .collect())
 }
 
 fn save(path: PathBuf, width: u32, height: u32, pixels: &[[u8; 3]]) -> anyhow::Result<()> {

@@ -54,7 +54,7 @@ pub use lut::{LutError, TemperatureLut};
 pub use planck::{
     BOLTZMANN_CONSTANT, PLANCK_CONSTANT, SECOND_RADIATION_CONSTANT, SPEED_OF_LIGHT, planck_radiance,
 };
-pub use radiance::{RadianceScale, RadianceTable};
+pub use radiance::{Output, RadianceScale, RadianceTable};
 pub use rgb::{
     SRGB_LINEAR_THRESHOLD, SRGB_OFFSET, XYZ_TO_LINEAR_BT709, quantize_8bit, srgb_decode,
     srgb_encode, xyz_to_linear_rgb,

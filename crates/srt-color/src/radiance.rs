@@ -61,6 +61,23 @@ impl RadianceTable {
         TABLE.get_or_init(Self::with_defaults)
     }
 
+    /// The table over the temperatures of `lut` (its range and size), so that one index
+    /// samples both: the [shared](Self::shared) one for the default table.
+    ///
+    /// # Panics
+    /// Never: `lut`'s parameters were validated when it was built.
+    #[must_use]
+    pub fn for_lut(lut: &TemperatureLut) -> std::borrow::Cow<'static, Self> {
+        let (t_min, t_max) = TemperatureLut::DEFAULT_RANGE_K;
+        if (lut.size(), lut.t_min(), lut.t_max()) == (TemperatureLut::DEFAULT_SIZE, t_min, t_max) {
+            return std::borrow::Cow::Borrowed(Self::shared());
+        }
+        match Self::build(lut.size(), lut.t_min(), lut.t_max()) {
+            Ok(table) => std::borrow::Cow::Owned(table),
+            Err(e) => unreachable!("a built colour table's parameters are valid: {e}"),
+        }
+    }
+
     /// The table with `size` texels from `t_min_k` to `t_max_k`, uniform in ln T.
     ///
     /// # Errors
@@ -96,6 +113,16 @@ impl RadianceTable {
     }
 }
 
+/// What a renderer's pixels hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Output {
+    /// Display colours through the tone map, in [0, 1].
+    #[default]
+    Display,
+    /// Radiance ([module documentation](self)), unclamped.
+    Radiance,
+}
+
 /// What turns light into radiance in one image: the effect mode's brightness rule, the lamp's
 /// luminance and the white surface's geometric factor g (module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,6 +156,24 @@ impl RadianceScale {
             ln_y_lamp: table.sample(lamp_temperature_k).1,
             inverse_white: 1.0 / g,
         }
+    }
+
+    /// Whether brightness follows the black body's luminance (the searchlight effect).
+    #[must_use]
+    pub const fn follows_luminance(&self) -> bool {
+        self.follows_luminance
+    }
+
+    /// ln Y of the lamp's black body, from the table.
+    #[must_use]
+    pub const fn ln_y_lamp(&self) -> f64 {
+        self.ln_y_lamp
+    }
+
+    /// 1 / g, the white surface's geometric factor inverted.
+    #[must_use]
+    pub const fn inverse_white(&self) -> f64 {
+        self.inverse_white
     }
 
     /// Radiance of the colour-table light `factor` · C(`temperature_k`).

@@ -12,3 +12,14 @@ pub const FALLBACK_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba
 pub const VISIBLE_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// Depth format (apparent distance × depth scale for LRT, clip depth for polygons).
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// The largest finite value a colour target of `format` holds: what radiance is held to
+/// (half floats end at 65 504).
+#[must_use]
+pub fn largest_value(format: wgpu::TextureFormat) -> f32 {
+    if format == FALLBACK_COLOR_FORMAT {
+        half::f16::MAX.to_f32()
+    } else {
+        f32::MAX
+    }
+}

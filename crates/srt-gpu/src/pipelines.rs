@@ -389,8 +389,9 @@ pub const SKY_COMPOSE_GROUP: BindGroupSpec = BindGroupSpec {
     slots: &[slots::SKY, slots::STAR_LIGHT_TOTAL, slots::SKY_IMAGE],
 };
 
-/// Entry point of the sky's star pass.
-pub const SKY_STARS_ENTRY: &str = "sky_stars";
+/// Entry points of the sky's star passes, in the order they run: each pixel's peak, then the
+/// star light scaled to it (sky.wgsl).
+pub const SKY_STARS_ENTRIES: [&str; 2] = ["sky_star_peaks", "sky_stars"];
 /// Entry points of the sky's compose pass (vertex, fragment).
 pub const SKY_COMPOSE_ENTRIES: [&str; 2] = ["sky_compose_vertex", "sky_compose"];
 
@@ -402,7 +403,7 @@ pub fn sky_specs() -> [PipelineSpec; 2] {
         PipelineSpec {
             label: "srt sky stars",
             shader: shaders::sky(),
-            entry_points: &[SKY_STARS_ENTRY],
+            entry_points: &SKY_STARS_ENTRIES,
             groups: vec![FRAME_GROUP, SKY_STARS_GROUP],
         },
         PipelineSpec {

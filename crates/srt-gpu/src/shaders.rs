@@ -12,6 +12,8 @@ pub const PROBE: &str = include_str!("../shaders/probe.wgsl");
 pub const COLOUR: &str = include_str!("../shaders/colour.wgsl");
 /// Spectral surface colour (mirror of srt-color's spectral path).
 pub const SPECTRAL: &str = include_str!("../shaders/spectral.wgsl");
+/// The light a pass draws and what it writes for it (mirror of srt-trace's `Arriving`).
+pub const LIGHT: &str = include_str!("../shaders/light.wgsl");
 /// Bindings and helpers shared by the render passes.
 pub const RENDER_BINDINGS: &str = include_str!("../shaders/render_bindings.wgsl");
 /// Intersection and shading (mirror of srt-trace).
@@ -160,6 +162,7 @@ pub fn lrt(counting: bool) -> Shader {
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
             ("spectral.wgsl", SPECTRAL),
+            ("light.wgsl", LIGHT),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("camera.wgsl", CAMERA),
             ("surface.wgsl", SURFACE),
@@ -180,6 +183,7 @@ pub fn polygon() -> Shader {
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
             ("spectral.wgsl", SPECTRAL),
+            ("light.wgsl", LIGHT),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("surface.wgsl", SURFACE),
             ("polygon.wgsl", POLYGON),
@@ -198,6 +202,7 @@ pub fn sky() -> Shader {
             ("types.wgsl", TYPES),
             ("colour.wgsl", COLOUR),
             ("spectral.wgsl", SPECTRAL),
+            ("light.wgsl", LIGHT),
             ("camera.wgsl", CAMERA),
             ("sky.wgsl", SKY),
         ]),

@@ -15,15 +15,20 @@ use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::passes::begin_pass;
 use crate::pipelines::{
-    DepthTest, FRAME_GROUP, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP, SKY_STARS_ENTRY,
+    DepthTest, FRAME_GROUP, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP, SKY_STARS_ENTRIES,
     SKY_STARS_GROUP, pipeline_layout, render_pipeline, sky_specs, slots,
 };
 use crate::shaders::WORKGROUP_SIZE;
 use crate::textures::{Texture2d, upload_2d};
 use crate::types::{GpuStar, SkyUniforms, mat3, vec4};
 
-/// Bytes of star light per pixel: three u32 channels.
-const STAR_LIGHT_BYTES_PER_PIXEL: u64 = 12;
+/// u32 words of star light per pixel: the largest contribution there, then R, G, B as
+/// fixed-point sums scaled to it (WGSL `STAR_LIGHT_WORDS_PER_PIXEL` in sky.wgsl, checked by
+/// `tests/reflect.rs`).
+pub const STAR_LIGHT_WORDS_PER_PIXEL: u32 = 4;
+
+/// Bytes of star light per pixel.
+const STAR_LIGHT_BYTES_PER_PIXEL: u64 = STAR_LIGHT_WORDS_PER_PIXEL as u64 * 4;
 
 /// What is uploaded once per scene and bound with every image size.
 struct Uploaded {
@@ -46,7 +51,8 @@ pub struct SkyResources {
     uploaded: Uploaded,
     star_count: u32,
     image_size: Option<(u32, u32)>,
-    stars_pipeline: wgpu::ComputePipeline,
+    /// The star passes, in [`SKY_STARS_ENTRIES`]' order.
+    stars_pipelines: Vec<wgpu::ComputePipeline>,
     compose_pipeline: wgpu::RenderPipeline,
     workgroups: (u32, u32),
     light: StarLight,
@@ -106,14 +112,20 @@ impl SkyResources {
         let device = &ctx.device;
         let [stars_spec, compose_spec] = sky_specs();
         let stars_module = stars_spec.shader.module(device);
-        let stars_pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(stars_spec.label),
-            layout: Some(&pipeline_layout(device, &stars_spec)),
-            module: &stars_module,
-            entry_point: Some(SKY_STARS_ENTRY),
-            compilation_options: stars_spec.shader.compilation_options(),
-            cache: None,
-        });
+        let stars_layout = pipeline_layout(device, &stars_spec);
+        let stars_pipelines = SKY_STARS_ENTRIES
+            .iter()
+            .map(|&entry| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(stars_spec.label),
+                    layout: Some(&stars_layout),
+                    module: &stars_module,
+                    entry_point: Some(entry),
+                    compilation_options: stars_spec.shader.compilation_options(),
+                    cache: None,
+                })
+            })
+            .collect();
         let compose_pipeline = render_pipeline(
             device,
             &compose_spec,
@@ -142,7 +154,7 @@ impl SkyResources {
             uploaded,
             star_count,
             image_size: sky_shape(&scene.sky).1,
-            stars_pipeline,
+            stars_pipelines,
             compose_pipeline,
             workgroups,
             light,
@@ -212,10 +224,12 @@ impl SkyResources {
                     }
                 }),
             });
-            pass.set_pipeline(&self.stars_pipeline);
             pass.set_bind_group(FRAME_GROUP.index, stars_frame, &[]);
             pass.set_bind_group(SKY_STARS_GROUP.index, &self.light.stars_group, &[]);
-            pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
+            for pipeline in &self.stars_pipelines {
+                pass.set_pipeline(pipeline);
+                pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
+            }
         }
         let mut pass = begin_pass(
             encoder,

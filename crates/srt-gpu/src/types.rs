@@ -6,7 +6,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3};
-use srt_color::ToneMap;
+use srt_color::{Output, RadianceScale, ToneMap};
 use srt_physics::{Event, Frame};
 use srt_scene::{Effects, SurfaceColour, SurfaceOptics};
 
@@ -195,8 +195,44 @@ pub struct FrameUniforms {
     pub exposure: f32,
     /// ln Y(1500 K), the searchlight tone map's divisor.
     pub searchlight_ln_y: f32,
-    /// Padding to the WGSL size.
-    pub padding: u32,
+    /// What the passes write: display colours or radiance.
+    pub output: OutputCode,
+    /// How light becomes radiance: ln Y of the lamp, 1/g, 1 where brightness follows luminance
+    /// else 0, and the largest value the colour target holds ([`radiance_params`]).
+    pub radiance: [f32; 4],
+}
+
+/// `FrameUniforms::output`: what the passes write per pixel (WGSL `OUTPUT_*` in light.wgsl).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct OutputCode(pub u32);
+
+impl OutputCode {
+    /// Display colours through the tone map (WGSL `OUTPUT_DISPLAY`).
+    pub const DISPLAY: Self = Self(0);
+    /// Radiance (WGSL `OUTPUT_RADIANCE`).
+    pub const RADIANCE: Self = Self(1);
+}
+
+impl From<Output> for OutputCode {
+    fn from(output: Output) -> Self {
+        match output {
+            Output::Display => Self::DISPLAY,
+            Output::Radiance => Self::RADIANCE,
+        }
+    }
+}
+
+/// `FrameUniforms::radiance` of `scale` for a colour target whose largest finite value is
+/// `limit`.
+#[must_use]
+pub fn radiance_params(scale: &RadianceScale, limit: f32) -> [f32; 4] {
+    [
+        scale.ln_y_lamp() as f32,
+        scale.inverse_white() as f32,
+        if scale.follows_luminance() { 1.0 } else { 0.0 },
+        limit,
+    ]
 }
 
 /// Twin of WGSL `ObjectUniforms`.

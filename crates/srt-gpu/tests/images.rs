@@ -8,8 +8,8 @@ use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip};
 use srt_scene::{
     Effects, Material, Mesh, Part, Scene, SceneDescription, SurfaceColour, builtin_scenes,
 };
-use srt_trace::compare::compare;
-use srt_trace::{RenderSettings, RenderedImage, Tracer};
+use srt_trace::compare::{compare, compare_radiance};
+use srt_trace::{Output, RenderSettings, RenderedImage, Tracer};
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
@@ -60,6 +60,67 @@ fn exact_methods_match_the_cpu_reference_on_every_builtin_scene() {
             }
         }
         println!("{line}");
+    }
+    ctx.take_errors().unwrap();
+}
+
+/// The GPU's radiance (what an EXR holds: linear, unclamped, before the tone map) agrees with the
+/// CPU reference's, relative to each pixel's brightness, on every built-in scene with the
+/// searchlight effect (where radiance leaves [0, 1] furthest: fig7's 200 K lamp makes the
+/// Doppler-shifted cube 10⁴⁰ times its unit, held at the target's largest value) and in
+/// spectral colour; and it exceeds 1 far (display colours end at 1).
+#[test]
+fn radiance_matches_the_cpu_reference() {
+    let Some(ctx) = context_or_skip("radiance_matches_the_cpu_reference") else {
+        return;
+    };
+    let largest = f64::from(srt_gpu::formats::largest_value(ctx.color_format));
+    let settings = RenderSettings {
+        width: WIDTH,
+        height: HEIGHT,
+        samples: 1,
+    };
+    for builtin in builtin_scenes() {
+        let (mut scene, _) = builtin.build().unwrap();
+        scene.set_effects(Effects::Searchlight);
+        for colour in [SurfaceColour::Paper, SurfaceColour::Spectral] {
+            scene.colour = colour;
+            let tracer = Tracer::new(&scene);
+            let mut reference = tracer.render_radiance(settings, &|_| {});
+            for pixel in &mut reference.pixels {
+                *pixel = pixel.clamp(DVec3::splat(-largest), DVec3::splat(largest));
+            }
+            let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+            let (image, _) = renderer
+                .render_as(
+                    &ctx,
+                    &scene,
+                    Method::Auto,
+                    FootprintShape::Hull,
+                    Output::Radiance,
+                )
+                .unwrap();
+            let radiance: Vec<DVec3> = image
+                .pixels
+                .iter()
+                .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
+                .collect();
+            let mismatch = compare_radiance(&reference, &radiance, 0.02, 0.01, 1);
+            let line = format!(
+                "scene={} colour={colour:?}: radiance mismatch={:.5} max={:.3}",
+                builtin.name,
+                mismatch.fraction(),
+                mismatch.max_difference
+            );
+            println!("{line}");
+            assert!(mismatch.fraction() <= 0.001, "{line}");
+            assert!(radiance.iter().all(|p| p.is_finite()), "{line}");
+            if builtin.name == "teaser" && colour == SurfaceColour::Paper {
+                // The approaching spider, at most 1 on screen, is far brighter than 1.
+                let brightest = radiance.iter().map(|p| p.max_element()).fold(0.0, f64::max);
+                assert!(brightest > 10.0, "{line}: brightest pixel {brightest}");
+            }
+        }
     }
     ctx.take_errors().unwrap();
 }

@@ -11,8 +11,8 @@ use naga::{Module, ScalarKind, TypeInner};
 use srt_gpu::types::{
     EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuCieSample, GpuFootprint, GpuFrame,
     GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuSpectralProbeInput,
-    GpuSpectralProbeOutput, GpuStar, GpuVertex, ObjectUniforms, PartFlags, PartUniforms,
-    SkyUniforms, SurfaceColourCode, ToneMapCode,
+    GpuSpectralProbeOutput, GpuStar, GpuVertex, ObjectUniforms, OutputCode, PartFlags,
+    PartUniforms, SkyUniforms, SurfaceColourCode, ToneMapCode,
 };
 
 /// What a member's components are, as both sides can tell.
@@ -53,6 +53,9 @@ impl HasLeaf for SurfaceColourCode {
     const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for ToneMapCode {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for OutputCode {
     const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for PartFlags {
@@ -103,7 +106,7 @@ macro_rules! twin {
 fn table() -> Vec<Twin> {
     vec![
         twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
-        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, padding }),
+        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, output, radiance }),
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),

@@ -16,7 +16,7 @@ use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
     BVH_STACK_SIZE, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN, DRAW_ARGS_SHADE_VERTICES,
     DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
-    PartFlags, SurfaceColourCode, ToneMapCode,
+    OutputCode, PartFlags, SurfaceColourCode, ToneMapCode,
 };
 
 /// Every WGSL const with a Rust twin, and the twin's value.
@@ -42,16 +42,24 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("DRAW_ARGS_SHADE_VERTICES", DRAW_ARGS_SHADE_VERTICES),
         ("DRAW_ARGS_PIECES_TAKEN", DRAW_ARGS_PIECES_TAKEN),
         ("DRAW_ARGS_WORDS", DRAW_ARGS_WORDS),
+        ("OUTPUT_DISPLAY", OutputCode::DISPLAY.0),
+        ("OUTPUT_RADIANCE", OutputCode::RADIANCE.0),
+        (
+            "STAR_LIGHT_WORDS_PER_PIXEL",
+            srt_gpu::sky::STAR_LIGHT_WORDS_PER_PIXEL,
+        ),
     ]
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 7] = [
+const SHARED_FAMILIES: [&str; 9] = [
     "BVH_",
     "DRAW_ARGS_",
     "EFFECTS_",
     "FOOTPRINT_",
+    "OUTPUT_",
     "PART_",
+    "STAR_LIGHT_WORDS_",
     "SURFACE_COLOUR_",
     "TONE_MAP_",
 ];

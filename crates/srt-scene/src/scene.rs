@@ -7,7 +7,7 @@ use crate::sky::Sky;
 use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
 use glam::{DMat4, DVec2, DVec3};
-use srt_color::ToneMap;
+use srt_color::{RadianceScale, RadianceTable, ToneMap};
 use srt_physics::{Event, Frame, Poincare, RelativeFrame};
 
 use crate::mesh::Part;
@@ -270,6 +270,20 @@ impl Scene {
     #[must_use]
     pub fn triangle_count(&self) -> usize {
         self.objects.iter().map(Object::triangle_count).sum()
+    }
+
+    /// How light becomes radiance in this scene's images (srt-color's `radiance` module):
+    /// brightness follows luminance with the searchlight effect, the unit is the lamp's light
+    /// on a white surface at rest facing it (f_amb + f_diff + f_spec).
+    #[must_use]
+    pub fn radiance_scale(&self, table: &RadianceTable) -> RadianceScale {
+        let shading = self.shading;
+        RadianceScale::new(
+            table,
+            self.effects == Effects::Searchlight,
+            self.light.temperature_k,
+            shading.ambient + shading.diffuse + shading.specular,
+        )
     }
 
     /// Sets the effect mode and the colour table that goes with it.

@@ -18,9 +18,9 @@ use bvh::ray::Ray;
 use glam::{DVec2, DVec3, DVec4};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
-use srt_color::{RadianceScale, RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
+use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
 use srt_physics::{Event, Frame, RestRay};
-use srt_scene::{Effects, Mesh, Object, Part, Scene};
+use srt_scene::{Mesh, Object, Part, Scene};
 
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::seen::SeenEvent;
@@ -65,14 +65,7 @@ impl RenderedImage {
     }
 }
 
-/// What a render's pixels hold.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Output {
-    /// Display colours through the tone map, in [0, 1].
-    Display,
-    /// Radiance, unclamped.
-    Radiance,
-}
+pub use srt_color::Output;
 
 /// A triangle of one of an object's parts, as a leaf of the object's BVH.
 #[derive(Debug, Clone)]
@@ -506,13 +499,7 @@ impl<'a> Tracer<'a> {
         let direction_at = |x: f64, y: f64| pixel_direction(self.scene, width, height, x, y);
         let offsets = sample_offsets(samples.max(1));
         let table = RadianceTable::shared();
-        let shading = self.scene.shading;
-        let scale = RadianceScale::new(
-            table,
-            self.scene.effects == Effects::Searchlight,
-            self.scene.light.temperature_k,
-            shading.ambient + shading.diffuse + shading.specular,
-        );
+        let scale = self.scene.radiance_scale(table);
         let value = |light: &Arriving| match output {
             Output::Display => light.display(&self.lut, self.scene.exposure),
             Output::Radiance => light.radiance(table, &scale),

@@ -4,13 +4,14 @@
 use super::*;
 
 impl super::GpuRenderer {
-    /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities);
-    /// returns the tone map's index in [`ToneMap::ALL`].
+    /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities) and
+    /// what the passes write (`output`); returns the tone map's index in [`ToneMap::ALL`].
     pub(super) fn write_uniforms(
         &self,
         ctx: &GpuContext,
         scene: &Scene,
         footprint: FootprintShape,
+        output: Output,
     ) -> Result<usize, GpuError> {
         if scene.objects.len() != self.objects.len()
             || scene
@@ -47,7 +48,7 @@ impl super::GpuRenderer {
                 scene.shading.specular as f32,
                 scene.shading.shininess as f32,
             ],
-            background: vec4(scene.background, 1.0),
+            background: vec4(background_as(output, scene.background), 1.0),
             lut: self.frame.lut_params[tone],
             viewport: [
                 width as f32,
@@ -62,7 +63,11 @@ impl super::GpuRenderer {
             tone_map: ToneMapCode::from(scene.tone_map),
             exposure: scene.exposure as f32,
             searchlight_ln_y: searchlight_reference_ln_y() as f32,
-            padding: 0,
+            output: OutputCode::from(output),
+            radiance: radiance_params(
+                &scene.radiance_scale(RadianceTable::shared()),
+                largest_value(ctx.color_format),
+            ),
         };
         ctx.queue
             .write_buffer(&self.frame.uniforms, 0, bytemuck::bytes_of(&uniforms));
@@ -97,7 +102,7 @@ impl super::GpuRenderer {
         Ok(tone)
     }
 
-    /// Records the passes of one frame into `encoder`, leaving the image in
+    /// Records the passes of one frame into `encoder`, leaving the image (display colours) in
     /// [`GpuRenderer::color_texture`].
     ///
     /// # Errors
@@ -110,7 +115,23 @@ impl super::GpuRenderer {
         method: Method,
         footprint: FootprintShape,
     ) -> Result<(), GpuError> {
-        let tone = self.write_uniforms(ctx, scene, footprint)?;
+        self.encode_as(ctx, encoder, scene, method, footprint, Output::Display)
+    }
+
+    /// [`GpuRenderer::encode`] writing `output`: display colours or radiance.
+    ///
+    /// # Errors
+    /// As [`GpuRenderer::encode`].
+    pub fn encode_as(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+        output: Output,
+    ) -> Result<(), GpuError> {
+        let tone = self.write_uniforms(ctx, scene, footprint, output)?;
         let traced = self.traced_objects(method)?;
         if self.count_fragments {
             encoder.clear_buffer(&self.counter.counter, 0, None);
@@ -138,7 +159,8 @@ impl super::GpuRenderer {
             }
             self.encode_proxy_pass(encoder, tone, &traced);
         }
-        self.encode_render_pass(&ctx.device, encoder, scene, method, tone, &traced);
+        let background = background_as(output, scene.background);
+        self.encode_render_pass(&ctx.device, encoder, background, method, tone, &traced);
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
             encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
@@ -223,7 +245,7 @@ impl super::GpuRenderer {
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &Scene,
+        background: DVec3,
         method: Method,
         tone: usize,
         traced: &[Option<&ObjectRayTracing>],
@@ -234,7 +256,7 @@ impl super::GpuRenderer {
             view(&self.targets.depth),
             view(&self.targets.ids),
         );
-        let background = self.encode_background(encoder, scene, tone, &color_view);
+        let background = self.encode_background(encoder, background, tone, &color_view);
         let depth = wgpu::RenderPassDepthStencilAttachment {
             view: &depth_view,
             depth_ops: Some(wgpu::Operations {
@@ -331,16 +353,17 @@ impl super::GpuRenderer {
     }
 
     /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
-    /// colour target: over the sky, or cleared to the scene's background.
+    /// colour target: over the sky, or cleared to `background` (the scene's, as the output
+    /// holds it).
     fn encode_background(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &Scene,
+        background: DVec3,
         tone: usize,
         color_view: &wgpu::TextureView,
     ) -> wgpu::LoadOp<wgpu::Color> {
         let Some(sky) = &self.sky else {
-            let b = scene.background;
+            let b = background;
             return wgpu::LoadOp::Clear(wgpu::Color {
                 r: b.x,
                 g: b.y,
@@ -476,5 +499,14 @@ impl super::GpuRenderer {
             // Checked at upload: FOOTPRINT_VERTICES × triangles fits in u32.
             pass.draw(0..FOOTPRINT_VERTICES * part.sizes.triangles, 0..1);
         }
+    }
+}
+
+/// The background colour `display` (sRGB-encoded) as `output` holds it: itself, or its radiance
+/// (decoded, as the CPU reference writes it).
+fn background_as(output: Output, display: DVec3) -> DVec3 {
+    match output {
+        Output::Display => display,
+        Output::Radiance => display.map(srgb_decode),
     }
 }

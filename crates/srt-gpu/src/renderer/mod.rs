@@ -8,14 +8,18 @@
 
 use std::sync::Arc;
 
-use srt_color::{TemperatureLut, ToneMap, quantize_8bit, searchlight_reference_ln_y};
+use glam::DVec3;
+use srt_color::{
+    Output, RadianceTable, TemperatureLut, ToneMap, quantize_8bit, searchlight_reference_ln_y,
+    srgb_decode,
+};
 use srt_scene::{Object, Part, Scene};
 use wgpu::util::DeviceExt as _;
 
 use crate::context::GpuContext;
 use crate::culling::BackFaceCulling;
 use crate::error::GpuError;
-use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
+use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT, largest_value};
 use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{
@@ -32,8 +36,9 @@ use crate::textures::part_texture;
 use crate::types::{
     DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
     FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
-    GpuVertex, ObjectUniforms, PART_BOUND_BYTES, PartFlags, PartUniforms, SHADE_DRAW_OFFSET,
-    SurfaceColourCode, ToneMapCode, footprint_slots, mat4, optics4, vec4,
+    GpuVertex, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags, PartUniforms,
+    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, footprint_slots, mat4, optics4,
+    radiance_params, vec4,
 };
 
 mod encode;
@@ -105,7 +110,8 @@ impl From<FootprintShape> for FootprintCode {
     }
 }
 
-/// A rendered image read back from the GPU: display colours (sRGB-encoded, [0, 1]), RGBA.
+/// A rendered image read back from the GPU, RGBA: display colours (sRGB-encoded, [0, 1]), or
+/// radiance ([`GpuRenderer::render_as`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpuImage {
     /// Width in pixels.
@@ -275,7 +281,7 @@ impl GpuRenderer {
         &self.targets.color
     }
 
-    /// Renders one frame of `scene` and reads it back.
+    /// Renders one frame of `scene` (display colours) and reads it back.
     ///
     /// # Errors
     /// wgpu errors, a lost device, or a scene whose structure differs from the uploaded one.
@@ -286,12 +292,29 @@ impl GpuRenderer {
         method: Method,
         footprint: FootprintShape,
     ) -> Result<(GpuImage, FrameStats), GpuError> {
+        self.render_as(ctx, scene, method, footprint, Output::Display)
+    }
+
+    /// Renders one frame of `scene` writing `output` and reads it back: display colours as
+    /// [`GpuRenderer::render`], or radiance (linear BT.709, unclamped, the unit of srt-color's
+    /// `radiance` module; held to ±65 504 where the colour target is half float).
+    ///
+    /// # Errors
+    /// As [`GpuRenderer::render`].
+    pub fn render_as(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+        output: Output,
+    ) -> Result<(GpuImage, FrameStats), GpuError> {
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("srt frame"),
             });
-        self.encode(ctx, &mut encoder, scene, method, footprint)?;
+        self.encode_as(ctx, &mut encoder, scene, method, footprint, output)?;
         let t = &self.targets;
         t.readback.encode_copy(&mut encoder, &t.color);
         ctx.queue.submit([encoder.finish()]);
