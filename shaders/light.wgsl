@@ -11,6 +11,11 @@
 const OUTPUT_DISPLAY: u32 = 0u;
 // FrameUniforms.output: radiance (twin of srt_gpu::types::OutputCode::RADIANCE).
 const OUTPUT_RADIANCE: u32 = 1u;
+// FrameUniforms.output: what each pixel sees of time (surface.wgsl's seen_pixel): emission ct_W,
+// proper time, apparent distance, Doppler factor (twin of OutputCode::SEEN_EVENT).
+const OUTPUT_SEEN_EVENT: u32 = 2u;
+// FrameUniforms.output: the seen object's index in x (twin of OutputCode::SEEN_OBJECT).
+const OUTPUT_SEEN_OBJECT: u32 = 3u;
 
 // Arriving.kind: a colour-table light factor · C(temperature_k) (Arriving::Table).
 const ARRIVING_TABLE: u32 = 0u;

@@ -154,6 +154,10 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let h = lrt_hit(t, pixel);
     let corners = h.corners;
     let hit = h.hit;
+    let emission = vec4<f32>(h.ray.ct_origin - hit.distance, h.ray.origin + hit.distance * h.ray.direction);
+    if (writes_seen_events()) {
+        return seen_pixel(emission);
+    }
     // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
     var uv_ddx = vec2<f32>(0.0);
     var uv_ddy = vec2<f32>(0.0);
@@ -166,7 +170,6 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, hx.zeta, hx.xi) - uv, hx.found);
         uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
     }
-    let emission = vec4<f32>(h.ray.ct_origin - hit.distance, h.ray.origin + hit.distance * h.ray.direction);
     let apparent = to_observer(object.frame, emission).yzw;
     let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy);
     return shade(t, hit.zeta, hit.xi, apparent, albedo);

@@ -24,6 +24,13 @@ fn polygon_vertex(@builtin(vertex_index) v: u32) -> PolygonVarying {
 
 @fragment
 fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
+    if (writes_seen_events()) {
+        // The emission event of the rest point this fragment draws (the method's approximation).
+        let p = triangle_corners(in.triangle);
+        let b = in.barycentric;
+        let rest = (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
+        return seen_pixel(emission_event(object.frame, rest));
+    }
     let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
     let uv_ddx = dpdx(uv);
     let uv_ddy = dpdy(uv);

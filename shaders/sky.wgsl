@@ -241,6 +241,10 @@ fn sky_image_light(direction: vec3<f32>) -> Arriving {
 
 @fragment
 fn sky_compose(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    // Where no object is seen, the seen-event outputs write their "nothing" (the background).
+    if (frame_uniforms.output == OUTPUT_SEEN_EVENT || frame_uniforms.output == OUTPUT_SEEN_OBJECT) {
+        return frame_uniforms.background;
+    }
     let stars = star_light_at(u32(position.y) * u32(frame_uniforms.viewport.x) + u32(position.x));
     let image = arriving_output(sky_image_light(view_direction(position.xy)));
     return output_pixel(frame_uniforms.background.rgb + image + stars);

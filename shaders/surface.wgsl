@@ -178,3 +178,26 @@ fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f
 fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> vec4<f32> {
     return output_pixel(arriving_output(surface_light(t, zeta, xi, apparent, albedo)));
 }
+
+// What a pixel sees of time at the emission event `emission_rest` (rest coordinates) on the
+// current object, as the seen-event outputs write it (mirror of srt_trace::SeenEvent):
+// OUTPUT_SEEN_EVENT (world time ct_W, the object's proper time, the apparent distance, the
+// Doppler factor of the light towards the observer), or OUTPUT_SEEN_OBJECT (its index in x).
+fn seen_pixel(emission_rest: vec4<f32>) -> vec4<f32> {
+    if (frame_uniforms.output == OUTPUT_SEEN_OBJECT) {
+        return vec4<f32>(object.time.x, 0.0, 0.0, 0.0);
+    }
+    let event = to_observer(object.frame, emission_rest);
+    let towards_observer = frame_uniforms.observer.xyz - event.yzw;
+    return vec4<f32>(
+        dot(object.world_time, emission_rest) + object.time.z,
+        emission_rest.x - object.time.y,
+        length(towards_observer),
+        doppler_factor(object.frame.beta_gamma.xyz, normalize(towards_observer)),
+    );
+}
+
+// Whether the frame writes what pixels see of time rather than light.
+fn writes_seen_events() -> bool {
+    return frame_uniforms.output == OUTPUT_SEEN_EVENT || frame_uniforms.output == OUTPUT_SEEN_OBJECT;
+}

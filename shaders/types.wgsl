@@ -52,8 +52,9 @@ struct FrameUniforms {
     light: vec4<f32>,
     // Phong factors: ambient, diffuse, specular, shininess.
     shading: vec4<f32>,
-    // Background as the output holds it (rgb): the display colour, or its radiance (the colour
-    // sRGB-decoded); alpha 1.
+    // Background as the output holds it: the display colour, or its radiance (the colour
+    // sRGB-decoded), alpha 1; for the seen-event outputs, what a pixel that sees no object holds
+    // (0, and −1 as the object index).
     background: vec4<f32>,
     // Colour table: ln T_min, ln T_max, texel count, unused.
     lut: vec4<f32>,
@@ -88,6 +89,12 @@ struct ObjectUniforms {
     // Spectral colour (srt_scene::SurfaceOptics): ultraviolet and infrared reflectances (< 0:
     // none), emission temperature in kelvin (≤ 0: the object does not glow) and brightness.
     optics: vec4<f32>,
+    // Its time, for the seen-event outputs (srt_trace::SeenEvent): x its index in scene order,
+    // y its rest_time_shift (rest coordinates' ct′ − its proper time), z the world time ct_W of
+    // the rest coordinates' origin event; w unused.
+    time: vec4<f32>,
+    // The time row of rest coordinates → W: ct_W of a rest event e′ is dot(world_time, e′) + time.z.
+    world_time: vec4<f32>,
 }
 
 // Per mesh part: its material.

@@ -244,27 +244,50 @@ impl Engine {
 /// The per-pixel channels `--aov` adds to an EXR (and `srt.render(aov=True)` returns), in the
 /// order of [`aov_values`]: what each pixel's centre sees of time ([`SeenEvent`];
 /// docs/scene-format.md, "Per-pixel channels").
-pub const AOV_CHANNELS: [&str; 5] = [
-    "emission_ct",
-    "proper_time",
-    "distance",
-    "doppler",
-    "object",
-];
+pub const AOV_CHANNELS: [&str; 5] = srt_gpu::SEEN_CHANNELS;
 
-/// What each pixel's centre sees of time, row-major from the top (`None`: no object), from the
-/// exact CPU tracer whichever engine draws the display colours (the GPU passes do not write
-/// these channels yet). `None` if `stop` was set.
-#[must_use]
-pub fn render_seen_events(
-    frame: &Frame<'_>,
-    settings: RenderSettings,
-    progress: &(dyn Fn(u32) + Sync),
-    stop: &AtomicBool,
-) -> Option<Vec<Option<SeenEvent>>> {
-    frame
-        .tracer()
-        .render_seen_events(settings.width, settings.height, progress, stop)
+impl Engine {
+    /// What each pixel's centre sees of time, row-major from the top, as [`AOV_CHANNELS`] orders
+    /// it ([`aov_values`]): from the CPU tracer, or the GPU's seen-event passes
+    /// ([`GpuRenderer::render_seen`], rendered at the output size whatever the supersampling,
+    /// since a pixel's event is its centre's). A GPU whose colour target is half float (GL)
+    /// cannot hold times to f32 precision, so the CPU tracer computes them there. `Ok(None)` if
+    /// `stop` was set.
+    ///
+    /// # Errors
+    /// A GPU failure.
+    pub fn render_aov(
+        &mut self,
+        frame: &Frame<'_>,
+        settings: RenderSettings,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> anyhow::Result<Option<Vec<[f32; 5]>>> {
+        let scene = frame.scene();
+        match self {
+            Self::Gpu {
+                context,
+                renderer,
+                scale,
+                method,
+            } if context.color_format == srt_gpu::formats::COLOR_FORMAT => {
+                let failed = || format!("GPU rendering of {}'s time channels failed", scene.name);
+                let (width, height) = (settings.width, settings.height);
+                renderer
+                    .resize(context, width, height)
+                    .with_context(failed)?;
+                let seen = renderer.render_seen(context, scene, *method, FootprintShape::Hull);
+                renderer
+                    .resize(context, width * *scale, height * *scale)
+                    .with_context(failed)?;
+                Ok(Some(seen.with_context(failed)?))
+            }
+            _ => Ok(frame
+                .tracer()
+                .render_seen_events(settings.width, settings.height, progress, stop)
+                .map(|events| events.iter().map(|e| aov_values(e.as_ref())).collect())),
+        }
+    }
 }
 
 /// A pixel's [`AOV_CHANNELS`] values as 32-bit floats: the object's index in scene order, or −1

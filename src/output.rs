@@ -9,10 +9,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use image::RgbImage;
-use srt::engine::{AOV_CHANNELS, aov_values, channel_f32, display_as_linear};
+use srt::engine::{AOV_CHANNELS, channel_f32, display_as_linear};
 use srt_color::quantize_8bit;
 use srt_scene::message::io_reason;
-use srt_trace::SeenEvent;
 
 use srt_video::{
     AtomicFile, VideoFormat, lowercase_extension, parent_folder, temporary_file_beside,
@@ -145,15 +144,16 @@ pub const EXR_RADIANCE_NOTE: &str = "R, G, B: radiance before the tone map and e
 pub struct ExrLayers {
     /// Radiance, R, G, B, row-major from the top.
     pub radiance: Vec<DVec3>,
-    /// Each pixel's emission event, for the [`AOV_CHANNELS`] (`None`: not asked for).
-    pub seen: Option<Vec<Option<SeenEvent>>>,
+    /// Each pixel's [`AOV_CHANNELS`] values ([`srt::engine::aov_values`]; `None`: not asked for).
+    pub seen: Option<Vec<[f32; 5]>>,
 }
 
 /// What the [`AOV_CHANNELS`] of srt's EXR hold, appended to [`EXR_RADIANCE_NOTE`] in its record.
 pub const EXR_AOV_NOTE: &str = "; emission_ct, proper_time, distance, doppler, object: what each \
      pixel's centre sees of time (the emission event's world time ct, the object's proper time \
      ct' there, the apparent distance, the Doppler factor of its light, the object's index or \
-     -1; docs/scene-format.md), from the exact CPU tracer";
+     -1; docs/scene-format.md), drawn by the record's engine (on the CPU where the GPU renders half \
+     floats)";
 
 /// Writes a `width` × `height` image to `path` (format by extension) atomically, with `record`
 /// stored in it: a PNG of `display` (display colours, sRGB-encoded, [0, 1], row-major from the
@@ -243,8 +243,7 @@ fn write_exr(
     for (index, name) in EXR_DISPLAY_CHANNELS.into_iter().enumerate() {
         channels.push(channel(name, component(display, index, display_as_linear)));
     }
-    if let Some(seen) = &layers.seen {
-        let values: Vec<[f32; 5]> = seen.iter().map(|s| aov_values(s.as_ref())).collect();
+    if let Some(values) = &layers.seen {
         for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
             channels.push(channel(name, values.iter().map(|v| v[index]).collect()));
         }

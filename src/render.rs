@@ -394,7 +394,7 @@ fn render_pixels(
 
 /// What an image written to `path` holds beside its display colours, if its format holds more
 /// (EXR): the radiance, rendered by `engine` as the display colours are, and, with `aov`, what
-/// each pixel sees of time ([`srt::engine::render_seen_events`]).
+/// each pixel sees of time ([`Engine::render_aov`]).
 fn exr_layers_for(
     engine: &mut Engine,
     path: &Path,
@@ -408,10 +408,17 @@ fn exr_layers_for(
     let never = AtomicBool::new(false);
     let finished = "a render that is never stopped finishes";
     let radiance = engine.render(frame, settings, Output::Radiance, &|_| {}, &never)?;
+    let seen = if aov {
+        Some(
+            engine
+                .render_aov(frame, settings, &|_| {}, &never)?
+                .expect(finished),
+        )
+    } else {
+        None
+    };
     Ok(Some(ExrLayers {
         radiance: radiance.expect(finished),
-        seen: aov.then(|| {
-            srt::engine::render_seen_events(frame, settings, &|_| {}, &never).expect(finished)
-        }),
+        seen,
     }))
 }

@@ -12,13 +12,13 @@ use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use srt::engine::{
-    AOV_CHANNELS, Backend, Engine, Frame, MAX_IMAGE_SIDE, MAX_SAMPLES, aov_values, channel_f32,
-    display_as_linear, render_seen_events,
+    AOV_CHANNELS, Backend, Engine, Frame, MAX_IMAGE_SIDE, MAX_SAMPLES, channel_f32,
+    display_as_linear,
 };
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
 use srt_scene::{Effects, LoadedScene, OverrideNames, Overrides, SceneSource, SurfaceColour, View};
-use srt_trace::{Output, RenderSettings, SeenEvent};
+use srt_trace::{Output, RenderSettings};
 
 use crate::errors;
 use crate::scene::Scene;
@@ -54,7 +54,7 @@ struct Rendered {
     /// Display colours (sRGB-encoded, [0, 1]) when asked for.
     display: Option<Vec<DVec3>>,
     /// What each pixel sees of time, when asked for.
-    seen: Option<Vec<Option<SeenEvent>>>,
+    seen: Option<Vec<[f32; 5]>>,
     /// Warnings met loading the scene, and the engine's note.
     warnings: Vec<String>,
 }
@@ -174,12 +174,7 @@ pub fn render<'py>(
         "display",
         image_array(py, shape, &display, display_as_linear),
     )?;
-    let values: Vec<[f32; 5]> = rendered
-        .seen
-        .unwrap_or_default()
-        .iter()
-        .map(|event| aov_values(event.as_ref()))
-        .collect();
+    let values = rendered.seen.unwrap_or_default();
     for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
         let channel: Vec<f32> = values.iter().map(|v| v[index]).collect();
         let array = Array2::from_shape_vec((shape.0, shape.1), channel)
@@ -240,8 +235,10 @@ impl Request {
         };
         let radiance = render(Output::Radiance)?;
         let seen = if self.aov {
-            let events = render_seen_events(&frame, self.settings, &|_| {}, stop);
-            Some(events.ok_or(Failure::Stopped)?)
+            let values = engine
+                .render_aov(&frame, self.settings, &|_| {}, stop)
+                .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
+            Some(values.ok_or(Failure::Stopped)?)
         } else {
             None
         };

@@ -134,7 +134,7 @@ def test_an_edited_scene_renders_as_the_override_does():
     assert not np.array_equal(edited, srt.render("fig4", **SMALL, backend="cpu"))
 
 
-def test_the_gpu_draws_the_display_and_the_radiance_near_the_cpu():
+def test_the_gpu_draws_the_display_the_radiance_and_the_time_near_the_cpu():
     try:
         gpu = srt.render("fig7", **SMALL, backend="gpu", aov=True)
     except srt.GpuError as error:
@@ -148,6 +148,13 @@ def test_the_gpu_draws_the_display_and_the_radiance_near_the_cpu():
     assert (relative > 0.02).mean() < 0.01, "the GPU mirrors the CPU but for a few edge pixels"
     difference = np.abs(gpu["display"] - cpu["display"]).max(axis=-1)
     assert (difference > 0.01).mean() < 0.01, "the GPU mirrors the CPU but for a few edge pixels"
+    # The time channels: the same objects, each value to validate's 1e-3 of its magnitude (the
+    # CPU computes them where the GPU's colour target holds half floats).
+    same_object = gpu["object"] == cpu["object"]
+    assert same_object.mean() > 0.99 and (cpu["object"] >= 0).any()
+    for name in ("emission_ct", "proper_time", "distance", "doppler"):
+        relative = np.abs(gpu[name] - cpu[name]) / np.maximum(np.abs(cpu[name]), 1.0)
+        assert (relative[same_object] <= 1e-3).all(), name
 
 
 @pytest.mark.parametrize(

@@ -13,12 +13,16 @@
 //!    which picks one of them per object) and the polygon method against the exact CPU
 //!    reference. The metric is the fraction
 //!    of pixels differing by more than 2/255 in any channel, not counting pixels within 1 px of a
-//!    silhouette edge of the CPU image. PNGs go to `target/validate/`.
+//!    silhouette edge of the CPU image. PNGs go to `target/validate/`. The exact methods'
+//!    radiance (an EXR's R, G, B) is compared too, relative to each pixel's brightness (2 %,
+//!    absolute below 1 % of the unit), and so are their `--aov` channels, what each pixel sees
+//!    of time (the same object; each value within 1e-3 of its magnitude, at least 1).
 //!
 //! Exits non-zero if any exact method's mismatch exceeds 0.001, any kernel its tolerance, or any
 //! footprint is not conservative.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
 
 use anyhow::Context as _;
 use glam::{DVec2, DVec3};
@@ -32,7 +36,7 @@ use srt_gpu::projection::view_projection;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_proxy::{Viewport, footprint};
 use srt_scene::Scene;
-use srt_trace::compare::{compare, compare_radiance};
+use srt_trace::compare::{compare, compare_radiance, compare_seen};
 use srt_trace::{Output, RenderSettings, Tracer};
 
 use crate::cases::{Case, ENGINE, builtin_cases, fly_by_cases, model_case, with_speed};
@@ -50,6 +54,9 @@ const MAX_MISMATCH: f64 = 0.001;
 const RADIANCE_TOLERANCE: f64 = 0.02;
 /// Radiance below which differences count absolutely: 1 % of a white surface facing the lamp.
 const RADIANCE_FLOOR: f64 = 0.01;
+/// What pixels see of time: a pixel differs when its object differs or a channel is off by
+/// more than this fraction of its magnitude (at least 1, in scene units of ct).
+const SEEN_TOLERANCE: f64 = 1e-3;
 /// Speeds of the image cases.
 const SPEEDS: [f64; 3] = [0.5, 0.9, 0.99];
 /// The assimp models of the image cases.
@@ -107,7 +114,7 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
             *speed,
             (WIDTH, HEIGHT),
             &out,
-            Compared::DisplayAndRadiance,
+            Compared::Everything,
         )?);
     }
     ctx.take_errors()?;
@@ -403,13 +410,14 @@ fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<Stri
 enum Compared {
     /// Display colours.
     Display,
-    /// Display colours and the exact methods' radiance.
-    DisplayAndRadiance,
+    /// Display colours, and the exact methods' radiance and what their pixels see of time.
+    Everything,
 }
 
 /// GPU images of the exact methods (LRT, the ray tracer and `auto`, which picks one of them per
 /// object) and of the polygon method against the CPU reference; with
-/// [`Compared::DisplayAndRadiance`], the exact methods' radiance too (relative, [`compare_radiance`]).
+/// [`Compared::Everything`], the exact methods' radiance (relative, [`compare_radiance`])
+/// and their `--aov` channels ([`compare_seen`]) too.
 fn validate_image(
     ctx: &GpuContext,
     case: &Case,
@@ -436,8 +444,8 @@ fn validate_image(
     let rt_mismatch = compare(&reference, &rt_rgb, TOLERANCE, EDGE_MARGIN);
     let auto_mismatch = compare(&reference, &auto_rgb, TOLERANCE, EDGE_MARGIN);
     let polygon_mismatch = compare(&reference, &polygon_rgb, TOLERANCE, EDGE_MARGIN);
-    let mut radiance_mismatches = Vec::new();
-    if compared == Compared::DisplayAndRadiance {
+    let mut further_mismatches = Vec::new();
+    if compared == Compared::Everything {
         let mut reference = tracer.render_radiance(settings, &|_| {});
         // As the GPU's colour target holds it: each channel's magnitude at most its largest
         // value (f32's, as an EXR holds it, or a half float's).
@@ -460,7 +468,14 @@ fn validate_image(
                 RADIANCE_FLOOR,
                 EDGE_MARGIN,
             );
-            radiance_mismatches.push((method.name(), mismatch));
+            further_mismatches.push((format!("{}_radiance", method.name()), mismatch));
+        }
+        let events = tracer.render_seen_events(width, height, &|_| {}, &AtomicBool::new(false));
+        let events = events.context("a render without a stop flag finishes")?;
+        for method in [Method::Lrt, Method::Rt, Method::Auto] {
+            let seen = renderer.render_seen(ctx, scene, method, FootprintShape::Hull)?;
+            let mismatch = compare_seen(&reference, &events, &seen, SEEN_TOLERANCE, EDGE_MARGIN);
+            further_mismatches.push((format!("{}_seen", method.name()), mismatch));
         }
     }
     let traced = renderer
@@ -468,12 +483,12 @@ fn validate_image(
         .iter()
         .filter(|l| l.is_some_and(|l| l > srt_gpu::ray_tracing::AUTO_LAYERS))
         .count();
-    let radiance_report: String = radiance_mismatches
+    let further_report: String = further_mismatches
         .iter()
-        .map(|(method, m)| format!(" {method}_radiance_mismatch={:.6}", m.fraction()))
+        .map(|(what, m)| format!(" {what}_mismatch={:.6}", m.fraction()))
         .collect();
     println!(
-        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}{radiance_report}",
+        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}{further_report}",
         case.name,
         mismatch.fraction(),
         rt_mismatch.fraction(),
@@ -521,12 +536,12 @@ fn validate_image(
         ("auto", auto_mismatch.fraction()),
     ]
     .map(|(method, fraction)| (method.to_owned(), fraction));
-    let radiance = radiance_mismatches
+    let further = further_mismatches
         .iter()
-        .map(|(method, m)| (format!("{method} radiance"), m.fraction()));
+        .map(|(what, m)| (what.replace('_', " "), m.fraction()));
     Ok(display
         .into_iter()
-        .chain(radiance)
+        .chain(further)
         .filter(|(_, fraction)| *fraction > MAX_MISMATCH)
         .map(|(what, fraction)| {
             format!(

@@ -48,5 +48,6 @@ pub use context::{GpuContext, context_or_skip};
 pub use error::GpuError;
 pub use readback::{TextureReadback, read_texture};
 pub use renderer::{
-    FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method, TriangleFootprints,
+    FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method, SEEN_CHANNELS,
+    TriangleFootprints,
 };

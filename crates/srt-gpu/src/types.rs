@@ -7,8 +7,8 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3};
 use srt_color::{Output, RadianceScale, ToneMap};
-use srt_physics::{Event, Frame};
-use srt_scene::{Effects, SurfaceColour, SurfaceOptics};
+use srt_physics::{Event, Frame, Poincare};
+use srt_scene::{Effects, Object, SurfaceColour, SurfaceOptics};
 
 /// Converts an f64 matrix to the column-major f32 array WGSL expects.
 #[must_use]
@@ -175,7 +175,7 @@ pub struct FrameUniforms {
     pub light: [f32; 4],
     /// Ambient, diffuse, specular, shininess.
     pub shading: [f32; 4],
-    /// Background colour.
+    /// Background as the output holds it (WGSL's comment says how).
     pub background: [f32; 4],
     /// ln T_min, ln T_max, texel count, unused.
     pub lut: [f32; 4],
@@ -212,6 +212,11 @@ impl OutputCode {
     pub const DISPLAY: Self = Self(0);
     /// Radiance (WGSL `OUTPUT_RADIANCE`).
     pub const RADIANCE: Self = Self(1);
+    /// What each pixel sees of time: emission ct_W, proper time, apparent distance, Doppler
+    /// factor (WGSL `OUTPUT_SEEN_EVENT`).
+    pub const SEEN_EVENT: Self = Self(2);
+    /// The seen object's index in the first channel, −1 for none (WGSL `OUTPUT_SEEN_OBJECT`).
+    pub const SEEN_OBJECT: Self = Self(3);
 }
 
 impl From<Output> for OutputCode {
@@ -245,6 +250,27 @@ pub struct ObjectUniforms {
     pub style: [f32; 4],
     /// Spectral optics ([`optics4`]).
     pub optics: [f32; 4],
+    /// Index in scene order, rest-time shift, ct_W of the rest origin, 0 ([`object_time`]).
+    pub time: [f32; 4],
+    /// The time row of the object's rest coordinates → W ([`object_time`]).
+    pub world_time: [f32; 4],
+}
+
+/// `ObjectUniforms::time` and `world_time` of `object`, the `index`-th of a scene whose S → W
+/// transformation is `world`: with them a shader turns a rest event e′ into the object's proper
+/// time (e′.ct − rest_time_shift) and the world time ct_W = dot(world_time, e′) + time.z, the
+/// composition of Eq. 1 (S′ → S) and S → W computed here in f64.
+#[must_use]
+pub fn object_time(object: &Object, index: usize, world: &Poincare) -> ([f32; 4], [f32; 4]) {
+    let to_world = Poincare::of_frame(&object.frame).then(world);
+    let row = to_world.lorentz.row(0);
+    let time = [
+        index as f32,
+        object.rest_time_shift as f32,
+        to_world.translation.x as f32,
+        0.0,
+    ];
+    (time, row.as_vec4().to_array())
 }
 
 /// `PartUniforms::flags`: one bit per yes/no property of a mesh part (WGSL `PART_*` in

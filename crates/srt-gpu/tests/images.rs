@@ -3,12 +3,14 @@
 //! polygon baseline (reported, expected to differ), with the paper's colour and with spectral
 //! colour.
 
+use std::sync::atomic::AtomicBool;
+
 use glam::DVec3;
 use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip};
 use srt_scene::{
     Effects, Material, Mesh, Part, Scene, SceneDescription, SurfaceColour, builtin_scenes,
 };
-use srt_trace::compare::{compare, compare_radiance};
+use srt_trace::compare::{compare, compare_radiance, compare_seen};
 use srt_trace::{Output, RenderSettings, RenderedImage, Tracer};
 
 const WIDTH: u32 = 320;
@@ -120,6 +122,41 @@ fn radiance_matches_the_cpu_reference() {
                 let brightest = radiance.iter().map(|p| p.max_element()).fold(0.0, f64::max);
                 assert!(brightest > 10.0, "{line}: brightest pixel {brightest}");
             }
+        }
+    }
+    ctx.take_errors().unwrap();
+}
+
+#[test]
+fn seen_events_match_the_cpu_reference() {
+    let Some(ctx) = context_or_skip("seen_events_match_the_cpu_reference") else {
+        return;
+    };
+    // The passes compute in f32; a half-float colour target (GL) rounds each value to 11 bits.
+    let half_float = srt_gpu::formats::largest_value(ctx.color_format) < f32::MAX;
+    let tolerance = if half_float { 2e-3 } else { 1e-3 };
+    for builtin in builtin_scenes() {
+        let (scene, _) = builtin.build().unwrap();
+        let reference = cpu_image(&scene);
+        let events = Tracer::new(&scene)
+            .render_seen_events(WIDTH, HEIGHT, &|_| {}, &AtomicBool::new(false))
+            .unwrap();
+        let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+        for method in [Method::Lrt, Method::Rt] {
+            let seen = renderer
+                .render_seen(&ctx, &scene, method, FootprintShape::Hull)
+                .unwrap();
+            let mismatch = compare_seen(&reference, &events, &seen, tolerance, 1);
+            let line = format!(
+                "scene={} method={method:?}: seen-event mismatch={:.5} max={:.2e} (tolerance {tolerance})",
+                builtin.name,
+                mismatch.fraction(),
+                mismatch.max_difference,
+            );
+            println!("{line}");
+            assert!(mismatch.fraction() <= 0.001, "{line}");
+            let objects = seen.iter().filter(|v| v[4] >= 0.0).count();
+            assert!(objects > 0, "{line}: no pixel sees an object");
         }
     }
     ctx.take_errors().unwrap();

@@ -44,6 +44,8 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("DRAW_ARGS_WORDS", DRAW_ARGS_WORDS),
         ("OUTPUT_DISPLAY", OutputCode::DISPLAY.0),
         ("OUTPUT_RADIANCE", OutputCode::RADIANCE.0),
+        ("OUTPUT_SEEN_EVENT", OutputCode::SEEN_EVENT.0),
+        ("OUTPUT_SEEN_OBJECT", OutputCode::SEEN_OBJECT.0),
         (
             "STAR_LIGHT_WORDS_PER_PIXEL",
             srt_gpu::sky::STAR_LIGHT_WORDS_PER_PIXEL,

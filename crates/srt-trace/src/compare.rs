@@ -2,11 +2,13 @@
 //! more than a tolerance in any channel, not counting pixels near a silhouette edge of the
 //! reference (where a pixel-centre sample may legitimately fall on either side of an edge).
 //! Display colours are compared in 8-bit steps ([`compare`]), radiance relative to the
-//! reference's brightness ([`compare_radiance`]).
+//! reference's brightness ([`compare_radiance`]), what pixels see of time channel by channel
+//! ([`compare_seen`]).
 
 use glam::DVec3;
 
 use crate::render::RenderedImage;
+use crate::seen::SeenEvent;
 
 /// Result of [`compare`] (differences in 1/255 steps) or [`compare_radiance`] (relative
 /// differences).
@@ -98,6 +100,46 @@ pub fn compare_radiance(
             (actual - expected).abs().max_element() / expected.abs().max_element().max(floor)
         } else {
             f64::INFINITY
+        }
+    })
+}
+
+/// Compares what each pixel sees of time, `candidate` (per pixel emission ct, proper time,
+/// distance, Doppler factor and object index, −1 for none, as srt's `--aov` channels), with the
+/// reference's [`SeenEvent`]s (`events`, row-major, of the image `reference`): a pixel's
+/// difference is infinite where the object differs, else its largest channel difference over
+/// the channel's magnitude, at least 1; it differs above `tolerance`. Pixels within
+/// `edge_margin` of a silhouette of `reference` are skipped.
+///
+/// # Panics
+/// If the sizes differ.
+#[must_use]
+pub fn compare_seen(
+    reference: &RenderedImage,
+    events: &[Option<SeenEvent>],
+    candidate: &[[f32; 5]],
+    tolerance: f64,
+    edge_margin: u32,
+) -> Mismatch<f64> {
+    assert!(
+        events.len() == reference.pixels.len() && candidate.len() == events.len(),
+        "images of different sizes"
+    );
+    count_differing(reference, edge_margin, tolerance, |i| {
+        let actual = candidate[i].map(f64::from);
+        match events[i] {
+            None if actual[4] < 0.0 => 0.0,
+            Some(event) if actual[4] == event.object as f64 => [
+                event.emission_ct,
+                event.proper_time,
+                event.distance,
+                event.doppler,
+            ]
+            .iter()
+            .zip(actual)
+            .map(|(expected, value)| (value - expected).abs() / expected.abs().max(1.0))
+            .fold(0.0, f64::max),
+            _ => f64::INFINITY,
         }
     })
 }

@@ -11,7 +11,7 @@ impl super::GpuRenderer {
         ctx: &GpuContext,
         scene: &Scene,
         footprint: FootprintShape,
-        output: Output,
+        output: OutputCode,
     ) -> Result<usize, GpuError> {
         if scene.objects.len() != self.objects.len()
             || scene
@@ -48,7 +48,7 @@ impl super::GpuRenderer {
                 scene.shading.specular as f32,
                 scene.shading.shininess as f32,
             ],
-            background: vec4(background_as(output, scene.background), 1.0),
+            background: background_as(output, scene.background).as_vec4().to_array(),
             lut: self.frame.lut_params[tone],
             viewport: [
                 width as f32,
@@ -63,7 +63,7 @@ impl super::GpuRenderer {
             tone_map: ToneMapCode::from(scene.tone_map),
             exposure: scene.exposure as f32,
             searchlight_ln_y: searchlight_reference_ln_y() as f32,
-            output: OutputCode::from(output),
+            output,
             radiance: radiance_params(
                 &scene.radiance_scale(RadianceTable::shared()),
                 largest_value(ctx.color_format),
@@ -72,11 +72,14 @@ impl super::GpuRenderer {
         ctx.queue
             .write_buffer(&self.frame.uniforms, 0, bytemuck::bytes_of(&uniforms));
         let event = observer.event();
-        for (object, resources) in scene.objects.iter().zip(&self.objects) {
+        for (index, (object, resources)) in scene.objects.iter().zip(&self.objects).enumerate() {
+            let (time, world_time) = object_time(object, index, &scene.world);
             let uniforms = ObjectUniforms {
                 frame: GpuFrame::new(&object.frame, event),
                 style: [object.wireframe.unwrap_or(0.0) as f32, 0.0, 0.0, 0.0],
                 optics: optics4(&object.optics),
+                time,
+                world_time,
             };
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
@@ -130,6 +133,26 @@ impl super::GpuRenderer {
         method: Method,
         footprint: FootprintShape,
         output: Output,
+    ) -> Result<(), GpuError> {
+        self.encode_code(
+            ctx,
+            encoder,
+            scene,
+            method,
+            footprint,
+            OutputCode::from(output),
+        )
+    }
+
+    /// [`GpuRenderer::encode`] writing what `output` says: colours, or what pixels see of time.
+    pub(super) fn encode_code(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+        output: OutputCode,
     ) -> Result<(), GpuError> {
         let tone = self.write_uniforms(ctx, scene, footprint, output)?;
         let traced = self.traced_objects(method)?;
@@ -245,7 +268,7 @@ impl super::GpuRenderer {
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        background: DVec3,
+        background: DVec4,
         method: Method,
         tone: usize,
         traced: &[Option<&ObjectRayTracing>],
@@ -358,7 +381,7 @@ impl super::GpuRenderer {
     fn encode_background(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        background: DVec3,
+        background: DVec4,
         tone: usize,
         color_view: &wgpu::TextureView,
     ) -> wgpu::LoadOp<wgpu::Color> {
@@ -368,7 +391,7 @@ impl super::GpuRenderer {
                 r: b.x,
                 g: b.y,
                 b: b.z,
-                a: 1.0,
+                a: b.w,
             });
         };
         sky.encode(
@@ -503,10 +526,13 @@ impl super::GpuRenderer {
 }
 
 /// The background colour `display` (sRGB-encoded) as `output` holds it: itself, or its radiance
-/// (decoded, as the CPU reference writes it).
-fn background_as(output: Output, display: DVec3) -> DVec3 {
+/// (decoded, as the CPU reference writes it), alpha 1; for the seen-event outputs, what a pixel
+/// that sees no object holds (0, and −1 as the object index).
+fn background_as(output: OutputCode, display: DVec3) -> DVec4 {
     match output {
-        Output::Display => display,
-        Output::Radiance => display.map(srgb_decode),
+        OutputCode::RADIANCE => display.map(srgb_decode).extend(1.0),
+        OutputCode::SEEN_EVENT => DVec4::ZERO,
+        OutputCode::SEEN_OBJECT => DVec4::new(-1.0, 0.0, 0.0, 0.0),
+        _ => display.extend(1.0),
     }
 }

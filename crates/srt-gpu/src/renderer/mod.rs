@@ -8,7 +8,7 @@
 
 use std::sync::Arc;
 
-use glam::DVec3;
+use glam::{DVec3, DVec4};
 use srt_color::{
     Output, RadianceTable, TemperatureLut, ToneMap, quantize_8bit, searchlight_reference_ln_y,
     srgb_decode,
@@ -37,7 +37,7 @@ use crate::types::{
     DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
     FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
     GpuVertex, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags, PartUniforms,
-    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, footprint_slots, mat4, optics4,
+    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, footprint_slots, mat4, object_time, optics4,
     radiance_params, vec4,
 };
 
@@ -53,6 +53,15 @@ use upload::{ObjectResources, PartResources, batches, upload_object};
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
 /// f32 depth has constant relative precision, so the scale costs nothing).
 const LRT_DEPTH_SCALE: f32 = 1e-6;
+
+/// The channels of [`GpuRenderer::render_seen`], in its order (srt's `--aov` channels).
+pub const SEEN_CHANNELS: [&str; 5] = [
+    "emission_ct",
+    "proper_time",
+    "distance",
+    "doppler",
+    "object",
+];
 
 /// Which rendering method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -309,12 +318,57 @@ impl GpuRenderer {
         footprint: FootprintShape,
         output: Output,
     ) -> Result<(GpuImage, FrameStats), GpuError> {
+        self.render_code(ctx, scene, method, footprint, OutputCode::from(output))
+    }
+
+    /// What each pixel sees of time (the `--aov` channels), row-major from the top, as
+    /// [`SEEN_CHANNELS`] orders them: emission ct_W, proper time, apparent distance, Doppler
+    /// factor and the object's index, or `[0, 0, 0, 0, −1]` where no object is seen (mirror of
+    /// srt-trace's `SeenEvent`; the polygon method gives the events of the rest points it
+    /// draws). Two frames: the events, then the object indices.
+    ///
+    /// # Errors
+    /// As [`GpuRenderer::render`].
+    pub fn render_seen(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+    ) -> Result<Vec<[f32; 5]>, GpuError> {
+        let (events, _) =
+            self.render_code(ctx, scene, method, footprint, OutputCode::SEEN_EVENT)?;
+        let (objects, _) =
+            self.render_code(ctx, scene, method, footprint, OutputCode::SEEN_OBJECT)?;
+        Ok(events
+            .pixels
+            .iter()
+            .zip(&objects.pixels)
+            .map(|(event, object)| {
+                if object[0] < 0.0 {
+                    [0.0, 0.0, 0.0, 0.0, -1.0]
+                } else {
+                    [event[0], event[1], event[2], event[3], object[0]]
+                }
+            })
+            .collect())
+    }
+
+    /// One frame writing `output`, read back.
+    fn render_code(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+        output: OutputCode,
+    ) -> Result<(GpuImage, FrameStats), GpuError> {
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("srt frame"),
             });
-        self.encode_as(ctx, &mut encoder, scene, method, footprint, output)?;
+        self.encode_code(ctx, &mut encoder, scene, method, footprint, output)?;
         let t = &self.targets;
         t.readback.encode_copy(&mut encoder, &t.color);
         ctx.queue.submit([encoder.finish()]);
