@@ -161,7 +161,7 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
     var uv_ddx = vec2<f32>(0.0);
     var uv_ddy = vec2<f32>(0.0);
-    if (part_has(PART_TEXTURED) && object.style.x <= 0.0) {
+    if ((part_has(PART_TEXTURED) || has_clock()) && object.style.x <= 0.0) {
         let uv = triangle_uv(t, hit.zeta, hit.xi);
         let rx = backward_ray(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0)));
         let ry = backward_ray(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0)));
@@ -171,6 +171,7 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
     }
     let apparent = to_observer(object.frame, emission).yzw;
-    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy);
-    return shade(t, hit.zeta, hit.xi, apparent, albedo);
+    let proper_time = proper_time_at(emission);
+    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy, proper_time);
+    return shade(t, hit.zeta, hit.xi, apparent, albedo, proper_time);
 }

@@ -22,18 +22,28 @@ fn polygon_vertex(@builtin(vertex_index) v: u32) -> PolygonVarying {
     return PolygonVarying(frame_uniforms.view_projection * vec4<f32>(apparent, 1.0), t, barycentric[k], apparent);
 }
 
+// The emission event (rest coordinates) of the rest point a fragment draws: the method's
+// approximation of what the pixel sees.
+fn polygon_emission(in: PolygonVarying) -> vec4<f32> {
+    let p = triangle_corners(in.triangle);
+    let b = in.barycentric;
+    let rest = (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
+    return emission_event(object.frame, rest);
+}
+
 @fragment
 fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     if (writes_seen_events()) {
-        // The emission event of the rest point this fragment draws (the method's approximation).
-        let p = triangle_corners(in.triangle);
-        let b = in.barycentric;
-        let rest = (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
-        return seen_pixel(emission_event(object.frame, rest));
+        return seen_pixel(polygon_emission(in));
+    }
+    // Only a clock or a blinking emission needs the fragment's proper time (one light-cone solve).
+    var proper_time = 0.0;
+    if (object.blink.x > 0.0 || has_clock()) {
+        proper_time = proper_time_at(polygon_emission(in));
     }
     let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
     let uv_ddx = dpdx(uv);
     let uv_ddy = dpdy(uv);
-    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, uv_ddx, uv_ddy);
-    return shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo);
+    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, uv_ddx, uv_ddy, proper_time);
+    return shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo, proper_time);
 }

@@ -98,9 +98,10 @@ fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f3
     return colour;
 }
 
-// Surface colour (texel × base × vertex colour, or the wireframe pattern) of triangle `t` at
-// (ζ, ξ), with texture-coordinate derivatives per pixel.
-fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f32>) -> vec4<f32> {
+// Surface colour (texel or clock face × base × vertex colour, or the wireframe pattern) of
+// triangle `t` at (ζ, ξ), with texture-coordinate derivatives per pixel; a clock shows the
+// object's proper time `proper_time` there.
+fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f32>, proper_time: f32) -> vec4<f32> {
     let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
     let wireframe = object.style.x;
     if (wireframe > 0.0) {
@@ -116,7 +117,9 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
             + w.z * vertices[indices[3u * t + 2u]].color;
         albedo *= c;
     }
-    if (part_has(PART_TEXTURED)) {
+    if (has_clock()) {
+        albedo *= clock_albedo(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, proper_time);
+    } else if (part_has(PART_TEXTURED)) {
         albedo *= sample_part_texture(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy);
     }
     return albedo;
@@ -127,8 +130,9 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
 // geometry only). The paper's colour: the colour table at D_in·D_out·T_light with
 // f_ar (Eq. 18); spectral colour (spectral.wgsl): the albedo's reflectance spectrum under the
 // black body at D_in·T_light, shifted by D_out, its factor f_amb + f_diff + f_spec. An emitting
-// object sends its black body at D_out·T_e instead. Mirror of srt_trace::arriving.
-fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> Arriving {
+// object sends its black body at D_out·T_e instead, while it shines at the object's proper time
+// `proper_time` (emitter_shines). Mirror of srt_trace::arriving.
+fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32) -> Arriving {
     let beta = object.frame.beta_gamma.xyz;
     let incident = normalize(apparent - frame_uniforms.light.xyz);
     let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
@@ -143,7 +147,7 @@ fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f
     }
     let spectral = frame_uniforms.colour == SURFACE_COLOUR_SPECTRAL;
     let optics = object.optics;
-    if (optics.z > 0.0) {
+    if (optics.z > 0.0 && emitter_shines(proper_time)) {
         if (spectral) {
             return spectrum_light(spectral_emitted(optics.z, d_out), optics.w);
         }
@@ -175,8 +179,30 @@ fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f
 }
 
 // The pixel a surface point gives: its light (surface_light) as the frame's output holds it.
-fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>) -> vec4<f32> {
-    return output_pixel(arriving_output(surface_light(t, zeta, xi, apparent, albedo)));
+fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32) -> vec4<f32> {
+    return output_pixel(arriving_output(surface_light(t, zeta, xi, apparent, albedo, proper_time)));
+}
+
+// Whether the current object wears a clock face (clock.wgsl).
+fn has_clock() -> bool {
+    return object.clock.w > 0.0;
+}
+
+// Whether the current object's emission is on at its proper time `proper_time` (mirror of
+// srt_scene::Emission::shines_at): always without blinking, else while
+// (τ / period) mod 1 < duty.
+fn emitter_shines(proper_time: f32) -> bool {
+    let blink = object.blink;
+    if (blink.x <= 0.0) {
+        return true;
+    }
+    return fract(proper_time / blink.x) < blink.y;
+}
+
+// The current object's proper time ct′ at the rest event `emission_rest` (mirror of
+// srt_scene::Object::proper_time).
+fn proper_time_at(emission_rest: vec4<f32>) -> f32 {
+    return emission_rest.x - object.time.y;
 }
 
 // What a pixel sees of time at the emission event `emission_rest` (rest coordinates) on the
@@ -191,7 +217,7 @@ fn seen_pixel(emission_rest: vec4<f32>) -> vec4<f32> {
     let towards_observer = frame_uniforms.observer.xyz - event.yzw;
     return vec4<f32>(
         dot(object.world_time, emission_rest) + object.time.z,
-        emission_rest.x - object.time.y,
+        proper_time_at(emission_rest),
         length(towards_observer),
         doppler_factor(object.frame.beta_gamma.xyz, normalize(towards_observer)),
     );

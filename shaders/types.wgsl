@@ -95,6 +95,15 @@ struct ObjectUniforms {
     time: vec4<f32>,
     // The time row of rest coordinates → W: ct_W of a rest event e′ is dot(world_time, e′) + time.z.
     world_time: vec4<f32>,
+    // The emission's blinking (srt_scene::Blink): x the period in proper time (0: steady), y the
+    // duty; zw unused.
+    blink: vec4<f32>,
+    // Its clock face (srt_scene::Clock, clock.wgsl): rate, offset, dial, and w 1 if it has one.
+    clock: vec4<f32>,
+    // The clock's face colour (rgb, sRGB-encoded as texels are).
+    clock_face: vec4<f32>,
+    // The clock's ink colour.
+    clock_ink: vec4<f32>,
 }
 
 // Per mesh part: its material.

@@ -22,7 +22,8 @@ struct Cli {
 /// What `cargo xtask` can do.
 #[derive(Subcommand)]
 enum Command {
-    /// Write the documentation figures (the paper's Fig. 4, 5, 6 and 8; ColorChecker) as PNGs.
+    /// Write the documentation figures (the paper's Fig. 4, 5, 6 and 8; ColorChecker; the sky;
+    /// the clocks and the beacon) as PNGs.
     Figures {
         /// Folder to write into (default: docs/figures in the workspace).
         #[arg(long)]

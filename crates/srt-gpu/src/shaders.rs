@@ -16,6 +16,8 @@ pub const SPECTRAL: &str = include_str!("../shaders/spectral.wgsl");
 pub const LIGHT: &str = include_str!("../shaders/light.wgsl");
 /// Bindings and helpers shared by the render passes.
 pub const RENDER_BINDINGS: &str = include_str!("../shaders/render_bindings.wgsl");
+/// The clock face (mirror of srt-trace's `clock`).
+pub const CLOCK: &str = include_str!("../shaders/clock.wgsl");
 /// Intersection and shading (mirror of srt-trace).
 pub const SURFACE: &str = include_str!("../shaders/surface.wgsl");
 /// The footprint compute pass (mirror of srt-proxy).
@@ -165,6 +167,7 @@ pub fn lrt(counting: bool) -> Shader {
             ("light.wgsl", LIGHT),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("camera.wgsl", CAMERA),
+            ("clock.wgsl", CLOCK),
             ("surface.wgsl", SURFACE),
             ("lrt.wgsl", LRT),
             ("rt.wgsl", RT),
@@ -185,6 +188,7 @@ pub fn polygon() -> Shader {
             ("spectral.wgsl", SPECTRAL),
             ("light.wgsl", LIGHT),
             ("render_bindings.wgsl", RENDER_BINDINGS),
+            ("clock.wgsl", CLOCK),
             ("surface.wgsl", SURFACE),
             ("polygon.wgsl", POLYGON),
         ]),

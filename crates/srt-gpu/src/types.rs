@@ -8,7 +8,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3};
 use srt_color::{Output, RadianceScale, ToneMap};
 use srt_physics::{Event, Frame, Poincare};
-use srt_scene::{Effects, Object, SurfaceColour, SurfaceOptics};
+use srt_scene::{Clock, Effects, Object, SurfaceColour, SurfaceOptics};
 
 /// Converts an f64 matrix to the column-major f32 array WGSL expects.
 #[must_use]
@@ -254,6 +254,48 @@ pub struct ObjectUniforms {
     pub time: [f32; 4],
     /// The time row of the object's rest coordinates → W ([`object_time`]).
     pub world_time: [f32; 4],
+    /// Its emission's blinking ([`blink4`]).
+    pub blink: [f32; 4],
+    /// Its clock face's rate, offset and dial, and 1 if it has one ([`ClockUniforms`]).
+    pub clock: [f32; 4],
+    /// The clock's face colour (rgb).
+    pub clock_face: [f32; 4],
+    /// The clock's ink colour (rgb).
+    pub clock_ink: [f32; 4],
+}
+
+/// `ObjectUniforms::clock`, `clock_face` and `clock_ink` of a clock face, or zeros for none.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClockUniforms {
+    /// Rate, offset, dial, and 1 (0: no clock).
+    pub clock: [f32; 4],
+    /// Face colour, alpha 1.
+    pub face: [f32; 4],
+    /// Ink colour, alpha 1.
+    pub ink: [f32; 4],
+}
+
+impl From<Option<&Clock>> for ClockUniforms {
+    fn from(clock: Option<&Clock>) -> Self {
+        clock.map_or_else(Self::default, |c| {
+            let rgba = |rgb: [f64; 3]| [rgb[0] as f32, rgb[1] as f32, rgb[2] as f32, 1.0];
+            Self {
+                clock: [c.rate as f32, c.offset as f32, c.dial as f32, 1.0],
+                face: rgba(c.face),
+                ink: rgba(c.ink),
+            }
+        })
+    }
+}
+
+/// `ObjectUniforms::blink` of `optics`: the blink period in proper time and the duty (period 0:
+/// the emission, if any, never blinks).
+#[must_use]
+pub fn blink4(optics: &SurfaceOptics) -> [f32; 4] {
+    optics
+        .emission
+        .and_then(|e| e.blink)
+        .map_or([0.0; 4], |b| [b.period as f32, b.duty as f32, 0.0, 0.0])
 }
 
 /// `ObjectUniforms::time` and `world_time` of `object`, the `index`-th of a scene whose S → W
@@ -630,8 +672,14 @@ mod tests {
             emission: Some(srt_scene::Emission {
                 temperature_k: 3000.0,
                 brightness: 2.0,
+                blink: Some(srt_scene::Blink {
+                    period: 1.5,
+                    duty: 0.25,
+                }),
             }),
         };
         assert_eq!(optics4(&optics), [0.1, 0.9, 3000.0, 2.0]);
+        assert_eq!(blink4(&optics), [1.5, 0.25, 0.0, 0.0]);
+        assert_eq!(blink4(&SurfaceOptics::default()), [0.0; 4]);
     }
 }

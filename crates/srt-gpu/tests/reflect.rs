@@ -190,6 +190,59 @@ fn f32_vector_const(module: &Module, name: &str) -> Option<Result<Vec<f32>, Stri
     )
 }
 
+/// The elements of `module`'s `u32` array const `name`, if it has one; an error if the const is
+/// not an array of `u32` literals.
+fn u32_array_const(module: &Module, name: &str) -> Option<Result<Vec<u32>, String>> {
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))?;
+    let Expression::Compose { components, .. } = &module.global_expressions[constant.init] else {
+        return Some(Err(format!("const {name} is not an array")));
+    };
+    Some(
+        components
+            .iter()
+            .map(|&c| match module.global_expressions[c] {
+                Expression::Literal(Literal::U32(value)) => Ok(value),
+                ref other => Err(format!("const {name} has an element {other:?}")),
+            })
+            .collect(),
+    )
+}
+
+/// The clock face's geometry and digit patterns in clock.wgsl are srt-trace's (in f32), in every
+/// shader that draws it.
+#[test]
+fn the_clock_face_equals_the_reference() {
+    use srt_trace::clock::{CLOCK_DIAL, CLOCK_DIGITS, CLOCK_HANDS, CLOCK_SEGMENTS, CLOCK_STROKES};
+    let vectors = [
+        ("CLOCK_DIAL", CLOCK_DIAL),
+        ("CLOCK_HANDS", CLOCK_HANDS),
+        ("CLOCK_DIGITS", CLOCK_DIGITS),
+        ("CLOCK_STROKES", CLOCK_STROKES),
+    ];
+    let mut found = 0;
+    for shader in shaders::all() {
+        let (module, _) = parse(shader.name, &shader.source);
+        let Some(segments) = u32_array_const(&module, "CLOCK_SEGMENTS") else {
+            continue;
+        };
+        assert_eq!(segments, Ok(CLOCK_SEGMENTS.to_vec()), "{}", shader.name);
+        for (name, reference) in vectors {
+            let expected = reference.map(|v| v as f32).to_vec();
+            assert_eq!(
+                f32_vector_const(&module, name),
+                Some(Ok(expected)),
+                "{name} in {}",
+                shader.name
+            );
+        }
+        found += 1;
+    }
+    assert!(found >= 2, "the LRT and polygon shaders draw clocks");
+}
+
 /// The grey value's weights (Eq. 18) in colour.wgsl are the reference's, in f32.
 #[test]
 fn grey_weights_equal_the_reference() {

@@ -1,6 +1,7 @@
-//! Built-in scenes: the paper's test scenes (Fig. 4, 7, 10), a teaser in the spirit of Fig. 1 and
-//! a world the observer flies through, embedded in the program as the TOML files in
-//! `crates/srt-scene/assets/scenes/` (which double as examples of the scene format).
+//! Built-in scenes: the paper's test scenes (Fig. 4, 7, 10), a teaser in the spirit of Fig. 1, a
+//! world the observer flies through, and clocks and blinking beacons that show time as it is seen,
+//! embedded in the program as the TOML files in `crates/srt-scene/assets/scenes/` (which double
+//! as examples of the scene format).
 
 use std::path::Path;
 
@@ -73,7 +74,7 @@ macro_rules! builtin_scene {
     };
 }
 
-static BUILTIN_SCENES: [BuiltinScene; 8] = [
+static BUILTIN_SCENES: [BuiltinScene; 10] = [
     builtin_scene!(
         "fig4",
         "Fig. 4: a unit cube at 0.95c seen at ct = 5.12, apparently rotated and distorted"
@@ -105,6 +106,14 @@ static BUILTIN_SCENES: [BuiltinScene; 8] = [
     builtin_scene!(
         "flythrough",
         "The observer flies at 0.9c over a ground between columns at rest, past a sphere and a cube"
+    ),
+    builtin_scene!(
+        "beacon",
+        "Blinking beacons approaching at 0.6c, at rest and receding: each is seen to blink D times its proper rate"
+    ),
+    builtin_scene!(
+        "clocks",
+        "Clocks at rest beside a train of clocks passing at 0.9c: each face shows the proper time of the event seen"
     ),
 ];
 

@@ -29,8 +29,8 @@ pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{
-    Effects, Emission, Kinematics, Light, Object, Observer, Scene, Shading, SurfaceColour,
-    SurfaceOptics,
+    Blink, Clock, Effects, Emission, Kinematics, Light, Object, Observer, Scene, Shading,
+    SurfaceColour, SurfaceOptics,
 };
 pub use sky::{Sky, SkyError, Star};
 pub use view::{View, ViewError};

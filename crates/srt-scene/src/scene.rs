@@ -93,6 +93,68 @@ pub struct Emission {
     pub temperature_k: f64,
     /// Brightness relative to the luminance tone map's white (≥ 0).
     pub brightness: f64,
+    /// The glow switches on and off with the object's proper time (`None`: it glows always).
+    pub blink: Option<Blink>,
+}
+
+impl Emission {
+    /// Whether the surface glows at an event where its object's proper time is `proper_time`
+    /// (ct′; [`Object::proper_time`]); where it does not, it reflects the light as any surface.
+    #[must_use]
+    pub fn shines_at(&self, proper_time: f64) -> bool {
+        self.blink.is_none_or(|blink| blink.is_on(proper_time))
+    }
+}
+
+/// A clock face drawn on every face of an object (`texture = { type = "clock", … }`): a dial with
+/// twelve ticks, a slow and a fast hand and the reading in digits, in each triangle's texture
+/// coordinates (one face per cube face). Each pixel shows the reading at the proper time of the
+/// event it sees (docs/physics.md, "Time seen on a surface"); srt-trace's `clock` module draws it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clock {
+    /// Reading per unit of proper time ct′.
+    pub rate: f64,
+    /// Reading at proper time 0.
+    pub offset: f64,
+    /// Reading per turn of the slow hand (the fast hand turns once per unit of reading).
+    pub dial: f64,
+    /// Colour of the face (sRGB-encoded, components in [0, 1], as a texel's).
+    pub face: [f64; 3],
+    /// Colour of the ring, ticks, hands and digits.
+    pub ink: [f64; 3],
+}
+
+/// A clock's default reading per turn of the slow hand (a twelve-hour dial).
+pub const DEFAULT_CLOCK_DIAL: f64 = 12.0;
+
+/// A clock's default face and ink colours: off-white and near-black.
+pub const DEFAULT_CLOCK_COLORS: [[f64; 3]; 2] = [[0.95, 0.93, 0.85], [0.05, 0.05, 0.1]];
+
+impl Clock {
+    /// What the clock shows at proper time `proper_time` (ct′).
+    #[must_use]
+    pub fn reading(&self, proper_time: f64) -> f64 {
+        self.rate.mul_add(proper_time, self.offset)
+    }
+}
+
+/// An emission's blinking, in the object's proper time: on for `duty` of each `period`, starting
+/// at proper time 0 (on while (τ / period) mod 1 < duty).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Blink {
+    /// One cycle, in proper time ct′ (scene units of length; > 0).
+    pub period: f64,
+    /// The fraction of each cycle the emission is on, in [0, 1].
+    pub duty: f64,
+}
+
+impl Blink {
+    /// Whether the emission is on at proper time `proper_time` (ct′).
+    #[must_use]
+    pub fn is_on(&self, proper_time: f64) -> bool {
+        (proper_time / self.period).rem_euclid(1.0) < self.duty
+    }
 }
 
 /// What an object's surfaces do beyond their reflectance colour.
@@ -206,9 +268,18 @@ pub struct Object {
     pub wireframe: Option<f64>,
     /// Ultraviolet and infrared reflectances, emission.
     pub optics: SurfaceOptics,
+    /// A clock face replacing the texture (drawn unless `wireframe` is set).
+    pub clock: Option<Clock>,
 }
 
 impl Object {
+    /// The object's proper time ct′ at an event whose time in `frame`'s rest coordinates is
+    /// `rest_ct` (what a clock resting on the object shows there; `rest_time_shift`).
+    #[must_use]
+    pub fn proper_time(&self, rest_ct: f64) -> f64 {
+        rest_ct - self.rest_time_shift
+    }
+
     /// Total number of triangles over all parts.
     #[must_use]
     pub fn triangle_count(&self) -> usize {

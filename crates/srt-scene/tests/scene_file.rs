@@ -689,6 +689,76 @@ fn the_complete_example_of_the_format_documentation_builds() {
     assert_eq!(scene.objects[1].triangle_count(), 1368);
 }
 
+/// Clocks and blinking: every number is checked, unknown keys are refused with the key named,
+/// and valid values reach the scene (a clock replaces the texture).
+#[test]
+fn clock_and_blink_values_are_checked() {
+    for (extra, key) in [
+        ("texture = { type = \"clock\", dial = 0.0 }", "texture.dial"),
+        (
+            "texture = { type = \"clock\", dial = -12.0 }",
+            "texture.dial",
+        ),
+        ("texture = { type = \"clock\", rate = nan }", "texture.rate"),
+        (
+            "texture = { type = \"clock\", offset = inf }",
+            "texture.offset",
+        ),
+        (
+            "texture = { type = \"clock\", colors = [[1.0, 1.0, 1.0], [0.0, 2.0, 0.0]] }",
+            "texture.colors",
+        ),
+        (
+            "emission = { temperature_k = 3000.0, blink = { period = 0.0, duty = 0.5 } }",
+            "emission.blink.period",
+        ),
+        (
+            "emission = { temperature_k = 3000.0, blink = { period = 1.0, duty = 1.5 } }",
+            "emission.blink.duty",
+        ),
+        (
+            "emission = { temperature_k = 3000.0, blink = { period = nan, duty = 0.5 } }",
+            "emission.blink.period",
+        ),
+    ] {
+        let message = value_error(&with_object(extra));
+        assert!(
+            message.contains(key) && message.contains("probe"),
+            "{extra}: {message}"
+        );
+    }
+    for extra in [
+        "texture = { type = \"clock\", speed = 2.0 }",
+        "emission = { temperature_k = 3000.0, blink = { period = 1.0, duty = 0.5, phase = 0.1 } }",
+        "emission = { temperature_k = 3000.0, blink = { duty = 0.5 } }",
+    ] {
+        let error = parse(&with_object(extra)).unwrap_err().to_string();
+        assert!(
+            error.contains("test.toml") && error.contains("line"),
+            "{extra}: {error}"
+        );
+    }
+    let (scene, _) = build(&with_object(
+        "texture = { type = \"clock\", rate = 2.0, offset = -1.0 }
+         emission = { temperature_k = 3000.0, blink = { period = 2.0, duty = 0.25 } }",
+    ))
+    .unwrap();
+    let object = &scene.objects[0];
+    let clock = object.clock.expect("a clock");
+    assert_eq!((clock.rate, clock.offset, clock.dial), (2.0, -1.0, 12.0));
+    assert!(object.parts.iter().all(|p| p.material.texture.is_none()));
+    let emission = object.optics.emission.expect("an emission");
+    assert!(emission.shines_at(0.4) && !emission.shines_at(0.6) && emission.shines_at(-1.9));
+    // A description with both round-trips through its TOML.
+    let description = parse(&with_object(
+        "texture = { type = \"clock\", dial = 60.0 }
+         emission = { temperature_k = 3000.0, blink = { period = 2.0, duty = 0.25 } }",
+    ))
+    .unwrap();
+    let again = parse(&description.to_toml_string()).unwrap();
+    assert_eq!(again, description);
+}
+
 #[test]
 fn spectral_colour_and_sky_values_are_checked() {
     let scene = |tables: &str| {

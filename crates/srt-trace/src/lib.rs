@@ -17,6 +17,7 @@
 //! assert_eq!(image.pixels.len(), 640 * 360);
 //! ```
 
+pub mod clock;
 pub mod compare;
 mod intersect;
 mod render;

@@ -22,6 +22,7 @@ use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::{Mesh, Object, Part, Scene};
 
+use crate::clock::clock_albedo;
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving};
@@ -374,6 +375,8 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn light(&self, hit: &Hit, neighbour_directions: [DVec3; 2]) -> Arriving {
         let object = &self.objects[hit.object];
+        let seen_object = &self.scene.objects[hit.object];
+        let proper_time = seen_object.proper_time(hit.emission_rest.ct);
         let part = &object.parts[hit.part];
         let mesh = &part.part.mesh;
         let indices = mesh.triangles()[hit.triangle].map(|i| i as usize);
@@ -403,7 +406,7 @@ impl<'a> Tracer<'a> {
             } else {
                 DVec4::ONE
             };
-        } else if let Some(texture) = &part.texture {
+        } else if seen_object.clock.is_some() || part.texture.is_some() {
             let uvs = mesh.uvs();
             let uv_at = |(zeta, xi): (f64, f64)| {
                 (1.0 - zeta - xi) * uvs[indices[0]] + zeta * uvs[indices[1]] + xi * uvs[indices[2]]
@@ -415,12 +418,15 @@ impl<'a> Tracer<'a> {
                 plane_hit(ray.origin, ray.direction, corners)
                     .map_or(DVec2::ZERO, |h| uv_at((h.zeta, h.xi)) - uv)
             };
-            albedo *= sample_trilinear(
-                texture,
-                uv,
+            let (ddx, ddy) = (
                 differential(neighbour_directions[0]),
                 differential(neighbour_directions[1]),
             );
+            if let Some(clock) = &seen_object.clock {
+                albedo *= clock_albedo(clock, uv, ddx, ddy, proper_time);
+            } else if let Some(texture) = &part.texture {
+                albedo *= sample_trilinear(texture, uv, ddx, ddy);
+            }
         }
         let illumination = Illumination {
             observer: self.scene.observer.position,
@@ -437,7 +443,8 @@ impl<'a> Tracer<'a> {
             normal_rest,
             apparent_position: hit.emission.position,
             albedo,
-            optics: self.scene.objects[hit.object].optics,
+            optics: seen_object.optics,
+            proper_time,
         };
         arriving(&point, &illumination)
     }

@@ -40,7 +40,7 @@ impl Tracer<'_> {
         SeenEvent {
             object: hit.object,
             emission_ct: scene.world.apply(hit.emission).ct,
-            proper_time: hit.emission_rest.ct - object.rest_time_shift,
+            proper_time: object.proper_time(hit.emission_rest.ct),
             distance: hit.apparent_distance,
             doppler: doppler_factor(object.frame.beta(), towards_observer),
         }

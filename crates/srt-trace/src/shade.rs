@@ -34,6 +34,8 @@ pub struct SurfacePoint {
     pub albedo: DVec4,
     /// The object's ultraviolet and infrared reflectances and emission.
     pub optics: SurfaceOptics,
+    /// The object's proper time ct′ at the point's emission event (a blinking emission's clock).
+    pub proper_time: f64,
 }
 
 /// The light and observer side of shading, fixed per image.
@@ -147,7 +149,9 @@ pub fn arriving(point: &SurfacePoint, light: &Illumination<'_>) -> Arriving {
             doppler_factor(point.beta, outgoing),
         ),
     };
-    if let Some(emission) = point.optics.emission {
+    if let Some(emission) = point.optics.emission
+        && emission.shines_at(point.proper_time)
+    {
         return emitted(emission, d_out, light);
     }
     // Phong in S′: directions towards the light and towards the observer, aberrated (Eq. 4).

@@ -46,6 +46,7 @@ fn object(mesh: Mesh, beta: DVec3, offset: DVec3, base_color: [f32; 4]) -> Objec
         rest_time_shift: 0.0,
         wireframe: None,
         optics: SurfaceOptics::default(),
+        clock: None,
     }
 }
 

@@ -38,6 +38,7 @@ fn colour_of(albedo: [f64; 3], beta: DVec3, colour: SurfaceColour, optics: Surfa
         apparent_position: DVec3::new(0.0, 10.0, 0.0),
         albedo: DVec4::new(albedo[0], albedo[1], albedo[2], 1.0),
         optics,
+        proper_time: 0.0,
     };
     shade(&point, &light)
 }
@@ -153,6 +154,7 @@ fn emitters_show_the_black_body_at_d_t_in_both_colour_modes() {
         emission: Some(Emission {
             temperature_k: 2000.0,
             brightness: 1.0,
+            blink: None,
         }),
         ..SurfaceOptics::default()
     };

@@ -468,6 +468,7 @@ impl Editor {
                 rest_time_shift: frame.rest_time_shift,
                 wireframe: object.wireframe,
                 optics: object.optics(),
+                clock: object.clock(),
             })
             .collect();
         let unchanged = plan.len() == old_count

@@ -7,11 +7,10 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
-use image::{Rgb, imageops};
-use srt_color::quantize_8bit;
+use image::imageops;
 use srt_scene::{SurfaceColour, builtin::find_builtin};
-use srt_trace::{RenderSettings, Tracer};
 
+use super::render_panel;
 use crate::plot::{BLACK, Canvas, WHITE};
 
 const PANEL_WIDTH: u32 = 480;
@@ -46,18 +45,7 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     );
     for (index, (description, caption)) in panels.iter().enumerate() {
         let (scene, _) = builtin.build_description(description)?;
-        let image = Tracer::new(&scene).render(
-            RenderSettings {
-                width: PANEL_WIDTH,
-                height: PANEL_HEIGHT,
-                samples: 1,
-            },
-            &|_| {},
-        );
-        let panel = image::RgbImage::from_fn(PANEL_WIDTH, PANEL_HEIGHT, |x, y| {
-            let p = image.pixels[(y * PANEL_WIDTH + x) as usize];
-            Rgb(p.to_array().map(quantize_8bit))
-        });
+        let panel = render_panel(&scene, PANEL_WIDTH, PANEL_HEIGHT);
         let left = 10 + index as u32 * (PANEL_WIDTH + 10);
         imageops::replace(
             canvas.image_mut(),

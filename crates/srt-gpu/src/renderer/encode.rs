@@ -74,12 +74,17 @@ impl super::GpuRenderer {
         let event = observer.event();
         for (index, (object, resources)) in scene.objects.iter().zip(&self.objects).enumerate() {
             let (time, world_time) = object_time(object, index, &scene.world);
+            let clock = ClockUniforms::from(object.clock.as_ref());
             let uniforms = ObjectUniforms {
                 frame: GpuFrame::new(&object.frame, event),
                 style: [object.wireframe.unwrap_or(0.0) as f32, 0.0, 0.0, 0.0],
                 optics: optics4(&object.optics),
                 time,
                 world_time,
+                blink: blink4(&object.optics),
+                clock: clock.clock,
+                clock_face: clock.face,
+                clock_ink: clock.ink,
             };
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));

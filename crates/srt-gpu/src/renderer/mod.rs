@@ -34,11 +34,11 @@ use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
 use crate::textures::part_texture;
 use crate::types::{
-    DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
+    ClockUniforms, DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
     FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
     GpuVertex, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags, PartUniforms,
-    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, footprint_slots, mat4, object_time, optics4,
-    radiance_params, vec4,
+    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, blink4, footprint_slots, mat4, object_time,
+    optics4, radiance_params, vec4,
 };
 
 mod encode;

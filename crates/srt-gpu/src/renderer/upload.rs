@@ -403,6 +403,7 @@ mod tests {
             rest_time_shift: 0.0,
             wireframe: None,
             optics: SurfaceOptics::default(),
+            clock: None,
         };
         let culling: Vec<BackFaceCulling> = object
             .parts
@@ -431,6 +432,7 @@ mod tests {
             rest_time_shift: 0.0,
             wireframe: None,
             optics: SurfaceOptics::default(),
+            clock: None,
         };
         let culling = vec![BackFaceCulling::for_mesh(&object.parts[0].mesh); 3];
         let triangles = object.parts[0].mesh.triangles().len() as u64;

@@ -26,7 +26,9 @@ use crate::input_file::{self, FileKind};
 use crate::limits::{Budget, MAX_COORDINATE, OverBudget};
 use crate::mesh::{Material, Mesh, MeshError, Part, Texture};
 use crate::message::one_line;
-use crate::scene::{Emission, Kinematics, Light, Object, Observer, Scene, Shading, SurfaceOptics};
+use crate::scene::{
+    Clock, Emission, Kinematics, Light, Object, Observer, Scene, Shading, SurfaceOptics,
+};
 use crate::sky::{self, Sky};
 use crate::{shapes, textures};
 
@@ -284,6 +286,7 @@ impl ObjectDescription {
             emission: self.emission.map(|e| Emission {
                 temperature_k: e.temperature_k,
                 brightness: e.brightness,
+                blink: e.blink,
             }),
         }
     }
@@ -425,6 +428,12 @@ impl ObjectDescription {
                 part.material.texture = Some(Arc::clone(&texture));
             }
         }
+        if self.clock().is_some() {
+            // The clock face replaces every texture, a model's own too.
+            for part in &mut parts {
+                part.material.texture = None;
+            }
+        }
         if let Some(color) = self.color {
             for part in &mut parts {
                 for (channel, factor) in part.material.base_color.iter_mut().zip(color) {
@@ -474,7 +483,28 @@ impl ObjectDescription {
             rest_time_shift: relative.rest_time_shift,
             wireframe: self.wireframe,
             optics: self.optics(),
+            clock: self.clock(),
         })
+    }
+
+    /// The clock face this object's `texture` asks for, if it asks for one.
+    #[must_use]
+    pub fn clock(&self) -> Option<Clock> {
+        match self.texture {
+            Some(TextureDescription::Clock {
+                rate,
+                offset,
+                dial,
+                colors: [face, ink],
+            }) => Some(Clock {
+                rate,
+                offset,
+                dial,
+                face,
+                ink,
+            }),
+            _ => None,
+        }
     }
 
     /// The texture this object asks for, made once per scene; `None` (with a warning saying
@@ -483,10 +513,11 @@ impl ObjectDescription {
     fn texture(&self, label: &str, builder: &mut Builder<'_>) -> Option<Arc<Texture>> {
         let description = self.texture.as_ref()?;
         let base_dir = builder.base_dir;
+        let key = TextureKey::of(description, base_dir)?;
         let budget = &mut builder.budget;
         let loaded = builder
             .textures
-            .entry(TextureKey::of(description, base_dir))
+            .entry(key)
             .or_insert_with(|| make_texture(description, base_dir, budget))
             .clone();
         match loaded {
@@ -495,6 +526,7 @@ impl ObjectDescription {
                 let what = match description {
                     TextureDescription::Image { path } => format!("texture \"{path}\""),
                     TextureDescription::Checker { .. } => "the checker texture".to_owned(),
+                    TextureDescription::Clock { .. } => "the clock".to_owned(),
                 };
                 let fallback = if matches!(self.shape, ShapeDescription::Model { .. }) {
                     "the model's own materials are used"
@@ -511,21 +543,23 @@ impl ObjectDescription {
 }
 
 impl TextureKey {
-    /// The key of `description`, with image paths resolved from `base_dir`.
-    fn of(description: &TextureDescription, base_dir: &Path) -> Self {
+    /// The key of `description`, with image paths resolved from `base_dir`; `None` for a clock,
+    /// which is drawn per pixel and has no texels.
+    fn of(description: &TextureDescription, base_dir: &Path) -> Option<Self> {
         match description {
             TextureDescription::Checker { squares, colors } => {
-                Self::Checker(*squares, colors.map(|c| c.map(f64::to_bits)))
+                Some(Self::Checker(*squares, colors.map(|c| c.map(f64::to_bits))))
             }
             TextureDescription::Image { path } => {
-                Self::Image(match assets::resolve(base_dir, path) {
+                Some(Self::Image(match assets::resolve(base_dir, path) {
                     Ok(assets::Resolved::File(file)) => file.display().to_string(),
                     Ok(assets::Resolved::Embedded { name, .. }) => {
                         format!("{}{name}", assets::BUILTIN_PREFIX)
                     }
                     Err(_) => path.clone(),
-                })
+                }))
             }
+            TextureDescription::Clock { .. } => None,
         }
     }
 }
@@ -549,6 +583,9 @@ fn make_texture(
         TextureDescription::Image { path } => assets::resolve(base_dir, path)
             .and_then(|resolved| assets::load_texture(&resolved, budget))
             .map(Arc::new),
+        TextureDescription::Clock { .. } => {
+            Err("a clock is drawn per pixel, not loaded".to_owned())
+        }
     }
 }
 

@@ -16,7 +16,9 @@ use super::{
     DEFAULT_CUBE_SIZE, DEFAULT_CUBE_SUBDIVISIONS, DEFAULT_FOV_Y_DEG, DEFAULT_LIGHT_TEMPERATURE_K,
     DEFAULT_SPHERE_RADIUS, DEFAULT_SPHERE_SEGMENTS, DEFAULT_UP,
 };
-use crate::scene::{Effects, Shading, SurfaceColour};
+use crate::scene::{
+    Blink, DEFAULT_CLOCK_COLORS, DEFAULT_CLOCK_DIAL, Effects, Shading, SurfaceColour,
+};
 #[cfg(doc)]
 use crate::shapes;
 use crate::textures::{DEFAULT_CHECKER_COLORS, DEFAULT_CHECKER_SQUARES};
@@ -58,6 +60,9 @@ pub struct EmissionDescription {
     /// Brightness (≥ 0; 1 = the white of the luminance tone map).
     #[serde(default = "default_brightness")]
     pub brightness: f64,
+    /// Blinking in the object's proper time (`blink = { period, duty }`; none: always on).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blink: Option<Blink>,
 }
 
 /// The `[sky]` table: stars at infinity at rest in the world frame W — the built-in star field,
@@ -274,6 +279,18 @@ pub enum TextureDescription {
         /// The file.
         path: String,
     },
+    /// A clock face showing the object's proper time where each point is seen
+    /// ([`crate::Clock`]).
+    Clock {
+        /// Reading per unit of proper time ct′ (finite).
+        rate: f64,
+        /// Reading at proper time 0 (finite).
+        offset: f64,
+        /// Reading per turn of the slow hand (> 0).
+        dial: f64,
+        /// Face and ink colours (sRGB, components in [0, 1]).
+        colors: [[f64; 3]; 2],
+    },
 }
 
 impl TextureDescription {
@@ -300,6 +317,16 @@ enum TextureTable {
     Image {
         path: String,
     },
+    Clock {
+        #[serde(default = "default_clock_rate")]
+        rate: f64,
+        #[serde(default)]
+        offset: f64,
+        #[serde(default = "default_clock_dial")]
+        dial: f64,
+        #[serde(default = "default_clock_colors")]
+        colors: [[f64; 3]; 2],
+    },
 }
 
 impl Serialize for TextureDescription {
@@ -314,6 +341,18 @@ impl Serialize for TextureDescription {
             Self::Image { path } => {
                 TextureTable::Image { path: path.clone() }.serialize(serializer)
             }
+            Self::Clock {
+                rate,
+                offset,
+                dial,
+                colors,
+            } => TextureTable::Clock {
+                rate: *rate,
+                offset: *offset,
+                dial: *dial,
+                colors: *colors,
+            }
+            .serialize(serializer),
         }
     }
 }
@@ -325,7 +364,8 @@ impl<'de> Deserialize<'de> for TextureDescription {
             type Value = TextureDescription;
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 f.write_str(
-                    "\"checker\", an image path, or a table with type = \"checker\" or \"image\"",
+                    "\"checker\", an image path, or a table with type = \"checker\", \"image\" or \
+                     \"clock\"",
                 )
             }
             fn visit_str<E: de::Error>(self, value: &str) -> Result<Self::Value, E> {
@@ -346,6 +386,17 @@ impl<'de> Deserialize<'de> for TextureDescription {
                             TextureDescription::Checker { squares, colors }
                         }
                         TextureTable::Image { path } => TextureDescription::Image { path },
+                        TextureTable::Clock {
+                            rate,
+                            offset,
+                            dial,
+                            colors,
+                        } => TextureDescription::Clock {
+                            rate,
+                            offset,
+                            dial,
+                            colors,
+                        },
                     },
                 )
             }
@@ -558,6 +609,15 @@ fn default_checker_squares() -> u32 {
 }
 fn default_checker_colors() -> [[f64; 3]; 2] {
     DEFAULT_CHECKER_COLORS
+}
+fn default_clock_rate() -> f64 {
+    1.0
+}
+fn default_clock_dial() -> f64 {
+    DEFAULT_CLOCK_DIAL
+}
+fn default_clock_colors() -> [[f64; 3]; 2] {
+    DEFAULT_CLOCK_COLORS
 }
 #[expect(
     clippy::trivially_copy_pass_by_ref,

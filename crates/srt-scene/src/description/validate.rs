@@ -400,6 +400,19 @@ impl ObjectDescription {
                 " of kelvin",
             )?;
             non_negative(&field("emission.brightness"), emission.brightness)?;
+            if let Some(blink) = emission.blink {
+                positive(
+                    ValueName::Key(&field("emission.blink.period")),
+                    blink.period,
+                    " of proper time (ct')",
+                )?;
+                if !(0.0..=1.0).contains(&blink.duty) {
+                    return Err(value_error(
+                        field("emission.blink.duty"),
+                        format!("must be a fraction in [0, 1], got {:?}", blink.duty),
+                    ));
+                }
+            }
         }
         self.shape.check(&field)?;
         if let Some(texture) = &self.texture {
@@ -482,6 +495,29 @@ impl TextureDescription {
                 Err(value_error(field("texture.path"), "must not be empty"))
             }
             Self::Image { .. } => Ok(()),
+            Self::Clock {
+                rate,
+                offset,
+                dial,
+                colors,
+            } => {
+                for (name, value) in [("texture.rate", rate), ("texture.offset", offset)] {
+                    if !value.is_finite() {
+                        return Err(value_error(
+                            field(name),
+                            format!("must be a finite number, got {value:?}"),
+                        ));
+                    }
+                }
+                positive(
+                    ValueName::Key(&field("texture.dial")),
+                    *dial,
+                    " (the reading per turn of the slow hand)",
+                )?;
+                colors
+                    .iter()
+                    .try_for_each(|color| unit_color(&field("texture.colors"), *color))
+            }
         }
     }
 }
