@@ -62,7 +62,7 @@ fn star_arriving(star: Star, doppler: f32) -> Arriving {
 
 // Where a star lands and what it adds: the pixel of its splat's lower corner, the tent
 // weights' fractions, and its light as the frame's output holds it; visible = false when it is
-// behind the camera.
+// behind the camera (or there is no star: invocation_splat).
 struct StarSplat {
     visible: bool,
     base: vec2<f32>,
@@ -106,19 +106,19 @@ fn peak_exponent(peak: f32) -> i32 {
     return i32((bitcast<u32>(peak) >> 23u) & 0xffu) - 126;
 }
 
-// The star index of invocation `id`, or a number ≥ the star count.
-fn star_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
-    return id.x + id.y * groups.x * WORKGROUP_SIZE;
+// The splat of the star invocation `id` handles (see StarSplat); not visible past the last star.
+fn invocation_splat(id: vec3<u32>, groups: vec3<u32>) -> StarSplat {
+    let i = id.x + id.y * groups.x * WORKGROUP_SIZE;
+    if (i >= sky.counts.x) {
+        return StarSplat(false, vec2<f32>(0.0), vec2<f32>(0.0), vec3<f32>(0.0));
+    }
+    return star_splat(i);
 }
 
 // Pass 1: each pixel's peak, the largest channel magnitude of any star's contribution there.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn sky_star_peaks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = star_index(id, groups);
-    if (i >= sky.counts.x) {
-        return;
-    }
-    let s = star_splat(i);
+    let s = invocation_splat(id, groups);
     if (!s.visible) {
         return;
     }
@@ -135,11 +135,7 @@ fn sky_star_peaks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
 // Pass 2: every contribution added in its pixel's fixed point.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn sky_stars(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = star_index(id, groups);
-    if (i >= sky.counts.x) {
-        return;
-    }
-    let s = star_splat(i);
+    let s = invocation_splat(id, groups);
     if (!s.visible) {
         return;
     }
