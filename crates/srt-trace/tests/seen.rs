@@ -1,8 +1,8 @@
 //! What each pixel sees of time (`SeenEvent`, the `--aov` channels) against an independent
 //! light-cone solution: the event lies on the observer's backward light cone along the pixel's
 //! ray, on the surface of the object's worldline, and its world time, proper time and Doppler
-//! factor follow from Lorentz transformations written out here from Eq. 1–2, for cubes moving in
-//! several directions, seen by observers at rest and moving.
+//! factor follow from Lorentz transformations written out here from Eq. 1–2, for cubes and
+//! spheres moving in several directions, seen by observers at rest and moving.
 
 use std::sync::atomic::AtomicBool;
 
@@ -33,21 +33,58 @@ fn boost(beta: DVec3) -> DMat4 {
     DMat4::from_cols(column(0), column(1), column(2), column(3))
 }
 
-fn scene(observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f64; 3]) -> Scene {
+/// The shapes checked, each of half size [`HALF_SIZE`].
+#[derive(Debug, Clone, Copy)]
+enum Shape {
+    Cube,
+    /// A latitude–longitude sphere of [`SPHERE_SEGMENTS`] slices and half as many rings, both
+    /// 2π / segments apart: its flat triangles lie inside the sphere by at most r (1 − cos δ),
+    /// δ half the angle across a cell's diagonal.
+    Sphere,
+}
+
+const SPHERE_SEGMENTS: u32 = 64;
+
+impl Shape {
+    /// The scene file's `shape` table.
+    fn table(self) -> String {
+        match self {
+            Self::Cube => format!("{{ type = \"cube\", size = {} }}", 2.0 * HALF_SIZE),
+            Self::Sphere => format!(
+                "{{ type = \"sphere\", radius = {HALF_SIZE}, segments = {SPHERE_SEGMENTS} }}"
+            ),
+        }
+    }
+
+    /// How far the rest point `p` lies off the shape's surface.
+    fn distance_off_surface(self, p: DVec3) -> f64 {
+        match self {
+            Self::Cube => (p.abs().max_element() - HALF_SIZE).abs(),
+            Self::Sphere => {
+                let step = std::f64::consts::TAU / f64::from(SPHERE_SEGMENTS);
+                let sag = HALF_SIZE * (1.0 - (0.5 * std::f64::consts::SQRT_2 * step).cos());
+                // Inside the sphere by at most the flat triangles' sag.
+                (p.length() - HALF_SIZE).clamp(-sag, 0.0) - (p.length() - HALF_SIZE)
+            }
+        }
+    }
+}
+
+fn scene(shape: Shape, observer_beta: [f64; 3], beta: [f64; 3], offset: [f64; 3]) -> Scene {
     let text = format!(
         "[observer]\nposition = [0.0, -6.0, 0.5]\nlook_at = [0.0, 0.0, 0.0]\nct = 0.0\n\
          beta = {observer_beta:?}\nfov_y_deg = 60.0\n\
-         [[object]]\nshape = {{ type = \"cube\", size = {size} }}\nbeta = {cube_beta:?}\n\
+         [[object]]\nshape = {}\nbeta = {beta:?}\n\
          offset = {offset:?}\n",
-        size = 2.0 * HALF_SIZE
+        shape.table()
     );
     let description = SceneDescription::from_toml_str(&text, "test").unwrap();
     description.build(std::path::Path::new(".")).unwrap().0
 }
 
-/// Checks every pixel's event; returns how many pixels saw the cube.
-fn check(observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f64; 3]) -> usize {
-    let scene = scene(observer_beta, cube_beta, offset);
+/// Checks every pixel's event; returns how many pixels saw the object.
+fn check(shape: Shape, observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f64; 3]) -> usize {
+    let scene = scene(shape, observer_beta, cube_beta, offset);
     let events = Tracer::new(&scene)
         .render_seen_events(WIDTH, HEIGHT, &|_| {}, &AtomicBool::new(false))
         .unwrap();
@@ -92,7 +129,8 @@ fn check(observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f64; 3]) -> usiz
         let in_s = DVec4::new(observer.ct - distance, at.x, at.y, at.z);
         let in_w = to_world(in_s);
         let rest = from_world * (in_w - a);
-        let context = format!("pixel ({x}, {y}) of cube {cube_beta} seen moving {observer_beta:?}");
+        let context =
+            format!("pixel ({x}, {y}) of {shape:?} {cube_beta} seen moving {observer_beta:?}");
         assert!(
             (emission_ct - in_w.x).abs() <= 1e-9 * (1.0 + in_w.x.abs()),
             "{context}: emission_ct {emission_ct} vs {}",
@@ -103,12 +141,9 @@ fn check(observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f64; 3]) -> usiz
             "{context}: proper_time {proper_time} vs {}",
             rest.x
         );
-        // On the cube's surface, at rest in S′.
-        let extent = rest.y.abs().max(rest.z.abs()).max(rest.w.abs());
-        assert!(
-            (extent - HALF_SIZE).abs() < 1e-6,
-            "{context}: {rest} is not on the cube"
-        );
+        // On the object's surface, at rest in S′.
+        let off = shape.distance_off_surface(DVec3::new(rest.y, rest.z, rest.w));
+        assert!(off < 1e-6, "{context}: {rest} is {off} off the surface");
         // Doppler factor in S (Eq. 4): light leaves the surface towards the observer, along −look.
         let relative = velocity_in_s(cube_beta, DVec3::from_array(observer_beta));
         let expected =
@@ -137,10 +172,12 @@ fn events_lie_on_the_light_cone_and_the_worldline_for_an_observer_at_rest() {
         ([0.6, 0.3, -0.2], [2.5, 1.0, 0.0]),
         ([-0.95, 0.0, 0.1], [-3.0, 0.0, 0.0]),
     ] {
-        assert!(
-            check([0.0; 3], beta, offset) > 100,
-            "{beta:?}: the cube is seen"
-        );
+        for shape in [Shape::Cube, Shape::Sphere] {
+            assert!(
+                check(shape, [0.0; 3], beta, offset) > 100,
+                "{beta:?}: the {shape:?} is seen"
+            );
+        }
     }
 }
 
@@ -150,9 +187,11 @@ fn world_and_proper_times_hold_for_a_moving_observer() {
         ([0.5, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
         ([0.0, -0.7, 0.2], [0.3, -0.4, 0.0], [0.0, 0.0, 0.0]),
     ] {
-        assert!(
-            check(observer_beta, cube_beta, offset) > 100,
-            "{observer_beta:?}, {cube_beta:?}: the cube is seen"
-        );
+        for shape in [Shape::Cube, Shape::Sphere] {
+            assert!(
+                check(shape, observer_beta, cube_beta, offset) > 100,
+                "{observer_beta:?}, {cube_beta:?}: the {shape:?} is seen"
+            );
+        }
     }
 }
