@@ -36,9 +36,10 @@ fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     if (writes_seen_events()) {
         return seen_pixel(polygon_emission(in));
     }
-    // Only a clock or a blinking emission needs the fragment's proper time (one light-cone solve).
+    // Only a clock, a flipbook or a blinking emission needs the fragment's proper time (one
+    // light-cone solve).
     var proper_time = 0.0;
-    if (object.blink.x > 0.0 || has_clock()) {
+    if (object.blink.x > 0.0 || has_clock() || part.frames > 1u) {
         proper_time = proper_time_at(polygon_emission(in));
     }
     let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);

@@ -40,25 +40,40 @@ fn triangle_uv(t: u32, zeta: f32, xi: f32) -> vec2<f32> {
     return (1.0 - zeta - xi) * a + zeta * b + xi * c;
 }
 
-// Size of mip level `level` of the part's texture: the base size halved `level` times, at least
-// 1 (as srt_scene::mip::MipChain makes them). Derived from the base size rather than asked of
-// the texture per level: llvmpipe answers textureDimensions with a level that differs between
-// the pixels it shades together with one pixel's level.
+// Size of one frame in mip level `level` of the part's texture: the base frame size halved
+// `level` times, at least 1 (as srt_scene::mip::MipChain makes them). Derived from the base size
+// rather than asked of the texture per level: llvmpipe answers textureDimensions with a level
+// that differs between the pixels it shades together with one pixel's level.
 fn part_level_size(level: i32) -> vec2<i32> {
-    return vec2<i32>(max(textureDimensions(part_texture) >> vec2<u32>(u32(level)), vec2<u32>(1u)));
+    let base = vec2<u32>(textureDimensions(part_texture).x, part.frame_height);
+    return vec2<i32>(max(base >> vec2<u32>(u32(level)), vec2<u32>(1u)));
 }
 
-// Texel `texel` (non-negative) of mip level `level` of the part's texture, `size` texels large,
-// wrapped (repeat addressing): the mirror of srt_trace::texture::texel. Only non-negative
-// coordinates reach `%`: GLSL, which wgpu's GL backend runs, leaves `%` of a negative number
-// undefined (llvmpipe's GL returned wrong texels for them).
-fn part_texel(level: i32, size: vec2<i32>, texel: vec2<i32>) -> vec4<f32> {
-    return textureLoad(part_texture, texel % size, level);
+// The flipbook frame the part's texture shows at proper time `proper_time`, 0 for a still image
+// (mirror of srt_scene::Texture::frame_at).
+fn part_frame(proper_time: f32) -> u32 {
+    let count = f32(part.frames);
+    let shown = floor(proper_time * part.frame_rate);
+    let frame = shown - floor(shown / count) * count;
+    if (!(frame >= 0.0)) {
+        return 0u;
+    }
+    return u32(frame) % part.frames;
 }
 
-// Bilinear sample of mip level `level` at `uv`, texel centres at half-integers: the mirror of
-// srt_trace::texture::bilinear. The lower texel is wrapped into the texture while still a float.
-fn part_bilinear(level: i32, uv: vec2<f32>) -> vec4<f32> {
+// Texel `texel` (non-negative) of frame `frame` of mip level `level` of the part's texture, the
+// frame `size` texels large, wrapped within the frame (repeat addressing): the mirror of
+// srt_trace::texture::texel. Only non-negative coordinates reach `%`: GLSL, which wgpu's GL
+// backend runs, leaves `%` of a negative number undefined (llvmpipe's GL returned wrong texels
+// for them).
+fn part_texel(level: i32, frame: u32, size: vec2<i32>, texel: vec2<i32>) -> vec4<f32> {
+    return textureLoad(part_texture, texel % size + vec2<i32>(0, i32(frame) * size.y), level);
+}
+
+// Bilinear sample of frame `frame` of mip level `level` at `uv`, texel centres at
+// half-integers: the mirror of srt_trace::texture::bilinear. The lower texel is wrapped into the
+// frame while still a float.
+fn part_bilinear(level: i32, frame: u32, uv: vec2<f32>) -> vec4<f32> {
     let size = part_level_size(level);
     let extent = vec2<f32>(size);
     let p = uv * extent - 0.5;
@@ -66,8 +81,8 @@ fn part_bilinear(level: i32, uv: vec2<f32>) -> vec4<f32> {
     let f = p - p0;
     let i = vec2<i32>(p0 - extent * floor(p0 / extent));
     let j = i + 1;
-    let top = mix(part_texel(level, size, i), part_texel(level, size, vec2<i32>(j.x, i.y)), f.x);
-    let bottom = mix(part_texel(level, size, vec2<i32>(i.x, j.y)), part_texel(level, size, j), f.x);
+    let top = mix(part_texel(level, frame, size, i), part_texel(level, frame, size, vec2<i32>(j.x, i.y)), f.x);
+    let bottom = mix(part_texel(level, frame, size, vec2<i32>(i.x, j.y)), part_texel(level, frame, size, j), f.x);
     return mix(top, bottom, f.y);
 }
 
@@ -75,8 +90,8 @@ fn part_bilinear(level: i32, uv: vec2<f32>) -> vec4<f32> {
 // texture coordinates per pixel: the mirror of srt_trace::texture::sample_trilinear, filtered
 // here in f32 rather than by the sampler hardware, whose level of detail and weights are
 // implementation-defined (NVIDIA's differ from the reference by up to 12/255 at texel edges).
-fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f32> {
-    let size = vec2<f32>(textureDimensions(part_texture));
+fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>, frame: u32) -> vec4<f32> {
+    let size = vec2<f32>(part_level_size(0));
     let rho = max(length(ddx * size), length(ddy * size));
     var lod = 0.0;
     if (rho > 0.0 && rho < 3.0e38) {
@@ -90,9 +105,9 @@ fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f3
     var colour = vec4<f32>(0.0);
     for (var level = 0; level <= lower + 1; level++) {
         if (level == lower) {
-            colour += (1.0 - fraction) * part_bilinear(level, uv);
+            colour += (1.0 - fraction) * part_bilinear(level, frame, uv);
         } else if (level == lower + 1 && fraction > 0.0) {
-            colour += fraction * part_bilinear(level, uv);
+            colour += fraction * part_bilinear(level, frame, uv);
         }
     }
     return colour;
@@ -120,7 +135,7 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
     if (has_clock()) {
         albedo *= clock_albedo(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, proper_time);
     } else if (part_has(PART_TEXTURED)) {
-        albedo *= sample_part_texture(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy);
+        albedo *= sample_part_texture(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, part_frame(proper_time));
     }
     return albedo;
 }

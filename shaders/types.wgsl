@@ -115,7 +115,12 @@ struct PartUniforms {
     triangle_count: u32,
     // The part's number in the scene, from 1 (0 marks "no triangle" in the visibility pass).
     id: u32,
-    padding: u32,
+    // A flipbook texture (srt_scene::Texture): frames stacked from the top (1: a still image),
+    // one frame's height in the base level, frames per unit of proper time.
+    frames: u32,
+    frame_height: u32,
+    frame_rate: f32,
+    padding: vec2<u32>,
 }
 
 // One vertex in S′.

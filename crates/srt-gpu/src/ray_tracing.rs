@@ -178,7 +178,7 @@ impl ObjectRayTracing {
         let layers = layers(&corners, bounds);
         let boxed = BoxBuffers::new(device, bounds);
         // The box has no texture; group 2 wants one.
-        let blank = part_texture(ctx, None);
+        let (blank, _) = part_texture(ctx, None);
         let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
@@ -265,6 +265,9 @@ fn box_uniforms(cull_back_faces: bool) -> PartUniforms {
         flags: PartFlags::default().with(PartFlags::CULL_BACK_FACES, cull_back_faces),
         triangle_count: BOX_TRIANGLES,
         id: 0,
-        padding: 0,
+        frames: 1,
+        frame_height: 1,
+        frame_rate: 0.0,
+        padding: [0; 2],
     }
 }

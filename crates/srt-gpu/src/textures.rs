@@ -51,12 +51,17 @@ pub fn upload_2d(ctx: &GpuContext, texture: &Texture2d<'_>, data: &[u8]) -> wgpu
 }
 
 /// `texture` with its mip chain (levels larger than the device allows are skipped), or, for
-/// `None`, a 1×1 white texture: the `part_texture` the shading passes sample by hand.
-pub(crate) fn part_texture(ctx: &GpuContext, texture: Option<&Texture>) -> wgpu::TextureView {
+/// `None`, a 1×1 white texture: the `part_texture` the shading passes sample by hand, and the
+/// height of one of its frames in the first level uploaded.
+pub(crate) fn part_texture(
+    ctx: &GpuContext,
+    texture: Option<&Texture>,
+) -> (wgpu::TextureView, u32) {
     let limit = ctx.device.limits().max_texture_dimension_2d;
     let white = MipLevel {
         width: 1,
         height: 1,
+        frame_height: 1,
         texels: vec![[255; 4]],
     };
     let chain = texture.map(MipChain::new);
@@ -74,7 +79,7 @@ pub(crate) fn part_texture(ctx: &GpuContext, texture: Option<&Texture>) -> wgpu:
         .iter()
         .flat_map(|l| l.texels.iter().flatten().copied())
         .collect();
-    upload_2d(
+    let view = upload_2d(
         ctx,
         &Texture2d {
             label: "srt part texture",
@@ -86,5 +91,6 @@ pub(crate) fn part_texture(ctx: &GpuContext, texture: Option<&Texture>) -> wgpu:
         },
         &data,
     )
-    .create_view(&wgpu::TextureViewDescriptor::default())
+    .create_view(&wgpu::TextureViewDescriptor::default());
+    (view, levels[0].frame_height)
 }

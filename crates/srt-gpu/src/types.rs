@@ -362,8 +362,14 @@ pub struct PartUniforms {
     /// The part's number in the scene, from 1: the LRT visibility pass writes it (0 where no
     /// triangle is seen) and the shading pass compares it.
     pub id: u32,
+    /// Frames stacked in the part's texture (1: a still image; srt_scene::Texture::frames).
+    pub frames: u32,
+    /// Height of one frame in the texture's first uploaded level, in texels.
+    pub frame_height: u32,
+    /// Frames per unit of proper time (0 for a still image).
+    pub frame_rate: f32,
     /// Padding to the WGSL size.
-    pub padding: u32,
+    pub padding: [u32; 2],
 }
 
 /// Twin of WGSL `Vertex`.

@@ -162,6 +162,60 @@ fn seen_events_match_the_cpu_reference() {
     ctx.take_errors().unwrap();
 }
 
+#[test]
+fn flipbooks_match_the_cpu_reference() {
+    let Some(ctx) = context_or_skip("flipbooks_match_the_cpu_reference") else {
+        return;
+    };
+    // A cube at rest 4.5 away wearing three checkerboards, one per unit of proper time: at
+    // ct = 4 + k + ½ its face (4 away) shows frame k mod 3 (its light left ½ into frame k).
+    let frames = [
+        ([1.0, 0.9, 0.7], [0.2, 0.2, 0.3]),
+        ([0.9, 0.2, 0.2], [1.0, 1.0, 1.0]),
+        ([0.1, 0.6, 0.2], [0.0, 0.0, 0.0]),
+    ]
+    .map(|(a, b)| srt_scene::textures::checker(64, 4, a, b));
+    let book = std::sync::Arc::new(
+        srt_scene::textures::flipbook(&frames, 1.0, "test flipbook".into()).unwrap(),
+    );
+    let mut scene = SceneDescription::from_toml_str(
+        "[observer]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.3, 4.5, 0.2]\nfov_y_deg = 20.0\n\
+         [[object]]\nshape = { type = \"cube\", size = 1.0 }\noffset = [0.0, 4.5, 0.0]\n\
+         rotate_deg = [0.0, 0.0, 20.0]\n",
+        "test",
+    )
+    .unwrap()
+    .build(std::path::Path::new("."))
+    .unwrap()
+    .0;
+    for part in &mut scene.objects[0].parts {
+        part.material.texture = Some(book.clone());
+    }
+    let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+    let mut seen = Vec::new();
+    for frame in 0..4 {
+        scene.observer.ct = 4.5 + f64::from(frame);
+        let reference = cpu_image(&scene);
+        let (image, _) = renderer
+            .render(&ctx, &scene, Method::Lrt, FootprintShape::Hull)
+            .unwrap();
+        let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
+        let line = format!(
+            "ct={}: mismatch={:.5} max={}",
+            scene.observer.ct,
+            mismatch.fraction(),
+            mismatch.max_difference
+        );
+        println!("{line}");
+        assert!(mismatch.fraction() <= 0.001, "{line}");
+        seen.push(reference.pixels[(HEIGHT / 2 * WIDTH + WIDTH / 2) as usize]);
+    }
+    // The frames differ, and the fourth unit shows the first frame again.
+    assert!(seen[0] != seen[1] && seen[1] != seen[2], "{seen:?}");
+    assert_eq!(seen[0], seen[3]);
+    ctx.take_errors().unwrap();
+}
+
 /// A stack of `layers` parallel squares 0.05 apart, side 1, facing +z, centred at the origin:
 /// an object deep enough (its surface over its box's about `layers` / 2) for `auto` to trace it.
 fn stack_of_squares(layers: u32) -> Mesh {

@@ -317,17 +317,52 @@ impl Mesh {
 }
 
 /// A texture image: RGBA8 texels as stored in the file (sRGB-encoded), row 0 at the top
-/// (texture coordinate v = 0).
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// (texture coordinate v = 0); or a flipbook, `frames` images of one size stacked from the top,
+/// shown one after another as the object's proper time advances.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Texture {
     /// Width in texels.
     pub width: u32,
-    /// Height in texels.
+    /// Height in texels (of all frames together).
     pub height: u32,
     /// Row-major texels, `width * height` of them.
     pub texels: Vec<[u8; 4]>,
     /// Where it came from (file name or description), for messages.
     pub source: String,
+    /// How many frames are stacked (1: a still image); `height` is a multiple of it.
+    pub frames: u32,
+    /// Frames per unit of the object's proper time ct′ (0 for a still image).
+    pub frame_rate: f64,
+}
+
+impl Texture {
+    /// A still image.
+    #[must_use]
+    pub fn still(width: u32, height: u32, texels: Vec<[u8; 4]>, source: String) -> Self {
+        Self {
+            width,
+            height,
+            texels,
+            source,
+            frames: 1,
+            frame_rate: 0.0,
+        }
+    }
+
+    /// The frame shown at proper time `proper_time` (ct′): ⌊τ · rate⌋ mod frames, looping (frame
+    /// 0 from τ = 0 on).
+    #[must_use]
+    pub fn frame_at(&self, proper_time: f64) -> u32 {
+        let shown = (proper_time * self.frame_rate).floor();
+        let count = f64::from(self.frames);
+        // In [0, frames); a non-finite time shows the first frame.
+        let frame = shown - (shown / count).floor() * count;
+        if frame.is_finite() {
+            frame as u32 % self.frames
+        } else {
+            0
+        }
+    }
 }
 
 /// Surface description of a mesh part.

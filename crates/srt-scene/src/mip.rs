@@ -1,16 +1,20 @@
 //! Mip chains of textures: every level a 2×2 box filter of the one above, rounded to 8 bits.
 //! The CPU reference and the GPU upload the very same levels, so their filtered texture lookups
-//! can agree.
+//! can agree. A flipbook's frames are filtered each on its own and stacked again in every
+//! level, padded to the height a GPU texture of the stacked size has at that level.
 
 use crate::mesh::Texture;
 
-/// One mip level: RGBA8 texels, row 0 at v = 0.
+/// One mip level: RGBA8 texels, row 0 at v = 0; for a flipbook its frames one below the other,
+/// each `frame_height` rows, then rows of padding up to `height`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct MipLevel {
     /// Width in texels.
     pub width: u32,
-    /// Height in texels.
+    /// Height in texels (all frames and the padding).
     pub height: u32,
+    /// Height of one frame in texels (`height` for a still image).
+    pub frame_height: u32,
     /// Row-major texels.
     pub texels: Vec<[u8; 4]>,
 }
@@ -43,6 +47,7 @@ impl MipLevel {
         Self {
             width,
             height,
+            frame_height: height,
             texels,
         }
     }
@@ -66,14 +71,15 @@ pub struct MipChain {
 }
 
 impl MipChain {
-    /// Builds the chain from a texture (level 0 is the texture itself).
+    /// Builds the chain from a texture (level 0 is the texture itself), down to 1×1 frames.
     ///
     /// # Panics
-    /// If the texture's texel count does not match its size or it is empty.
+    /// If the texture's texel count does not match its size, it is empty, or its height is not
+    /// a multiple of its frame count.
     #[must_use]
     pub fn new(texture: &Texture) -> Self {
         assert!(
-            texture.width > 0 && texture.height > 0,
+            texture.width > 0 && texture.height > 0 && texture.frames > 0,
             "texture {} is empty",
             texture.source
         );
@@ -81,14 +87,43 @@ impl MipChain {
             texture.texels.len(),
             (texture.width * texture.height) as usize
         );
-        let mut levels = vec![MipLevel {
-            width: texture.width,
-            height: texture.height,
-            texels: texture.texels.clone(),
-        }];
-        while let Some(last) = levels.last().filter(|l| l.width > 1 || l.height > 1) {
-            levels.push(last.downsample());
-        }
+        assert_eq!(texture.height % texture.frames, 0, "{}", texture.source);
+        let frame_height = texture.height / texture.frames;
+        let frame_texels = (texture.width * frame_height) as usize;
+        let frames: Vec<Vec<MipLevel>> = texture
+            .texels
+            .chunks(frame_texels)
+            .map(|texels| {
+                let mut levels = vec![MipLevel {
+                    width: texture.width,
+                    height: frame_height,
+                    frame_height,
+                    texels: texels.to_vec(),
+                }];
+                while let Some(last) = levels.last().filter(|l| l.width > 1 || l.height > 1) {
+                    levels.push(last.downsample());
+                }
+                levels
+            })
+            .collect();
+        let levels = (0..frames[0].len())
+            .map(|level| {
+                let first = &frames[0][level];
+                // A GPU texture of the stacked size has at least the stacked rows at this level.
+                let height = (texture.height >> level).max(1);
+                let mut texels: Vec<[u8; 4]> = frames
+                    .iter()
+                    .flat_map(|f| f[level].texels.iter().copied())
+                    .collect();
+                texels.resize((first.width * height) as usize, [0; 4]);
+                MipLevel {
+                    width: first.width,
+                    height,
+                    frame_height: first.height,
+                    texels,
+                }
+            })
+            .collect();
         Self { levels }
     }
 
@@ -108,12 +143,7 @@ mod tests {
             .flat_map(|y| (0..width).map(move |x| (x, y)))
             .map(|(x, y)| f(x, y))
             .collect();
-        Texture {
-            width,
-            height,
-            texels,
-            source: "test".into(),
-        }
+        Texture::still(width, height, texels, "test".into())
     }
 
     #[test]
@@ -132,5 +162,27 @@ mod tests {
         assert_eq!((chain.levels()[1].width, chain.levels()[1].height), (1, 1));
         // Average of all nine values 0,1,2,10,11,12,20,21,22 = 11.
         assert_eq!(chain.levels()[1].texels[0][0], 11);
+    }
+
+    #[test]
+    fn a_flipbook_filters_each_frame_alone_and_pads_to_the_stacked_size() {
+        let first = texture(3, 3, |x, y| [(x * 10 + y) as u8, 0, 0, 255]);
+        let second = texture(3, 3, |_, _| [200, 0, 0, 255]);
+        let book = crate::textures::flipbook(&[first, second], 2.0, "book".into()).unwrap();
+        let chain = MipChain::new(&book);
+        let shape: Vec<_> = chain
+            .levels()
+            .iter()
+            .map(|l| (l.width, l.height, l.frame_height))
+            .collect();
+        // Level 1: two 1×1 frames, padded to the 3 rows a 3×6 texture has there.
+        assert_eq!(shape, vec![(3, 6, 3), (1, 3, 1)]);
+        let reds: Vec<u8> = chain.levels()[1].texels.iter().map(|t| t[0]).collect();
+        assert_eq!(reds, vec![11, 200, 0]);
+        assert_eq!(book.frame_at(0.49), 0);
+        assert_eq!(book.frame_at(0.5), 1);
+        assert_eq!(book.frame_at(1.2), 0);
+        assert_eq!(book.frame_at(-0.2), 1);
+        assert_eq!(book.frame_at(f64::NAN), 0);
     }
 }

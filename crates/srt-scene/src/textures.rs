@@ -20,6 +20,9 @@ pub const DEFAULT_CHECKER_SQUARES: u32 = 8;
 /// The most checker squares along an edge a scene may ask for.
 pub const MAX_CHECKER_SQUARES: u32 = 1024;
 
+/// The most frames a flipbook texture may have (each is also charged to the texel budget).
+pub const MAX_FRAMES: usize = 1024;
+
 /// Default checker colours: white and black (the grey value 𝒢 of Eq. 18 is then 1 and 0).
 pub const DEFAULT_CHECKER_COLORS: [[f64; 3]; 2] = [[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]];
 
@@ -52,12 +55,12 @@ pub fn checker(texels: u32, squares: u32, color_a: [f64; 3], color_b: [f64; 3]) 
             })
         })
         .collect();
-    Texture {
-        width: size,
-        height: size,
+    Texture::still(
+        size,
+        size,
         texels,
-        source: format!("checker texture ({squares} × {squares} squares)"),
-    }
+        format!("checker texture ({squares} × {squares} squares)"),
+    )
 }
 
 /// The texel resolution used for a checkerboard of `squares` squares per edge in scenes: a
@@ -78,12 +81,7 @@ pub fn checker_resolution(squares: u32) -> u32 {
 /// A 1 × 1 texture of one colour.
 #[must_use]
 pub fn solid(color: [f64; 3]) -> Texture {
-    Texture {
-        width: 1,
-        height: 1,
-        texels: vec![texel(color)],
-        source: "solid colour".to_owned(),
-    }
+    Texture::still(1, 1, vec![texel(color)], "solid colour".to_owned())
 }
 
 /// Decodes an encoded image (the format is guessed from the content, `extension` — without the
@@ -146,12 +144,12 @@ pub fn decode_image(
     budget: &mut Budget,
 ) -> Result<Texture, String> {
     let rgba = decode_checked(bytes, extension, budget)?.into_rgba8();
-    Ok(Texture {
-        width: rgba.width(),
-        height: rgba.height(),
-        texels: rgba.pixels().map(|p| p.0).collect(),
-        source: source.to_owned(),
-    })
+    Ok(Texture::still(
+        rgba.width(),
+        rgba.height(),
+        rgba.pixels().map(|p| p.0).collect(),
+        source.to_owned(),
+    ))
 }
 
 /// Reads (through [`input_file::read`]) and decodes the image file at `path`, charging its
@@ -167,6 +165,36 @@ pub fn load_image(path: &Path, budget: &mut Budget) -> Result<Texture, String> {
         &path.display().to_string(),
         budget,
     )
+}
+
+/// A flipbook of `frames` (still images of one size, in order) advancing `frame_rate` frames per
+/// unit of proper time, named `source`.
+///
+/// # Errors
+/// If there are no frames or their sizes differ (the message names the first that differs).
+pub fn flipbook(frames: &[Texture], frame_rate: f64, source: String) -> Result<Texture, String> {
+    let first = frames.first().ok_or("it has no frames")?;
+    if let Some(other) = frames
+        .iter()
+        .find(|f| (f.width, f.height) != (first.width, first.height))
+    {
+        return Err(format!(
+            "its frames differ in size: {} is {}×{}, {} is {}×{}",
+            first.source, first.width, first.height, other.source, other.width, other.height
+        ));
+    }
+    let count = u32::try_from(frames.len()).map_err(|_| "it has too many frames")?;
+    Ok(Texture {
+        width: first.width,
+        height: first.height * count,
+        texels: frames
+            .iter()
+            .flat_map(|f| f.texels.iter().copied())
+            .collect(),
+        source,
+        frames: count,
+        frame_rate,
+    })
 }
 
 #[cfg(test)]

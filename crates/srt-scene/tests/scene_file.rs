@@ -544,6 +544,74 @@ fn missing_textures_are_warnings() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// A flipbook loads every frame relative to the scene file, stacked in order; frames of
+/// different sizes or a missing frame leave the object untextured with a warning naming the
+/// file; bad lists and rates are refused.
+#[test]
+fn flipbooks_load_every_frame_or_say_which_one_failed() {
+    let dir = temp_dir();
+    std::fs::create_dir_all(dir.join("frames")).unwrap();
+    for (name, size, colour) in [
+        ("a.png", 2, [200, 0, 0, 255]),
+        ("b.png", 2, [0, 0, 200, 255]),
+        ("big.png", 3, [0, 200, 0, 255]),
+    ] {
+        image::RgbaImage::from_pixel(size, size, image::Rgba(colour))
+            .save(dir.join("frames").join(name))
+            .unwrap();
+    }
+    let load = |files: &str| {
+        let text = with_object(&format!(
+            "texture = {{ type = \"frames\", files = {files}, fps = 3.0 }}"
+        ));
+        std::fs::write(dir.join("book.toml"), text).unwrap();
+        load_scene_file(&dir.join("book.toml")).unwrap()
+    };
+    let (scene, _, warnings) = load("[\"frames/a.png\", \"frames/b.png\", \"frames/a.png\"]");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let texture = scene.objects[0].parts[0].material.texture.as_ref().unwrap();
+    assert_eq!((texture.width, texture.height, texture.frames), (2, 6, 3));
+    assert_eq!(texture.frame_rate, 3.0);
+    assert_eq!(
+        texture.texels[4],
+        [0, 0, 200, 255],
+        "frame 1 starts at row 2"
+    );
+    assert_eq!(texture.frame_at(0.4), 1);
+    for (files, named) in [
+        ("[\"frames/a.png\", \"frames/big.png\"]", "big.png"),
+        ("[\"frames/a.png\", \"frames/gone.png\"]", "frames/gone.png"),
+    ] {
+        let (scene, _, warnings) = load(files);
+        assert!(scene.objects[0].parts[0].material.texture.is_none());
+        assert!(
+            warnings.len() == 1 && warnings[0].contains(named) && warnings[0].contains("probe"),
+            "{warnings:?}"
+        );
+    }
+    for (extra, key) in [
+        (
+            "texture = { type = \"frames\", files = [] }",
+            "texture.files",
+        ),
+        (
+            "texture = { type = \"frames\", files = [\"\"] }",
+            "texture.files",
+        ),
+        (
+            "texture = { type = \"frames\", files = [\"a.png\"], fps = 0.0 }",
+            "texture.fps",
+        ),
+        (
+            "texture = { type = \"frames\", files = [\"a.png\"], fps = inf }",
+            "texture.fps",
+        ),
+    ] {
+        let message = value_error(&with_object(extra));
+        assert!(message.contains(key), "{extra}: {message}");
+    }
+}
+
 #[test]
 fn scene_files_load_models_and_textures_relative_to_their_folder() {
     let dir = temp_dir();

@@ -425,7 +425,14 @@ impl<'a> Tracer<'a> {
             if let Some(clock) = &seen_object.clock {
                 albedo *= clock_albedo(clock, uv, ddx, ddy, proper_time);
             } else if let Some(texture) = &part.texture {
-                albedo *= sample_trilinear(texture, uv, ddx, ddy);
+                // A flipbook shows the frame of the proper time at the emission event.
+                let frame = part
+                    .part
+                    .material
+                    .texture
+                    .as_ref()
+                    .map_or(0, |t| t.frame_at(proper_time));
+                albedo *= sample_trilinear(texture, frame, uv, ddx, ddy);
             }
         }
         let illumination = Illumination {

@@ -1,40 +1,56 @@
-//! A clock face shows the proper time of the event each pixel sees: a clock cube at rest,
-//! approaching and receding along the line of sight at 0.6c is rendered head-on, and the angle
-//! of its fast hand (one turn per unit of reading), measured from the picture, equals
+//! A clock face and a flipbook show the proper time of the event each pixel sees. A clock cube
+//! at rest, approaching and receding along the line of sight at 0.6c is rendered head-on, and
+//! the angle of its fast hand (one turn per unit of reading), measured from the picture, equals
 //! 360° × frac(τ), with τ the proper time of the emission event of the face points sampled,
-//! solved here in closed form; between two observation times Δt apart the hand turns D Δt turns (D = 2, 1, 1/2):
-//! the approaching clock is seen to run twice as fast, the receding one half as fast. (Along
-//! the line of sight the face's image is rotationally symmetric, so angles on it are the
-//! clock's own.)
+//! solved here in closed form; between two observation times Δt apart the hand turns D Δt turns
+//! (D = 2, 1, 1/2): the approaching clock is seen to run twice as fast, the receding one half as
+//! fast. (Along the line of sight the face's image is rotationally symmetric, so angles on it
+//! are the clock's own.) A flipbook's centre pixel shows the frame ⌊τ · fps⌋ mod frames of the
+//! same τ.
 
 use std::f64::consts::TAU;
 
-use srt_scene::SceneDescription;
+use std::sync::Arc;
+
+use srt_scene::textures::{flipbook, solid};
+use srt_scene::{Scene, SceneDescription};
 use srt_trace::{RenderSettings, Tracer};
 
 const SIZE: u32 = 240;
 
-/// The display image (row-major, [0, 1]) of a clock cube of edge 1 moving along the line of
-/// sight with `beta_y`, its centre at (0, `offset_y`, 0) at t = 0, seen from the origin at `ct`.
-fn render(beta_y: f64, offset_y: f64, ct: f64) -> Vec<f64> {
+/// A cube of edge 1 with `texture` moving along the line of sight with `beta_y`, its centre at
+/// (0, `offset_y`, 0) at t = 0, seen from the origin at `ct` with an 8° field of view.
+fn cube_scene(texture: &str, beta_y: f64, offset_y: f64, ct: f64) -> Scene {
     let text = format!(
         "[observer]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 1.0, 0.0]\nct = {ct:?}\n\
          fov_y_deg = 8.0\n\
          [render]\neffects = \"geometry\"\n\
-         [[object]]\nshape = {{ type = \"cube\", size = 1.0 }}\ntexture = {{ type = \"clock\" }}\n\
+         [[object]]\nshape = {{ type = \"cube\", size = 1.0 }}\ntexture = {texture}\n\
          beta = [0.0, {beta_y:?}, 0.0]\noffset = [0.0, {offset_y:?}, 0.0]\n"
     );
     let description = SceneDescription::from_toml_str(&text, "test").unwrap();
-    let scene = description.build(std::path::Path::new(".")).unwrap().0;
-    let image = Tracer::new(&scene).render(
+    description.build(std::path::Path::new(".")).unwrap().0
+}
+
+/// The display image (row-major, [0, 1], `size` × `size`) of `scene`, as grey values.
+fn render_grey(scene: &Scene, size: u32) -> Vec<f64> {
+    let image = Tracer::new(scene).render(
         RenderSettings {
-            width: SIZE,
-            height: SIZE,
+            width: size,
+            height: size,
             samples: 1,
         },
         &|_| {},
     );
     image.pixels.iter().map(|p| p.element_sum() / 3.0).collect()
+}
+
+/// The display image of a clock cube (see [`cube_scene`]).
+fn render(beta_y: f64, offset_y: f64, ct: f64) -> Vec<f64> {
+    render_grey(
+        &cube_scene("{ type = \"clock\" }", beta_y, offset_y, ct),
+        SIZE,
+    )
 }
 
 /// The proper time τ of the emission event of a point of the face at distance `rho` from its
@@ -169,4 +185,47 @@ fn a_receding_clock_is_seen_to_run_half_as_fast() {
     // Seen 10 away at ct = 20.
     let rate = seen_rate(0.6, 4.4, 20.0);
     assert!((rate / doppler(0.6) - 1.0).abs() < 0.03, "seen rate {rate}");
+}
+
+/// Frames of one colour each, told apart by the grey value the paper's colour shows.
+const FRAME_COLOURS: [[f64; 3]; 3] = [[1.0, 0.2, 0.2], [0.2, 1.0, 0.2], [0.2, 0.2, 1.0]];
+
+/// The centre pixel of the cube of [`cube_scene`] wearing a flipbook of [`FRAME_COLOURS`] at
+/// `fps`, or (with `still`) only that frame's colour.
+fn flipbook_centre(beta_y: f64, offset_y: f64, ct: f64, fps: f64, still: Option<usize>) -> f64 {
+    let mut scene = cube_scene("\"checker\"", beta_y, offset_y, ct);
+    let texture = match still {
+        Some(frame) => solid(FRAME_COLOURS[frame]),
+        None => flipbook(&FRAME_COLOURS.map(solid), fps, "test flipbook".into()).unwrap(),
+    };
+    for part in &mut scene.objects[0].parts {
+        part.material.texture = Some(Arc::new(texture.clone()));
+    }
+    render_grey(&scene, 1)[0]
+}
+
+#[test]
+fn a_flipbook_shows_the_frame_of_the_proper_time_seen() {
+    let fps = 4.0;
+    for (beta, offset, start) in [(0.0, 10.5, 10.0), (-0.6, 4.4, 0.0), (0.6, 4.4, 20.0)] {
+        let stills: Vec<f64> = (0..3)
+            .map(|k| flipbook_centre(beta, offset, start, fps, Some(k)))
+            .collect();
+        assert!(stills[0] != stills[1] && stills[1] != stills[2] && stills[0] != stills[2]);
+        for step in 0..24 {
+            let ct = start + 0.05 * f64::from(step);
+            let tau = face_proper_time(beta, offset, ct, 0.0);
+            let shown = (tau * fps).floor();
+            // Not where a frame ends: the pixel's own rounding may fall either side.
+            if (tau * fps - shown).min(shown + 1.0 - tau * fps) < 1e-6 {
+                continue;
+            }
+            let expected = shown.rem_euclid(3.0) as usize;
+            let seen = flipbook_centre(beta, offset, ct, fps, None);
+            assert_eq!(
+                seen, stills[expected],
+                "beta {beta} at ct {ct}: τ = {tau}, frame {expected} expected"
+            );
+        }
+    }
 }

@@ -904,8 +904,14 @@ fn absolutize_object(object: &mut ObjectDescription, base_dir: &Path) {
     if let ShapeDescription::Model { path } = &mut object.shape {
         *path = absolutize(path, base_dir);
     }
-    if let Some(TextureDescription::Image { path }) = &mut object.texture {
-        *path = absolutize(path, base_dir);
+    match &mut object.texture {
+        Some(TextureDescription::Image { path }) => *path = absolutize(path, base_dir),
+        Some(TextureDescription::Frames { files, .. }) => {
+            for path in files {
+                *path = absolutize(path, base_dir);
+            }
+        }
+        _ => {}
     }
 }
 

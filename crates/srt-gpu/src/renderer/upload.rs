@@ -195,15 +195,20 @@ pub(super) fn upload_batch(
     let Batch { members, sizes } = batch;
     let parts: Vec<&Part> = members.iter().map(|&i| &object.parts[i]).collect();
     let part = parts[0];
+    let image = part.material.texture.as_deref();
+    let (texture, frame_height) = part_texture(ctx, image);
     let material = PartUniforms {
         // The base colours are in the vertex colours.
         base_color: [1.0; 4],
         flags: PartFlags::default()
-            .with(PartFlags::TEXTURED, part.material.texture.is_some())
+            .with(PartFlags::TEXTURED, image.is_some())
             .with(PartFlags::VERTEX_COLOURS, true),
         triangle_count: sizes.triangles,
         id,
-        padding: 0,
+        frames: image.map_or(1, |t| t.frames),
+        frame_height,
+        frame_rate: image.map_or(0.0, |t| t.frame_rate as f32),
+        padding: [0; 2],
     };
     let uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt part uniforms"),
@@ -242,7 +247,6 @@ pub(super) fn upload_batch(
             | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let texture = part_texture(ctx, part.material.texture.as_deref());
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(PART_GROUP.label),
         layout: &pipelines.part_layout,
@@ -382,12 +386,7 @@ mod tests {
     /// keep theirs apart; the order within a batch is the parts' order.
     #[test]
     fn parts_are_batched_by_texture_and_culling_kind() {
-        let texture = Arc::new(Texture {
-            width: 1,
-            height: 1,
-            texels: vec![[255; 4]],
-            source: "test".to_owned(),
-        });
+        let texture = Arc::new(Texture::still(1, 1, vec![[255; 4]], "test".to_owned()));
         let open = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
         let object = Object {
             name: "test".to_owned(),

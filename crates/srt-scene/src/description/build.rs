@@ -51,6 +51,8 @@ enum TextureKey {
     Checker(u32, [[u64; 3]; 2]),
     /// An image, by its resolved path (or `builtin:` name).
     Image(String),
+    /// A flipbook: its frames' keys and the bits of its frame rate.
+    Frames(Vec<String>, u64),
 }
 
 impl SceneDescription {
@@ -526,6 +528,9 @@ impl ObjectDescription {
                 let what = match description {
                     TextureDescription::Image { path } => format!("texture \"{path}\""),
                     TextureDescription::Checker { .. } => "the checker texture".to_owned(),
+                    TextureDescription::Frames { files, .. } => {
+                        format!("the flipbook of {} frames", files.len())
+                    }
                     TextureDescription::Clock { .. } => "the clock".to_owned(),
                 };
                 let fallback = if matches!(self.shape, ShapeDescription::Model { .. }) {
@@ -550,17 +555,27 @@ impl TextureKey {
             TextureDescription::Checker { squares, colors } => {
                 Some(Self::Checker(*squares, colors.map(|c| c.map(f64::to_bits))))
             }
-            TextureDescription::Image { path } => {
-                Some(Self::Image(match assets::resolve(base_dir, path) {
-                    Ok(assets::Resolved::File(file)) => file.display().to_string(),
-                    Ok(assets::Resolved::Embedded { name, .. }) => {
-                        format!("{}{name}", assets::BUILTIN_PREFIX)
-                    }
-                    Err(_) => path.clone(),
-                }))
-            }
+            TextureDescription::Image { path } => Some(Self::Image(image_key(path, base_dir))),
+            TextureDescription::Frames { files, fps } => Some(Self::Frames(
+                files.iter().map(|f| image_key(f, base_dir)).collect(),
+                fps.to_bits(),
+            )),
             TextureDescription::Clock { .. } => None,
         }
+    }
+}
+
+/// Loads the image file (or `builtin:` image) at `path`, charging its texels to `budget`.
+fn load_image(path: &str, base_dir: &Path, budget: &mut Budget) -> Result<Texture, String> {
+    assets::resolve(base_dir, path).and_then(|resolved| assets::load_texture(&resolved, budget))
+}
+
+/// The key of the image at `path`: its resolved path (or `builtin:` name).
+fn image_key(path: &str, base_dir: &Path) -> String {
+    match assets::resolve(base_dir, path) {
+        Ok(assets::Resolved::File(file)) => file.display().to_string(),
+        Ok(assets::Resolved::Embedded { name, .. }) => format!("{}{name}", assets::BUILTIN_PREFIX),
+        Err(_) => path.to_owned(),
     }
 }
 
@@ -580,9 +595,15 @@ fn make_texture(
                 size, *squares, colors[0], colors[1],
             )))
         }
-        TextureDescription::Image { path } => assets::resolve(base_dir, path)
-            .and_then(|resolved| assets::load_texture(&resolved, budget))
-            .map(Arc::new),
+        TextureDescription::Image { path } => load_image(path, base_dir, budget).map(Arc::new),
+        TextureDescription::Frames { files, fps } => {
+            let frames = files
+                .iter()
+                .map(|path| load_image(path, base_dir, budget).map_err(|e| format!("{path}: {e}")))
+                .collect::<Result<Vec<_>, _>>()?;
+            let source = format!("flipbook of {} frames ({} …)", files.len(), files[0]);
+            textures::flipbook(&frames, *fps, source).map(Arc::new)
+        }
         TextureDescription::Clock { .. } => {
             Err("a clock is drawn per pixel, not loaded".to_owned())
         }

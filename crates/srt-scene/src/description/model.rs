@@ -279,6 +279,14 @@ pub enum TextureDescription {
         /// The file.
         path: String,
     },
+    /// A flipbook: image files of one size shown one after another as the object's proper time
+    /// advances, `fps` frames per unit of ct′, looping.
+    Frames {
+        /// The frames' files, in order (as `Image`'s path).
+        files: Vec<String>,
+        /// Frames per unit of proper time ct′ (> 0).
+        fps: f64,
+    },
     /// A clock face showing the object's proper time where each point is seen
     /// ([`crate::Clock`]).
     Clock {
@@ -317,6 +325,11 @@ enum TextureTable {
     Image {
         path: String,
     },
+    Frames {
+        files: Vec<String>,
+        #[serde(default = "default_fps")]
+        fps: f64,
+    },
     Clock {
         #[serde(default = "default_clock_rate")]
         rate: f64,
@@ -341,6 +354,11 @@ impl Serialize for TextureDescription {
             Self::Image { path } => {
                 TextureTable::Image { path: path.clone() }.serialize(serializer)
             }
+            Self::Frames { files, fps } => TextureTable::Frames {
+                files: files.clone(),
+                fps: *fps,
+            }
+            .serialize(serializer),
             Self::Clock {
                 rate,
                 offset,
@@ -364,8 +382,8 @@ impl<'de> Deserialize<'de> for TextureDescription {
             type Value = TextureDescription;
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 f.write_str(
-                    "\"checker\", an image path, or a table with type = \"checker\", \"image\" or \
-                     \"clock\"",
+                    "\"checker\", an image path, or a table with type = \"checker\", \"image\", \
+                     \"frames\" or \"clock\"",
                 )
             }
             fn visit_str<E: de::Error>(self, value: &str) -> Result<Self::Value, E> {
@@ -386,6 +404,9 @@ impl<'de> Deserialize<'de> for TextureDescription {
                             TextureDescription::Checker { squares, colors }
                         }
                         TextureTable::Image { path } => TextureDescription::Image { path },
+                        TextureTable::Frames { files, fps } => {
+                            TextureDescription::Frames { files, fps }
+                        }
                         TextureTable::Clock {
                             rate,
                             offset,
@@ -609,6 +630,9 @@ fn default_checker_squares() -> u32 {
 }
 fn default_checker_colors() -> [[f64; 3]; 2] {
     DEFAULT_CHECKER_COLORS
+}
+fn default_fps() -> f64 {
+    1.0
 }
 fn default_clock_rate() -> f64 {
     1.0

@@ -21,7 +21,7 @@ use super::model::{
 use crate::limits::{MAX_COORDINATE, MAX_SCENE_TRIANGLES};
 use crate::scene::SurfaceColour;
 use crate::shapes::{MAX_CUBE_SUBDIVISIONS, MAX_SPHERE_SEGMENTS, MIN_SPHERE_SEGMENTS};
-use crate::textures::MAX_CHECKER_SQUARES;
+use crate::textures::{MAX_CHECKER_SQUARES, MAX_FRAMES};
 
 impl SceneDescription {
     /// How errors from [`SceneDescription::build`] name this scene when it is not read from a
@@ -495,6 +495,25 @@ impl TextureDescription {
                 Err(value_error(field("texture.path"), "must not be empty"))
             }
             Self::Image { .. } => Ok(()),
+            Self::Frames { files, fps } => {
+                if files.is_empty() || files.len() > MAX_FRAMES {
+                    return Err(value_error(
+                        field("texture.files"),
+                        format!("must list 1 to {MAX_FRAMES} images, got {}", files.len()),
+                    ));
+                }
+                if files.iter().any(String::is_empty) {
+                    return Err(value_error(
+                        field("texture.files"),
+                        "must not hold an empty path",
+                    ));
+                }
+                positive(
+                    ValueName::Key(&field("texture.fps")),
+                    *fps,
+                    " of frames per unit of proper time",
+                )
+            }
             Self::Clock {
                 rate,
                 offset,
