@@ -169,46 +169,51 @@ fn shared_consts_equal_their_rust_twins() {
     );
 }
 
-/// The components of `module`'s `f32` vector const `name`, if it has one; an error if the
-/// const is not a vector of `f32` literals.
-fn f32_vector_const(module: &Module, name: &str) -> Option<Result<Vec<f32>, String>> {
+/// The literal elements of `module`'s vector or array const `name`, if it has one; an error if
+/// the const is not a composition of literals.
+fn literal_const(module: &Module, name: &str) -> Option<Result<Vec<Literal>, String>> {
     let (_, constant) = module
         .constants
         .iter()
         .find(|(_, c)| c.name.as_deref() == Some(name))?;
     let Expression::Compose { components, .. } = &module.global_expressions[constant.init] else {
-        return Some(Err(format!("const {name} is not a vector")));
+        return Some(Err(format!("const {name} is not a vector or an array")));
     };
     Some(
         components
             .iter()
             .map(|&c| match module.global_expressions[c] {
-                Expression::Literal(Literal::F32(value)) => Ok(value),
-                ref other => Err(format!("const {name} has a component {other:?}")),
+                Expression::Literal(value) => Ok(value),
+                ref other => Err(format!("const {name} has an element {other:?}")),
             })
             .collect(),
     )
 }
 
-/// The elements of `module`'s `u32` array const `name`, if it has one; an error if the const is
-/// not an array of `u32` literals.
-fn u32_array_const(module: &Module, name: &str) -> Option<Result<Vec<u32>, String>> {
-    let (_, constant) = module
-        .constants
-        .iter()
-        .find(|(_, c)| c.name.as_deref() == Some(name))?;
-    let Expression::Compose { components, .. } = &module.global_expressions[constant.init] else {
-        return Some(Err(format!("const {name} is not an array")));
-    };
-    Some(
-        components
-            .iter()
-            .map(|&c| match module.global_expressions[c] {
-                Expression::Literal(Literal::U32(value)) => Ok(value),
-                ref other => Err(format!("const {name} has an element {other:?}")),
+/// The components of `module`'s `f32` vector const `name` ([`literal_const`]).
+fn f32_vector_const(module: &Module, name: &str) -> Option<Result<Vec<f32>, String>> {
+    literal_const(module, name).map(|literals| {
+        literals?
+            .into_iter()
+            .map(|l| match l {
+                Literal::F32(value) => Ok(value),
+                other => Err(format!("const {name} has a component {other:?}")),
             })
-            .collect(),
-    )
+            .collect()
+    })
+}
+
+/// The elements of `module`'s `u32` array const `name` ([`literal_const`]).
+fn u32_array_const(module: &Module, name: &str) -> Option<Result<Vec<u32>, String>> {
+    literal_const(module, name).map(|literals| {
+        literals?
+            .into_iter()
+            .map(|l| match l {
+                Literal::U32(value) => Ok(value),
+                other => Err(format!("const {name} has an element {other:?}")),
+            })
+            .collect()
+    })
 }
 
 /// The clock face's geometry and digit patterns in clock.wgsl are srt-trace's (in f32), in every
