@@ -126,7 +126,8 @@ impl super::GpuRenderer {
         self.encode_as(ctx, encoder, scene, method, footprint, Output::Display)
     }
 
-    /// [`GpuRenderer::encode`] writing `output`: display colours or radiance.
+    /// [`GpuRenderer::encode`] writing `output`: display colours or radiance (an [`Output`]), or
+    /// what pixels see of time ([`OutputCode::SEEN_EVENT`], [`OutputCode::SEEN_OBJECT`]).
     ///
     /// # Errors
     /// As [`GpuRenderer::encode`].
@@ -137,28 +138,9 @@ impl super::GpuRenderer {
         scene: &Scene,
         method: Method,
         footprint: FootprintShape,
-        output: Output,
+        output: impl Into<OutputCode>,
     ) -> Result<(), GpuError> {
-        self.encode_code(
-            ctx,
-            encoder,
-            scene,
-            method,
-            footprint,
-            OutputCode::from(output),
-        )
-    }
-
-    /// [`GpuRenderer::encode`] writing what `output` says: colours, or what pixels see of time.
-    pub(super) fn encode_code(
-        &self,
-        ctx: &GpuContext,
-        encoder: &mut wgpu::CommandEncoder,
-        scene: &Scene,
-        method: Method,
-        footprint: FootprintShape,
-        output: OutputCode,
-    ) -> Result<(), GpuError> {
+        let output = output.into();
         let tone = self.write_uniforms(ctx, scene, footprint, output)?;
         let traced = self.traced_objects(method)?;
         if self.count_fragments {

@@ -305,8 +305,9 @@ impl GpuRenderer {
     }
 
     /// Renders one frame of `scene` writing `output` and reads it back: display colours as
-    /// [`GpuRenderer::render`], or radiance (linear BT.709, unclamped, the unit of srt-color's
-    /// `radiance` module; held to ±65 504 where the colour target is half float).
+    /// [`GpuRenderer::render`], radiance (linear BT.709, unclamped, the unit of srt-color's
+    /// `radiance` module; held to ±65 504 where the colour target is half float), or what
+    /// pixels see of time ([`GpuRenderer::render_seen`] composes those).
     ///
     /// # Errors
     /// As [`GpuRenderer::render`].
@@ -316,59 +317,14 @@ impl GpuRenderer {
         scene: &Scene,
         method: Method,
         footprint: FootprintShape,
-        output: Output,
-    ) -> Result<(GpuImage, FrameStats), GpuError> {
-        self.render_code(ctx, scene, method, footprint, OutputCode::from(output))
-    }
-
-    /// What each pixel sees of time (the `--aov` channels), row-major from the top, as
-    /// [`SEEN_CHANNELS`] orders them: emission ct_W, proper time, apparent distance, Doppler
-    /// factor and the object's index, or `[0, 0, 0, 0, −1]` where no object is seen (mirror of
-    /// srt-trace's `SeenEvent`; the polygon method gives the events of the rest points it
-    /// draws). Two frames: the events, then the object indices.
-    ///
-    /// # Errors
-    /// As [`GpuRenderer::render`].
-    pub fn render_seen(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        method: Method,
-        footprint: FootprintShape,
-    ) -> Result<Vec<[f32; 5]>, GpuError> {
-        let (events, _) =
-            self.render_code(ctx, scene, method, footprint, OutputCode::SEEN_EVENT)?;
-        let (objects, _) =
-            self.render_code(ctx, scene, method, footprint, OutputCode::SEEN_OBJECT)?;
-        Ok(events
-            .pixels
-            .iter()
-            .zip(&objects.pixels)
-            .map(|(event, object)| {
-                if object[0] < 0.0 {
-                    [0.0, 0.0, 0.0, 0.0, -1.0]
-                } else {
-                    [event[0], event[1], event[2], event[3], object[0]]
-                }
-            })
-            .collect())
-    }
-
-    /// One frame writing `output`, read back.
-    fn render_code(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        method: Method,
-        footprint: FootprintShape,
-        output: OutputCode,
+        output: impl Into<OutputCode>,
     ) -> Result<(GpuImage, FrameStats), GpuError> {
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("srt frame"),
             });
-        self.encode_code(ctx, &mut encoder, scene, method, footprint, output)?;
+        self.encode_as(ctx, &mut encoder, scene, method, footprint, output)?;
         let t = &self.targets;
         t.readback.encode_copy(&mut encoder, &t.color);
         ctx.queue.submit([encoder.finish()]);
@@ -418,6 +374,38 @@ impl GpuRenderer {
                 fragments,
             },
         ))
+    }
+
+    /// What each pixel sees of time (the `--aov` channels), row-major from the top, as
+    /// [`SEEN_CHANNELS`] orders them: emission ct_W, proper time, apparent distance, Doppler
+    /// factor and the object's index, or `[0, 0, 0, 0, −1]` where no object is seen (mirror of
+    /// srt-trace's `SeenEvent`; the polygon method gives the events of the rest points it
+    /// draws). Two frames: the events, then the object indices.
+    ///
+    /// # Errors
+    /// As [`GpuRenderer::render`].
+    pub fn render_seen(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+    ) -> Result<Vec<[f32; 5]>, GpuError> {
+        let (events, _) = self.render_as(ctx, scene, method, footprint, OutputCode::SEEN_EVENT)?;
+        let (objects, _) =
+            self.render_as(ctx, scene, method, footprint, OutputCode::SEEN_OBJECT)?;
+        Ok(events
+            .pixels
+            .iter()
+            .zip(&objects.pixels)
+            .map(|(event, object)| {
+                if object[0] < 0.0 {
+                    [0.0, 0.0, 0.0, 0.0, -1.0]
+                } else {
+                    [event[0], event[1], event[2], event[3], object[0]]
+                }
+            })
+            .collect())
     }
 
     /// Runs the proxy pass for `scene` and reads back every part's footprints (split out of the
