@@ -4,7 +4,7 @@
 //! of a scene's observer and objects: setting one of their fields edits the scene.
 
 use pyo3::prelude::*;
-use srt_scene::description::LightDescription;
+use srt_scene::description::LightsDescription;
 use srt_scene::resolve::LocatedDescription;
 use srt_scene::{Effects, LoadedScene, Overrides, SceneDescription, SceneSource, SurfaceColour};
 
@@ -209,12 +209,9 @@ impl Scene {
     /// The lamp's position and black-body temperature in kelvin, `None` without a lamp.
     #[getter]
     fn light(&self) -> Option<([f64; 3], f64)> {
-        self.described.located.description.light.as_ref().map(
-            |LightDescription {
-                 position,
-                 temperature_k,
-             }| (*position, *temperature_k),
-        )
+        (self.described.located.description.light.as_ref())
+            .and_then(LightsDescription::lamp)
+            .map(|lamp| (lamp.position, lamp.temperature_k))
     }
 
     /// The observer (a view: setting its fields edits this scene).

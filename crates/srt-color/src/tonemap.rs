@@ -38,6 +38,13 @@ pub fn searchlight_reference_ln_y() -> f64 {
 /// producing ∞ − ∞ in Eq. 12.
 const MAX_LN_SEARCHLIGHT_GAIN: f64 = 600.0;
 
+/// A white of luminance 1 (only its Y is read): the reference of lights already divided by
+/// their own whites ([`ToneMap::display_rgb_xyz_sum`]).
+const UNIT_WHITE: ScaledXyz = ScaledXyz {
+    relative: DVec3::Y,
+    ln_scale: 0.0,
+};
+
 /// How black-body XYZ becomes display sRGB: the two colour tables of the paper's Fig. 6.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ToneMap {
@@ -120,6 +127,54 @@ impl ToneMap {
             return Ok(DVec3::ZERO);
         }
         Ok(self.map(light, white, ln_exposure))
+    }
+
+    /// Display sRGB in [0, 1] of several lights falling on one place, each `(light, white,
+    /// factor)` as [`ToneMap::display_rgb_xyz`] takes it with the exposure `exposure · factor`:
+    /// they are summed as XYZ before the tone map (each divided by its own white's Y for the
+    /// luminance map, each absolute for the searchlight map), so that light from several sources
+    /// adds as light does. One term gives what [`ToneMap::display_rgb_xyz`] gives, up to
+    /// rounding. Terms with a factor ≤ 0, invalid light or (luminance map) an invalid white are
+    /// left out; none left is black.
+    ///
+    /// # Errors
+    ///
+    /// [`ColourError::InvalidExposure`] unless `exposure` is positive and finite.
+    pub fn display_rgb_xyz_sum(
+        self,
+        terms: &[(ScaledXyz, ScaledXyz, f64)],
+        exposure: f64,
+    ) -> Result<DVec3, ColourError> {
+        let ln_exposure = positive_finite(exposure, ColourError::InvalidExposure)?.ln();
+        // Each term as relative XYZ times exp(ln): the light with its factor, over its white.
+        let scaled = terms.iter().filter_map(|&(light, white, factor)| {
+            let valid_light = light.relative.is_finite() && !light.ln_scale.is_nan();
+            let valid_white =
+                white.relative.y > 0.0 && white.relative.is_finite() && !white.ln_scale.is_nan();
+            if !(valid_light && factor > 0.0 && factor.is_finite()) {
+                return None;
+            }
+            let ln_white = match self {
+                Self::Luminance if !valid_white => return None,
+                Self::Luminance => white.ln_scale + white.relative.y.ln(),
+                Self::Searchlight => 0.0,
+            };
+            Some((light.relative, light.ln_scale + factor.ln() - ln_white))
+        });
+        let ln_reference = scaled
+            .clone()
+            .map(|(_, ln)| ln)
+            .fold(f64::NEG_INFINITY, f64::max);
+        if !ln_reference.is_finite() {
+            return Ok(DVec3::ZERO);
+        }
+        let sum = ScaledXyz {
+            relative: scaled
+                .map(|(relative, ln)| relative * (ln - ln_reference).exp())
+                .sum(),
+            ln_scale: ln_reference,
+        };
+        Ok(self.map(sum, UNIT_WHITE, ln_exposure))
     }
 
     /// The tone map proper: XYZ = `light` scaled (by the white's Y or by Y(1500 K)) and by
@@ -219,5 +274,41 @@ mod tests {
             }
         }
         assert_eq!(ToneMap::Searchlight.display_rgb(1e200), DVec3::ONE);
+    }
+
+    #[test]
+    fn lights_summed_before_the_tone_map_add_as_light() {
+        let warm = crate::cie::blackbody_xyz_scaled(3000.0);
+        let hot = crate::cie::blackbody_xyz_scaled(9000.0);
+        for tone_map in ToneMap::ALL {
+            // One term is the single light's display.
+            let one = tone_map
+                .display_rgb_xyz_sum(&[(warm, warm, 0.3)], 1.0)
+                .unwrap();
+            let single = tone_map.display_rgb_xyz(warm, warm, 0.3).unwrap();
+            assert!((one - single).abs().max_element() < 1e-12, "{tone_map:?}");
+            // Two halves are the whole; dark and invalid terms add nothing.
+            let halves = [(hot, hot, 0.2), (hot, hot, 0.2), (warm, warm, 0.0)];
+            let whole = tone_map.display_rgb_xyz(hot, hot, 0.4).unwrap();
+            let summed = tone_map.display_rgb_xyz_sum(&halves, 1.0).unwrap();
+            assert!((summed - whole).abs().max_element() < 1e-12, "{tone_map:?}");
+            assert_eq!(tone_map.display_rgb_xyz_sum(&[], 1.0).unwrap(), DVec3::ZERO);
+            // A warm and a hot light together are between each alone in hue: bluer than the
+            // warm one, redder than the hot one (dim enough that no channel saturates).
+            let dim = match tone_map {
+                ToneMap::Luminance => 0.1,
+                ToneMap::Searchlight => 1e-4,
+            };
+            let both = tone_map
+                .display_rgb_xyz_sum(&[(warm, warm, dim), (hot, hot, dim)], 1.0)
+                .unwrap();
+            let ratio = |c: DVec3| c.z / c.x;
+            let warm_alone = tone_map.display_rgb_xyz(warm, warm, dim).unwrap();
+            let hot_alone = tone_map.display_rgb_xyz(hot, hot, dim).unwrap();
+            assert!(
+                ratio(warm_alone) < ratio(both) && ratio(both) < ratio(hot_alone),
+                "{tone_map:?}: {warm_alone} {both} {hot_alone}"
+            );
+        }
     }
 }

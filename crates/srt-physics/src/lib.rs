@@ -33,6 +33,7 @@ mod frame;
 mod light;
 mod lorentz;
 mod observer;
+mod retarded;
 
 pub use event::{Event, minkowski_interval};
 pub use frame::{Frame, FrameError, RestRay};
@@ -42,6 +43,7 @@ pub use light::{
 };
 pub use lorentz::{compose_velocities, lorentz_factor, lorentz_matrix, rapidity, validate_beta};
 pub use observer::{MovingObserver, Poincare, RelativeFrame, boost_and_rotation};
+pub use retarded::RetardedLight;
 
 /// The README's example, compiled and run by `cargo test --doc`.
 #[cfg(doctest)]

@@ -74,7 +74,7 @@ macro_rules! builtin_scene {
     };
 }
 
-static BUILTIN_SCENES: [BuiltinScene; 10] = [
+static BUILTIN_SCENES: [BuiltinScene; 11] = [
     builtin_scene!(
         "fig4",
         "Fig. 4: a unit cube at 0.95c seen at ct = 5.12, apparently rotated and distorted"
@@ -114,6 +114,10 @@ static BUILTIN_SCENES: [BuiltinScene; 10] = [
     builtin_scene!(
         "clocks",
         "Clocks at rest beside a train of clocks passing at 0.9c: each face shows the proper time of the event seen"
+    ),
+    builtin_scene!(
+        "shadows",
+        "A lamp flying at 0.9c behind a row of columns: the shadows point away from where it was"
     ),
 ];
 

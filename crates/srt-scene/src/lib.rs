@@ -21,16 +21,16 @@ pub mod view;
 
 pub use builtin::{BuiltinScene, builtin, builtin_scenes};
 pub use description::{
-    LightDescription, ObjectDescription, ObserverDescription, OverrideNames, Overrides,
-    RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind, ShapeDescription,
-    TextureDescription, ValueName, load_scene_file,
+    LightDescription, LightsDescription, ObjectDescription, ObserverDescription, OverrideNames,
+    Overrides, RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind,
+    ShapeDescription, TextureDescription, ValueName, load_scene_file,
 };
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{
-    Blink, Clock, Effects, Emission, Kinematics, Light, Object, Observer, Scene, Shading,
-    SurfaceColour, SurfaceOptics,
+    Blink, Clock, Effects, Emission, Kinematics, Light, MAX_MOVING_LIGHTS, MovingLight, Object,
+    Observer, Scene, Shading, SurfaceColour, SurfaceOptics,
 };
 pub use sky::{Sky, SkyError, Star};
 pub use view::{View, ViewError};

@@ -16,8 +16,8 @@ use std::path::Path;
 use glam::DVec3;
 
 use crate::description::{
-    DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS, LightDescription, ObjectDescription,
-    ObserverDescription, RenderDescription, SceneDescription, ShapeDescription,
+    DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS, LightDescription, LightsDescription,
+    ObjectDescription, ObserverDescription, RenderDescription, SceneDescription, ShapeDescription,
 };
 
 /// Distance from the observer to the apparent centre of a placed object, in S units (with
@@ -78,10 +78,10 @@ impl SceneDescription {
                 fov_y_deg: VIEW_FOV_Y_DEG,
                 ct: 0.0,
             },
-            light: Some(LightDescription {
-                position: (position + DVec3::new(-1.0, 0.0, 2.0) * FIT_RADIUS * 2.0).to_array(),
-                temperature_k: DEFAULT_LIGHT_TEMPERATURE_K,
-            }),
+            light: Some(LightsDescription::Lamp(LightDescription::lamp(
+                (position + DVec3::new(-1.0, 0.0, 2.0) * FIT_RADIUS * 2.0).to_array(),
+                DEFAULT_LIGHT_TEMPERATURE_K,
+            ))),
             render: RenderDescription::default(),
             objects: vec![object],
             sky: None,

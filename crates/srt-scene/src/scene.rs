@@ -218,13 +218,33 @@ impl Observer {
     }
 }
 
-/// A point light at rest in S radiating a Planck spectrum.
+/// The lamp: a point light at rest in S (carried by the observer) radiating a Planck spectrum,
+/// lighting every surface with the paper's constant strength (no fall-off with distance).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Light {
     /// Position in S.
     pub position: DVec3,
     /// Black-body temperature in kelvin.
     pub temperature_k: f64,
+    /// Multiplier on all of its light, the ambient term included (1: the paper's lamp; 0: none).
+    pub strength: f64,
+}
+
+/// Most moving lights a scene may have (the GPU's uniform array holds this many).
+pub const MAX_MOVING_LIGHTS: usize = 8;
+
+/// A point light on its own worldline: at rest at the origin of `frame`, radiating a Planck
+/// spectrum isotropically in its rest frame. A surface is lit by it as it was at the retarded
+/// event, on the past light cone of the surface's event (docs/physics.md, "Moving lights").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MovingLight {
+    /// The light's rest frame relative to S; the light rests at its origin.
+    pub frame: Frame,
+    /// Black-body temperature in kelvin, in the light's rest frame.
+    pub temperature_k: f64,
+    /// Irradiance at unit distance (in the light's rest frame), in units of the lamp's diffuse
+    /// light: a surface facing it at distance r receives strength / r² of what the lamp gives.
+    pub strength: f64,
 }
 
 /// Phong reflection factors of Eq. 18: f_ar = ½(G + 1)(f_amb + f_diff + f_spec).
@@ -294,8 +314,10 @@ impl Object {
 pub struct Kinematics {
     /// The observer at rest in S.
     pub observer: Observer,
-    /// The light at rest in S.
+    /// The lamp at rest in S.
     pub light: Light,
+    /// The moving lights' rest frames relative to S, in order.
+    pub light_frames: Vec<Frame>,
     /// Every object's frame relative to the observer, in order, with the Wigner rotation its
     /// rest-frame geometry is turned by.
     pub frames: Vec<RelativeFrame>,
@@ -314,8 +336,10 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// The observer at rest in S.
     pub observer: Observer,
-    /// The light at rest in S.
+    /// The lamp at rest in S.
     pub light: Light,
+    /// The lights moving on their own worldlines (at most [`MAX_MOVING_LIGHTS`]).
+    pub lights: Vec<MovingLight>,
     /// Phong parameters.
     pub shading: Shading,
     /// Effect mode.
@@ -371,15 +395,23 @@ impl Scene {
     /// while the observer's velocity is unchanged); the caller checks that.
     ///
     /// # Panics
-    /// If `kinematics` has a different number of objects than the scene.
+    /// If `kinematics` has a different number of objects or lights than the scene.
     pub fn follow(&mut self, kinematics: &Kinematics) {
         assert_eq!(
             kinematics.frames.len(),
             self.objects.len(),
             "kinematics of a description with other objects"
         );
+        assert_eq!(
+            kinematics.light_frames.len(),
+            self.lights.len(),
+            "kinematics of a description with other lights"
+        );
         self.observer = kinematics.observer;
         self.light = kinematics.light;
+        for (light, frame) in self.lights.iter_mut().zip(&kinematics.light_frames) {
+            light.frame = *frame;
+        }
         self.world = kinematics.world;
         for (object, relative) in self.objects.iter_mut().zip(&kinematics.frames) {
             object.frame = relative.frame;

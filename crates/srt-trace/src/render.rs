@@ -19,13 +19,13 @@ use glam::{DVec2, DVec3, DVec4};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
-use srt_physics::{Event, Frame, RestRay};
+use srt_physics::{Event, Frame, RestRay, RetardedLight};
 use srt_scene::{Mesh, Object, Part, Scene};
 
 use crate::clock::clock_albedo;
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
 use crate::seen::SeenEvent;
-use crate::shade::{Arriving, Illumination, SurfacePoint, arriving};
+use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
 use crate::sky::{sky_image_light, star_layer};
 use crate::texture::sample_trilinear;
 use srt_scene::mip::MipChain;
@@ -202,6 +202,36 @@ impl<'a> PreparedObject<'a> {
             }
         }
         best
+    }
+
+    /// Whether a triangle of the object crosses the rest-frame segment from `from` to `to`
+    /// strictly between its ends (a margin of 10⁻⁹ of the segment's scale at each end keeps the
+    /// surface point the segment starts on, and the light it ends at, out of it).
+    fn blocks(&self, from: DVec3, to: DVec3) -> bool {
+        let (Some(bvh), length) = (self.bvh.as_ref(), (to - from).length()) else {
+            return false;
+        };
+        let direction = (to - from) / length;
+        let margin = 1e-9 * (1.0 + length + from.abs().max_element());
+        let (lo, hi) = self.bounds;
+        if !(length > 2.0 * margin)
+            || box_entry(from, direction.recip(), lo, hi).is_none_or(|entry| entry > length)
+        {
+            return false;
+        }
+        let query = Ray::new(
+            Point3::new(from.x, from.y, from.z),
+            Vector3::new(direction.x, direction.y, direction.z),
+        );
+        bvh.traverse_iterator(&query, &self.boxes).any(|leaf| {
+            let mesh = &self.parts[leaf.part as usize].part.mesh;
+            intersect_triangle(
+                from,
+                direction,
+                mesh.triangle_positions(leaf.triangle as usize),
+            )
+            .is_some_and(|hit| hit.distance > margin && hit.distance < length - margin)
+        })
     }
 
     /// The hit of this object (number `index` in the scene) along `ray` if it is seen in front
@@ -439,6 +469,8 @@ impl<'a> Tracer<'a> {
             observer: self.scene.observer.position,
             light_position: self.scene.light.position,
             light_temperature_k: self.scene.light.temperature_k,
+            light_strength: self.scene.light.strength,
+            moving_lights: &self.scene.lights,
             shading: self.scene.shading,
             effects: self.scene.effects,
             lut: &self.lut,
@@ -452,8 +484,26 @@ impl<'a> Tracer<'a> {
             albedo,
             optics: seen_object.optics,
             proper_time,
+            emission_ct: hit.emission.ct,
         };
-        arriving(&point, &illumination)
+        arriving_unless_shadowed(&point, &illumination, &|light| {
+            self.shadowed(light, hit.emission)
+        })
+    }
+
+    /// Whether `light`, on its null ray from its retarded event to the event `at` (both in S),
+    /// is blocked on the way: the segment is taken into each object's rest frame, where the
+    /// object is static and the segment a straight piece of a ray (a null line stays null), and
+    /// tested against its triangles, as a viewing ray is. Emitting objects (the lamps' visible
+    /// bulbs) cast no shadow.
+    fn shadowed(&self, light: &RetardedLight, at: Event) -> bool {
+        (self.objects.iter().zip(&self.scene.objects))
+            .filter(|(_, object)| object.optics.emission.is_none())
+            .any(|(prepared, _)| {
+                let from = prepared.frame.to_rest(at).position;
+                let to = prepared.frame.to_rest(light.source_event).position;
+                prepared.blocks(from, to)
+            })
     }
 
     /// Renders the image as it is shown (display colours, the tone map's, in [0, 1]); `progress`

@@ -12,14 +12,24 @@
 //!   exposure of `srt_color::reflected_display_rgb`.
 //!
 //! An emitting surface shows the black body at D_out·T_e instead.
+//!
+//! Moving lights (docs/physics.md, "Moving lights") add their diffuse and specular terms: each
+//! lights the point as it was at its retarded event ([`RetardedLight`]), from the direction its
+//! light arrives in (aberrated into S′), at the temperature D_in·T it is seen with there, with
+//! the strength s · D_in² / r_L² (the inverse square in its own frame, transformed as a plane
+//! wave; the colour table's searchlight brightness already holds D_in⁴ of it, so there the factor
+//! is s / r_L² · D_in⁻²). The lights of several sources add as light: colour-table lights as
+//! their displays (the paper's colours are per light), spectra as XYZ before the tone map.
 
 use glam::{DVec3, DVec4};
 use srt_color::{
-    RadianceScale, RadianceTable, Reflectance, ScaledXyz, TemperatureLut, emitted_light,
+    RadianceScale, RadianceTable, Reflectance, ScaledXyz, TemperatureLut, ToneMap, emitted_light,
     reflected_light, srgb_coefficient_table, srgb_decode,
 };
-use srt_physics::{aberrate, doppler_factor, receiver_doppler};
-use srt_scene::{Effects, Emission, Shading, SurfaceColour, SurfaceOptics};
+use srt_physics::{Event, RetardedLight, aberrate, doppler_factor, receiver_doppler};
+use srt_scene::{
+    Effects, Emission, MAX_MOVING_LIGHTS, MovingLight, Shading, SurfaceColour, SurfaceOptics,
+};
 
 /// What the shading of one point needs to know about the surface there.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,6 +46,16 @@ pub struct SurfacePoint {
     pub optics: SurfaceOptics,
     /// The object's proper time ct′ at the point's emission event (a blinking emission's clock).
     pub proper_time: f64,
+    /// The S time ct of the point's emission event (where the moving lights' light must arrive).
+    pub emission_ct: f64,
+}
+
+impl SurfacePoint {
+    /// The point's emission event in S (the event the observer sees).
+    #[must_use]
+    pub fn event(&self) -> Event {
+        Event::new(self.emission_ct, self.apparent_position)
+    }
 }
 
 /// The light and observer side of shading, fixed per image.
@@ -47,6 +67,10 @@ pub struct Illumination<'a> {
     pub light_position: DVec3,
     /// Light Planck temperature in kelvin.
     pub light_temperature_k: f64,
+    /// The lamp's strength (a multiplier on all its light; 0: no lamp).
+    pub light_strength: f64,
+    /// The lights moving on their own worldlines.
+    pub moving_lights: &'a [MovingLight],
     /// Phong parameters.
     pub shading: Shading,
     /// Effect mode (geometry forces D = 1).
@@ -94,6 +118,37 @@ pub enum Arriving {
     },
     /// No light.
     Dark,
+    /// Colour-table lights of several sources on one surface point (the lamp's and the moving
+    /// lights'), each (factor, temperature): shown as the sum of their displays, measured as
+    /// the sum of their radiances.
+    Tables(Sources<(f64, f64)>),
+    /// Spectra of several sources on one surface point, each (light, white, factor) as in
+    /// [`Arriving::Spectrum`]: summed as XYZ before the tone map.
+    Spectra(Sources<(ScaledXyz, ScaledXyz, f64)>),
+}
+
+/// Most light sources one surface point sums: the lamp and every moving light.
+pub const MAX_SOURCES: usize = MAX_MOVING_LIGHTS + 1;
+
+/// Up to [`MAX_SOURCES`] values, one per light source (a fixed array: [`Arriving`] stays
+/// `Copy`, and shading allocates nothing).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sources<T>([Option<T>; MAX_SOURCES]);
+
+impl<T: Copy> Sources<T> {
+    /// The values, from `values` (those beyond [`MAX_SOURCES`] are left out; scenes have fewer).
+    fn collect(values: impl IntoIterator<Item = T>) -> Self {
+        let mut sources = [None; MAX_SOURCES];
+        for (slot, value) in sources.iter_mut().zip(values) {
+            *slot = Some(value);
+        }
+        Self(sources)
+    }
+
+    /// The values, in order.
+    pub fn iter(&self) -> impl Iterator<Item = T> + '_ {
+        self.0.iter().flatten().copied()
+    }
 }
 
 impl Arriving {
@@ -114,6 +169,16 @@ impl Arriving {
                 .tone_map()
                 .display_rgb_xyz(light, white, exposure * factor)
                 .unwrap_or(DVec3::ZERO),
+            Self::Tables(terms) => terms
+                .iter()
+                .map(|(factor, temperature_k)| factor * lut_colour(lut, temperature_k))
+                .sum(),
+            Self::Spectra(terms) => {
+                let terms: Vec<_> = terms.iter().collect();
+                lut.tone_map()
+                    .display_rgb_xyz_sum(&terms, exposure)
+                    .unwrap_or(DVec3::ZERO)
+            }
             Self::Dark => DVec3::ZERO,
         }
     }
@@ -131,23 +196,45 @@ impl Arriving {
                 white,
                 factor,
             } => scale.of_spectrum(light, white, factor),
+            Self::Tables(terms) => terms
+                .iter()
+                .map(|(factor, temperature_k)| scale.of_table_light(table, factor, temperature_k))
+                .sum(),
+            Self::Spectra(terms) => terms
+                .iter()
+                .map(|(light, white, factor)| scale.of_spectrum(light, white, factor))
+                .sum(),
             Self::Dark => DVec3::ZERO,
         }
     }
 }
 
-/// The light a surface point sends to the observer.
+/// The light a surface point sends to the observer, every moving light reaching it (no
+/// shadows: [`arriving_unless_shadowed`] takes them).
 #[must_use]
 pub fn arriving(point: &SurfacePoint, light: &Illumination<'_>) -> Arriving {
+    arriving_unless_shadowed(point, light, &|_| false)
+}
+
+/// The light a surface point sends to the observer; `shadowed` says whether an object blocks
+/// a moving light's light on its way to the point (asked only for lights the point faces).
+#[must_use]
+pub fn arriving_unless_shadowed(
+    point: &SurfacePoint,
+    light: &Illumination<'_>,
+    shadowed: &dyn Fn(&RetardedLight) -> bool,
+) -> Arriving {
     let incident = (point.apparent_position - light.light_position).normalize();
     let outgoing = (light.observer - point.apparent_position).normalize();
+    let relativistic = light.effects != Effects::Geometry;
     // Eq. 17 in its two factors: light → surface and surface → observer.
-    let (d_in, d_out) = match light.effects {
-        Effects::Geometry => (1.0, 1.0),
-        Effects::Doppler | Effects::Searchlight => (
+    let (d_in, d_out) = if relativistic {
+        (
             receiver_doppler(point.beta, incident),
             doppler_factor(point.beta, outgoing),
-        ),
+        )
+    } else {
+        (1.0, 1.0)
     };
     if let Some(emission) = point.optics.emission
         && emission.shines_at(point.proper_time)
@@ -155,7 +242,6 @@ pub fn arriving(point: &SurfacePoint, light: &Illumination<'_>) -> Arriving {
         return emitted(emission, d_out, light);
     }
     // Phong in S′: directions towards the light and towards the observer, aberrated (Eq. 4).
-    let to_light = -aberrate(-point.beta, incident).normalize();
     let to_observer = aberrate(-point.beta, outgoing).normalize();
     // Two-sided surfaces: the normal facing the observer.
     let normal = if point.normal_rest.dot(to_observer) < 0.0 {
@@ -163,26 +249,63 @@ pub fn arriving(point: &SurfacePoint, light: &Illumination<'_>) -> Arriving {
     } else {
         point.normal_rest
     };
-    let cos_light = normal.dot(to_light);
-    let (diffuse, specular) = if cos_light > 0.0 {
-        let reflected = 2.0 * cos_light * normal - to_light;
-        let cos_spec = reflected.dot(to_observer).max(0.0);
-        (
-            light.shading.diffuse * cos_light,
-            light.shading.specular * cos_spec.powf(light.shading.shininess),
-        )
-    } else {
-        (0.0, 0.0)
+    let phong = |propagation: DVec3| {
+        let to_light = -aberrate(-point.beta, propagation).normalize();
+        phong_terms(&light.shading, normal, to_light, to_observer)
     };
-    let geometry = light.shading.ambient + diffuse + specular;
+    let (diffuse, specular) = phong(incident);
+    let geometry = light.light_strength * (light.shading.ambient + diffuse + specular);
+    let lamp = Source {
+        factor: geometry,
+        temperature_k: light.light_temperature_k,
+        d_in,
+    };
+    // The moving lights the point faces and no object shadows: their geometric factor with
+    // the strength of their light (the module documentation).
+    let follows_luminance = light.lut.tone_map() == ToneMap::Searchlight;
+    let moving = light.moving_lights.iter().filter_map(|source| {
+        let arriving = RetardedLight::reaching(&source.frame, point.event())?;
+        let (diffuse, specular) = phong(arriving.direction);
+        let terms = diffuse + specular;
+        if terms <= 0.0 || source.strength <= 0.0 || shadowed(&arriving) {
+            return None;
+        }
+        let d_in = if relativistic {
+            arriving.doppler_to(point.beta)
+        } else {
+            1.0
+        };
+        let r = arriving.source_distance;
+        let strength = if follows_luminance && relativistic {
+            source.strength / (r * r * d_in * d_in)
+        } else {
+            source.strength / (r * r)
+        };
+        Some(Source {
+            factor: terms * strength,
+            temperature_k: source.temperature_k,
+            d_in,
+        })
+    });
+    let mut sources = std::iter::once(lamp).chain(moving).peekable();
     match light.colour {
-        SurfaceColour::Paper => Arriving::Table {
-            factor: 0.5 * (grey_value(point.albedo) + 1.0) * geometry,
-            temperature_k: d_in * d_out * light.light_temperature_k,
-        },
+        SurfaceColour::Paper => {
+            let grey = 0.5 * (grey_value(point.albedo) + 1.0);
+            let table = |s: Source| (grey * s.factor, s.d_in * d_out * s.temperature_k);
+            let first = table(sources.next().unwrap_or(lamp));
+            if sources.peek().is_none() {
+                return Arriving::Table {
+                    factor: first.0,
+                    temperature_k: first.1,
+                };
+            }
+            Arriving::Tables(Sources::collect(
+                std::iter::once(first).chain(sources.map(table)),
+            ))
+        }
         SurfaceColour::Spectral => {
             let linear = point.albedo.truncate().map(srgb_decode);
-            let reflectance = srgb_coefficient_table()
+            let Ok(reflectance) = srgb_coefficient_table()
                 .lookup(linear.clamp(DVec3::ZERO, DVec3::ONE))
                 .and_then(|polynomial| {
                     Reflectance::with_bands(
@@ -190,18 +313,61 @@ pub fn arriving(point: &SurfacePoint, light: &Illumination<'_>) -> Arriving {
                         point.optics.ultraviolet,
                         point.optics.infrared,
                     )
-                });
-            // A surface that reflects nothing (no light on it, a zero exposure), or a
-            // temperature no table reaches, is black.
-            reflectance
-                .and_then(|r| reflected_light(&r, light.light_temperature_k, d_in, d_out))
-                .map_or(Arriving::Dark, |reflected| Arriving::Spectrum {
-                    light: reflected.light,
-                    white: reflected.white,
-                    factor: geometry,
                 })
+            else {
+                // A surface that reflects nothing is black.
+                return Arriving::Dark;
+            };
+            // A source at a temperature no table reaches gives no light.
+            let spectrum = |s: Source| {
+                reflected_light(&reflectance, s.temperature_k, s.d_in, d_out)
+                    .ok()
+                    .map(|reflected| (reflected.light, reflected.white, s.factor))
+            };
+            let first = sources.next().and_then(spectrum);
+            if sources.peek().is_none() {
+                return first.map_or(Arriving::Dark, |(light, white, factor)| {
+                    Arriving::Spectrum {
+                        light,
+                        white,
+                        factor,
+                    }
+                });
+            }
+            Arriving::Spectra(Sources::collect(
+                first.into_iter().chain(sources.filter_map(spectrum)),
+            ))
         }
     }
+}
+
+/// One source's light on a surface point before it is coloured: its geometric factor (with its
+/// strength), its temperature and the Doppler factor it reaches the surface with.
+#[derive(Debug, Clone, Copy)]
+struct Source {
+    factor: f64,
+    temperature_k: f64,
+    d_in: f64,
+}
+
+/// (f_diff, f_spec) of Eq. 18 for the unit directions (in S′) `to_light` and `to_observer` on
+/// a surface with the unit normal `normal` (facing the observer); 0 where the light is behind it.
+fn phong_terms(
+    shading: &Shading,
+    normal: DVec3,
+    to_light: DVec3,
+    to_observer: DVec3,
+) -> (f64, f64) {
+    let cos_light = normal.dot(to_light);
+    if cos_light <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let reflected = 2.0 * cos_light * normal - to_light;
+    let cos_spec = reflected.dot(to_observer).max(0.0);
+    (
+        shading.diffuse * cos_light,
+        shading.specular * cos_spec.powf(shading.shininess),
+    )
 }
 
 /// Display colour (sRGB-encoded RGB in [0, 1]) of a surface point.

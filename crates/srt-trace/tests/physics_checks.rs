@@ -20,7 +20,9 @@ fn scene(objects: Vec<Object>, observer: Observer) -> Scene {
         light: Light {
             position: DVec3::new(3.0, 8.0, 10.0),
             temperature_k: 6500.0,
+            strength: 1.0,
         },
+        lights: Vec::new(),
         shading: Shading::default(),
         effects: Effects::Geometry,
         tone_map: ToneMap::Luminance,

@@ -13,7 +13,7 @@ use std::path::Path;
 
 use glam::{DMat3, DMat4, DVec3};
 use srt_physics::{Event, lorentz_factor, lorentz_matrix};
-use srt_scene::{Scene, SceneDescription};
+use srt_scene::{LightsDescription, Scene, SceneDescription};
 use srt_trace::{RenderSettings, Tracer};
 
 /// Objects at rest or moving in W, a light, an observer looking along +y; doppler colours, so
@@ -101,7 +101,11 @@ fn in_observer_frame(world: &SceneDescription, beta_o: DVec3) -> Scene {
     observer.beta = [0.0; 3];
     observer.position = event.position.to_array();
     observer.ct = event.ct;
-    if let Some(light) = &mut description.light {
+    if let Some(light) = description
+        .light
+        .as_mut()
+        .and_then(LightsDescription::lamp_mut)
+    {
         let lit = to_observer(
             beta_o,
             Event::new(world.observer.ct, DVec3::from_array(light.position)),

@@ -28,7 +28,9 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
         light: Light {
             position: DVec3::ZERO,
             temperature_k: 6500.0,
+            strength: 1.0,
         },
+        lights: Vec::new(),
         shading: Shading::default(),
         effects,
         tone_map: effects.default_tone_map(),

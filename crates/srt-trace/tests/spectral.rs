@@ -25,6 +25,8 @@ fn colour_of(albedo: [f64; 3], beta: DVec3, colour: SurfaceColour, optics: Surfa
         observer: DVec3::ZERO,
         light_position: DVec3::new(0.0, 0.0, 0.0),
         light_temperature_k: 6504.0,
+        light_strength: 1.0,
+        moving_lights: &[],
         shading: flat(),
         effects: Effects::Doppler,
         lut: &lut,
@@ -39,6 +41,7 @@ fn colour_of(albedo: [f64; 3], beta: DVec3, colour: SurfaceColour, optics: Surfa
         albedo: DVec4::new(albedo[0], albedo[1], albedo[2], 1.0),
         optics,
         proper_time: 0.0,
+        emission_ct: -10.0,
     };
     shade(&point, &light)
 }

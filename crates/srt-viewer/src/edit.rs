@@ -27,7 +27,7 @@ use srt_scene::description::FIT_RADIUS;
 use srt_scene::limits::Budget;
 use srt_scene::resolve::{LocatedDescription, PathKind, path_kind};
 use srt_scene::{
-    Effects, LightDescription, LoadedScene, Object, ObjectDescription, Observer,
+    Effects, LightDescription, LightsDescription, LoadedScene, Object, ObjectDescription, Observer,
     ObserverDescription, Part, ResolveError, Scene, SceneDescription, SceneError, SceneErrorKind,
     SceneSource, ShapeDescription, SurfaceColour, TextureDescription,
 };
@@ -549,10 +549,12 @@ impl Editor {
     /// time (what [`Editor::set_light`] sets; the runtime scene has it in the observer's frame).
     #[must_use]
     pub fn light(&self) -> (f64, DVec3) {
-        self.description.light.as_ref().map_or(
-            (self.scene.light.temperature_k, self.scene.light.position),
-            |light| (light.temperature_k, DVec3::from_array(light.position)),
-        )
+        (self.description.light.as_ref())
+            .and_then(LightsDescription::lamp)
+            .map_or(
+                (self.scene.light.temperature_k, self.scene.light.position),
+                |light| (light.temperature_k, DVec3::from_array(light.position)),
+            )
     }
 
     /// The wireframe line width of object `index` (`None`: textured).
@@ -707,10 +709,18 @@ impl Editor {
     /// positive, a position that is not finite…).
     pub fn set_light(&mut self, temperature_k: f64, position: DVec3) -> Result<(), EditError> {
         self.edit(|description| {
-            description.light = Some(LightDescription {
-                position: position.to_array(),
-                temperature_k,
-            });
+            let lamp = LightDescription::lamp(position.to_array(), temperature_k);
+            match description
+                .light
+                .as_mut()
+                .and_then(LightsDescription::lamp_mut)
+            {
+                Some(light) => {
+                    light.position = lamp.position;
+                    light.temperature_k = temperature_k;
+                }
+                None => description.light = Some(LightsDescription::Lamp(lamp)),
+            }
             Ok(())
         })
     }
@@ -993,10 +1003,9 @@ mod tests {
                 "light",
                 |e| e.set_light(0.0, DVec3::ONE),
                 |d| {
-                    d.light = Some(LightDescription {
-                        position: [1.0; 3],
-                        temperature_k: 0.0,
-                    });
+                    d.light = Some(LightsDescription::Lamp(LightDescription::lamp(
+                        [1.0; 3], 0.0,
+                    )));
                 },
             ),
             (

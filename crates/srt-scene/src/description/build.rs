@@ -16,8 +16,8 @@ use srt_physics::{Event, Frame, FrameError, MovingObserver, RelativeFrame};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
-    ObjectDescription, ObserverDescription, SceneDescription, ShapeDescription, SkyDescription,
-    TextureDescription,
+    LightsDescription, ObjectDescription, ObserverDescription, SceneDescription, ShapeDescription,
+    SkyDescription, TextureDescription,
 };
 use super::validate::{ValueName, invalid_velocity};
 use super::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
@@ -27,7 +27,8 @@ use crate::limits::{Budget, MAX_COORDINATE, OverBudget};
 use crate::mesh::{Material, Mesh, MeshError, Part, Texture};
 use crate::message::one_line;
 use crate::scene::{
-    Clock, Emission, Kinematics, Light, Object, Observer, Scene, Shading, SurfaceOptics,
+    Clock, Emission, Kinematics, Light, MovingLight, Object, Observer, Scene, Shading,
+    SurfaceOptics,
 };
 use crate::sky::{self, Sky};
 use crate::{shapes, textures};
@@ -94,6 +95,7 @@ impl SceneDescription {
         let Kinematics {
             observer,
             light,
+            light_frames,
             frames,
             sky_beta,
             world,
@@ -117,11 +119,20 @@ impl SceneDescription {
             warnings.push("the scene has no objects".to_owned());
         }
         let render = &self.render;
+        let lights = (self.light.iter().flat_map(LightsDescription::moving))
+            .zip(light_frames)
+            .map(|(l, frame)| MovingLight {
+                frame,
+                temperature_k: l.temperature_k,
+                strength: l.strength,
+            })
+            .collect();
         let scene = Scene {
             name: self.name.clone().unwrap_or_else(|| "untitled".to_owned()),
             objects,
             observer,
             light,
+            lights,
             shading: Shading {
                 ambient: render.ambient,
                 diffuse: render.diffuse,
@@ -191,19 +202,50 @@ impl SceneDescription {
         let fail = |kind| SceneError::new(self.origin(), kind);
         let motion = self.moving_observer().map_err(fail)?;
         let observer = self.observer.to_observer();
-        let light = self.light.as_ref().map_or(
-            Light {
+        let light = match &self.light {
+            None => Light {
                 position: observer.position,
                 temperature_k: DEFAULT_LIGHT_TEMPERATURE_K,
+                strength: 1.0,
             },
-            |l| Light {
-                // At rest relative to the observer, where W says it is at W's observation time.
-                position: motion
-                    .to_observer(Event::new(observer.ct, DVec3::from_array(l.position)))
-                    .position,
-                temperature_k: l.temperature_k,
-            },
-        );
+            Some(lights) => lights.lamp().map_or(
+                // A `[[light]]` list without a carried entry: no lamp.
+                Light {
+                    position: observer.position,
+                    temperature_k: DEFAULT_LIGHT_TEMPERATURE_K,
+                    strength: 0.0,
+                },
+                |l| Light {
+                    // At rest relative to the observer, where W says it is at W's observation
+                    // time.
+                    position: motion
+                        .to_observer(Event::new(observer.ct, DVec3::from_array(l.position)))
+                        .position,
+                    temperature_k: l.temperature_k,
+                    strength: l.strength,
+                },
+            ),
+        };
+        // A moving light rests at its frame's origin, at `position` in W at t = 0.
+        let light_frames = self
+            .light
+            .iter()
+            .flat_map(LightsDescription::moving)
+            .enumerate()
+            .map(|(index, l)| {
+                Frame::new(DVec3::from_array(l.beta), DVec3::from_array(l.position))
+                    .and_then(|world| motion.relative_frame(&world))
+                    .map(|relative| relative.frame)
+                    .map_err(|error| {
+                        let key = format!("light[{index}].beta");
+                        fail(invalid_velocity(
+                            ValueName::Key(&key),
+                            DVec3::from_array(l.beta),
+                            &error,
+                        ))
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         // The sky rests in W, which moves relative to the observer as an object at rest in W
         // does ([`MovingObserver::relative_frame`]: velocity −β_o, no rotation).
         let sky_beta = self
@@ -225,6 +267,7 @@ impl SceneDescription {
         Ok(Kinematics {
             observer,
             light,
+            light_frames,
             frames: self.relative_frames()?,
             sky_beta,
             world: motion.observer_to_world(),

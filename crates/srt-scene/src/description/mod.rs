@@ -31,9 +31,9 @@ pub use build::{
 };
 pub use error::{SceneError, SceneErrorKind, line_column};
 pub use model::{
-    EmissionDescription, LightDescription, ObjectDescription, ObserverDescription,
-    RenderDescription, Scale, SceneDescription, ShapeDescription, SkyDescription,
-    TextureDescription,
+    EmissionDescription, LightDescription, LightsDescription, ObjectDescription,
+    ObserverDescription, RenderDescription, Scale, SceneDescription, ShapeDescription,
+    SkyDescription, TextureDescription,
 };
 pub use overrides::{OverrideNames, Overrides};
 pub use validate::{ValueName, observation_time, velocity};

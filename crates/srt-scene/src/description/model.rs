@@ -35,10 +35,11 @@ pub struct SceneDescription {
     pub description: Option<String>,
     /// The observer (the camera), moving with `observer.beta` through the scene's world frame.
     pub observer: ObserverDescription,
-    /// The light, at rest relative to the observer; without one, a light of
-    /// [`DEFAULT_LIGHT_TEMPERATURE_K`] sits at the observer's position.
+    /// The lights: `[light]`, the lamp at rest relative to the observer, or `[[light]]`, any
+    /// number of lights, each carried by the observer or on its own worldline. Without the key a
+    /// lamp of [`DEFAULT_LIGHT_TEMPERATURE_K`] sits at the observer's position.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub light: Option<LightDescription>,
+    pub light: Option<LightsDescription>,
     /// Effect mode, tone map, background and Phong factors.
     #[serde(default)]
     pub render: RenderDescription,
@@ -117,16 +118,112 @@ pub struct ObserverDescription {
     pub ct: f64,
 }
 
-/// The `[light]` table: a point light at rest relative to the observer, radiating a Planck
-/// spectrum.
+/// One light table: a point light radiating a Planck spectrum. The lamp (`[light]`, or a
+/// `[[light]]` entry with `carried = true`) rests relative to the observer and lights with the
+/// paper's constant strength (ambient term included); every other `[[light]]` entry moves on
+/// its own worldline and falls off with the inverse square of the distance in its rest frame
+/// (docs/physics.md, "Moving lights").
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightDescription {
-    /// Position in W at the observation time `observer.ct` (W's time).
+    /// The lamp's position in W at the observation time `observer.ct`; a moving light's
+    /// position in W at t = 0.
     pub position: [f64; 3],
     /// Black-body temperature in kelvin (> 0).
     #[serde(default = "default_temperature")]
     pub temperature_k: f64,
+    /// Multiplier on the light (≥ 0; default 1). A moving light of strength s gives a surface
+    /// facing it at distance r (in the light's rest frame) s / r² of the lamp's diffuse light.
+    #[serde(default = "default_strength", skip_serializing_if = "is_one")]
+    pub strength: f64,
+    /// A moving light's velocity relative to W in units of c (|β| < 1; default at rest in W).
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub beta: [f64; 3],
+    /// In a `[[light]]` list: this entry is the lamp the observer carries (at most one).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub carried: bool,
+}
+
+impl LightDescription {
+    /// A `[light]` table: the lamp carried by the observer at `position` (W, at the
+    /// observation time), of strength 1.
+    #[must_use]
+    pub fn lamp(position: [f64; 3], temperature_k: f64) -> Self {
+        Self {
+            position,
+            temperature_k,
+            strength: 1.0,
+            beta: [0.0; 3],
+            carried: false,
+        }
+    }
+
+    /// Whether this table is the lamp: a `[light]` table (`in_list` false) or a carried entry.
+    #[must_use]
+    pub fn is_lamp(&self, in_list: bool) -> bool {
+        !in_list || self.carried
+    }
+}
+
+/// The `light` key: one `[light]` table (the lamp) or a `[[light]]` list.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum LightsDescription {
+    /// `[light]`: the lamp the observer carries, the only light.
+    Lamp(LightDescription),
+    /// `[[light]]`: at most one carried lamp and any number of moving lights (at most
+    /// [`MAX_MOVING_LIGHTS`](crate::scene::MAX_MOVING_LIGHTS)); without a carried entry there
+    /// is no lamp (and no ambient light).
+    List(Vec<LightDescription>),
+}
+
+impl LightsDescription {
+    /// The lamp, if there is one.
+    #[must_use]
+    pub fn lamp(&self) -> Option<&LightDescription> {
+        match self {
+            Self::Lamp(lamp) => Some(lamp),
+            Self::List(lights) => lights.iter().find(|l| l.carried),
+        }
+    }
+
+    /// The lamp, mutably, if there is one.
+    pub fn lamp_mut(&mut self) -> Option<&mut LightDescription> {
+        match self {
+            Self::Lamp(lamp) => Some(lamp),
+            Self::List(lights) => lights.iter_mut().find(|l| l.carried),
+        }
+    }
+
+    /// The moving lights (the entries of a list that are not carried), in order.
+    pub fn moving(&self) -> impl Iterator<Item = &LightDescription> {
+        let list = match self {
+            Self::Lamp(_) => &[][..],
+            Self::List(lights) => lights.as_slice(),
+        };
+        list.iter().filter(|l| !l.carried)
+    }
+}
+
+impl<'de> Deserialize<'de> for LightsDescription {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct LightsVisitor;
+        impl<'de> Visitor<'de> for LightsVisitor {
+            type Value = LightsDescription;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a [light] table or [[light]] tables")
+            }
+            fn visit_map<M: MapAccess<'de>>(self, map: M) -> Result<Self::Value, M::Error> {
+                LightDescription::deserialize(de::value::MapAccessDeserializer::new(map))
+                    .map(LightsDescription::Lamp)
+            }
+            fn visit_seq<S: SeqAccess<'de>>(self, seq: S) -> Result<Self::Value, S::Error> {
+                Vec::<LightDescription>::deserialize(de::value::SeqAccessDeserializer::new(seq))
+                    .map(LightsDescription::List)
+            }
+        }
+        deserializer.deserialize_any(LightsVisitor)
+    }
 }
 
 /// The `[render]` table: effect mode, tone map, background and Phong factors (Eq. 18).
@@ -600,6 +697,16 @@ fn default_fov() -> f64 {
 }
 fn default_temperature() -> f64 {
     DEFAULT_LIGHT_TEMPERATURE_K
+}
+fn default_strength() -> f64 {
+    1.0
+}
+#[expect(
+    clippy::trivially_copy_pass_by_ref,
+    reason = "serde's skip_serializing_if passes a reference"
+)]
+fn is_one(value: &f64) -> bool {
+    *value == 1.0
 }
 fn default_ambient() -> f64 {
     Shading::default().ambient

@@ -15,11 +15,11 @@ use srt_physics::{Frame, FrameError, validate_beta};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
-    ObjectDescription, ObserverDescription, RenderDescription, SceneDescription, ShapeDescription,
-    TextureDescription,
+    LightDescription, LightsDescription, ObjectDescription, ObserverDescription, RenderDescription,
+    SceneDescription, ShapeDescription, TextureDescription,
 };
 use crate::limits::{MAX_COORDINATE, MAX_SCENE_TRIANGLES};
-use crate::scene::SurfaceColour;
+use crate::scene::{MAX_MOVING_LIGHTS, SurfaceColour};
 use crate::shapes::{MAX_CUBE_SUBDIVISIONS, MAX_SPHERE_SEGMENTS, MIN_SPHERE_SEGMENTS};
 use crate::textures::{MAX_CHECKER_SQUARES, MAX_FRAMES};
 
@@ -55,13 +55,8 @@ impl SceneDescription {
     /// [`SceneDescription::validate`]'s checks, naming the overridable values as `names` says.
     pub(super) fn check_named(&self, names: &Names<'_>) -> Result<(), SceneErrorKind> {
         self.observer.check(names)?;
-        if let Some(light) = &self.light {
-            coordinates3("light.position", light.position)?;
-            positive(
-                ValueName::Key("light.temperature_k"),
-                light.temperature_k,
-                " of kelvin",
-            )?;
+        if let Some(lights) = &self.light {
+            check_lights(lights)?;
         }
         self.render.check(names)?;
         if let Some(sky) = &self.sky {
@@ -197,6 +192,55 @@ pub(super) fn invalid_velocity(
         ValueName::Option(_) => name.with_value(&format!("{:?},{:?},{:?}", beta.x, beta.y, beta.z)),
     };
     name.error(subject, format!("is not a valid velocity: {error}"))
+}
+
+/// The `light` key's checks: each table's position, temperature, strength and velocity; a
+/// `[light]` table (the lamp) has no velocity; a `[[light]]` list has at most one carried entry
+/// and at most [`MAX_MOVING_LIGHTS`] moving ones.
+fn check_lights(lights: &LightsDescription) -> Result<(), SceneErrorKind> {
+    let (list, in_list): (&[LightDescription], bool) = match lights {
+        LightsDescription::Lamp(lamp) => (std::slice::from_ref(lamp), false),
+        LightsDescription::List(list) => (list, true),
+    };
+    for (index, light) in list.iter().enumerate() {
+        let key = |field: &str| {
+            if in_list {
+                format!("light[{index}].{field}")
+            } else {
+                format!("light.{field}")
+            }
+        };
+        coordinates3(&key("position"), light.position)?;
+        positive(
+            ValueName::Key(&key("temperature_k")),
+            light.temperature_k,
+            " of kelvin",
+        )?;
+        non_negative(&key("strength"), light.strength)?;
+        let beta = DVec3::from_array(light.beta);
+        if light.is_lamp(in_list) && beta != DVec3::ZERO {
+            return Err(value_error(
+                key("beta"),
+                "the lamp rests relative to the observer; give a light that moves as a \
+                 [[light]] table without carried = true",
+            ));
+        }
+        velocity(ValueName::Key(&key("beta")), beta)?;
+    }
+    if list.iter().filter(|l| in_list && l.carried).count() > 1 {
+        return Err(value_error(
+            "light",
+            "at most one [[light]] table may be carried by the observer",
+        ));
+    }
+    let moving = lights.moving().count();
+    if moving > MAX_MOVING_LIGHTS {
+        return Err(value_error(
+            "light",
+            format!("at most {MAX_MOVING_LIGHTS} moving lights, got {moving}"),
+        ));
+    }
+    Ok(())
 }
 
 fn finite3(field: &str, value: [f64; 3]) -> Result<DVec3, SceneErrorKind> {
