@@ -14,7 +14,8 @@
 //!   frame's ratio (`worst_ratio`), each method's worst ratio and slowest frame;
 //! - a large scene: three engines side by side (364 488 triangles);
 //! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
-//!   `flythrough` (a moving observer under 6 000 stars).
+//!   `flythrough` (a moving observer under 6 000 stars), and two moving lights with their late
+//!   shadows against the same scene without shadows (`two moving lights`).
 //!
 //! Prints one line per case. A full run rewrites the generated blocks of `docs/performance.md`
 //! (the table and the summary sentences, [`document`]) and saves every measurement as
@@ -30,9 +31,11 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Context as _;
+use glam::DVec3;
 use srt_gpu::ray_tracing::AUTO_LAYERS;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
-use srt_scene::{Scene, SurfaceColour};
+use srt_physics::Frame;
+use srt_scene::{MovingLight, Scene, SurfaceColour};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::cases::{
@@ -310,6 +313,29 @@ fn three_engines() -> anyhow::Result<Case> {
     })
 }
 
+/// The `shadows` scene with a second moving light (3500 K, flying the other way at 0.7c in
+/// front of the columns), with the late shadows (`shadows` true) or without them: what shadows
+/// cost.
+fn two_moving_lights(shadows: bool) -> anyhow::Result<Case> {
+    let mut scene = builtin("shadows")?.scene;
+    let second = Frame::new(DVec3::new(-0.7, 0.0, 0.0), DVec3::new(4.0, -3.0, 2.0))?;
+    scene.lights.push(MovingLight {
+        frame: second,
+        temperature_k: 3500.0,
+        strength: 20.0,
+    });
+    scene.shadows = shadows;
+    let name = if shadows {
+        "two moving lights"
+    } else {
+        "two moving lights, no shadows"
+    };
+    Ok(Case {
+        name: name.to_owned(),
+        scene,
+    })
+}
+
 /// `case` with spectral surface colour, named `NAME-spectral`.
 fn with_spectral_colour(case: Case) -> Case {
     let mut scene = case.scene;
@@ -339,6 +365,8 @@ fn static_cases() -> anyhow::Result<Vec<Case>> {
         three_engines()?,
         with_spectral_colour(builtin("teaser")?),
         builtin("flythrough")?,
+        two_moving_lights(true)?,
+        two_moving_lights(false)?,
     ])
 }
 

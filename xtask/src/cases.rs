@@ -260,6 +260,7 @@ pub fn spectral_cases() -> anyhow::Result<Vec<Case>> {
         spectral("teaser", Effects::Doppler, 1.0)?,
         spectral("fig7", Effects::Doppler, 2.0)?,
         spectral("fig7", Effects::Searchlight, 0.5)?,
+        spectral("shadows", Effects::Searchlight, 0.03)?,
         spectral_emitter_case()?,
     ])
 }

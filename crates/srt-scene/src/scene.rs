@@ -340,6 +340,8 @@ pub struct Scene {
     pub light: Light,
     /// The lights moving on their own worldlines (at most [`MAX_MOVING_LIGHTS`]).
     pub lights: Vec<MovingLight>,
+    /// Whether objects cast the moving lights' shadows.
+    pub shadows: bool,
     /// Phong parameters.
     pub shading: Shading,
     /// Effect mode.

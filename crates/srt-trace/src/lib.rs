@@ -29,7 +29,10 @@ mod texture;
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{Hit, Output, RenderSettings, RenderedImage, Tracer, sample_offsets};
 pub use seen::SeenEvent;
-pub use shade::{Arriving, GREY_WEIGHTS, Illumination, SurfacePoint, arriving, grey_value, shade};
+pub use shade::{
+    Arriving, GREY_WEIGHTS, Illumination, MAX_SOURCES, Sources, SurfacePoint, arriving,
+    arriving_unless_shadowed, grey_value, shade,
+};
 pub use sky::{
     StarImage, project, sky_image_colour, sky_image_light, star_colour, star_image, star_layer,
     star_light, tent_splat,

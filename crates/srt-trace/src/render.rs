@@ -487,7 +487,7 @@ impl<'a> Tracer<'a> {
             emission_ct: hit.emission.ct,
         };
         arriving_unless_shadowed(&point, &illumination, &|light| {
-            self.shadowed(light, hit.emission)
+            self.scene.shadows && self.shadowed(light, hit.emission)
         })
     }
 

@@ -23,6 +23,7 @@ fn scene(objects: Vec<Object>, observer: Observer) -> Scene {
             strength: 1.0,
         },
         lights: Vec::new(),
+        shadows: true,
         shading: Shading::default(),
         effects: Effects::Geometry,
         tone_map: ToneMap::Luminance,

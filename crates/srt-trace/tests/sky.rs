@@ -31,6 +31,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
             strength: 1.0,
         },
         lights: Vec::new(),
+        shadows: true,
         shading: Shading::default(),
         effects,
         tone_map: effects.default_tone_map(),

@@ -23,7 +23,7 @@ use glam::{DMat3, DVec3};
 use srt_color::ToneMap;
 use srt_physics::{Event, Frame, RelativeFrame};
 use srt_scene::assets::BUILTIN_PREFIX;
-use srt_scene::description::FIT_RADIUS;
+use srt_scene::description::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
 use srt_scene::limits::Budget;
 use srt_scene::resolve::{LocatedDescription, PathKind, path_kind};
 use srt_scene::{
@@ -69,6 +69,9 @@ pub enum EditError {
     /// An object index that does not exist.
     #[error("there is no object number {0}")]
     NoSuchObject(usize),
+    /// A moving light's index that does not exist.
+    #[error("there is no moving light number {0}")]
+    NoSuchLight(usize),
 }
 
 /// Parses a speed typed by the user: a number ≥ 0 (a fraction of c), optionally followed by
@@ -725,6 +728,114 @@ impl Editor {
         })
     }
 
+    /// The lamp's strength (a multiplier on all its light; 0: no lamp).
+    #[must_use]
+    pub fn lamp_strength(&self) -> f64 {
+        self.scene.light.strength
+    }
+
+    /// Sets the lamp's strength (0 turns it off, ambient light included).
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] for a strength the scene file's rules refuse (negative, not finite).
+    pub fn set_lamp_strength(&mut self, strength: f64) -> Result<(), EditError> {
+        let observer = self.description.observer.position;
+        self.edit(|description| {
+            let lights = light_list(description, observer);
+            if let Some(lamp) = lights.iter_mut().find(|l| l.carried) {
+                lamp.strength = strength;
+            }
+            Ok(())
+        })
+    }
+
+    /// The moving lights as the scene file gives them (position in W at t = 0, velocity,
+    /// temperature, strength), in order.
+    #[must_use]
+    pub fn moving_lights(&self) -> Vec<LightDescription> {
+        (self.description.light.iter())
+            .flat_map(LightsDescription::moving)
+            .cloned()
+            .collect()
+    }
+
+    /// Adds a moving light: 6000 K, at rest in W, 2 above the point 6 ahead of the camera, of
+    /// strength 36 (the lamp's diffuse light at 6 units); returns its index.
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] when the scene has as many moving lights as it may.
+    pub fn add_moving_light(&mut self) -> Result<usize, EditError> {
+        let observer = self.description.observer.position;
+        let (forward, _, up) = self.scene.observer.basis();
+        let place = DVec3::from_array(observer) + 6.0 * forward + 2.0 * up;
+        let light = LightDescription {
+            carried: false,
+            strength: 36.0,
+            ..LightDescription::lamp(place.to_array(), DEFAULT_LIGHT_TEMPERATURE_K)
+        };
+        self.edit(|description| {
+            light_list(description, observer).push(light);
+            Ok(())
+        })?;
+        Ok(self.scene.lights.len() - 1)
+    }
+
+    /// Replaces moving light `index` with `light` (its `carried` flag is ignored).
+    ///
+    /// # Errors
+    /// [`EditError::NoSuchLight`] when there is none; [`EditError::Scene`] for values the scene
+    /// file's rules refuse (a speed of 1 or more, a temperature that is not positive…).
+    pub fn set_moving_light(
+        &mut self,
+        index: usize,
+        light: LightDescription,
+    ) -> Result<(), EditError> {
+        let observer = self.description.observer.position;
+        self.edit(|description| {
+            let entry = moving_light_mut(light_list(description, observer), index)?;
+            *entry = LightDescription {
+                carried: false,
+                ..light
+            };
+            Ok(())
+        })
+    }
+
+    /// Removes moving light `index`.
+    ///
+    /// # Errors
+    /// [`EditError::NoSuchLight`] when there is none.
+    pub fn remove_moving_light(&mut self, index: usize) -> Result<(), EditError> {
+        let observer = self.description.observer.position;
+        self.edit(|description| {
+            let lights = light_list(description, observer);
+            let position = (lights.iter().enumerate())
+                .filter(|(_, l)| !l.carried)
+                .nth(index)
+                .map(|(position, _)| position)
+                .ok_or(EditError::NoSuchLight(index))?;
+            lights.remove(position);
+            Ok(())
+        })
+    }
+
+    /// Whether objects cast the moving lights' shadows.
+    #[must_use]
+    pub fn shadows(&self) -> bool {
+        self.scene.shadows
+    }
+
+    /// Turns the moving lights' shadows on or off.
+    ///
+    /// # Errors
+    /// None in practice (the scene is rebuilt as for any edit).
+    pub fn set_shadows(&mut self, shadows: bool) -> Result<(), EditError> {
+        self.edit(|description| {
+            description.render.shadows = shadows;
+            Ok(())
+        })
+    }
+
     /// Sets the observer (camera and observation time).
     ///
     /// # Errors
@@ -925,6 +1036,41 @@ fn absolutize_object(object: &mut ObjectDescription, base_dir: &Path) {
     }
 }
 
+/// The description's lights as a `[[light]]` list, made one if needed: a `[light]` table
+/// becomes the list's carried entry, no light key the default lamp at `observer` (where it sits
+/// without one), so that the scene lights as before.
+fn light_list(
+    description: &mut SceneDescription,
+    observer: [f64; 3],
+) -> &mut Vec<LightDescription> {
+    let list = match description.light.take() {
+        Some(LightsDescription::List(list)) => list,
+        Some(LightsDescription::Lamp(lamp)) => vec![LightDescription {
+            carried: true,
+            ..lamp
+        }],
+        None => vec![LightDescription {
+            carried: true,
+            ..LightDescription::lamp(observer, DEFAULT_LIGHT_TEMPERATURE_K)
+        }],
+    };
+    match description.light.insert(LightsDescription::List(list)) {
+        LightsDescription::List(list) => list,
+        LightsDescription::Lamp(_) => unreachable!("a list was just inserted"),
+    }
+}
+
+/// The moving light `index` of a `[[light]]` list (its entries that are not carried).
+fn moving_light_mut(
+    lights: &mut [LightDescription],
+    index: usize,
+) -> Result<&mut LightDescription, EditError> {
+    (lights.iter_mut())
+        .filter(|l| !l.carried)
+        .nth(index)
+        .ok_or(EditError::NoSuchLight(index))
+}
+
 #[cfg(test)]
 mod tests {
     use crate::camera;
@@ -943,6 +1089,55 @@ mod tests {
         let model = dir.path().join("tetra.stl");
         std::fs::write(&model, tetrahedron_stl()).unwrap();
         (dir, model)
+    }
+
+    #[test]
+    fn moving_lights_are_added_edited_and_removed_like_objects() {
+        let (mut editor, _) = Editor::open("fig7").unwrap();
+        let lamp = editor.scene().light;
+        assert!(editor.moving_lights().is_empty());
+        let index = editor.add_moving_light().unwrap();
+        assert_eq!(index, 0);
+        // The `[light]` table became the list's carried lamp: it lights as before.
+        assert_eq!(editor.scene().light, lamp);
+        assert_eq!(editor.scene().lights.len(), 1);
+        let mut light = editor.moving_lights()[0].clone();
+        light.beta = [0.0, 0.8, 0.0];
+        light.temperature_k = 4000.0;
+        editor.set_moving_light(0, light.clone()).unwrap();
+        assert_eq!(
+            editor.scene().lights[0].frame.beta(),
+            DVec3::new(0.0, 0.8, 0.0)
+        );
+        assert_eq!(editor.scene().lights[0].temperature_k, 4000.0);
+        // Refused like a scene file's value; nothing changes.
+        light.beta = [0.0, 1.0, 0.0];
+        assert!(editor.set_moving_light(0, light).is_err());
+        assert_eq!(
+            editor.scene().lights[0].frame.beta(),
+            DVec3::new(0.0, 0.8, 0.0)
+        );
+        assert!(matches!(
+            editor.set_moving_light(3, LightDescription::lamp([0.0; 3], 5000.0)),
+            Err(EditError::NoSuchLight(3))
+        ));
+        editor.set_lamp_strength(0.0).unwrap();
+        assert_eq!(editor.scene().light.strength, 0.0);
+        assert!(editor.set_lamp_strength(-1.0).is_err());
+        assert!(editor.shadows());
+        editor.set_shadows(false).unwrap();
+        assert!(!editor.scene().shadows);
+        // Saved and read back, the lights are the same.
+        let text = editor.description_for_saving().to_toml_string();
+        let saved = SceneDescription::from_toml_str(&text, "saved").unwrap();
+        assert_eq!(saved.light, editor.description().light);
+        editor.remove_moving_light(0).unwrap();
+        assert!(editor.scene().lights.is_empty());
+        assert_eq!(editor.scene().light.strength, 0.0);
+        assert!(matches!(
+            editor.remove_moving_light(0),
+            Err(EditError::NoSuchLight(0))
+        ));
     }
 
     #[test]

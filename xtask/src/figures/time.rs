@@ -4,7 +4,9 @@
 //! twice as fast as the one at rest and the receding one half as fast, the Doppler factor of
 //! time. `clocks_seen.png`: clocks at rest and a train of clocks passing at 0.9c — each face
 //! shows the proper time of the event seen, so the passing clocks are dilated, and every fast
-//! hand is bent by the light delay across its face.
+//! hand is bent by the light delay across its face. `shadows_late.png`: a light flying at 0.9c
+//! behind a row of columns — each ground point is lit by the light as it was at its retarded
+//! event, so the shadows are curved and point away from where the light was, not where it is.
 
 use std::path::{Path, PathBuf};
 
@@ -30,7 +32,7 @@ struct FilmStrip {
     step: f64,
 }
 
-const STRIPS: [FilmStrip; 2] = [
+const STRIPS: [FilmStrip; 3] = [
     FilmStrip {
         scene: "beacon",
         file: "beacon_blinks.png",
@@ -59,6 +61,21 @@ const STRIPS: [FilmStrip; 2] = [
         rows: 2,
         first: 10.0,
         step: 0.25,
+    },
+    FilmStrip {
+        scene: "shadows",
+        file: "shadows_late.png",
+        title: &[
+            "shadows: a 5000 K light flies at 0.9c (left to right) behind five columns, a glowing \
+             sphere with it",
+            "each ground point is lit as the light was when its light left: shadows curve away \
+             from where it was; white ahead, yellow behind",
+        ],
+        panel: (480, 270),
+        columns: 2,
+        rows: 2,
+        first: 10.0,
+        step: 6.0,
     },
 ];
 

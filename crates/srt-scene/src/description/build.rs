@@ -133,6 +133,7 @@ impl SceneDescription {
             observer,
             light,
             lights,
+            shadows: render.shadows,
             shading: Shading {
                 ambient: render.ambient,
                 diffuse: render.diffuse,

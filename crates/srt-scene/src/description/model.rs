@@ -261,6 +261,9 @@ pub struct RenderDescription {
     /// Multiplier on the light before the tone map (> 0; only with spectral colour).
     #[serde(default = "default_exposure")]
     pub exposure: f64,
+    /// Whether objects cast the moving lights' shadows (default true).
+    #[serde(default = "default_true", skip_serializing_if = "is_true")]
+    pub shadows: bool,
 }
 
 impl Default for RenderDescription {
@@ -276,6 +279,7 @@ impl Default for RenderDescription {
             shininess: shading.shininess,
             colour: SurfaceColour::default(),
             exposure: 1.0,
+            shadows: true,
         }
     }
 }
@@ -697,6 +701,16 @@ fn default_fov() -> f64 {
 }
 fn default_temperature() -> f64 {
     DEFAULT_LIGHT_TEMPERATURE_K
+}
+fn default_true() -> bool {
+    true
+}
+#[expect(
+    clippy::trivially_copy_pass_by_ref,
+    reason = "serde's skip_serializing_if passes a reference"
+)]
+fn is_true(value: &bool) -> bool {
+    *value
 }
 fn default_strength() -> f64 {
     1.0

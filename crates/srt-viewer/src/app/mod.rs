@@ -27,6 +27,7 @@ use crate::record::{FRAME_RATES, Recorder};
 use crate::view::{Pane, SceneView, ViewMethod};
 
 mod files;
+mod lights;
 mod objects;
 mod observer;
 mod panel;
@@ -103,6 +104,8 @@ pub struct ViewerApp {
     gpu: Option<Gpu>,
     status: Status,
     selected: Option<usize>,
+    /// The moving light whose controls are shown.
+    selected_light: Option<usize>,
     speed_text: String,
     speed_text_for: Option<usize>,
     keep_apparent: bool,
@@ -175,6 +178,7 @@ impl ViewerApp {
         let ct = observer.ct;
         Self {
             selected: (editor.object_count() > 0).then_some(0),
+            selected_light: None,
             editor,
             gpu,
             status,

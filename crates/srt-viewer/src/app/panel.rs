@@ -1,5 +1,5 @@
 //! The side panel's layout, the readouts and status line, and the sections on how the scene
-//! is drawn (effects and colour, light, views, method, the probe's finding).
+//! is drawn (effects and colour, views, method, the probe's finding); app::lights has the lights.
 
 use std::ops::RangeInclusive;
 
@@ -54,9 +54,9 @@ impl ViewerApp {
         egui::CollapsingHeader::new("Flight")
             .default_open(true)
             .show(ui, |ui| self.flight_section(ui));
-        egui::CollapsingHeader::new("Light")
+        egui::CollapsingHeader::new("Lights")
             .default_open(false)
-            .show(ui, |ui| self.light_section(ui));
+            .show(ui, |ui| self.lights_section(ui));
         egui::CollapsingHeader::new("Views")
             .default_open(true)
             .show(ui, |ui| self.views_section(ui));
@@ -233,28 +233,6 @@ impl ViewerApp {
             )
             .small(),
         );
-    }
-
-    /// The light's temperature and position.
-    fn light_section(&mut self, ui: &mut egui::Ui) {
-        let (mut temperature, mut position) = self.editor.light();
-        let mut changed = ui
-            .add(
-                egui::Slider::new(&mut temperature, 1000.0..=40000.0)
-                    .logarithmic(true)
-                    .text("temperature (K)")
-                    .max_decimals(0),
-            )
-            .changed();
-        changed |= vector_row(ui, "Light position", &mut position, 0.1, None);
-        if ui.button("Put the light at the camera").clicked() {
-            position = self.editor.scene().observer.position;
-            changed = true;
-        }
-        if changed {
-            let result = self.editor.set_light(temperature, position);
-            self.edited(result);
-        }
     }
 
     /// The rendering method and the resolution.
