@@ -32,6 +32,7 @@ pub mod flight;
 mod frame;
 mod light;
 mod lorentz;
+pub mod motion;
 mod observer;
 mod retarded;
 
