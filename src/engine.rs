@@ -109,6 +109,21 @@ impl Engine {
                 note,
             })
         };
+        // The GPU draws bodies at rest in their frames only: spinning and thrusting ones are
+        // the CPU reference's (docs/physics.md, "Spinning and accelerating bodies").
+        let moving = scene.objects.iter().find(|o| !o.motion.is_rest());
+        if let Some(object) = moving
+            && backend != Backend::Cpu
+        {
+            let why = format!(
+                "{} spins or thrusts, which only the CPU renderer draws so far",
+                object.name
+            );
+            if backend == Backend::Gpu || !method.is_exact() {
+                bail!("{why}; use --backend cpu");
+            }
+            return cpu(Some(format!("{why}; rendering on the CPU")));
+        }
         let context = match backend {
             Backend::Cpu if method == Method::Polygon => {
                 bail!("the polygon method runs on the GPU only; use --backend gpu or auto")

@@ -23,7 +23,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Write the documentation figures (the paper's Fig. 4, 5, 6 and 8; ColorChecker; the sky;
-    /// the clocks, the beacon and the late shadows) as PNGs.
+    /// the clocks, the beacon, the late shadows and the rolling wheel) as PNGs.
     Figures {
         /// Folder to write into (default: docs/figures in the workspace).
         #[arg(long)]

@@ -24,7 +24,7 @@
 //! moves on with velocity tanh(η_end) â: they all stop accelerating at once in the new rest
 //! frame, so the body keeps its proper length.
 
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 use crate::event::Event;
 
@@ -285,6 +285,105 @@ impl Thrust {
             return None; // beyond the horizon
         };
         (x > 0.0).then(|| across + (x - 1.0 / self.alpha) * self.direction)
+    }
+}
+
+/// How a body moves within its rest frame S′: not at all (the paper's rigid objects), spinning
+/// or thrusting. Times are the body's S′ time ct′.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Motion {
+    /// At rest in S′.
+    #[default]
+    Rest,
+    /// Kinematic rotation.
+    Spin(Spin),
+    /// Born-rigid acceleration, then coasting.
+    Thrust(Thrust),
+}
+
+impl Motion {
+    /// Whether the body rests in S′ (uniform motion relative to the observer).
+    #[must_use]
+    pub const fn is_rest(&self) -> bool {
+        matches!(self, Self::Rest)
+    }
+
+    /// Where the body point `body` is at S′ time `ct`.
+    #[must_use]
+    pub fn position(&self, body: DVec3, ct: f64) -> DVec3 {
+        match self {
+            Self::Rest => body,
+            Self::Spin(spin) => spin.position(body, ct),
+            Self::Thrust(thrust) => thrust.position(body, ct),
+        }
+    }
+
+    /// The velocity (units of c) in S′ of the body point `body` at S′ time `ct`.
+    #[must_use]
+    pub fn velocity(&self, body: DVec3, ct: f64) -> DVec3 {
+        match self {
+            Self::Rest => DVec3::ZERO,
+            Self::Spin(spin) => spin.velocity_at(spin.position(body, ct)),
+            Self::Thrust(thrust) => thrust.velocity(body, ct),
+        }
+    }
+
+    /// The body point at the S′ event (`ct`, `position`), if any.
+    #[must_use]
+    pub fn body_point(&self, ct: f64, position: DVec3) -> Option<DVec3> {
+        match self {
+            Self::Rest => Some(position),
+            Self::Spin(spin) => Some(spin.body_point(position, ct)),
+            Self::Thrust(thrust) => thrust.body_point(ct, position),
+        }
+    }
+
+    /// The proper time (as ct) a clock riding on body point `body` shows at S′ time `ct`, set
+    /// to ct′ before any motion: ct′ at rest; ct′·√(1 − ω²ρ²) spinning (time dilation of its
+    /// circular motion, 0 at ct′ = 0); ct₀ + X·η during a thrust (X = 1/α + ξ the point's
+    /// Rindler distance, η the rapidity), then the coasting time / γ.
+    #[must_use]
+    pub fn proper_time(&self, body: DVec3, ct: f64) -> f64 {
+        match self {
+            Self::Rest => ct,
+            Self::Spin(spin) => {
+                let speed = spin.rate().abs() * spin.radius_of(body);
+                ct * (1.0 - speed * speed).max(0.0).sqrt()
+            }
+            Self::Thrust(thrust) => {
+                let elapsed = ct - thrust.start();
+                if elapsed <= 0.0 {
+                    return ct;
+                }
+                let x = 1.0 / thrust.alpha() + body.dot(thrust.direction());
+                let eta = (elapsed / x).asinh();
+                let end = thrust.final_rapidity();
+                if eta <= end {
+                    return thrust.start() + x * eta;
+                }
+                let end_ct = thrust.start() + x * end.sinh();
+                thrust.start() + x * end + (ct - end_ct) / end.cosh()
+            }
+        }
+    }
+
+    /// The same motion in spatial coordinates turned by `rotation` (x″ = rotation · x′, the same
+    /// S′ time): what an object's motion becomes in the rest coordinates of its frame relative
+    /// to a moving observer, whose axes are turned by the Wigner rotation.
+    #[must_use]
+    pub fn rotated(&self, rotation: DMat3) -> Self {
+        match *self {
+            Self::Rest => Self::Rest,
+            Self::Spin(spin) => Self::Spin(Spin {
+                axis: rotation * spin.axis,
+                centre: rotation * spin.centre,
+                ..spin
+            }),
+            Self::Thrust(thrust) => Self::Thrust(Thrust {
+                direction: rotation * thrust.direction,
+                ..thrust
+            }),
+        }
     }
 }
 

@@ -74,7 +74,7 @@ macro_rules! builtin_scene {
     };
 }
 
-static BUILTIN_SCENES: [BuiltinScene; 11] = [
+static BUILTIN_SCENES: [BuiltinScene; 14] = [
     builtin_scene!(
         "fig4",
         "Fig. 4: a unit cube at 0.95c seen at ct = 5.12, apparently rotated and distorted"
@@ -114,6 +114,18 @@ static BUILTIN_SCENES: [BuiltinScene; 11] = [
     builtin_scene!(
         "clocks",
         "Clocks at rest beside a train of clocks passing at 0.9c: each face shows the proper time of the event seen"
+    ),
+    builtin_scene!(
+        "rolling-wheel",
+        "A spoked wheel rolling at 0.9c: spokes bent into curves, the bottom sharp, the top smeared"
+    ),
+    builtin_scene!(
+        "rocket",
+        "A rocket accelerating away from rest with a clock on its side: it reddens, freezes and fades"
+    ),
+    builtin_scene!(
+        "bell",
+        "Bell's spaceships: two ships with equal thrust, a thread tied between them falls behind"
     ),
     builtin_scene!(
         "shadows",

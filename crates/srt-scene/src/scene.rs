@@ -8,6 +8,7 @@ use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
 use glam::{DMat4, DVec2, DVec3};
 use srt_color::{RadianceScale, RadianceTable, ToneMap};
+use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, Poincare, RelativeFrame};
 
 use crate::mesh::Part;
@@ -290,6 +291,10 @@ pub struct Object {
     pub optics: SurfaceOptics,
     /// A clock face replacing the texture (drawn unless `wireframe` is set).
     pub clock: Option<Clock>,
+    /// How the object moves within `frame`'s rest coordinates (spin, thrust), in S′ time
+    /// ct′ ([`Object::proper_time`] of the rest coordinates' time); parts give the body points
+    /// at ct′ = 0 (before any thrust).
+    pub motion: Motion,
 }
 
 impl Object {

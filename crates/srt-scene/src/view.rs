@@ -9,6 +9,7 @@
 //! offset moves with it.
 
 use glam::{DMat3, DMat4, DVec3};
+use srt_physics::motion::Motion;
 use srt_physics::{Frame, FrameError};
 
 use crate::mesh::MeshError;
@@ -37,6 +38,16 @@ pub enum ViewError {
         object: String,
         /// What was wrong.
         source: FrameError,
+    },
+    /// The measured picture of a spinning or thrusting body (each point would need its own
+    /// S′ time) is not drawn.
+    #[error(
+        "object {object}: the measured view of a spinning or thrusting object is not drawn; \
+         try seen or newtonian"
+    )]
+    MeasuredMotion {
+        /// The object's name.
+        object: String,
     },
     /// The transformed mesh is invalid (non-finite positions).
     #[error("object {object}: {source}")]
@@ -95,7 +106,41 @@ impl View {
     /// Replaces `object` by its static picture at S time `ct` (not [`View::Seen`]).
     fn apply_to_object(self, object: &mut Object, ct: f64) -> Result<(), ViewError> {
         let frame = object.frame;
-        let origin_now = frame.event_at_time(DVec3::ZERO, ct).position;
+        let mut origin_now = frame.event_at_time(DVec3::ZERO, ct).position;
+        if !object.motion.is_rest() {
+            if self == Self::Measured {
+                return Err(ViewError::MeasuredMotion {
+                    object: object.name.clone(),
+                });
+            }
+            // Newtonian: the rest shape, turned as far as a spin has turned it and placed where
+            // a thrust has carried its origin, at the S′ time of the origin's event at S time
+            // `ct`.
+            let (rest_ct, placement) = newtonian_placement(object, ct);
+            // A spin turns the shape about its centre within the frame; a thrust carries the
+            // shape's origin along.
+            let carried = match object.motion {
+                Motion::Thrust(_) => object
+                    .motion
+                    .position(DVec3::ZERO, object.proper_time(rest_ct)),
+                Motion::Rest | Motion::Spin(_) => DVec3::ZERO,
+            };
+            origin_now = frame
+                .to_observer(srt_physics::Event::new(rest_ct, carried))
+                .position;
+            let name = object.name.clone();
+            for part in &mut object.parts {
+                part.mesh =
+                    part.mesh
+                        .clone()
+                        .transformed(placement)
+                        .map_err(|source| ViewError::Mesh {
+                            object: name.clone(),
+                            source,
+                        })?;
+            }
+            object.motion = Motion::Rest;
+        }
         if self == Self::Measured {
             let shape = DMat4::from_mat3(measured_shape(&frame, ct));
             for part in &mut object.parts {
@@ -115,6 +160,44 @@ impl View {
         })?;
         Ok(())
     }
+}
+
+/// The rest-coordinates time of the event of the moving body's origin that S sees at S time
+/// `ct`, and the rest-frame transformation of its Newtonian picture there: the spin's rotation
+/// about its centre (a thrust keeps the rest shape, carried with its origin).
+fn newtonian_placement(object: &Object, ct: f64) -> (f64, DMat4) {
+    let frame = object.frame;
+    let s_time = |rest_ct: f64| {
+        let body_ct = object.proper_time(rest_ct);
+        frame
+            .to_observer(srt_physics::Event::new(
+                rest_ct,
+                object.motion.position(DVec3::ZERO, body_ct),
+            ))
+            .ct
+    };
+    // The origin's S time grows with its rest time (its worldline is timelike): bisect.
+    let (mut lo, mut hi) = (ct - 1e9, ct + 1e9);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if s_time(mid) < ct {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let rest_ct = 0.5 * (lo + hi);
+    let placement = match object.motion {
+        Motion::Spin(spin) => {
+            let turn = DMat4::from_quat(spin.rotation(object.proper_time(rest_ct)));
+            DMat4::from_translation(spin.centre()) * turn * DMat4::from_translation(-spin.centre())
+        }
+        Motion::Rest | Motion::Thrust(_) => DMat4::IDENTITY,
+    };
+    (rest_ct, placement)
 }
 
 /// The linear map L taking a rest-frame offset x′ (from the S′ origin) to the offset, in S, of the

@@ -20,6 +20,7 @@
 pub mod clock;
 pub mod compare;
 mod intersect;
+mod moving;
 mod render;
 mod seen;
 mod shade;
@@ -27,7 +28,9 @@ mod sky;
 mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
-pub use render::{Hit, Output, RenderSettings, RenderedImage, Tracer, sample_offsets};
+pub use render::{
+    Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
+};
 pub use seen::SeenEvent;
 pub use shade::{
     Arriving, GREY_WEIGHTS, Illumination, MAX_SOURCES, Sources, SurfacePoint, arriving,

@@ -19,11 +19,13 @@ use glam::{DVec2, DVec3, DVec4};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
+use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay, RetardedLight};
 use srt_scene::{Mesh, Object, Part, Scene};
 
 use crate::clock::clock_albedo;
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
+use crate::moving::{local_rest_frame, moving_normal};
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
 use crate::sky::{sky_image_light, star_layer};
@@ -70,10 +72,10 @@ pub use srt_color::Output;
 
 /// A triangle of one of an object's parts, as a leaf of the object's BVH.
 #[derive(Debug, Clone)]
-struct TriangleBox {
+pub(crate) struct TriangleBox {
     aabb: Aabb<f64, 3>,
-    part: u32,
-    triangle: u32,
+    pub(crate) part: u32,
+    pub(crate) triangle: u32,
     node: usize,
 }
 
@@ -94,8 +96,8 @@ impl BHShape<f64, 3> for TriangleBox {
 }
 
 /// One part's material: its filtered texture and base colour.
-struct PreparedPart<'a> {
-    part: &'a Part,
+pub(crate) struct PreparedPart<'a> {
+    pub(crate) part: &'a Part,
     texture: Option<MipChain>,
     base_color: DVec4,
 }
@@ -114,14 +116,21 @@ impl<'a> PreparedPart<'a> {
 /// One rigid object: its frame, its parts and one BVH over the triangles of all of them (in
 /// its rest frame S′, where it is static), so a ray walks one hierarchy per object, not one per
 /// part.
-struct PreparedObject<'a> {
+pub(crate) struct PreparedObject<'a> {
     frame: Frame,
     /// The observation event in the object's rest frame S′ (the start of every backward ray).
     observer_rest: Event,
-    parts: Vec<PreparedPart<'a>>,
-    boxes: Vec<TriangleBox>,
+    pub(crate) parts: Vec<PreparedPart<'a>>,
+    pub(crate) boxes: Vec<TriangleBox>,
     /// `None` for an object without triangles.
-    bvh: Option<Bvh<f64, 3>>,
+    pub(crate) bvh: Option<Bvh<f64, 3>>,
+    /// How the body moves in its rest coordinates (the BVH holds it at S′ time 0).
+    pub(crate) motion: Motion,
+    /// The rest coordinates' clock lead over the object's S′ time.
+    rest_time_shift: f64,
+    /// A spinning body's largest distance from its spin centre; otherwise its size (the
+    /// diagonal of its box).
+    pub(crate) reach: f64,
     /// The box around all its triangles (padded like theirs): a ray that misses it, or meets
     /// it only beyond a nearer hit, is not traced through the BVH.
     bounds: (DVec3, DVec3),
@@ -159,21 +168,40 @@ impl<'a> PreparedObject<'a> {
             })
             .collect();
         let bvh = (!boxes.is_empty()).then(|| Bvh::build(&mut boxes));
+        let reach = match object.motion {
+            Motion::Spin(spin) => {
+                meshes()
+                    .flat_map(|mesh| mesh.positions().iter())
+                    .map(|p| (*p - spin.centre()).length())
+                    .fold(0.0, f64::max)
+                    * (1.0 + 1e-12)
+            }
+            _ => (hi - lo).length(),
+        };
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
             parts: object.parts.iter().map(PreparedPart::new).collect(),
             boxes,
             bvh,
+            motion: object.motion,
+            rest_time_shift: object.rest_time_shift,
+            reach,
             bounds: (lo - pad, hi + pad),
             wireframe: object.wireframe,
         }
     }
 
-    /// Closest hit along a rest-frame ray no farther than `limit` (beyond it a hit may still be
-    /// returned; nothing beyond is searched for): (part, triangle, hit). Of hits at the same
-    /// distance the one with the lowest (part, triangle) wins, whatever the traversal order.
-    fn closest_hit(&self, ray: &RestRay, limit: f64) -> Option<(u32, u32, TriangleHit)> {
+    /// Closest hit along a rest-frame ray of the body at rest, at distance `from` or more and
+    /// no farther than `limit` (beyond it a hit may still be returned; nothing beyond is
+    /// searched for): (part, triangle, hit). Of hits at the same distance the one with the
+    /// lowest (part, triangle) wins, whatever the traversal order.
+    pub(crate) fn closest_hit_between(
+        &self,
+        ray: &RestRay,
+        from: f64,
+        limit: f64,
+    ) -> Option<(u32, u32, TriangleHit)> {
         let bvh = self.bvh.as_ref()?;
         let query = Ray::new(
             Point3::new(ray.origin.x, ray.origin.y, ray.origin.z),
@@ -191,7 +219,9 @@ impl<'a> PreparedObject<'a> {
             }
             let mesh = &self.parts[leaf.part as usize].part.mesh;
             let corners = mesh.triangle_positions(leaf.triangle as usize);
-            let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners) else {
+            let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
+                .filter(|hit| hit.distance >= from)
+            else {
                 continue;
             };
             let closer = best.is_none_or(|(part, triangle, b)| {
@@ -204,19 +234,34 @@ impl<'a> PreparedObject<'a> {
         best
     }
 
-    /// Whether a triangle of the object crosses the rest-frame segment from `from` to `to`
-    /// strictly between its ends (a margin of 10⁻⁹ of the segment's scale at each end keeps the
-    /// surface point the segment starts on, and the light it ends at, out of it).
-    fn blocks(&self, from: DVec3, to: DVec3) -> bool {
+    /// Whether the body crosses the null segment from the rest-frame event `at` back to the
+    /// earlier event `source` strictly between its ends (a margin of 10⁻⁹ of the segment's
+    /// scale at each end keeps the surface point the segment starts on, and the light it ends
+    /// at, out of it). At rest the body is tested along the straight segment; a spinning or
+    /// thrusting one as a backward ray is ([`PreparedObject::closest_hit_moving`]).
+    fn blocks(&self, at: Event, source: Event) -> bool {
+        let (from, to) = (at.position, source.position);
         let (Some(bvh), length) = (self.bvh.as_ref(), (to - from).length()) else {
             return false;
         };
         let direction = (to - from) / length;
         let margin = 1e-9 * (1.0 + length + from.abs().max_element());
+        if !(length > 2.0 * margin) {
+            return false;
+        }
+        if !self.motion.is_rest() {
+            let ray = RestRay {
+                origin: from,
+                direction,
+                ct_origin: at.ct,
+            };
+            return (self.closest_hit_moving(&ray, self.rest_time_shift, length - margin))
+                .is_some_and(|(_, _, hit)| {
+                    hit.distance > margin && hit.distance < length - margin
+                });
+        }
         let (lo, hi) = self.bounds;
-        if !(length > 2.0 * margin)
-            || box_entry(from, direction.recip(), lo, hi).is_none_or(|entry| entry > length)
-        {
+        if box_entry(from, direction.recip(), lo, hi).is_none_or(|entry| entry > length) {
             return false;
         }
         let query = Ray::new(
@@ -252,10 +297,14 @@ impl<'a> PreparedObject<'a> {
             b.apparent_distance / self.frame.apparent_distance(ray, 1.0) * (1.0 + 1e-12)
         });
         let (lo, hi) = self.bounds;
-        if box_entry(ray.origin, inverse_direction, lo, hi).is_none_or(|entry| entry > limit) {
+        let resting = self.motion.is_rest();
+        if resting
+            && box_entry(ray.origin, inverse_direction, lo, hi).is_none_or(|entry| entry > limit)
+        {
             return None;
         }
-        let (part, triangle, rest_hit) = self.closest_hit(ray, limit)?;
+        let (part, triangle, rest_hit) =
+            self.closest_hit_moving(ray, self.rest_time_shift, limit)?;
         let apparent_distance = self.frame.apparent_distance(ray, rest_hit.distance);
         let seen =
             best.is_none_or(|b| (apparent_distance, index) < (b.apparent_distance, b.object));
@@ -306,6 +355,22 @@ pub struct Hit {
     pub emission: Event,
     /// Apparent distance from the observer (= light travel time, ct_obs − ct_emission).
     pub apparent_distance: f64,
+}
+
+/// The surface point a [`Hit`] sees, in the local rest frame it is shaded in
+/// ([`Tracer::surface_at`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceState {
+    /// The body point (its place in the object's rest coordinates at S′ time 0).
+    pub body: DVec3,
+    /// The object's S′ time ct′ at the emission event.
+    pub ct: f64,
+    /// The proper time a clock riding on the point shows there (ct′ for a body at rest in S′).
+    pub proper_time: f64,
+    /// The velocity of the point's local rest frame relative to S.
+    pub beta: DVec3,
+    /// The unit surface normal in that frame (a pure boost from S).
+    pub normal: DVec3,
 }
 
 /// A scene prepared for tracing: BVHs built, textures mipmapped, colour table built.
@@ -401,19 +466,54 @@ impl<'a> Tracer<'a> {
             .clamp(DVec3::ZERO, DVec3::ONE)
     }
 
+    /// The surface point a hit sees, in the frame it is shaded in: its body point, the
+    /// object's S′ time ct′ at the event, the proper time a clock riding on the point shows
+    /// there, the velocity of the point's local rest frame relative to S and the unit normal in
+    /// that frame (for a body at rest in S′: the object frame's velocity and the interpolated
+    /// normal).
+    #[must_use]
+    pub fn surface_at(&self, hit: &Hit) -> SurfaceState {
+        let object = &self.objects[hit.object];
+        let ct = self.scene.objects[hit.object].proper_time(hit.emission_rest.ct);
+        let mesh = &object.parts[hit.part].part.mesh;
+        let indices = mesh.triangles()[hit.triangle].map(|i| i as usize);
+        let weights = hit.rest_hit.weights();
+        let interpolate =
+            |values: &[DVec3]| -> DVec3 { (0..3).map(|k| weights[k] * values[indices[k]]).sum() };
+        let normal = interpolate(mesh.normals()).normalize();
+        let body = interpolate(mesh.positions());
+        if object.motion.is_rest() {
+            return SurfaceState {
+                body,
+                ct,
+                proper_time: ct,
+                beta: object.frame.beta(),
+                normal,
+            };
+        }
+        let velocity = object.motion.velocity(body, ct);
+        let four_normal = moving_normal(&object.motion, body, ct, normal);
+        let (beta, normal) = local_rest_frame(object.frame.beta(), velocity, four_normal);
+        SurfaceState {
+            body,
+            ct,
+            proper_time: object.motion.proper_time(body, ct),
+            beta,
+            normal,
+        }
+    }
+
     /// The light a hit sends to the observer ([`Tracer::shade`] shows it).
     #[must_use]
     pub fn light(&self, hit: &Hit, neighbour_directions: [DVec3; 2]) -> Arriving {
         let object = &self.objects[hit.object];
         let seen_object = &self.scene.objects[hit.object];
-        let proper_time = seen_object.proper_time(hit.emission_rest.ct);
+        let surface = self.surface_at(hit);
+        let proper_time = surface.proper_time;
         let part = &object.parts[hit.part];
         let mesh = &part.part.mesh;
         let indices = mesh.triangles()[hit.triangle].map(|i| i as usize);
         let weights = hit.rest_hit.weights();
-        let interpolate3 =
-            |values: &[DVec3]| -> DVec3 { (0..3).map(|k| weights[k] * values[indices[k]]).sum() };
-        let normal_rest = interpolate3(mesh.normals()).normalize();
         let mut albedo = part.base_color;
         if let Some(colors) = mesh.colors() {
             let c: DVec4 = (0..3)
@@ -422,6 +522,8 @@ impl<'a> Tracer<'a> {
             albedo *= c;
         }
         let corners = mesh.triangle_positions(hit.triangle);
+        // Where the triangle is at the event (a moving body's; texture differentials).
+        let placed = corners.map(|c| object.motion.position(c, surface.ct));
         if let Some(width) = object.wireframe {
             // Distance (in S′) to the nearest edge: weight × the height over that edge.
             let twice_area = (corners[1] - corners[0])
@@ -445,7 +547,7 @@ impl<'a> Tracer<'a> {
             let observer = self.scene.observer.event();
             let differential = |direction: DVec3| -> DVec2 {
                 let ray = object.frame.backward_ray(observer, direction);
-                plane_hit(ray.origin, ray.direction, corners)
+                plane_hit(ray.origin, ray.direction, placed)
                     .map_or(DVec2::ZERO, |h| uv_at((h.zeta, h.xi)) - uv)
             };
             let (ddx, ddy) = (
@@ -478,8 +580,8 @@ impl<'a> Tracer<'a> {
             exposure: self.scene.exposure,
         };
         let point = SurfacePoint {
-            beta: object.frame.beta(),
-            normal_rest,
+            beta: surface.beta,
+            normal_rest: surface.normal,
             apparent_position: hit.emission.position,
             albedo,
             optics: seen_object.optics,
@@ -500,9 +602,10 @@ impl<'a> Tracer<'a> {
         (self.objects.iter().zip(&self.scene.objects))
             .filter(|(_, object)| object.optics.emission.is_none())
             .any(|(prepared, _)| {
-                let from = prepared.frame.to_rest(at).position;
-                let to = prepared.frame.to_rest(light.source_event).position;
-                prepared.blocks(from, to)
+                prepared.blocks(
+                    prepared.frame.to_rest(at),
+                    prepared.frame.to_rest(light.source_event),
+                )
             })
     }
 

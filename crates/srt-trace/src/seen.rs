@@ -35,14 +35,14 @@ impl Tracer<'_> {
     #[must_use]
     pub fn seen_event(&self, hit: &Hit) -> SeenEvent {
         let scene = self.scene();
-        let object = &scene.objects[hit.object];
+        let surface = self.surface_at(hit);
         let towards_observer = (scene.observer.position - hit.emission.position).normalize();
         SeenEvent {
             object: hit.object,
             emission_ct: scene.world.apply(hit.emission).ct,
-            proper_time: object.proper_time(hit.emission_rest.ct),
+            proper_time: surface.proper_time,
             distance: hit.apparent_distance,
-            doppler: doppler_factor(object.frame.beta(), towards_observer),
+            doppler: doppler_factor(surface.beta, towards_observer),
         }
     }
 }

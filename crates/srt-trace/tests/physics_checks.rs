@@ -50,6 +50,7 @@ fn object(mesh: Mesh, beta: DVec3, offset: DVec3, base_color: [f32; 4]) -> Objec
         wireframe: None,
         optics: SurfaceOptics::default(),
         clock: None,
+        motion: Default::default(),
     }
 }
 

@@ -21,6 +21,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DMat3, DVec3};
 use srt_color::ToneMap;
+use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RelativeFrame};
 use srt_scene::assets::BUILTIN_PREFIX;
 use srt_scene::description::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
@@ -449,29 +450,37 @@ impl Editor {
         geometry: Vec<Geometry>,
     ) {
         let old_count = self.scene.objects.len();
-        let mut kept: Vec<Option<Vec<Part>>> = std::mem::take(&mut self.scene.objects)
+        // An object's parts and motion (both follow from its geometry, spin and thrust included).
+        let mut kept: Vec<Option<(Vec<Part>, Motion)>> = std::mem::take(&mut self.scene.objects)
             .into_iter()
-            .map(|object| Some(object.parts))
+            .map(|object| Some((object.parts, object.motion)))
             .collect();
-        let mut new_parts = built.objects.into_iter().map(|object| object.parts);
+        let mut new_parts = built
+            .objects
+            .into_iter()
+            .map(|object| (object.parts, object.motion));
         let objects = description
             .objects
             .iter()
             .zip(plan)
             .zip(frames)
             .enumerate()
-            .map(|(index, ((object, reused), frame))| Object {
-                name: runtime_name(object, index),
-                parts: match reused {
+            .map(|(index, ((object, reused), frame))| {
+                let (parts, motion) = match reused {
                     Some(j) => kept[*j].take(),
                     None => new_parts.next(),
                 }
-                .expect("the plan takes each runtime object once and builds the rest"),
-                frame: frame.frame,
-                rest_time_shift: frame.rest_time_shift,
-                wireframe: object.wireframe,
-                optics: object.optics(),
-                clock: object.clock(),
+                .expect("the plan takes each runtime object once and builds the rest");
+                Object {
+                    name: runtime_name(object, index),
+                    parts,
+                    frame: frame.frame,
+                    rest_time_shift: frame.rest_time_shift,
+                    wireframe: object.wireframe,
+                    optics: object.optics(),
+                    clock: object.clock(),
+                    motion,
+                }
             })
             .collect();
         let unchanged = plan.len() == old_count

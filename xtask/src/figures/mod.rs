@@ -8,6 +8,7 @@ mod fig6;
 mod fig8;
 mod sky;
 mod time;
+mod wheel;
 
 use std::path::{Path, PathBuf};
 
@@ -26,6 +27,7 @@ pub fn write_all(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     written.extend(colorchecker::write(out_dir)?);
     written.extend(sky::write(out_dir)?);
     written.extend(time::write(out_dir)?);
+    written.extend(wheel::write(out_dir)?);
     Ok(written)
 }
 

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{DMat3, DMat4, DVec3};
+use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, FrameError, MovingObserver, RelativeFrame};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
@@ -522,6 +523,7 @@ impl ObjectDescription {
                     error,
                 })?;
         }
+        let motion = self.placed_motion(&label, relative.rotation, &parts)?;
         Ok(Object {
             name: self.name.clone().unwrap_or(label),
             parts,
@@ -530,7 +532,61 @@ impl ObjectDescription {
             wireframe: self.wireframe,
             optics: self.optics(),
             clock: self.clock(),
+            motion,
         })
+    }
+
+    /// The object's motion (`spin` or `thrust`) in its rest coordinates turned by `rotation`
+    /// (the Wigner rotation its `parts` are already turned by), checked against the parts: a
+    /// spinning point must stay below the speed of light (ω·ρ < 1), a thrusting one above the
+    /// Rindler horizon (1 + α·ξ > 0).
+    ///
+    /// # Errors
+    /// [`SceneErrorKind::Value`] naming the object and the first point that breaks the rule.
+    pub fn placed_motion(
+        &self,
+        label: &str,
+        rotation: DMat3,
+        parts: &[Part],
+    ) -> Result<Motion, SceneErrorKind> {
+        let field = |name: &str| format!("{name} of {label}");
+        let motion = self
+            .motion()
+            .map_err(|(key, error)| value_error(field(key), error))?
+            .rotated(rotation);
+        let points = || parts.iter().flat_map(|part| part.mesh.positions().iter());
+        match motion {
+            Motion::Rest => {}
+            Motion::Spin(spin) => {
+                if let Some(point) = points().find(|&&p| spin.radius_of(p) >= spin.max_radius()) {
+                    return Err(value_error(
+                        field("spin.rate"),
+                        format!(
+                            "makes the point at {point} move at {:.4}c (ω · its distance {:.4} \
+                             from the axis); every point must stay below the speed of light",
+                            spin.rate().abs() * spin.radius_of(*point),
+                            spin.radius_of(*point)
+                        ),
+                    ));
+                }
+            }
+            Motion::Thrust(thrust) => {
+                if let Some(point) =
+                    points().find(|&&p| p.dot(thrust.direction()) <= thrust.horizon_height())
+                {
+                    return Err(value_error(
+                        field("thrust.proper_acceleration"),
+                        format!(
+                            "puts the point at {point} beyond the Rindler horizon \
+                             ({:.4} behind the origin along the acceleration); Born-rigid \
+                             acceleration needs 1 + a·ξ > 0 for every point",
+                            -thrust.horizon_height()
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(motion)
     }
 
     /// The clock face this object's `texture` asks for, if it asks for one.

@@ -33,7 +33,7 @@ pub use error::{SceneError, SceneErrorKind, line_column};
 pub use model::{
     EmissionDescription, LightDescription, LightsDescription, ObjectDescription,
     ObserverDescription, RenderDescription, Scale, SceneDescription, ShapeDescription,
-    SkyDescription, TextureDescription,
+    SkyDescription, SpinDescription, TextureDescription, ThrustDescription,
 };
 pub use overrides::{OverrideNames, Overrides};
 pub use validate::{ValueName, observation_time, velocity};

@@ -8,6 +8,7 @@ use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::ser::{SerializeSeq, Serializer};
 use serde::{Deserialize, Serialize};
 use srt_color::ToneMap;
+use srt_physics::motion::{Motion, Spin, Thrust};
 
 #[cfg(doc)]
 use super::FIT_RADIUS;
@@ -331,6 +332,43 @@ pub struct ObjectDescription {
     /// The object glows as a black body instead of reflecting the light.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emission: Option<EmissionDescription>,
+    /// The object spins in its rest frame (not together with `thrust`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<SpinDescription>,
+    /// The object accelerates Born-rigidly in its rest frame (not together with `spin`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thrust: Option<ThrustDescription>,
+}
+
+/// An object's `spin`: kinematic rotation in its rest frame S′ about the line through `centre`
+/// along `axis`, `rate` radians per unit of ct′ (right-handed); docs/physics.md.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpinDescription {
+    /// The axis direction (non-zero), in S′ (the object's placed coordinates).
+    pub axis: [f64; 3],
+    /// ω in radians per unit of ct′; every point's speed ω·(distance from the axis) must stay
+    /// below 1.
+    pub rate: f64,
+    /// A point of the axis, in S′.
+    #[serde(default)]
+    pub centre: [f64; 3],
+}
+
+/// An object's `thrust`: from S′ time `start` on, Born-rigid acceleration with the proper
+/// acceleration `proper_acceleration` at the S′ origin, for `duration` of the origin's proper
+/// time (default: without end), then coasting; docs/physics.md.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThrustDescription {
+    /// The origin's proper acceleration (non-zero), per unit of ct′, in S′.
+    pub proper_acceleration: [f64; 3],
+    /// S′ time ct′ at which the thrust starts.
+    #[serde(default)]
+    pub start: f64,
+    /// The origin's proper time the thrust lasts (≥ 0; `inf` for ever).
+    #[serde(default = "default_duration")]
+    pub duration: f64,
 }
 
 /// The `shape` of an object.
@@ -702,6 +740,9 @@ fn default_fov() -> f64 {
 fn default_temperature() -> f64 {
     DEFAULT_LIGHT_TEMPERATURE_K
 }
+fn default_duration() -> f64 {
+    f64::INFINITY
+}
 fn default_true() -> bool {
     true
 }
@@ -789,6 +830,36 @@ fn is_zero3(value: &[f64; 3]) -> bool {
 }
 
 impl ObjectDescription {
+    /// The motion `spin` or `thrust` asks for, in the object's placed rest coordinates (not yet
+    /// checked against its points: [`ObjectDescription::placed_motion`]).
+    ///
+    /// # Errors
+    /// The key at fault and why: a parameter that is not finite, a zero axis or acceleration, a
+    /// negative duration, or both `spin` and `thrust`.
+    pub fn motion(&self) -> Result<Motion, (&'static str, String)> {
+        match (self.spin, self.thrust) {
+            (None, None) => Ok(Motion::Rest),
+            (Some(_), Some(_)) => Err((
+                "thrust",
+                "an object may spin or thrust, not both".to_owned(),
+            )),
+            (Some(spin), None) => Spin::new(
+                DVec3::from_array(spin.axis),
+                spin.rate,
+                DVec3::from_array(spin.centre),
+            )
+            .map(Motion::Spin)
+            .map_err(|e| ("spin", e.to_string())),
+            (None, Some(thrust)) => Thrust::new(
+                DVec3::from_array(thrust.proper_acceleration),
+                thrust.start,
+                thrust.duration,
+            )
+            .map(Motion::Thrust)
+            .map_err(|e| ("thrust", e.to_string())),
+        }
+    }
+
     /// An object of `shape` at rest at the S′ origin, with every other field at its default.
     #[must_use]
     pub fn new(shape: ShapeDescription) -> Self {
@@ -807,6 +878,8 @@ impl ObjectDescription {
             ultraviolet: None,
             infrared: None,
             emission: None,
+            spin: None,
+            thrust: None,
         }
     }
 

@@ -458,6 +458,8 @@ impl ObjectDescription {
                 }
             }
         }
+        self.motion()
+            .map_err(|(key, error)| value_error(field(key), error))?;
         self.shape.check(&field)?;
         if let Some(texture) = &self.texture {
             texture.check(&field)?;
