@@ -24,7 +24,9 @@ use srt_color::ToneMap;
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RelativeFrame};
 use srt_scene::assets::BUILTIN_PREFIX;
-use srt_scene::description::{DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS};
+use srt_scene::description::{
+    DEFAULT_LIGHT_TEMPERATURE_K, FIT_RADIUS, SpinDescription, ThrustDescription,
+};
 use srt_scene::limits::Budget;
 use srt_scene::resolve::{LocatedDescription, PathKind, path_kind};
 use srt_scene::{
@@ -646,6 +648,44 @@ impl Editor {
         self.edit_object(index, |object| object.wireframe = width)
     }
 
+    /// The spin of object `index` as its description gives it (`None`: it does not spin).
+    #[must_use]
+    pub fn spin(&self, index: usize) -> Option<SpinDescription> {
+        self.description.objects.get(index).and_then(|o| o.spin)
+    }
+
+    /// The thrust of object `index` as its description gives it (`None`: it does not thrust).
+    #[must_use]
+    pub fn thrust(&self, index: usize) -> Option<ThrustDescription> {
+        self.description.objects.get(index).and_then(|o| o.thrust)
+    }
+
+    /// Sets (or, with `None`, removes) the spin of object `index`.
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] for a spin the scene file's rules refuse (a zero axis, a point
+    /// reaching the speed of light, a thrust as well…); the scene is then unchanged.
+    pub fn set_spin(
+        &mut self,
+        index: usize,
+        spin: Option<SpinDescription>,
+    ) -> Result<(), EditError> {
+        self.edit_object(index, |object| object.spin = spin)
+    }
+
+    /// Sets (or, with `None`, removes) the thrust of object `index`.
+    ///
+    /// # Errors
+    /// [`EditError::Scene`] for a thrust the scene file's rules refuse (a zero acceleration, a
+    /// point beyond the Rindler horizon, a spin as well…); the scene is then unchanged.
+    pub fn set_thrust(
+        &mut self,
+        index: usize,
+        thrust: Option<ThrustDescription>,
+    ) -> Result<(), EditError> {
+        self.edit_object(index, |object| object.thrust = thrust)
+    }
+
     /// Applies `change` to the description of object `index`, as [`Editor::apply`] does.
     fn edit_object(
         &mut self,
@@ -1098,6 +1138,40 @@ mod tests {
         let model = dir.path().join("tetra.stl");
         std::fs::write(&model, tetrahedron_stl()).unwrap();
         (dir, model)
+    }
+
+    #[test]
+    fn spin_and_thrust_are_edits_checked_like_the_scene_file() {
+        let (mut editor, _) = Editor::open("fig7").unwrap();
+        let spin = SpinDescription {
+            axis: [0.0, 0.0, 1.0],
+            rate: 0.5,
+            centre: [0.0; 3],
+        };
+        editor.set_spin(0, Some(spin)).unwrap();
+        assert_eq!(editor.spin(0), Some(spin));
+        assert!(matches!(
+            editor.scene().objects[0].motion,
+            srt_physics::motion::Motion::Spin(_)
+        ));
+        // A rim at the speed of light, or a thrust as well, is refused; nothing changes.
+        let too_fast = SpinDescription { rate: 5.0, ..spin };
+        assert!(editor.set_spin(0, Some(too_fast)).is_err());
+        assert_eq!(editor.spin(0), Some(spin));
+        let thrust = ThrustDescription {
+            proper_acceleration: [0.0, 0.1, 0.0],
+            start: 0.0,
+            duration: f64::INFINITY,
+        };
+        assert!(editor.set_thrust(0, Some(thrust)).is_err());
+        editor.set_spin(0, None).unwrap();
+        editor.set_thrust(0, Some(thrust)).unwrap();
+        assert!(matches!(
+            editor.scene().objects[0].motion,
+            srt_physics::motion::Motion::Thrust(_)
+        ));
+        editor.set_thrust(0, None).unwrap();
+        assert!(editor.scene().objects[0].motion.is_rest());
     }
 
     #[test]

@@ -1,9 +1,10 @@
 //! The object list and the selected object's controls: speed (slider and typed), direction
-//! of motion, offset and wireframe.
+//! of motion, offset, wireframe, and spin or thrust in the object's own frame.
 
 use eframe::egui::{self, Key, RichText};
 use glam::DVec3;
 use srt_physics::{Frame, doppler_factor};
+use srt_scene::description::{SpinDescription, ThrustDescription};
 use srt_scene::resolve::model_extension_list;
 
 use super::{DEFAULT_WIREFRAME_WIDTH, Purpose, ViewerApp, panel::vector_row};
@@ -78,6 +79,75 @@ impl ViewerApp {
             self.edited(result);
         }
         self.wireframe_controls(ui, index);
+        self.motion_controls(ui, index);
+    }
+
+    /// Spin and thrust of object `index` in its own frame (the CPU renderer draws them).
+    fn motion_controls(&mut self, ui: &mut egui::Ui, index: usize) {
+        let spin = self.editor.spin(index);
+        let mut spinning = spin.is_some();
+        let mut spin = spin.unwrap_or(SpinDescription {
+            axis: [0.0, 0.0, 1.0],
+            rate: 0.2,
+            centre: [0.0; 3],
+        });
+        let mut changed = ui
+            .checkbox(&mut spinning, "Spin in its own frame")
+            .on_hover_text("kinematic rotation about an axis; every point stays below c")
+            .changed();
+        if spinning {
+            let mut axis = DVec3::from_array(spin.axis);
+            let mut centre = DVec3::from_array(spin.centre);
+            changed |= vector_row(ui, "Axis", &mut axis, 0.01, Some(-1.0..=1.0));
+            changed |= vector_row(ui, "Centre", &mut centre, 0.05, None);
+            changed |= ui
+                .add(egui::Slider::new(&mut spin.rate, -2.0..=2.0).text("rate (rad per ct′)"))
+                .changed();
+            spin.axis = axis.to_array();
+            spin.centre = centre.to_array();
+        }
+        if changed {
+            let result = self.editor.set_spin(index, spinning.then_some(spin));
+            self.edited(result);
+        }
+        let thrust = self.editor.thrust(index);
+        let mut thrusting = thrust.is_some();
+        let mut thrust = thrust.unwrap_or(ThrustDescription {
+            proper_acceleration: [0.0, 0.1, 0.0],
+            start: 0.0,
+            duration: f64::INFINITY,
+        });
+        let mut changed = ui
+            .checkbox(&mut thrusting, "Thrust in its own frame")
+            .on_hover_text("Born-rigid acceleration from rest, then coasting")
+            .changed();
+        if thrusting {
+            let mut acceleration = DVec3::from_array(thrust.proper_acceleration);
+            changed |= vector_row(ui, "Proper acceleration", &mut acceleration, 0.005, None);
+            thrust.proper_acceleration = acceleration.to_array();
+            changed |= ui
+                .add(egui::Slider::new(&mut thrust.start, -50.0..=50.0).text("start (ct′)"))
+                .changed();
+            let mut endless = thrust.duration.is_infinite();
+            changed |= ui.checkbox(&mut endless, "for ever").changed();
+            if endless {
+                thrust.duration = f64::INFINITY;
+            } else {
+                if thrust.duration.is_infinite() {
+                    thrust.duration = 10.0;
+                }
+                changed |= ui
+                    .add(
+                        egui::Slider::new(&mut thrust.duration, 0.0..=100.0)
+                            .text("duration (proper)"),
+                    )
+                    .changed();
+            }
+        }
+        if changed {
+            let result = self.editor.set_thrust(index, thrusting.then_some(thrust));
+            self.edited(result);
+        }
     }
 
     /// Sets the velocity of object `index` (keeping where it is seen, if so chosen); whether the
