@@ -64,7 +64,22 @@ impl PreparedObject<'_> {
             return None;
         }
         let root = discriminant.sqrt();
-        let (from, to) = ((-half - root).max(0.0), (-half + root).min(limit));
+        let (mut from, mut to) = ((-half - root).max(0.0), (-half + root).min(limit));
+        // The rotation keeps every point's height along the axis: the ray meets the body only
+        // within the slab of its heights.
+        let (low, high) = self.axial;
+        let pad = 1e-12 * (1.0 + radius);
+        let height = to_origin.dot(spin.axis());
+        let climb = ray.direction.dot(spin.axis());
+        if climb == 0.0 {
+            if height < low - pad || height > high + pad {
+                return None;
+            }
+        } else {
+            let (a, b) = ((low - pad - height) / climb, (high + pad - height) / climb);
+            from = from.max(a.min(b));
+            to = to.min(a.max(b));
+        }
         if from > to {
             return None;
         }
@@ -128,7 +143,15 @@ impl PreparedObject<'_> {
             }
         }
         let (from, to) = (end_at.max(0.0), start.min(limit));
-        if from < to {
+        // Every point has moved at most v = ct′ − ct₀ along â by S′ time ct′ (its speed is
+        // below 1): the ray can only meet the body during the thrust inside the body's box
+        // swept that far along â.
+        let reach = (start - from).max(0.0);
+        let (mut lo, mut hi) = self.bounds;
+        let sweep = reach * direction;
+        lo = lo.min(lo + sweep);
+        hi = hi.max(hi + sweep);
+        if from < to && slab(ray, lo, hi).is_some_and(|(near, far)| near <= to && far >= from) {
             let curve =
                 |s: f64| thrust.body_point(ct_at(ray, shift, s), ray.origin + s * ray.direction);
             let size = self.reach.max(1e-9);
@@ -200,6 +223,17 @@ impl PreparedObject<'_> {
         }
         None
     }
+}
+
+/// The ray parameters (near, far) between which the whole line `ray` is inside the box
+/// [`lo`, `hi`], if it meets it (far taken a little late; NaN from a parallel direction on a
+/// slab's plane counts as meeting).
+fn slab(ray: &RestRay, lo: DVec3, hi: DVec3) -> Option<(f64, f64)> {
+    let inverse = ray.direction.recip();
+    let (a, b) = ((lo - ray.origin) * inverse, (hi - ray.origin) * inverse);
+    let near = a.min(b).max_element();
+    let far = a.max(b).min_element() * (1.0 + 1e-12) + 1e-12;
+    (!(near > far)).then_some((near, far))
 }
 
 /// The object's S′ time at ray parameter `s`.

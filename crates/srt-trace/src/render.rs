@@ -131,9 +131,11 @@ pub(crate) struct PreparedObject<'a> {
     /// A spinning body's largest distance from its spin centre; otherwise its size (the
     /// diagonal of its box).
     pub(crate) reach: f64,
+    /// A spinning body's extent along its axis (from the centre): a slab it never leaves.
+    pub(crate) axial: (f64, f64),
     /// The box around all its triangles (padded like theirs): a ray that misses it, or meets
     /// it only beyond a nearer hit, is not traced through the BVH.
-    bounds: (DVec3, DVec3),
+    pub(crate) bounds: (DVec3, DVec3),
     wireframe: Option<f64>,
 }
 
@@ -178,6 +180,15 @@ impl<'a> PreparedObject<'a> {
             }
             _ => (hi - lo).length(),
         };
+        let axial = match object.motion {
+            Motion::Spin(spin) => meshes()
+                .flat_map(|mesh| mesh.positions().iter())
+                .map(|p| (*p - spin.centre()).dot(spin.axis()))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
+                    (lo.min(h), hi.max(h))
+                }),
+            _ => (f64::NEG_INFINITY, f64::INFINITY),
+        };
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
@@ -187,6 +198,7 @@ impl<'a> PreparedObject<'a> {
             motion: object.motion,
             rest_time_shift: object.rest_time_shift,
             reach,
+            axial,
             bounds: (lo - pad, hi + pad),
             wireframe: object.wireframe,
         }
