@@ -5,7 +5,8 @@
 // which. The two are computed from the same light, never one from the other.
 //
 // Composed after colour.wgsl and spectral.wgsl into the passes that shade (lrt, polygon) and the
-// sky; reads `frame_uniforms` and `lut_table` (whose row 1 is the radiance table).
+// sky; reads `frame_uniforms` and `lut_table` (whose row 1 is the radiance table). LightSum adds
+// the lights of several sources (surface.wgsl's moving lights).
 
 // FrameUniforms.output: display colours (twin of srt_gpu::types::OutputCode::DISPLAY).
 const OUTPUT_DISPLAY: u32 = 0u;
@@ -73,6 +74,71 @@ fn arriving_display(light: Arriving) -> vec3<f32> {
         return spectral_display(light.spectrum, SpectralView(frame_uniforms.tone_map, exposure, frame_uniforms.searchlight_ln_y));
     }
     return vec3<f32>(0.0);
+}
+
+// The light of several sources on one surface point (the lamp's and the moving lights':
+// srt_trace::Arriving::Tables and Spectra), as the frame's output is formed from it: the sum of
+// the colour-table lights' displays, or of every light's radiance (`value`); with spectral
+// colour on display, the spectra summed as XYZ before the tone map, each over its own white's Y
+// for the luminance map and absolute for the searchlight map (ToneMap::display_rgb_xyz_sum):
+// Σ XYZ_i · e^(ln_i − reference) with reference the largest ln_i, held as `xyz` and `reference`
+// (so that f32 holds every term's scale).
+struct LightSum {
+    value: vec3<f32>,
+    xyz: vec3<f32>,
+    reference: f32,
+    // Spectra in `xyz`.
+    spectra: u32,
+}
+
+// The sum holding `light` alone.
+fn light_sum_of(light: Arriving) -> LightSum {
+    return light_sum_add(LightSum(vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0u), light);
+}
+
+// `sum` with `light` added: no light, a spectrum with no positive factor, or (luminance map) no
+// luminance white adds nothing.
+fn light_sum_add(sum: LightSum, light: Arriving) -> LightSum {
+    var total = sum;
+    if (frame_uniforms.output == OUTPUT_RADIANCE || light.kind == ARRIVING_TABLE) {
+        total.value += arriving_output(light);
+        return total;
+    }
+    let l = light.spectrum;
+    let luminance = frame_uniforms.tone_map == TONE_MAP_LUMINANCE;
+    if (light.kind != ARRIVING_SPECTRUM || !(light.factor > 0.0) || (luminance && !(l.white.y > 0.0))) {
+        return total;
+    }
+    // ln of the light's scale with its factor, over its white's luminance (whose scale is the
+    // light's) for the luminance map.
+    var ln = l.ln_scale + log(light.factor);
+    if (luminance) {
+        ln = log(light.factor) - log(l.white.y);
+    }
+    if (total.spectra == 0u) {
+        total.xyz = l.light;
+        total.reference = ln;
+    } else if (ln > total.reference) {
+        total.xyz = total.xyz * exp(total.reference - ln) + l.light;
+        total.reference = ln;
+    } else {
+        total.xyz += l.light * exp(ln - total.reference);
+    }
+    total.spectra++;
+    return total;
+}
+
+// The value the frame writes for the lights of `sum` (FrameUniforms.output), before
+// output_pixel (mirror of Arriving::display and Arriving::radiance of several sources).
+fn light_sum_output(sum: LightSum) -> vec3<f32> {
+    if (frame_uniforms.output == OUTPUT_RADIANCE || frame_uniforms.colour != SURFACE_COLOUR_SPECTRAL) {
+        return sum.value;
+    }
+    if (sum.spectra == 0u) {
+        return vec3<f32>(0.0);
+    }
+    let view = SpectralView(frame_uniforms.tone_map, frame_uniforms.exposure, frame_uniforms.searchlight_ln_y);
+    return spectral_sum_display(sum.xyz, sum.reference, view);
 }
 
 // Whether every component of `v` is finite (read from the bits, so that a compiler assuming no

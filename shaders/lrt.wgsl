@@ -170,8 +170,8 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, hx.zeta, hx.xi) - uv, hx.found);
         uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
     }
-    let apparent = to_observer(object.frame, emission).yzw;
+    let event = to_observer(object.frame, emission);
     let proper_time = proper_time_at(emission);
     let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy, proper_time);
-    return shade(t, hit.zeta, hit.xi, apparent, albedo, proper_time);
+    return shade(t, hit.zeta, hit.xi, event.yzw, albedo, proper_time, Receiver(event, emission));
 }

@@ -14,32 +14,18 @@
 //
 // Mirror: srt_gpu::bvh::ObjectBvh::nearest_hit (the traversal, tested against a test of every
 // triangle) and crates/srt-trace (the image, compared by `cargo xtask validate`).
-// Composed after lrt.wgsl (it uses `fragment_count`, `lrt_vertex`, `VisibilityOutput`, `visible`).
+// Composed after lrt.wgsl (it uses `fragment_count`, `lrt_vertex`, `VisibilityOutput`, `visible`)
+// and bvh.wgsl (the slab test).
 
 // The object's BVH nodes (srt_gpu::bvh::ObjectBvh::nodes), root first.
 @group(3) @binding(3) var<storage, read> bvh_nodes: array<BvhNode>;
 // The object's triangles in leaf order, with their ids.
 @group(3) @binding(4) var<storage, read> bvh_triangles: array<RtTriangle>;
 
-// Factor on the slab test's exit distance: 1 + 2γ₃, rounded up (set from
-// srt_gpu::bvh::SLAB_TOLERANCE).
-override SLAB_TOLERANCE: f32;
-
-// 1 / direction per axis, components nearer 0 than 10⁻²⁰ replaced by 10⁻²⁰ (no ∞, no 0 × ∞).
-fn safe_inverse(direction: vec3<f32>) -> vec3<f32> {
-    return 1.0 / select(direction, vec3<f32>(1e-20), abs(direction) < vec3<f32>(1e-20));
-}
-
-// Where the ray enters the node's box (0 if it starts inside), or −1 if it misses the box or
-// meets it only beyond `limit`. The exit is taken a few rounding units late.
+// Where the ray enters the node's box (bvh.wgsl's slab_entry: 0 if it starts inside), or −1 if
+// it misses the box or meets it only beyond `limit`.
 fn box_entry(node: u32, origin: vec3<f32>, inverse: vec3<f32>, limit: f32) -> f32 {
-    let a = (bvh_nodes[node].min - origin) * inverse;
-    let b = (bvh_nodes[node].max - origin) * inverse;
-    let lo = min(a, b);
-    let hi = max(a, b);
-    let near = max(max(lo.x, lo.y), max(lo.z, 0.0));
-    let far = min(min(hi.x, hi.y), hi.z);
-    return select(-1.0, near, near <= far * SLAB_TOLERANCE && near <= limit);
+    return slab_entry(bvh_nodes[node].min, bvh_nodes[node].max, origin, inverse, limit);
 }
 
 // The nearest hit of the ray with the object's triangles, through its BVH; `triangle` is the

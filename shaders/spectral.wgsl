@@ -240,7 +240,12 @@ fn spectral_tone_map(l: SpectralLight, view: SpectralView, ln_exposure: f32) -> 
     } else {
         ln_gain += l.ln_scale - view.searchlight_ln_y;
     }
-    let xyz = l.light / largest * exp(min(ln_gain, MAX_LN_GAIN_F32));
+    return spectral_encode(l.light / largest * exp(min(ln_gain, MAX_LN_GAIN_F32)), luminance);
+}
+
+// The tone map's last steps for XYZ already scaled (spectral_tone_map): Eq. 12 → clamp
+// negatives → Eq. 13 → (searchlight, unless `luminance`: 0.6 log₁₀(C + 1)) → clamp to [0, 1].
+fn spectral_encode(xyz: vec3<f32>, luminance: bool) -> vec3<f32> {
     let linear = max(xyz_to_linear_bt709(xyz), vec3<f32>(0.0));
     var encoded = vec3<f32>(
         spectral_srgb_encode(linear.x),
@@ -251,6 +256,23 @@ fn spectral_tone_map(l: SpectralLight, view: SpectralView, ln_exposure: f32) -> 
         encoded = 0.6 * log(encoded + 1.0) / log(10.0);
     }
     return clamp(encoded, vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// Display sRGB in [0, 1] of lights summed as XYZ (light.wgsl's LightSum): `xyz` · e^`ln_scale`,
+// already over the whites' luminance for the luminance map, absolute for the searchlight map,
+// through `view` (mirror of ToneMap::display_rgb_xyz_sum's tone map: the sum against a white of
+// luminance 1). Normalised by its largest component as in spectral_tone_map.
+fn spectral_sum_display(xyz: vec3<f32>, ln_scale: f32, view: SpectralView) -> vec3<f32> {
+    let largest = max(xyz.x, max(xyz.y, xyz.z));
+    if (!(view.exposure > 0.0) || !(largest > 0.0)) {
+        return vec3<f32>(0.0);
+    }
+    let luminance = view.tone_map == TONE_MAP_LUMINANCE;
+    var ln_gain = log(view.exposure) + log(largest) + ln_scale;
+    if (!luminance) {
+        ln_gain -= view.searchlight_ln_y;
+    }
+    return spectral_encode(xyz / largest * exp(min(ln_gain, MAX_LN_GAIN_F32)), luminance);
 }
 
 // Linear BT.709 of CIE XYZ, Eq. 12 with the matrix as printed in the paper

@@ -1,5 +1,6 @@
-// surface.wgsl — ray–triangle intersection (Eq. 15–16) and relativistic shading (Eq. 17–18):
-// the f32 mirror of crates/srt-trace (intersect.rs, shade.rs and Tracer::shade).
+// surface.wgsl — ray–triangle intersection (Eq. 15–16) and relativistic shading (Eq. 17–18),
+// moving lights included (with shadows.wgsl): the f32 mirror of crates/srt-trace (intersect.rs,
+// shade.rs and Tracer::shade).
 
 struct TriangleHit {
     found: bool,
@@ -140,42 +141,18 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
     return albedo;
 }
 
-// The light a surface point sends to the observer (§4.2): Phong in S′ with aberrated directions
-// and the Doppler factors of Eq. 17 — D_in light → surface, D_out surface → observer (both 1 for
-// geometry only). The paper's colour: the colour table at D_in·D_out·T_light with
-// f_ar (Eq. 18); spectral colour (spectral.wgsl): the albedo's reflectance spectrum under the
-// black body at D_in·T_light, shifted by D_out, its factor f_amb + f_diff + f_spec. An emitting
-// object sends its black body at D_out·T_e instead, while it shines at the object's proper time
-// `proper_time` (emitter_shines). Mirror of srt_trace::arriving.
-fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32) -> Arriving {
-    let beta = object.frame.beta_gamma.xyz;
-    let incident = normalize(apparent - frame_uniforms.light.xyz);
-    let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
-    var d_in = 1.0;
-    var d_out = 1.0;
-    // D_in · D_out in one expression (Eq. 17), as the paper's colour always used it.
-    var combined = 1.0;
-    if (frame_uniforms.effects != EFFECTS_GEOMETRY) {
-        d_in = receiver_doppler(beta, incident);
-        d_out = doppler_factor(beta, outgoing);
-        combined = reflection_doppler(beta, incident, outgoing);
-    }
-    let spectral = frame_uniforms.colour == SURFACE_COLOUR_SPECTRAL;
-    let optics = object.optics;
-    if (optics.z > 0.0 && emitter_shines(proper_time)) {
-        if (spectral) {
-            return spectrum_light(spectral_emitted(optics.z, d_out), optics.w);
-        }
-        return table_light(optics.w, d_out * optics.z);
-    }
-    let to_light = -normalize(aberrate(-beta, incident));
-    let to_observer = normalize(aberrate(-beta, outgoing));
-    let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
-    var normal = normalize(w.x * vertices[indices[3u * t]].normal.xyz + w.y * vertices[indices[3u * t + 1u]].normal.xyz
-        + w.z * vertices[indices[3u * t + 2u]].normal.xyz);
-    if (dot(normal, to_observer) < 0.0) {
-        normal = -normal;
-    }
+// Where a surface point's light is received: its emission event in S, the event the observer
+// sees (srt_trace::SurfacePoint::event), and the same event in the rest coordinates of the
+// object being shaded (where the shadow test of that object starts, shadows.wgsl).
+struct Receiver {
+    event: vec4<f32>,
+    rest: vec4<f32>,
+}
+
+// (f_diff, f_spec) of Eq. 18 for the unit directions (in S′) `to_light` and `to_observer` on a
+// surface with the unit normal `normal` (facing the observer); 0 where the light is behind it
+// (mirror of srt_trace's phong_terms).
+fn phong_terms(normal: vec3<f32>, to_light: vec3<f32>, to_observer: vec3<f32>) -> vec2<f32> {
     let cos_light = dot(normal, to_light);
     var diffuse = 0.0;
     var specular = 0.0;
@@ -185,17 +162,113 @@ fn surface_light(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f
         diffuse = s.y * cos_light;
         specular = s.z * pow(max(dot(reflected, to_observer), 0.0), s.w);
     }
-    let geometry = s.x + diffuse + specular;
-    if (spectral) {
-        let reflected = spectral_reflected(albedo.xyz, optics.x, optics.y, frame_uniforms.light.w, d_in, d_out);
-        return spectrum_light(reflected, geometry);
-    }
-    return table_light(0.5 * (grey_value(albedo) + 1.0) * geometry, combined * frame_uniforms.light.w);
+    return vec2<f32>(diffuse, specular);
 }
 
-// The pixel a surface point gives: its light (surface_light) as the frame's output holds it.
-fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32) -> vec4<f32> {
-    return output_pixel(arriving_output(surface_light(t, zeta, xi, apparent, albedo, proper_time)));
+// The light a surface point sends to the observer (§4.2), as the frame's output holds it: Phong
+// in S′ with aberrated directions and the Doppler factors of Eq. 17 — D_in light → surface,
+// D_out surface → observer (both 1 for geometry only). The paper's colour: the colour table at
+// D_in·D_out·T_light with f_ar (Eq. 18); spectral colour (spectral.wgsl): the albedo's
+// reflectance spectrum under the black body at D_in·T_light, shifted by D_out, its factor
+// f_amb + f_diff + f_spec. The lamp's light is all times its strength (LightUniforms.lamp.x).
+// An emitting object sends its black body at D_out·T_e instead, while it shines at the object's
+// proper time `proper_time` (emitter_shines).
+//
+// Each moving light (shadows.wgsl) that the point faces and no object shadows adds its diffuse
+// and specular terms, from the direction its light arrives in at the point's emission event
+// `receiver.event`, at D_in·T_L, with the strength s / r_L² (times D_in⁻² with the searchlight
+// colour table, whose brightness holds D_in⁴ already; docs/physics.md, "Moving lights"): the
+// lights are then summed as light (light.wgsl, LightSum). With none of them reaching the point
+// the result is the lamp's alone, computed as before moving lights existed.
+//
+// Mirror of srt_trace::shade::arriving_unless_shadowed and Arriving::display / radiance.
+fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32, receiver: Receiver) -> vec3<f32> {
+    let beta = object.frame.beta_gamma.xyz;
+    let incident = normalize(apparent - frame_uniforms.light.xyz);
+    let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
+    let relativistic = frame_uniforms.effects != EFFECTS_GEOMETRY;
+    var d_in = 1.0;
+    var d_out = 1.0;
+    // D_in · D_out in one expression (Eq. 17), as the paper's colour always used it.
+    var combined = 1.0;
+    if (relativistic) {
+        d_in = receiver_doppler(beta, incident);
+        d_out = doppler_factor(beta, outgoing);
+        combined = reflection_doppler(beta, incident, outgoing);
+    }
+    let spectral = frame_uniforms.colour == SURFACE_COLOUR_SPECTRAL;
+    let optics = object.optics;
+    if (optics.z > 0.0 && emitter_shines(proper_time)) {
+        if (spectral) {
+            return arriving_output(spectrum_light(spectral_emitted(optics.z, d_out), optics.w));
+        }
+        return arriving_output(table_light(optics.w, d_out * optics.z));
+    }
+    let to_light = -normalize(aberrate(-beta, incident));
+    let to_observer = normalize(aberrate(-beta, outgoing));
+    let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
+    var normal = normalize(w.x * vertices[indices[3u * t]].normal.xyz + w.y * vertices[indices[3u * t + 1u]].normal.xyz
+        + w.z * vertices[indices[3u * t + 2u]].normal.xyz);
+    if (dot(normal, to_observer) < 0.0) {
+        normal = -normal;
+    }
+    let phong = phong_terms(normal, to_light, to_observer);
+    let geometry = lights.lamp.x * (frame_uniforms.shading.x + phong.x + phong.y);
+    let grey = 0.5 * (grey_value(albedo) + 1.0);
+    var lamp: Arriving;
+    if (spectral) {
+        let reflected = spectral_reflected(albedo.xyz, optics.x, optics.y, frame_uniforms.light.w, d_in, d_out);
+        lamp = spectrum_light(reflected, geometry);
+    } else {
+        lamp = table_light(grey * geometry, combined * frame_uniforms.light.w);
+    }
+    if (!MOVING_LIGHTS || lights.counts.x == 0u) {
+        return arriving_output(lamp);
+    }
+    let follows_luminance = relativistic && frame_uniforms.tone_map == TONE_MAP_SEARCHLIGHT;
+    let own = u32(object.time.x);
+    var sum = light_sum_of(lamp);
+    var sources = 0u;
+    for (var i = 0u; i < lights.counts.x; i++) {
+        let light = lights.moving[i];
+        let arriving = retarded_light(light, receiver.event);
+        if (!arriving.found) {
+            continue;
+        }
+        let terms = phong_terms(normal, -normalize(aberrate(-beta, arriving.direction)), to_observer);
+        let reflected = terms.x + terms.y;
+        if (!(reflected > 0.0) || !(light.strength.x > 0.0)
+            || moving_light_shadowed(arriving, receiver.event, own, receiver.rest)) {
+            continue;
+        }
+        var light_d_in = 1.0;
+        if (relativistic) {
+            light_d_in = arriving.source_doppler * receiver_doppler(beta, arriving.direction);
+        }
+        let r = arriving.source_distance;
+        var strength = light.strength.x / (r * r);
+        if (follows_luminance) {
+            strength = light.strength.x / (r * r * light_d_in * light_d_in);
+        }
+        let factor = reflected * strength;
+        let temperature_k = light.offset_temperature.w;
+        if (spectral) {
+            let l = spectral_reflected(albedo.xyz, optics.x, optics.y, temperature_k, light_d_in, d_out);
+            sum = light_sum_add(sum, spectrum_light(l, factor));
+        } else {
+            sum = light_sum_add(sum, table_light(grey * factor, light_d_in * d_out * temperature_k));
+        }
+        sources++;
+    }
+    if (sources == 0u) {
+        return arriving_output(lamp);
+    }
+    return light_sum_output(sum);
+}
+
+// The pixel a surface point gives: its light (surface_output) as the colour target holds it.
+fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32, receiver: Receiver) -> vec4<f32> {
+    return output_pixel(surface_output(t, zeta, xi, apparent, albedo, proper_time, receiver));
 }
 
 // Whether the current object wears a clock face (clock.wgsl).

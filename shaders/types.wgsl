@@ -160,6 +160,49 @@ struct RtTriangle {
     padding: u32,
 }
 
+// Most lights on their own worldlines (srt_gpu::types::MAX_MOVING_LIGHTS, srt_scene's).
+const MAX_MOVING_LIGHTS: u32 = 8u;
+
+// One light on its own worldline (srt_scene::MovingLight; twin of srt_gpu::types::GpuMovingLight):
+// it rests at the origin of its frame, whose worldline in S is offset + β·ct.
+struct MovingLight {
+    // The frame's offset a (xyz) and the light's Planck temperature in its rest frame (w).
+    offset_temperature: vec4<f32>,
+    // β (xyz) and γ (w).
+    beta_gamma: vec4<f32>,
+    // The strength (x: irradiance at unit distance in its frame, in units of the lamp's diffuse
+    // light) and 1 − β², computed in f64 (y); zw unused.
+    strength: vec4<f32>,
+}
+
+// Per image: the lamp's strength and the moving lights (srt_gpu::shadows::light_uniforms).
+struct LightUniforms {
+    // The lamp's strength (x: a factor on all its light, srt_scene::Light::strength); yzw unused.
+    lamp: vec4<f32>,
+    // Moving lights in use (x), shadow casters in shadow_scene (y), the rows of shadow_scene
+    // where the BVH nodes (z) and the triangles (w) begin.
+    counts: vec4<u32>,
+    moving: array<MovingLight, MAX_MOVING_LIGHTS>,
+}
+
+// One shadow caster as shadow_scene holds it (twin of srt_gpu::types::GpuShadowObject), in
+// SHADOW_OBJECT_ROWS rows of vec4<u32>.
+struct ShadowObject {
+    // Λ_−β of its rest frame: S four-vectors → S′.
+    observer_to_rest: mat4x4<f32>,
+    // Its frame's offset a (xyz), 0.
+    offset: vec4<f32>,
+    // Its BVH's root node (x), 1 if it emits light and casts no shadow (y), its index in scene
+    // order (z); w unused.
+    bvh: vec4<u32>,
+}
+
+// Rows (vec4<u32>) of shadow_scene per ShadowObject, BvhNode and triangle (RtTriangle's layout)
+// (srt_gpu::types::SHADOW_*_ROWS).
+const SHADOW_OBJECT_ROWS: u32 = 6u;
+const SHADOW_NODE_ROWS: u32 = 2u;
+const SHADOW_TRIANGLE_ROWS: u32 = 3u;
+
 // The image-space footprint of one apparent triangle (srt_proxy::Footprint), in pixels.
 struct Footprint {
     hull: array<vec2<f32>, FOOTPRINT_HULL_POINTS>,

@@ -55,9 +55,9 @@ pub enum GpuError {
         /// The deepest the traversal supports.
         limit: usize,
     },
-    /// The scene's objects or parts changed since it was uploaded ([`crate::GpuRenderer`]
-    /// renders only the structure it uploaded).
-    #[error("the scene's objects changed since it was uploaded")]
+    /// The scene's objects or parts changed since it was uploaded, or it gained moving lights
+    /// ([`crate::GpuRenderer`] renders only the structure it uploaded).
+    #[error("the scene's objects or lights changed since it was uploaded")]
     SceneChanged,
     /// Something was asked of a renderer or view before it had what it needs.
     #[error("{0}")]

@@ -19,7 +19,10 @@
 //!
 //! The shading passes colour surfaces with the paper's colour table or, for scenes with spectral
 //! colour, with `spectral.wgsl`, the mirror of `srt-color`'s reflectance spectra (tables uploaded
-//! by [`spectral`]).
+//! by [`spectral`]). Lights on their own worldlines add their light from their retarded events,
+//! and their late shadows are tested per pixel against every object's BVH in its rest frame
+//! (`shadows.wgsl`, buffers by [`shadows`]; mirror: `srt_physics::RetardedLight` and
+//! `srt-trace`'s shadow test).
 //!
 //! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The
 //! production modules never depend on [`probe`], the validation harness.
@@ -39,6 +42,7 @@ pub mod ray_tracing;
 pub mod readback;
 pub mod renderer;
 pub mod shaders;
+pub mod shadows;
 pub mod sky;
 pub mod spectral;
 pub mod textures;

@@ -267,6 +267,22 @@ pub mod slots {
         visibility: ShaderStages::FRAGMENT,
         ty: storage(true),
     };
+    /// Group 0 of the shading passes: `lights`, the lamp's strength and the moving lights
+    /// ([`crate::shadows`]).
+    pub const LIGHTS: Slot = Slot {
+        wgsl_name: "lights",
+        binding: 11,
+        visibility: ShaderStages::FRAGMENT,
+        ty: UNIFORM,
+    };
+    /// Group 0 of the shading passes: `shadow_scene`, every object's BVH for the shadows of
+    /// moving lights ([`crate::shadows`]).
+    pub const SHADOW_SCENE: Slot = Slot {
+        wgsl_name: "shadow_scene",
+        binding: 12,
+        visibility: ShaderStages::FRAGMENT,
+        ty: storage(true),
+    };
     /// Group 3 of the ray tracer's visibility pass: `bvh_nodes`, the object's BVH.
     pub const BVH_NODES: Slot = Slot {
         wgsl_name: "bvh_nodes",
@@ -298,8 +314,8 @@ pub const FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE],
 };
 /// Group 0 of the LRT shading pass: the frame group, the visibility pass's ids (a separate
-/// layout, because the visibility pass renders into the ids while group 0 is bound) and the
-/// spectral tables.
+/// layout, because the visibility pass renders into the ids while group 0 is bound), the
+/// spectral tables and the lights with the shadow casters.
 pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt frame (shading)",
     index: 0,
@@ -310,11 +326,28 @@ pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
         slots::CIE_TABLE,
         slots::COEFFICIENT_SCALE,
         slots::COEFFICIENT_TABLE,
+        slots::LIGHTS,
+        slots::SHADOW_SCENE,
     ],
 };
-/// Group 0 of the polygon pass: the frame group and the spectral tables.
+/// Group 0 of the polygon pass: the frame group, the spectral tables and the lights with the
+/// shadow casters.
 pub const POLYGON_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt frame (polygon)",
+    index: 0,
+    slots: &[
+        slots::FRAME_UNIFORMS,
+        slots::LUT_TABLE,
+        slots::CIE_TABLE,
+        slots::COEFFICIENT_SCALE,
+        slots::COEFFICIENT_TABLE,
+        slots::LIGHTS,
+        slots::SHADOW_SCENE,
+    ],
+};
+/// Group 0 of the sky's compose pass: the frame group and the spectral tables.
+pub const SKY_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt frame (sky)",
     index: 0,
     slots: &[
         slots::FRAME_UNIFORMS,
@@ -396,7 +429,7 @@ pub const SKY_STARS_ENTRIES: [&str; 2] = ["sky_star_peaks", "sky_stars"];
 pub const SKY_COMPOSE_ENTRIES: [&str; 2] = ["sky_compose_vertex", "sky_compose"];
 
 /// The sky's two pipelines as their bindings see them: the stars' compute pass and the
-/// background pass (whose group 0 carries the spectral tables, as the polygon pass's does).
+/// background pass (whose group 0 carries the spectral tables).
 #[must_use]
 pub fn sky_specs() -> [PipelineSpec; 2] {
     [
@@ -410,7 +443,7 @@ pub fn sky_specs() -> [PipelineSpec; 2] {
             label: "srt sky compose",
             shader: shaders::sky(),
             entry_points: &SKY_COMPOSE_ENTRIES,
-            groups: vec![POLYGON_FRAME_GROUP, SKY_COMPOSE_GROUP],
+            groups: vec![SKY_FRAME_GROUP, SKY_COMPOSE_GROUP],
         },
     ]
 }
@@ -430,9 +463,10 @@ const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
 /// The six pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
 /// shading, ray-tracer visibility (the three with the fragment counter when `counting`),
-/// polygon, and the LRT part-depth pass between visibility and shading.
+/// polygon, and the LRT part-depth pass between visibility and shading; the shading passes with
+/// moving lights where `lit` ([`shaders::lrt`]).
 #[must_use]
-pub fn specs(counting: bool) -> [PipelineSpec; 6] {
+pub fn specs(counting: bool, lit: bool) -> [PipelineSpec; 6] {
     let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
     [
         PipelineSpec {
@@ -443,31 +477,31 @@ pub fn specs(counting: bool) -> [PipelineSpec; 6] {
         },
         PipelineSpec {
             label: "srt lrt visibility",
-            shader: shaders::lrt(counting),
+            shader: shaders::lrt(counting, lit),
             entry_points: &LRT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[LRT_INPUT_GROUP]].concat(),
         },
         PipelineSpec {
             label: "srt lrt shading",
-            shader: shaders::lrt(counting),
+            shader: shaders::lrt(counting, lit),
             entry_points: &LRT_SHADE_ENTRIES,
             groups: vec![SHADE_FRAME_GROUP, OBJECT_GROUP, PART_GROUP, LRT_INPUT_GROUP],
         },
         PipelineSpec {
             label: "srt rt visibility",
-            shader: shaders::lrt(counting),
+            shader: shaders::lrt(counting, lit),
             entry_points: &RT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[RT_INPUT_GROUP]].concat(),
         },
         PipelineSpec {
             label: "srt polygon",
-            shader: shaders::polygon(),
+            shader: shaders::polygon(lit),
             entry_points: &POLYGON_ENTRIES,
             groups: vec![POLYGON_FRAME_GROUP, OBJECT_GROUP, PART_GROUP],
         },
         PipelineSpec {
             label: "srt lrt part depth",
-            shader: shaders::lrt(counting),
+            shader: shaders::lrt(counting, lit),
             entry_points: &PART_DEPTH_ENTRIES,
             groups: vec![SHADE_FRAME_GROUP],
         },
@@ -544,6 +578,8 @@ pub struct Pipelines {
     pub shade_frame_layout: wgpu::BindGroupLayout,
     /// Layout of [`POLYGON_FRAME_GROUP`].
     pub polygon_frame_layout: wgpu::BindGroupLayout,
+    /// Layout of [`SKY_FRAME_GROUP`].
+    pub sky_frame_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
     /// The local ray tracing pipelines.
@@ -553,18 +589,21 @@ pub struct Pipelines {
     lrt_counting: std::sync::OnceLock<LrtPipelines>,
     /// The colour format the render pipelines draw into.
     color_format: wgpu::TextureFormat,
+    /// Whether the shading passes draw moving lights.
+    lit: bool,
     /// The polygon-rendering pipeline.
     pub polygon: wgpu::RenderPipeline,
 }
 
 impl Pipelines {
     /// Creates layouts, shader modules and pipelines on `device`, rendering into
-    /// `color_format`. Each pipeline's layout is made from its [`PipelineSpec`]; bind group
-    /// layouts with the same entries are interchangeable (WebGPU's group equivalence), so the
-    /// bind groups made with the layouts kept here fit every pipeline.
+    /// `color_format`, the shading passes with moving lights where `lit` ([`shaders::lrt`]).
+    /// Each pipeline's layout is made from its [`PipelineSpec`]; bind group layouts with the same
+    /// entries are interchangeable (WebGPU's group equivalence), so the bind groups made with
+    /// the layouts kept here fit every pipeline.
     #[must_use]
-    pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
-        let specs = specs(false);
+    pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat, lit: bool) -> Self {
+        let specs = specs(false, lit);
         let [proxy_spec, _, _, _, polygon_spec, _] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -592,10 +631,12 @@ impl Pipelines {
             rt_input_layout: RT_INPUT_GROUP.create_layout(device),
             shade_frame_layout: SHADE_FRAME_GROUP.create_layout(device),
             polygon_frame_layout: POLYGON_FRAME_GROUP.create_layout(device),
+            sky_frame_layout: SKY_FRAME_GROUP.create_layout(device),
             proxy,
             lrt,
             lrt_counting: std::sync::OnceLock::new(),
             color_format,
+            lit,
             polygon,
         }
     }
@@ -604,7 +645,7 @@ impl Pipelines {
     /// need them).
     pub fn lrt_counting(&self, device: &wgpu::Device) -> &LrtPipelines {
         self.lrt_counting
-            .get_or_init(|| LrtPipelines::new(device, &specs(true), self.color_format))
+            .get_or_init(|| LrtPipelines::new(device, &specs(true, self.lit), self.color_format))
     }
 }
 

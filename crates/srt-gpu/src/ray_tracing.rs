@@ -137,37 +137,51 @@ impl BoxBuffers {
     }
 }
 
+/// The BVH over an object's `triangles` (every triangle of the object, with its batch's part id
+/// and its number there; the object named `what` in errors), for the ray tracer and the shadows
+/// of moving lights ([`crate::shadows`]).
+///
+/// # Errors
+/// [`GpuError::BvhTooDeep`] when the BVH is deeper than the traversal's stack,
+/// [`GpuError::ExceedsLimit`] when the triangles or the nodes exceed a storage buffer,
+/// [`GpuError::NotReady`] when there are no triangles.
+pub fn object_bvh(
+    ctx: &GpuContext,
+    triangles: &[GpuRtTriangle],
+    what: &str,
+) -> Result<ObjectBvh, GpuError> {
+    if triangles.is_empty() {
+        return Err(GpuError::NotReady("an object without triangles has no BVH"));
+    }
+    DeviceLimits::of(ctx).check_storage_buffer(
+        || format!("the ray tracer's triangle buffer of {what}"),
+        std::mem::size_of_val(triangles) as u64,
+    )?;
+    let bvh = ObjectBvh::build(&triangle_corners(triangles), || what.to_owned())?;
+    DeviceLimits::of(ctx).check_storage_buffer(
+        || format!("the BVH of {what}"),
+        std::mem::size_of_val(bvh.nodes.as_slice()) as u64,
+    )?;
+    Ok(bvh)
+}
+
+/// The corners of `triangles`.
+fn triangle_corners(triangles: &[GpuRtTriangle]) -> Vec<[[f32; 3]; 3]> {
+    triangles.iter().map(|t| [t.p0, t.p1, t.p2]).collect()
+}
+
 impl ObjectRayTracing {
-    /// Builds the BVH over `triangles` (every triangle of the object, with its batch's part id
-    /// and its number there; named `what` in errors), uploads it and the box, and makes the bind
-    /// groups; `counter` is the fragment counter.
-    ///
-    /// # Errors
-    /// [`GpuError::BvhTooDeep`] when the BVH is deeper than the traversal's stack,
-    /// [`GpuError::ExceedsLimit`] when the triangles exceed a storage buffer,
-    /// [`GpuError::NotReady`] when there are none.
+    /// Uploads the BVH `bvh` ([`object_bvh`]) over `triangles` and the BVH's box, and makes the
+    /// bind groups; `counter` is the fragment counter.
     pub fn new(
         ctx: &GpuContext,
         pipelines: &Pipelines,
         counter: &wgpu::Buffer,
         triangles: &[GpuRtTriangle],
-        what: impl FnOnce() -> String,
-    ) -> Result<Self, GpuError> {
+        bvh: &ObjectBvh,
+    ) -> Self {
         let device = &ctx.device;
-        let what = what();
-        if triangles.is_empty() {
-            return Err(GpuError::NotReady("an object without triangles has no BVH"));
-        }
-        DeviceLimits::of(ctx).check_storage_buffer(
-            || format!("the ray tracer's triangle buffer of {what}"),
-            std::mem::size_of_val(triangles) as u64,
-        )?;
-        let corners: Vec<[[f32; 3]; 3]> = triangles.iter().map(|t| [t.p0, t.p1, t.p2]).collect();
-        let bvh = ObjectBvh::build(&corners, || what.clone())?;
-        DeviceLimits::of(ctx).check_storage_buffer(
-            || format!("the BVH of {what}"),
-            std::mem::size_of_val(bvh.nodes.as_slice()) as u64,
-        )?;
+        let corners = triangle_corners(triangles);
         let storage = |label, contents: &[u8]| storage_buffer(device, label, contents);
         let nodes = storage("srt bvh nodes", bytemuck::cast_slice(&bvh.nodes));
         let ordered = storage(
@@ -186,7 +200,7 @@ impl ObjectRayTracing {
                 entries,
             })
         };
-        Ok(Self {
+        Self {
             box_part_group: group(
                 "srt box part",
                 &pipelines.part_layout,
@@ -230,7 +244,7 @@ impl ObjectRayTracing {
             layers,
             box_bound: boxed.bound,
             box_draw_args: boxed.draw_args,
-        })
+        }
     }
 
     /// Whether the ray tracer is the faster exact method for this object: when its triangles

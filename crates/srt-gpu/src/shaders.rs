@@ -26,6 +26,11 @@ pub const PROXY: &str = include_str!("../shaders/proxy.wgsl");
 pub const LRT: &str = include_str!("../shaders/lrt.wgsl");
 /// The GPU ray tracer's visibility pass (composed after [`LRT`]).
 pub const RT: &str = include_str!("../shaders/rt.wgsl");
+/// The slab test of BVH traversal (the ray tracer's and the shadows').
+pub const BVH: &str = include_str!("../shaders/bvh.wgsl");
+/// Moving lights and their late shadows (mirror of `srt_physics::RetardedLight` and srt-trace's
+/// shadow test).
+pub const SHADOWS: &str = include_str!("../shaders/shadows.wgsl");
 /// The polygon-rendering baseline pass.
 pub const POLYGON: &str = include_str!("../shaders/polygon.wgsl");
 /// The stars and the image of the sky.
@@ -71,12 +76,26 @@ const fn with_spectral(first: (&'static str, f64)) -> [(&'static str, f64); 6] {
     [first, s[0], s[1], s[2], s[3], s[4]]
 }
 
-/// The overrides of the LRT shader (with the ray tracer's) with the fragment counter on or off.
-const fn lrt_overrides(count_fragments: f64) -> [(&'static str, f64); 7] {
+/// The overrides of the shadow test (shadows.wgsl) and its slab test (bvh.wgsl), with the
+/// moving lights compiled in (1) or out (0): `MOVING_LIGHTS`.
+const fn shadow_overrides(moving_lights: f64) -> [(&'static str, f64); 3] {
+    [
+        ("SLAB_TOLERANCE", crate::bvh::SLAB_TOLERANCE as f64),
+        ("SHADOW_MARGIN", crate::shadows::SHADOW_MARGIN as f64),
+        ("MOVING_LIGHTS", moving_lights),
+    ]
+}
+
+/// The overrides of the LRT shader (with the ray tracer's) with the fragment counter on or off
+/// and the moving lights compiled in or out.
+const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static str, f64); 9] {
     let s = SPECTRAL_OVERRIDES;
+    let [slab, margin, lights] = shadow_overrides(moving_lights);
     [
         ("COUNT_FRAGMENTS", count_fragments),
-        ("SLAB_TOLERANCE", crate::bvh::SLAB_TOLERANCE as f64),
+        slab,
+        margin,
+        lights,
         s[0],
         s[1],
         s[2],
@@ -85,8 +104,23 @@ const fn lrt_overrides(count_fragments: f64) -> [(&'static str, f64); 7] {
     ]
 }
 
-/// The overrides of the LRT shader: without and with the fragment counter.
-const LRT_OVERRIDES: [&[(&str, f64)]; 2] = [&lrt_overrides(0.0), &lrt_overrides(1.0)];
+/// The overrides of the polygon shader, spectral.wgsl's and the shadow test's, with the moving
+/// lights compiled in or out.
+const fn polygon_overrides(moving_lights: f64) -> [(&'static str, f64); 8] {
+    let s = SPECTRAL_OVERRIDES;
+    let [slab, margin, lights] = shadow_overrides(moving_lights);
+    [slab, margin, lights, s[0], s[1], s[2], s[3], s[4]]
+}
+
+/// The overrides of the LRT shader, indexed [counting][lit]: without and with the fragment
+/// counter, without and with moving lights.
+const LRT_OVERRIDES: [[&[(&str, f64)]; 2]; 2] = [
+    [&lrt_overrides(0.0, 0.0), &lrt_overrides(0.0, 1.0)],
+    [&lrt_overrides(1.0, 0.0), &lrt_overrides(1.0, 1.0)],
+];
+
+/// The overrides of the polygon shader, indexed [lit]: without and with moving lights.
+const POLYGON_OVERRIDES: [&[(&str, f64)]; 2] = [&polygon_overrides(0.0), &polygon_overrides(1.0)];
 
 /// The overrides of the sky shader: its workgroup size, the colour temperature of a sky
 /// image's light, and spectral.wgsl's.
@@ -154,11 +188,18 @@ pub fn proxy() -> Shader {
 
 /// The local ray tracing shader, with the GPU ray tracer's visibility pass (rt.wgsl); with
 /// `counting`, every visibility fragment it runs and every pixel it shades adds 1 to the
-/// fragment counter (for measurements only: one global atomic per fragment).
+/// fragment counter (for measurements only: one global atomic per fragment); with `lit`, the
+/// shading pass adds the light of moving lights and their shadows (shadows.wgsl), which
+/// otherwise are compiled out (a software rasteriser pays for code it does not run).
 #[must_use]
-pub fn lrt(counting: bool) -> Shader {
+pub fn lrt(counting: bool, lit: bool) -> Shader {
     Shader {
-        name: if counting { "lrt (counting)" } else { "lrt" },
+        name: match (counting, lit) {
+            (false, false) => "lrt",
+            (false, true) => "lrt (lit)",
+            (true, false) => "lrt (counting)",
+            (true, true) => "lrt (counting, lit)",
+        },
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -169,18 +210,21 @@ pub fn lrt(counting: bool) -> Shader {
             ("camera.wgsl", CAMERA),
             ("clock.wgsl", CLOCK),
             ("surface.wgsl", SURFACE),
+            ("bvh.wgsl", BVH),
+            ("shadows.wgsl", SHADOWS),
             ("lrt.wgsl", LRT),
             ("rt.wgsl", RT),
         ]),
-        overrides: LRT_OVERRIDES[usize::from(counting)],
+        overrides: LRT_OVERRIDES[usize::from(counting)][usize::from(lit)],
     }
 }
 
-/// The polygon-rendering shader.
+/// The polygon-rendering shader, with the moving lights compiled in where `lit` (as
+/// [`lrt`]'s).
 #[must_use]
-pub fn polygon() -> Shader {
+pub fn polygon(lit: bool) -> Shader {
     Shader {
-        name: "polygon",
+        name: if lit { "polygon (lit)" } else { "polygon" },
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -190,9 +234,11 @@ pub fn polygon() -> Shader {
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("clock.wgsl", CLOCK),
             ("surface.wgsl", SURFACE),
+            ("bvh.wgsl", BVH),
+            ("shadows.wgsl", SHADOWS),
             ("polygon.wgsl", POLYGON),
         ]),
-        overrides: &SPECTRAL_OVERRIDES,
+        overrides: POLYGON_OVERRIDES[usize::from(lit)],
     }
 }
 
@@ -249,9 +295,12 @@ pub fn all() -> Vec<Shader> {
             overrides: &[],
         },
         proxy(),
-        lrt(false),
-        lrt(true),
-        polygon(),
+        lrt(false, false),
+        lrt(true, false),
+        lrt(false, true),
+        lrt(true, true),
+        polygon(false),
+        polygon(true),
         sky(),
         Shader {
             name: "colour",

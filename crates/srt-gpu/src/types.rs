@@ -520,6 +520,76 @@ pub struct GpuRtTriangle {
     pub padding: u32,
 }
 
+/// Most lights on their own worldlines the shading passes read (WGSL `MAX_MOVING_LIGHTS` in
+/// types.wgsl): [`srt_scene::MAX_MOVING_LIGHTS`], the length of [`LightUniforms::moving`].
+pub const MAX_MOVING_LIGHTS: usize = srt_scene::MAX_MOVING_LIGHTS;
+
+/// Twin of WGSL `MovingLight`: one light on its own worldline ([`srt_scene::MovingLight`]),
+/// resting at the origin of its frame, whose worldline in S is offset + β·ct.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuMovingLight {
+    /// The frame's offset **a** (xyz) and the Planck temperature in its rest frame (w).
+    pub offset_temperature: [f32; 4],
+    /// β (xyz) and γ (w).
+    pub beta_gamma: [f32; 4],
+    /// The strength (x), 1 − β² computed in f64 (y); zw unused.
+    pub strength: [f32; 4],
+}
+
+impl From<&srt_scene::MovingLight> for GpuMovingLight {
+    fn from(light: &srt_scene::MovingLight) -> Self {
+        let frame = &light.frame;
+        let beta = frame.beta();
+        Self {
+            offset_temperature: vec4(frame.offset(), light.temperature_k),
+            beta_gamma: vec4(beta, frame.gamma()),
+            strength: [
+                light.strength as f32,
+                (1.0 - beta.length_squared()) as f32,
+                0.0,
+                0.0,
+            ],
+        }
+    }
+}
+
+/// Twin of WGSL `LightUniforms`: the lamp's strength and the lights on their own worldlines,
+/// with where the shadow casters are in WGSL `shadow_scene` ([`crate::shadows`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct LightUniforms {
+    /// The lamp's strength ([`srt_scene::Light::strength`]) in x; yzw unused.
+    pub lamp: [f32; 4],
+    /// The moving lights in use (x), the shadow casters in `shadow_scene` (y), the rows where
+    /// its BVH nodes (z) and its triangles (w) begin.
+    pub counts: [u32; 4],
+    /// The moving lights, the first `counts[0]` in use.
+    pub moving: [GpuMovingLight; MAX_MOVING_LIGHTS],
+}
+
+/// Twin of WGSL `ShadowObject`: one object of the scene as the shadow test reads it
+/// ([`crate::shadows`]), rewritten every frame.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuShadowObject {
+    /// Λ_−β of its rest frame (S four-vectors → S′).
+    pub observer_to_rest: [[f32; 4]; 4],
+    /// Its frame's offset **a** (xyz), 0.
+    pub offset: [f32; 4],
+    /// Its BVH's root node in `shadow_scene`'s nodes (x), 1 if it emits light and so casts no
+    /// shadow (y), its index in scene order (z); w unused.
+    pub bvh: [u32; 4],
+}
+
+/// Rows (16 bytes, WGSL `vec4<u32>`) of one [`GpuShadowObject`] in `shadow_scene` (WGSL
+/// `SHADOW_OBJECT_ROWS`).
+pub const SHADOW_OBJECT_ROWS: u32 = (size_of::<GpuShadowObject>() / 16) as u32;
+/// Rows of one [`GpuBvhNode`] in `shadow_scene` (WGSL `SHADOW_NODE_ROWS`).
+pub const SHADOW_NODE_ROWS: u32 = (size_of::<GpuBvhNode>() / 16) as u32;
+/// Rows of one triangle ([`GpuRtTriangle`]) in `shadow_scene` (WGSL `SHADOW_TRIANGLE_ROWS`).
+pub const SHADOW_TRIANGLE_ROWS: u32 = (size_of::<GpuRtTriangle>() / 16) as u32;
+
 /// Twin of WGSL `Footprint`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

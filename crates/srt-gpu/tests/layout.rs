@@ -10,9 +10,10 @@ use naga::proc::Layouter;
 use naga::{Module, ScalarKind, TypeInner};
 use srt_gpu::types::{
     EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuCieSample, GpuFootprint, GpuFrame,
-    GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuSpectralProbeInput,
-    GpuSpectralProbeOutput, GpuStar, GpuVertex, ObjectUniforms, OutputCode, PartFlags,
-    PartUniforms, SkyUniforms, SurfaceColourCode, ToneMapCode,
+    GpuMovingLight, GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuShadowObject,
+    GpuSpectralProbeInput, GpuSpectralProbeOutput, GpuStar, GpuVertex, LightUniforms,
+    ObjectUniforms, OutputCode, PartFlags, PartUniforms, SkyUniforms, SurfaceColourCode,
+    ToneMapCode,
 };
 
 /// What a member's components are, as both sides can tell.
@@ -64,6 +65,9 @@ impl HasLeaf for PartFlags {
 impl HasLeaf for GpuFrame {
     const LEAF: Leaf = Leaf::Struct("Frame");
 }
+impl HasLeaf for GpuMovingLight {
+    const LEAF: Leaf = Leaf::Struct("MovingLight");
+}
 
 /// One member as the Rust side lays it out.
 #[derive(Debug, PartialEq, Eq)]
@@ -113,6 +117,9 @@ fn table() -> Vec<Twin> {
         twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, triangle, pieces_overflowed }),
         twin!(GpuBvhNode => "BvhNode" { min, primitive_count, max, first }),
         twin!(GpuRtTriangle => "RtTriangle" { p0, part, p1, triangle, p2, padding }),
+        twin!(GpuMovingLight => "MovingLight" { offset_temperature, beta_gamma, strength }),
+        twin!(LightUniforms => "LightUniforms" { lamp, counts, moving }),
+        twin!(GpuShadowObject => "ShadowObject" { observer_to_rest, offset, bvh }),
         twin!(GpuStar => "Star" { direction_temperature, magnitude }),
         twin!(GpuCieSample => "CieSample" { xyz_bar, wavelength_nm }),
         twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts, direction_map, direction_unmap, image }),

@@ -16,7 +16,8 @@ use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
     BVH_STACK_SIZE, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN, DRAW_ARGS_SHADE_VERTICES,
     DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
-    OutputCode, PartFlags, SurfaceColourCode, ToneMapCode,
+    MAX_MOVING_LIGHTS, OutputCode, PartFlags, SHADOW_NODE_ROWS, SHADOW_OBJECT_ROWS,
+    SHADOW_TRIANGLE_ROWS, SurfaceColourCode, ToneMapCode,
 };
 
 /// Every WGSL const with a Rust twin, and the twin's value.
@@ -50,17 +51,23 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
             "STAR_LIGHT_WORDS_PER_PIXEL",
             srt_gpu::sky::STAR_LIGHT_WORDS_PER_PIXEL,
         ),
+        ("MAX_MOVING_LIGHTS", MAX_MOVING_LIGHTS as u32),
+        ("SHADOW_OBJECT_ROWS", SHADOW_OBJECT_ROWS),
+        ("SHADOW_NODE_ROWS", SHADOW_NODE_ROWS),
+        ("SHADOW_TRIANGLE_ROWS", SHADOW_TRIANGLE_ROWS),
     ]
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 9] = [
+const SHARED_FAMILIES: [&str; 11] = [
     "BVH_",
     "DRAW_ARGS_",
     "EFFECTS_",
     "FOOTPRINT_",
+    "MAX_MOVING_LIGHTS",
     "OUTPUT_",
     "PART_",
+    "SHADOW_",
     "STAR_LIGHT_WORDS_",
     "SURFACE_COLOUR_",
     "TONE_MAP_",
@@ -547,8 +554,10 @@ fn check_bindings(spec: &PipelineSpec) -> Vec<String> {
 }
 
 fn all_specs() -> Vec<PipelineSpec> {
-    let mut specs = srt_gpu::pipelines::specs(false).to_vec();
-    specs.extend(srt_gpu::pipelines::specs(true));
+    let mut specs = Vec::new();
+    for (counting, lit) in [(false, false), (true, false), (false, true), (true, true)] {
+        specs.extend(srt_gpu::pipelines::specs(counting, lit));
+    }
     specs.extend(srt_gpu::probe::specs());
     specs.extend(srt_gpu::pipelines::sky_specs());
     specs
@@ -559,9 +568,10 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        17,
-        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (twice: \
-         without and with counting), three probes and the sky's two passes"
+        29,
+        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (four times: \
+         without and with counting, without and with moving lights), three probes and the sky's \
+         two passes"
     );
     let mut failures = Vec::new();
     for spec in &specs {
@@ -580,7 +590,7 @@ fn bindings_match_the_wgsl() {
 fn a_binding_mismatch_is_detected() {
     // Guards the comparison against passing vacuously: move the LRT's fragment counter to
     // binding 7, make its footprints writable and hide them from the vertex stage.
-    let mut lrt = srt_gpu::pipelines::specs(true)[1].clone();
+    let mut lrt = srt_gpu::pipelines::specs(true, false)[1].clone();
     let mut group = lrt.groups[3];
     let mut slots = group.slots.to_vec();
     slots[0].ty = srt_gpu::pipelines::storage(false);

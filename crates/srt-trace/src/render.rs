@@ -258,7 +258,7 @@ impl<'a> PreparedObject<'a> {
         };
         let direction = (to - from) / length;
         let margin = 1e-9 * (1.0 + length + from.abs().max_element());
-        if !(length > 2.0 * margin) {
+        if length <= 2.0 * margin || length.is_nan() {
             return false;
         }
         if !self.motion.is_rest() {

@@ -97,6 +97,10 @@ pub fn grey_value(colour: DVec4) -> f64 {
 /// measured ([`Arriving::radiance`]): the two are computed from it, never one from the other
 /// (srt-color's `radiance` module says why).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[expect(
+    clippy::large_enum_variant,
+    reason = "the sums are fixed arrays so that shading a pixel allocates nothing"
+)]
 pub enum Arriving {
     /// The colour-table light `factor` · C(`temperature_k`): the paper's colour (f_ar of
     /// Eq. 18 at D·T), an emitter with the paper's colour, a star, a sky texel's grey value.

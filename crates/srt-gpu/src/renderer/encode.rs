@@ -22,6 +22,10 @@ impl super::GpuRenderer {
         {
             return Err(GpuError::SceneChanged);
         }
+        // Moving lights need the shadow casters, uploaded only for a scene that had them.
+        if !scene.lights.is_empty() && self.shadows.is_none() {
+            return Err(GpuError::SceneChanged);
+        }
         let uploaded_sky = self.sky.as_ref().map_or((0, None), SkyResources::shape);
         if sky_shape(&scene.sky) != uploaded_sky {
             return Err(GpuError::SceneChanged);
@@ -71,6 +75,12 @@ impl super::GpuRenderer {
         };
         ctx.queue
             .write_buffer(&self.frame.uniforms, 0, bytemuck::bytes_of(&uniforms));
+        let lights: LightUniforms = light_uniforms(scene, self.shadows.as_ref());
+        ctx.queue
+            .write_buffer(&self.frame.lights, 0, bytemuck::bytes_of(&lights));
+        if let Some(shadows) = &self.shadows {
+            shadows.write(&ctx.queue, scene);
+        }
         let event = observer.event();
         for (index, (object, resources)) in scene.objects.iter().zip(&self.objects).enumerate() {
             let (time, world_time) = object_time(object, index, &scene.world);
@@ -384,7 +394,7 @@ impl super::GpuRenderer {
         sky.encode(
             encoder,
             &self.frame.bind_groups[tone],
-            &self.frame.polygon_groups[tone],
+            &self.frame.sky_groups[tone],
             color_view,
             self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP)),
         );

@@ -16,6 +16,7 @@ use srt_color::{
 use srt_scene::{Object, Part, Scene};
 use wgpu::util::DeviceExt as _;
 
+use crate::bvh::ObjectBvh;
 use crate::context::GpuContext;
 use crate::culling::BackFaceCulling;
 use crate::error::GpuError;
@@ -24,21 +25,22 @@ use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{
     FRAME_GROUP, LRT_INPUT_GROUP, LrtPipelines, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
-    PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, slots,
+    PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, SKY_FRAME_GROUP, slots,
 };
 use crate::projection::view_projection;
-use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing};
+use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing, object_bvh};
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::WORKGROUP_SIZE;
+use crate::shadows::{ShadowRows, ShadowScene, empty_shadow_buffer, light_uniforms};
 use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
 use crate::textures::part_texture;
 use crate::types::{
     ClockUniforms, DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
     FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
-    GpuVertex, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags, PartUniforms,
-    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, blink4, footprint_slots, mat4, object_time,
-    optics4, radiance_params, vec4,
+    GpuVertex, LightUniforms, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags,
+    PartUniforms, SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, blink4, footprint_slots, mat4,
+    object_time, optics4, radiance_params, vec4,
 };
 
 mod encode;
@@ -48,7 +50,7 @@ mod upload;
 use targets::{
     FragmentCounter, FrameResources, SKY_TIMESTAMP, TIMESTAMP_COUNT, Targets, Timestamps,
 };
-use upload::{ObjectResources, PartResources, batches, upload_object};
+use upload::{ObjectResources, PartResources, ShadowSource, batches, upload_object};
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
 /// f32 depth has constant relative precision, so the scale costs nothing).
@@ -174,6 +176,8 @@ pub struct GpuRenderer {
     targets: Targets,
     /// The stars, if the scene has a sky.
     sky: Option<SkyResources>,
+    /// Every object's BVH for the shadows of moving lights, if the scene has moving lights.
+    shadows: Option<ShadowScene>,
     /// Factor on every star's light ([`GpuRenderer::set_star_light_scale`]).
     star_light_scale: f64,
     /// Whether the LRT pass counts its fragments.
@@ -206,25 +210,40 @@ impl GpuRenderer {
             })
             .collect::<Result<Vec<_>, GpuError>>()?;
         let device = &ctx.device;
-        let pipelines = Pipelines::new(device, ctx.color_format);
-        let frame = FrameResources::new(ctx, &pipelines)?;
+        // Only a scene with moving lights needs them compiled into the shading passes, and
+        // every object's BVH there.
+        let lit = !scene.lights.is_empty();
+        let pipelines = Pipelines::new(device, ctx.color_format, lit);
         let counter = FragmentCounter::new(device);
         // Batches are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
         let mut first_id = 1u32;
-        let objects = scene
+        let (objects, sources): (Vec<ObjectResources>, Vec<Option<ShadowSource>>) = scene
             .objects
             .iter()
             .zip(sizes)
             .map(|(object, sizes)| {
                 let id = first_id;
                 first_id += sizes.1.len() as u32;
-                upload_object(ctx, &pipelines, &counter, object, id, sizes)
+                upload_object(ctx, &pipelines, &counter, object, id, sizes, lit)
             })
-            .collect();
+            .unzip();
+        let shadows = if lit {
+            Some(shadow_scene(ctx, sources)?)
+        } else {
+            None
+        };
+        let frame = FrameResources::new(
+            ctx,
+            &pipelines,
+            &shadows
+                .as_ref()
+                .map_or_else(|| empty_shadow_buffer(device), |s| s.buffer().clone()),
+        )?;
         let renderer = Self {
             timestamps: ctx.timestamps.then(|| Timestamps::new(device)),
             targets: Targets::new(ctx, width, height, &pipelines, &frame)?,
             sky: SkyResources::new(ctx, scene, width, height)?,
+            shadows,
             star_light_scale: 1.0,
             pipelines,
             frame,
@@ -486,6 +505,31 @@ impl GpuRenderer {
         ctx.take_errors()?;
         Ok(footprints)
     }
+}
+
+/// The shadow buffer of the objects whose BVHs `sources` holds (one entry per object of the
+/// scene): objects without triangles cast nothing.
+///
+/// # Errors
+/// Why an object with triangles has no BVH (e.g. [`GpuError::BvhTooDeep`]): its shadows could not
+/// be drawn; [`GpuError::ExceedsLimit`] when the buffer is too large.
+fn shadow_scene(
+    ctx: &GpuContext,
+    sources: Vec<Option<ShadowSource>>,
+) -> Result<ShadowScene, GpuError> {
+    let mut casters: Vec<(usize, ObjectBvh, Vec<GpuRtTriangle>)> = Vec::new();
+    for (index, source) in sources.into_iter().enumerate() {
+        match source {
+            Some(Ok((bvh, triangles))) => casters.push((index, bvh, triangles)),
+            Some(Err(GpuError::NotReady(_))) | None => {}
+            Some(Err(error)) => return Err(error),
+        }
+    }
+    let input: Vec<(usize, &ObjectBvh, &[GpuRtTriangle])> = casters
+        .iter()
+        .map(|(index, bvh, triangles)| (*index, bvh, triangles.as_slice()))
+        .collect();
+    ShadowScene::new(ctx, &ShadowRows::new(&input))
 }
 
 /// What the proxy pass drew for one triangle ([`GpuRenderer::read_footprints`]).

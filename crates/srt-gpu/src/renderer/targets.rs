@@ -68,6 +68,8 @@ impl Targets {
                         cie,
                         scale,
                         coefficients,
+                        slots::LIGHTS.entry(frame.lights.as_entire_binding()),
+                        slots::SHADOW_SCENE.entry(frame.shadow_scene.as_entire_binding()),
                     ],
                 })
             })
@@ -99,13 +101,20 @@ impl Targets {
     }
 }
 
-/// The frame uniforms and, per tone map, the colour table bound with them; the spectral tables.
+/// The frame uniforms and, per tone map, the colour table bound with them; the spectral tables;
+/// the lights and the shadow casters.
 pub(super) struct FrameResources {
     pub(super) uniforms: wgpu::Buffer,
+    /// The lights' uniforms (WGSL `lights`, [`crate::shadows::light_uniforms`]).
+    pub(super) lights: wgpu::Buffer,
+    /// WGSL `shadow_scene` ([`crate::shadows::ShadowScene`], or one unread row).
+    pub(super) shadow_scene: wgpu::Buffer,
     /// One bind group per tone map, indexed as [`ToneMap::ALL`] (the colour tables differ).
     pub(super) bind_groups: Vec<wgpu::BindGroup>,
     /// [`POLYGON_FRAME_GROUP`] per tone map, indexed as [`ToneMap::ALL`].
     pub(super) polygon_groups: Vec<wgpu::BindGroup>,
+    /// [`SKY_FRAME_GROUP`] per tone map, indexed as [`ToneMap::ALL`].
+    pub(super) sky_groups: Vec<wgpu::BindGroup>,
     /// The tables of spectral colour (also bound by [`SHADE_FRAME_GROUP`]).
     pub(super) spectral: SpectralTables,
     /// The colour-table parameters, indexed as [`ToneMap::ALL`].
@@ -115,16 +124,26 @@ pub(super) struct FrameResources {
 }
 
 impl FrameResources {
-    pub(super) fn new(ctx: &GpuContext, pipelines: &Pipelines) -> Result<Self, GpuError> {
-        let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("srt frame uniforms"),
-            size: size_of::<FrameUniforms>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+    /// The frame's resources, binding `shadow_scene` as WGSL `shadow_scene`.
+    pub(super) fn new(
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        shadow_scene: &wgpu::Buffer,
+    ) -> Result<Self, GpuError> {
+        let uniform = |label, size| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let uniforms = uniform("srt frame uniforms", size_of::<FrameUniforms>() as u64);
+        let lights = uniform("srt lights", size_of::<LightUniforms>() as u64);
         let spectral = SpectralTables::new(ctx)?;
         let mut bind_groups = Vec::new();
         let mut polygon_groups = Vec::new();
+        let mut sky_groups = Vec::new();
         let mut params = Vec::new();
         let mut lut_views = Vec::new();
         for tone_map in ToneMap::ALL {
@@ -149,14 +168,31 @@ impl FrameResources {
                     cie,
                     scale,
                     coefficients,
+                    slots::LIGHTS.entry(lights.as_entire_binding()),
+                    slots::SHADOW_SCENE.entry(shadow_scene.as_entire_binding()),
+                ],
+            }));
+            let [cie, scale, coefficients] = spectral.entries();
+            sky_groups.push(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(SKY_FRAME_GROUP.label),
+                layout: &pipelines.sky_frame_layout,
+                entries: &[
+                    slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
+                    slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
+                    cie,
+                    scale,
+                    coefficients,
                 ],
             }));
             lut_views.push(view);
         }
         Ok(Self {
             uniforms,
+            lights,
+            shadow_scene: shadow_scene.clone(),
             bind_groups,
             polygon_groups,
+            sky_groups,
             spectral,
             lut_params: params,
             lut_views,

@@ -293,8 +293,13 @@ pub(super) fn upload_batch(
     }
 }
 
+/// An object's BVH and its triangles in the BVH's leaf order, kept for the scene-wide shadow
+/// buffer ([`crate::shadows`]), or why the object has none.
+pub(super) type ShadowSource = Result<(ObjectBvh, Vec<GpuRtTriangle>), GpuError>;
+
 /// Uploads one object (batch sizes already checked): its uniform buffer and batches, numbered
-/// from `first_id`.
+/// from `first_id`, and its BVH for the ray tracer; with `for_shadows` also hands back the BVH
+/// and its triangles for the shadows of moving lights.
 pub(super) fn upload_object(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -302,7 +307,8 @@ pub(super) fn upload_object(
     object: &Object,
     first_id: u32,
     (culling, batches): (Vec<BackFaceCulling>, Vec<Batch>),
-) -> ObjectResources {
+    for_shadows: bool,
+) -> (ObjectResources, Option<ShadowSource>) {
     let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("srt object uniforms"),
         size: size_of::<ObjectUniforms>() as u64,
@@ -336,17 +342,25 @@ pub(super) fn upload_object(
             upload_batch(ctx, pipelines, counter, object, (batch, id), &geometry)
         })
         .collect();
-    let ray_tracing =
-        ObjectRayTracing::new(ctx, pipelines, &counter.counter, &rt_triangles, || {
-            format!("object {:?}", object.name)
-        });
-    ObjectResources {
+    let bvh = object_bvh(ctx, &rt_triangles, &format!("object {:?}", object.name));
+    let ray_tracing = bvh
+        .as_ref()
+        .map_err(Clone::clone)
+        .map(|bvh| ObjectRayTracing::new(ctx, pipelines, &counter.counter, &rt_triangles, bvh));
+    let shadow = for_shadows.then(|| {
+        bvh.map(|bvh| {
+            let ordered = bvh.in_leaf_order(&rt_triangles);
+            (bvh, ordered)
+        })
+    });
+    let resources = ObjectResources {
         uniforms,
         bind_group,
         culling,
         parts,
         ray_tracing,
-    }
+    };
+    (resources, shadow)
 }
 
 #[cfg(test)]
@@ -403,6 +417,7 @@ mod tests {
             wireframe: None,
             optics: SurfaceOptics::default(),
             clock: None,
+            motion: Default::default(),
         };
         let culling: Vec<BackFaceCulling> = object
             .parts
@@ -432,6 +447,7 @@ mod tests {
             wireframe: None,
             optics: SurfaceOptics::default(),
             clock: None,
+            motion: Default::default(),
         };
         let culling = vec![BackFaceCulling::for_mesh(&object.parts[0].mesh); 3];
         let triangles = object.parts[0].mesh.triangles().len() as u64;
