@@ -878,3 +878,108 @@ fn spectral_colour_and_sky_values_are_checked() {
     assert_eq!(built.exposure, 0.5);
     assert_eq!(built.sky.stars.len(), 7);
 }
+
+/// A minimal scene with one unit cube and the `light` tables `lights`.
+fn with_lights(lights: &str) -> String {
+    format!(
+        "[observer]\nposition = [0.0, -5.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\n\n{lights}\n\
+         [[object]]\nshape = {{ type = \"cube\" }}\n"
+    )
+}
+
+#[test]
+fn light_lists_build_a_carried_lamp_and_moving_lights() {
+    let (scene, _) = build(&with_lights(
+        "[[light]]\nposition = [0.0, -5.0, 2.0]\nstrength = 0.5\ncarried = true\n\
+         [[light]]\nposition = [1.0, 2.0, 3.0]\nbeta = [0.5, 0.0, 0.0]\ntemperature_k = 4000.0\n\
+         strength = 9.0\n",
+    ))
+    .unwrap();
+    assert_eq!(scene.light.strength, 0.5);
+    assert_eq!(scene.light.position, DVec3::new(0.0, -5.0, 2.0));
+    assert_eq!(scene.lights.len(), 1);
+    assert_eq!(scene.lights[0].frame.beta(), DVec3::new(0.5, 0.0, 0.0));
+    assert_eq!(scene.lights[0].frame.offset(), DVec3::new(1.0, 2.0, 3.0));
+    assert_eq!(
+        (scene.lights[0].temperature_k, scene.lights[0].strength),
+        (4000.0, 9.0)
+    );
+    // A list without a carried entry has no lamp.
+    let (scene, _) = build(&with_lights("[[light]]\nposition = [1.0, 2.0, 3.0]\n")).unwrap();
+    assert_eq!(scene.light.strength, 0.0);
+    assert_eq!(scene.lights.len(), 1);
+}
+
+#[test]
+fn bad_lights_are_refused_naming_the_key() {
+    let lamp_moves = value_error(&with_lights(
+        "[light]\nposition = [0.0, 0.0, 1.0]\nbeta = [0.1, 0.0, 0.0]\n",
+    ));
+    assert!(
+        lamp_moves.contains("light.beta") && lamp_moves.contains("[[light]]"),
+        "{lamp_moves}"
+    );
+    let fast = value_error(&with_lights(
+        "[[light]]\nposition = [0.0, 0.0, 1.0]\nbeta = [1.0, 0.0, 0.0]\n",
+    ));
+    assert!(fast.contains("light[0].beta"), "{fast}");
+    let negative = value_error(&with_lights(
+        "[[light]]\nposition = [0.0, 0.0, 1.0]\nstrength = -1.0\n",
+    ));
+    assert!(negative.contains("light[0].strength"), "{negative}");
+    let two_lamps = value_error(&with_lights(
+        "[[light]]\nposition = [0.0, 0.0, 1.0]\ncarried = true\n[[light]]\nposition = [0.0, 0.0, 2.0]\ncarried = true\n",
+    ));
+    assert!(two_lamps.contains("at most one"), "{two_lamps}");
+    let many: String = (0..9)
+        .map(|i| format!("[[light]]\nposition = [{i}.0, 0.0, 1.0]\n"))
+        .collect();
+    let too_many = value_error(&with_lights(&many));
+    assert!(
+        too_many.contains("at most 8 moving lights, got 9"),
+        "{too_many}"
+    );
+    let unknown = build(&with_lights(
+        "[[light]]\nposition = [0.0, 0.0, 1.0]\ncolour = 1\n",
+    ))
+    .unwrap_err();
+    assert!(unknown.to_string().contains("colour"), "{unknown}");
+}
+
+#[test]
+fn bad_motions_are_refused_naming_the_object_and_the_point() {
+    // Whether a point is too fast or beyond the horizon depends on the built mesh: the build
+    // refuses it.
+    let build_error = |text: &str| build(text).unwrap_err().to_string();
+    let fast = build_error(&with_object(
+        "spin = { axis = [0.0, 0.0, 1.0], rate = 2.0 }",
+    ));
+    assert!(
+        fast.contains("spin.rate of object \"probe\"") && fast.contains("speed of light"),
+        "{fast}"
+    );
+    let zero = value_error(&with_object(
+        "spin = { axis = [0.0, 0.0, 0.0], rate = 0.5 }",
+    ));
+    assert!(
+        zero.contains("spin of object \"probe\"") && zero.contains("zero vector"),
+        "{zero}"
+    );
+    let horizon = build_error(&with_object(
+        "thrust = { proper_acceleration = [0.0, 3.0, 0.0] }",
+    ));
+    assert!(horizon.contains("Rindler horizon"), "{horizon}");
+    let both = value_error(&with_object(
+        "spin = { axis = [0.0, 0.0, 1.0], rate = 0.5 }\nthrust = { proper_acceleration = [0.0, 0.1, 0.0] }",
+    ));
+    assert!(both.contains("not both"), "{both}");
+    let backwards = value_error(&with_object(
+        "thrust = { proper_acceleration = [0.0, 0.1, 0.0], duration = -1.0 }",
+    ));
+    assert!(backwards.contains("duration"), "{backwards}");
+    // A thrust without end is written `inf`, and round-trips.
+    let text = with_object("thrust = { proper_acceleration = [0.0, 0.1, 0.0], duration = inf }");
+    let description = parse(&text).unwrap();
+    let again = parse(&description.to_toml_string()).unwrap();
+    assert_eq!(description, again);
+}
