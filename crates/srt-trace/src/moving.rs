@@ -233,7 +233,7 @@ fn slab(ray: &RestRay, lo: DVec3, hi: DVec3) -> Option<(f64, f64)> {
     let (a, b) = ((lo - ray.origin) * inverse, (hi - ray.origin) * inverse);
     let near = a.min(b).max_element();
     let far = a.max(b).min_element() * (1.0 + 1e-12) + 1e-12;
-    (!(near > far)).then_some((near, far))
+    (near <= far || near.is_nan() || far.is_nan()).then_some((near, far))
 }
 
 /// The object's S′ time at ray parameter `s`.
