@@ -17,15 +17,17 @@ pub const VISIBLE_NM: (f64, f64) = (380.0, 780.0);
 pub struct Probe {
     /// The object's name.
     pub object: String,
-    /// Its velocity relative to the observer, in units of c.
+    /// The velocity of the surface point relative to the observer at the emission event, in
+    /// units of c: the object's, or for a spinning or thrusting body the point's own
+    /// ([`srt_trace::Tracer::surface_at`]).
     pub beta: DVec3,
     /// Where the point is seen (the emission event's position in S, Eq. 8).
     pub apparent_position: DVec3,
     /// World time ct (in the scene's frame W, the observer's when it rests there) at which the
     /// light seen left the surface (Eq. 7–8; [`srt_trace::SeenEvent`], as `srt render --aov`).
     pub emission_ct: f64,
-    /// The object's proper time there: what a clock resting on the surface showed as the light
-    /// left it.
+    /// The proper time there: what a clock riding on the surface point showed as the light left
+    /// it.
     pub proper_time: f64,
     /// How far the light travelled to the observer (= ct_obs − ct_emission, Eq. 6).
     pub apparent_distance: f64,
@@ -58,7 +60,7 @@ impl Probe {
     pub fn lines(&self) -> Vec<String> {
         vec![
             format!(
-                "{} (moving at {:.4}c relative to you)",
+                "{} (this point moving at {:.4}c relative to you)",
                 self.object,
                 self.beta.length()
             ),
@@ -99,7 +101,7 @@ pub fn probe(scene: &Scene, width: u32, height: u32, x: u32, y: u32) -> Option<P
     let tracer = Tracer::new(scene);
     let hit = tracer.hit_at_pixel(width, height, x, y)?;
     let object = scene.objects.get(hit.object)?;
-    let beta = object.frame.beta();
+    let beta = tracer.surface_at(&hit).beta;
     let apparent_position = hit.emission.position;
     let seen = tracer.seen_event(&hit);
     // Propagation directions in S, as the shading uses them (§4.2): light → surface and
@@ -204,5 +206,37 @@ mod tests {
         let scene = fig7();
         assert_eq!(probe(&scene, 64, 48, 0, 0), None);
         assert_eq!(probe(&scene, 64, 48, 64, 0), None);
+    }
+}
+
+#[cfg(test)]
+mod moving_body_tests {
+    use super::*;
+
+    #[test]
+    fn the_probe_gives_a_spinning_points_own_velocity() {
+        let text = r#"
+            [observer]
+            position = [0.0, -6.0, 0.0]
+            look_at = [0.0, 0.0, 0.0]
+            [[object]]
+            shape = { type = "cube", size = 1.6 }
+            spin = { axis = [0.0, 0.0, 1.0], rate = 0.5 }
+        "#;
+        let description = srt_scene::SceneDescription::from_toml_str(text, "test").unwrap();
+        let (scene, _) = description.build(std::path::Path::new(".")).unwrap();
+        // The object rests; a point left of the axis on the face towards the observer moves at
+        // ω·(its distance from the axis) across the line of sight.
+        let found = probe(&scene, 64, 48, 24, 24).unwrap();
+        assert!(found.beta.length() > 0.05, "{}", found.beta);
+        let tracer = Tracer::new(&scene);
+        let hit = tracer.hit_at_pixel(64, 48, 24, 24).unwrap();
+        let state = tracer.surface_at(&hit);
+        let speed = 0.5 * DVec3::new(state.body.x, state.body.y, 0.0).length();
+        assert!(
+            (found.beta.length() - speed).abs() < 1e-9,
+            "{} vs {speed}",
+            found.beta
+        );
     }
 }
