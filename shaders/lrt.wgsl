@@ -150,15 +150,26 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         atomicAdd(&fragment_count[1], 1u);
     }
     let t = kept.y;
-    // The same computation as in the visibility pass, so the same hit.
+    // The same computation as in the visibility pass, so the same hit; for a spinning or
+    // thrusting body the same march (motion.wgsl), on the kept triangle alone.
     let h = lrt_hit(t, pixel);
-    let corners = h.corners;
-    let hit = h.hit;
-    let emission = vec4<f32>(h.ray.ct_origin - hit.distance, h.ray.origin + hit.distance * h.ray.direction);
-    if (writes_seen_events()) {
-        return seen_pixel(emission);
+    var corners = h.corners;
+    var hit = h.hit;
+    let moving = motion_kind() != MOTION_REST;
+    if (moving) {
+        hit = moving_hit_on(h.ray, h.corners);
+        corners = moving_corners(h.corners, hit.distance);
     }
-    // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does).
+    let emission = vec4<f32>(h.ray.ct_origin - hit.distance, h.ray.origin + hit.distance * h.ray.direction);
+    var local = resting_frame(proper_time_at(emission));
+    if (moving) {
+        local = moving_frame(t, hit.zeta, hit.xi, hit.distance, emission);
+    }
+    if (writes_seen_events()) {
+        return seen_pixel(emission, local);
+    }
+    // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does),
+    // on the triangle where it is at the event.
     var uv_ddx = vec2<f32>(0.0);
     var uv_ddy = vec2<f32>(0.0);
     if ((part_has(PART_TEXTURED) || has_clock()) && object.style.x <= 0.0) {
@@ -171,7 +182,6 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
     }
     let event = to_observer(object.frame, emission);
-    let proper_time = proper_time_at(emission);
-    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy, proper_time);
-    return shade(t, hit.zeta, hit.xi, event.yzw, albedo, proper_time, Receiver(event, emission));
+    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy, local.proper_time);
+    return shade(t, hit.zeta, hit.xi, event.yzw, albedo, local, Receiver(event, emission));
 }

@@ -35,7 +35,8 @@ fn polygon_emission(in: PolygonVarying) -> vec4<f32> {
 @fragment
 fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     if (writes_seen_events()) {
-        return seen_pixel(polygon_emission(in));
+        let emission = polygon_emission(in);
+        return seen_pixel(emission, resting_frame(proper_time_at(emission)));
     }
     // Only a clock, a flipbook or a blinking emission needs the fragment's proper time, and only
     // moving lights' shadows its emission event (one light-cone solve).
@@ -61,5 +62,5 @@ fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
         let observer_ct = to_observer(object.frame, object.frame.observer_rest).x;
         receiver.event = vec4<f32>(observer_ct - distance(in.apparent, frame_uniforms.observer.xyz), in.apparent);
     }
-    return shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo, proper_time, receiver);
+    return shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo, resting_frame(proper_time), receiver);
 }

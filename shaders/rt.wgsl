@@ -12,10 +12,15 @@
 // each other there: the reference's algorithm (srt-trace), where the LRT pays one ray test per
 // footprint covering the pixel.
 //
+// A body that spins or thrusts in S′ (motion.wgsl) is drawn through the box that holds it at
+// every event a backward ray can meet it (srt_gpu::motion::sweep_bounds), and each fragment
+// marches the ray's body-space curve piece by piece, each piece's candidates from the BVH by box
+// overlap (moving_nearest_hit; mirror: crates/srt-trace/src/moving.rs).
+//
 // Mirror: srt_gpu::bvh::ObjectBvh::nearest_hit (the traversal, tested against a test of every
 // triangle) and crates/srt-trace (the image, compared by `cargo xtask validate`).
-// Composed after lrt.wgsl (it uses `fragment_count`, `lrt_vertex`, `VisibilityOutput`, `visible`)
-// and bvh.wgsl (the slab test).
+// Composed after lrt.wgsl (it uses `fragment_count`, `lrt_vertex`, `VisibilityOutput`, `visible`),
+// bvh.wgsl (the slab test) and motion.wgsl (the moving bodies' curves and pieces).
 
 // The object's BVH nodes (srt_gpu::bvh::ObjectBvh::nodes), root first.
 @group(3) @binding(3) var<storage, read> bvh_nodes: array<BvhNode>;
@@ -28,16 +33,16 @@ fn box_entry(node: u32, origin: vec3<f32>, inverse: vec3<f32>, limit: f32) -> f3
     return slab_entry(bvh_nodes[node].min, bvh_nodes[node].max, origin, inverse, limit);
 }
 
-// The nearest hit of the ray with the object's triangles, through its BVH; `triangle` is the
-// hit's entry in bvh_triangles. Ties keep the triangle found first.
+// The nearest hit of the ray with the object's triangles at a distance in [lower, limit), through
+// its BVH; `triangle` is the hit's entry in bvh_triangles. Ties keep the triangle found first.
 struct BvhHit {
     found: bool,
     distance: f32,
     triangle: u32,
 }
 
-fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>) -> BvhHit {
-    var best = BvhHit(false, 3.4e38, 0u);
+fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>, lower: f32, limit: f32) -> BvhHit {
+    var best = BvhHit(false, limit, 0u);
     let inverse = safe_inverse(direction);
     if (box_entry(0u, origin, inverse, best.distance) < 0.0) {
         return best;
@@ -53,7 +58,7 @@ fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>) -> BvhHit {
             for (var k = first; k < first + count; k++) {
                 let t = bvh_triangles[k];
                 let hit = intersect_triangle(origin, direction, array<vec3<f32>, 3>(t.p0, t.p1, t.p2));
-                if (hit.found && hit.distance < best.distance) {
+                if (hit.found && hit.distance < best.distance && hit.distance >= lower) {
                     best = BvhHit(true, hit.distance, k);
                 }
             }
@@ -85,13 +90,115 @@ fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>) -> BvhHit {
     return best;
 }
 
+// Whether the node's box overlaps the box [lo, hi].
+fn box_overlaps(node: u32, lo: vec3<f32>, hi: vec3<f32>) -> bool {
+    return all(bvh_nodes[node].min <= hi) && all(bvh_nodes[node].max >= lo);
+}
+
+// Whether the crossing `hit` of triangle entry `k` is nearer than `best`: by distance, then by the
+// lower (part, triangle), as the reference breaks ties.
+fn crossing_closer(hit: TriangleHit, k: u32, best: BvhHit) -> bool {
+    if (!best.found || hit.distance < best.distance) {
+        return true;
+    }
+    if (hit.distance > best.distance) {
+        return false;
+    }
+    let a = bvh_triangles[k];
+    let b = bvh_triangles[best.triangle];
+    return a.part < b.part || (a.part == b.part && a.triangle < b.triangle);
+}
+
+// The nearest crossing on one piece of a moving body's curve among the triangles whose BVH boxes
+// overlap the piece's padded box (mirror of the reference's traverse_iterator over the query box).
+fn piece_nearest_hit(ray: RestRay, piece: MotionPiece) -> BvhHit {
+    var best = BvhHit(false, 3.4e38, 0u);
+    if (!box_overlaps(0u, piece.lo, piece.hi)) {
+        return best;
+    }
+    var stack: array<u32, BVH_STACK_SIZE>;
+    var top = 0u;
+    var node = 0u;
+    loop {
+        let count = bvh_nodes[node].primitive_count;
+        let first = bvh_nodes[node].first;
+        var descend = false;
+        if (count > 0u) {
+            for (var k = first; k < first + count; k++) {
+                let t = bvh_triangles[k];
+                let hit = motion_crossing(ray, piece, array<vec3<f32>, 3>(t.p0, t.p1, t.p2));
+                if (hit.found && crossing_closer(hit, k, best)) {
+                    best = BvhHit(true, hit.distance, k);
+                }
+            }
+        } else {
+            let a = box_overlaps(first, piece.lo, piece.hi);
+            let b = box_overlaps(first + 1u, piece.lo, piece.hi);
+            if (a && b) {
+                stack[top] = first + 1u;
+                top++;
+                node = first;
+                descend = true;
+            } else if (a) {
+                node = first;
+                descend = true;
+            } else if (b) {
+                node = first + 1u;
+                descend = true;
+            }
+        }
+        if (!descend) {
+            if (top == 0u) {
+                break;
+            }
+            top--;
+            node = stack[top];
+        }
+    }
+    return best;
+}
+
+// The nearest crossing of the backward ray with the spinning or thrusting body (mirror of
+// PreparedObject::closest_hit_moving): the coasting line, the march, the ray before the start.
+fn moving_nearest_hit(ray: RestRay) -> BvhHit {
+    let plan = motion_plan(ray);
+    if (plan.coast_end > 0.0) {
+        var hit = bvh_nearest_hit(plan.line_origin, plan.line_direction, 0.0, plan.coast_end * plan.speed);
+        if (hit.found) {
+            hit.distance /= plan.speed;
+            return hit;
+        }
+    }
+    var start = motion_march_start(ray, plan);
+    for (var k = 1u; k <= plan.pieces; k++) {
+        let piece = motion_piece(ray, plan, k, start);
+        start = piece.end;
+        if (!piece.valid) {
+            continue;
+        }
+        let hit = piece_nearest_hit(ray, piece);
+        if (hit.found) {
+            return hit;
+        }
+    }
+    if (plan.rest_from >= 0.0) {
+        return bvh_nearest_hit(ray.origin, ray.direction, plan.rest_from, 3.4e38);
+    }
+    return BvhHit(false, 3.4e38, 0u);
+}
+
 @fragment
 fn rt_visibility(@builtin(position) position: vec4<f32>) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }
     let ray = backward_ray(object.frame, view_direction(position.xy));
-    let hit = bvh_nearest_hit(ray.origin, ray.direction);
+    var hit: BvhHit;
+    if (motion_kind() == MOTION_REST) {
+        hit = bvh_nearest_hit(ray.origin, ray.direction, 0.0, 3.4e38);
+    } else {
+        hit = moving_nearest_hit(ray);
+    }
     if (!hit.found) {
         discard;
     }

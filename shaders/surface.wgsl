@@ -149,6 +149,22 @@ struct Receiver {
     rest: vec4<f32>,
 }
 
+// The frame a surface point is shaded in (mirror of srt_trace::SurfaceState): the velocity of
+// its local rest frame relative to S, its unit normal there (the zero vector: the triangle's
+// interpolated vertex normal, for a body at rest in S′) and the proper time its clock shows.
+// For a body at rest in S′ the local rest frame is S′ (resting_frame); a spinning or thrusting
+// body's points have their own (motion.wgsl, moving_frame).
+struct LocalFrame {
+    beta: vec3<f32>,
+    normal: vec3<f32>,
+    proper_time: f32,
+}
+
+// The local frame of a point of a body at rest in S′ whose clock shows `proper_time`.
+fn resting_frame(proper_time: f32) -> LocalFrame {
+    return LocalFrame(object.frame.beta_gamma.xyz, vec3<f32>(0.0), proper_time);
+}
+
 // (f_diff, f_spec) of Eq. 18 for the unit directions (in S′) `to_light` and `to_observer` on a
 // surface with the unit normal `normal` (facing the observer); 0 where the light is behind it
 // (mirror of srt_trace's phong_terms).
@@ -172,7 +188,7 @@ fn phong_terms(normal: vec3<f32>, to_light: vec3<f32>, to_observer: vec3<f32>) -
 // reflectance spectrum under the black body at D_in·T_light, shifted by D_out, its factor
 // f_amb + f_diff + f_spec. The lamp's light is all times its strength (LightUniforms.lamp.x).
 // An emitting object sends its black body at D_out·T_e instead, while it shines at the object's
-// proper time `proper_time` (emitter_shines).
+// proper time (emitter_shines). All of it in the point's local rest frame `local`.
 //
 // Each moving light (shadows.wgsl) that the point faces and no object shadows adds its diffuse
 // and specular terms, from the direction its light arrives in at the point's emission event
@@ -182,8 +198,9 @@ fn phong_terms(normal: vec3<f32>, to_light: vec3<f32>, to_observer: vec3<f32>) -
 // the result is the lamp's alone, computed as before moving lights existed.
 //
 // Mirror of srt_trace::shade::arriving_unless_shadowed and Arriving::display / radiance.
-fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32, receiver: Receiver) -> vec3<f32> {
-    let beta = object.frame.beta_gamma.xyz;
+fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, local: LocalFrame, receiver: Receiver) -> vec3<f32> {
+    let beta = local.beta;
+    let proper_time = local.proper_time;
     let incident = normalize(apparent - frame_uniforms.light.xyz);
     let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
     let relativistic = frame_uniforms.effects != EFFECTS_GEOMETRY;
@@ -207,8 +224,11 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
     let to_light = -normalize(aberrate(-beta, incident));
     let to_observer = normalize(aberrate(-beta, outgoing));
     let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
-    var normal = normalize(w.x * vertices[indices[3u * t]].normal.xyz + w.y * vertices[indices[3u * t + 1u]].normal.xyz
-        + w.z * vertices[indices[3u * t + 2u]].normal.xyz);
+    var normal = local.normal;
+    if (all(normal == vec3<f32>(0.0))) {
+        normal = normalize(w.x * vertices[indices[3u * t]].normal.xyz + w.y * vertices[indices[3u * t + 1u]].normal.xyz
+            + w.z * vertices[indices[3u * t + 2u]].normal.xyz);
+    }
     if (dot(normal, to_observer) < 0.0) {
         normal = -normal;
     }
@@ -267,8 +287,8 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
 }
 
 // The pixel a surface point gives: its light (surface_output) as the colour target holds it.
-fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, proper_time: f32, receiver: Receiver) -> vec4<f32> {
-    return output_pixel(surface_output(t, zeta, xi, apparent, albedo, proper_time, receiver));
+fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, local: LocalFrame, receiver: Receiver) -> vec4<f32> {
+    return output_pixel(surface_output(t, zeta, xi, apparent, albedo, local, receiver));
 }
 
 // Whether the current object wears a clock face (clock.wgsl).
@@ -294,10 +314,10 @@ fn proper_time_at(emission_rest: vec4<f32>) -> f32 {
 }
 
 // What a pixel sees of time at the emission event `emission_rest` (rest coordinates) on the
-// current object, as the seen-event outputs write it (mirror of srt_trace::SeenEvent):
+// current object, the point's local frame `local`, as the seen-event outputs write it (mirror of srt_trace::SeenEvent):
 // OUTPUT_SEEN_EVENT (world time ct_W, the object's proper time, the apparent distance, the
 // Doppler factor of the light towards the observer), or OUTPUT_SEEN_OBJECT (its index in x).
-fn seen_pixel(emission_rest: vec4<f32>) -> vec4<f32> {
+fn seen_pixel(emission_rest: vec4<f32>, local: LocalFrame) -> vec4<f32> {
     if (frame_uniforms.output == OUTPUT_SEEN_OBJECT) {
         return vec4<f32>(object.time.x, 0.0, 0.0, 0.0);
     }
@@ -305,9 +325,9 @@ fn seen_pixel(emission_rest: vec4<f32>) -> vec4<f32> {
     let towards_observer = frame_uniforms.observer.xyz - event.yzw;
     return vec4<f32>(
         dot(object.world_time, emission_rest) + object.time.z,
-        proper_time_at(emission_rest),
+        local.proper_time,
         length(towards_observer),
-        doppler_factor(object.frame.beta_gamma.xyz, normalize(towards_observer)),
+        doppler_factor(local.beta, normalize(towards_observer)),
     );
 }
 

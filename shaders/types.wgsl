@@ -104,7 +104,28 @@ struct ObjectUniforms {
     clock_face: vec4<f32>,
     // The clock's ink colour.
     clock_ink: vec4<f32>,
+    // Its motion within its rest frame (srt_physics::motion::Motion; motion.wgsl, filled by
+    // srt_gpu::motion::MotionUniforms): x one of MOTION_*; y the spin rate ω or the thrust's
+    // proper acceleration α; z the spin phase ω·ct′₀ (mod 2π) or the thrust's elapsed time
+    // ct′₀ − ct₀, ct′₀ the object's S′ time at the observation event; w the thrust's final
+    // rapidity (< 0: it never ends).
+    motion: vec4<f32>,
+    // The unit spin axis or thrust direction (xyz), and the body's reach (w): a spinning body's
+    // largest distance from its centre, otherwise its box's diagonal.
+    motion_axis: vec4<f32>,
+    // The spin centre (xyz); w unused.
+    motion_centre: vec4<f32>,
+    // The body's box at rest, lower corner (xyz); a spinning body's lowest height along its axis
+    // from the centre (w).
+    motion_low: vec4<f32>,
+    // The body's box at rest, upper corner (xyz); a spinning body's highest height (w).
+    motion_high: vec4<f32>,
 }
+
+// ObjectUniforms.motion.x (srt_gpu::motion::MotionCode).
+const MOTION_REST: u32 = 0u;
+const MOTION_SPIN: u32 = 1u;
+const MOTION_THRUST: u32 = 2u;
 
 // Per mesh part: its material.
 struct PartUniforms {

@@ -109,20 +109,17 @@ impl Engine {
                 note,
             })
         };
-        // The GPU draws bodies at rest in their frames only: spinning and thrusting ones are
-        // the CPU reference's (docs/physics.md, "Spinning and accelerating bodies").
+        // The GPU draws spinning and thrusting bodies with its exact methods (traced through
+        // their BVH, docs/physics.md "Spinning and accelerating bodies"); the polygon method
+        // cannot.
         let moving = scene.objects.iter().find(|o| !o.motion.is_rest());
         if let Some(object) = moving
-            && backend != Backend::Cpu
+            && method == Method::Polygon
         {
-            let why = format!(
-                "{} spins or thrusts, which only the CPU renderer draws so far",
+            bail!(
+                "{} spins or thrusts, which the polygon method cannot draw; use an exact method",
                 object.name
             );
-            if backend == Backend::Gpu || !method.is_exact() {
-                bail!("{why}; use --backend cpu");
-            }
-            return cpu(Some(format!("{why}; rendering on the CPU")));
         }
         let context = match backend {
             Backend::Cpu if method == Method::Polygon => {

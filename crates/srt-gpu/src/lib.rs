@@ -24,6 +24,10 @@
 //! (`shadows.wgsl`, buffers by [`shadows`]; mirror: `srt_physics::RetardedLight` and
 //! `srt-trace`'s shadow test).
 //!
+//! Bodies that spin or thrust within their rest frame (`srt_physics::motion`) are always traced
+//! through their BVH: the backward ray becomes a curve in body space, marched in pieces
+//! (`motion.wgsl`, [`motion`]; mirror: `srt-trace`'s `moving`).
+//!
 //! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The
 //! production modules never depend on [`probe`], the validation harness.
 
@@ -34,6 +38,7 @@ pub mod error;
 pub mod formats;
 pub mod limits;
 pub mod lut;
+pub mod motion;
 pub mod passes;
 pub mod pipelines;
 pub mod probe;

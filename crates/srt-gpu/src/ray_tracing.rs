@@ -12,6 +12,10 @@
 //! point inside a box leaves it through the box's surface, through a face turned away from its
 //! origin; the footprint of the surface triangle it crosses holds the pixel (srt-proxy's
 //! guarantee, checked by `cargo xtask validate`).
+//!
+//! A body that spins or thrusts in its rest frame ([`crate::motion`]) is drawn through the box
+//! that holds it at every event a backward ray may meet it ([`crate::motion::sweep_bounds`]),
+//! rewritten every frame; its fragments march the ray's body-space curve (`motion.wgsl`).
 
 use glam::DVec3;
 use wgpu::util::DeviceExt as _;
@@ -43,6 +47,8 @@ pub(crate) const BOX_TRIANGLES: u32 = 12;
 pub(crate) struct ObjectRayTracing {
     /// The box's uniforms (their culling flag is written every frame).
     box_uniforms: wgpu::Buffer,
+    /// The box's corners, rewritten every frame for a moving body.
+    box_vertices: wgpu::Buffer,
     /// The BVH's (widened) box in S′.
     bounds: ([f32; 3], [f32; 3]),
     /// The object's surface area over its box's: how many layers of triangles an average
@@ -116,7 +122,11 @@ impl BoxBuffers {
                 contents: bytemuck::bytes_of(&box_uniforms(false)),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             }),
-            vertices: storage("srt box vertices", bytemuck::cast_slice(&vertices)),
+            vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("srt box vertices"),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            }),
             indices: storage("srt box indices", bytemuck::cast_slice(&triangles)),
             footprints: zeroed(
                 "srt box footprints",
@@ -240,6 +250,7 @@ impl ObjectRayTracing {
                 ],
             ),
             box_uniforms: boxed.uniforms,
+            box_vertices: boxed.vertices,
             bounds,
             layers,
             box_bound: boxed.bound,
@@ -264,9 +275,23 @@ impl ObjectRayTracing {
     }
 
     /// Sets, for the observer at `observer` in S′, whether the proxy pass culls the box's faces
-    /// turned towards it.
-    pub fn write_culling(&self, queue: &wgpu::Queue, observer: DVec3) {
-        let (min, max) = self.bounds;
+    /// turned towards it; for a moving body also its box this frame, `sweep`
+    /// ([`crate::motion::sweep_bounds`]).
+    pub fn write_culling(
+        &self,
+        queue: &wgpu::Queue,
+        observer: DVec3,
+        sweep: Option<(DVec3, DVec3)>,
+    ) {
+        let (min, max) = match sweep {
+            Some((lo, hi)) => {
+                let (lo, hi) = (lo.as_vec3().to_array(), hi.as_vec3().to_array());
+                let (vertices, _) = box_geometry(lo, hi);
+                queue.write_buffer(&self.box_vertices, 0, bytemuck::cast_slice(&vertices));
+                (lo, hi)
+            }
+            None => self.bounds,
+        };
         let uniforms = box_uniforms(box_near_faces_cullable(min, max, observer));
         queue.write_buffer(&self.box_uniforms, 0, bytemuck::bytes_of(&uniforms));
     }

@@ -24,6 +24,9 @@ pub const SURFACE: &str = include_str!("../shaders/surface.wgsl");
 pub const PROXY: &str = include_str!("../shaders/proxy.wgsl");
 /// The local ray tracing pass.
 pub const LRT: &str = include_str!("../shaders/lrt.wgsl");
+/// Spinning and thrusting bodies: their body-space curves and local rest frames (mirror of
+/// srt-trace's `moving`).
+pub const MOTION: &str = include_str!("../shaders/motion.wgsl");
 /// The GPU ray tracer's visibility pass (composed after [`LRT`]).
 pub const RT: &str = include_str!("../shaders/rt.wgsl");
 /// The slab test of BVH traversal (the ray tracer's and the shadows').
@@ -86,13 +89,18 @@ const fn shadow_overrides(moving_lights: f64) -> [(&'static str, f64); 3] {
     ]
 }
 
-/// The overrides of the LRT shader (with the ray tracer's) with the fragment counter on or off
-/// and the moving lights compiled in or out.
-const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static str, f64); 9] {
+/// The overrides of the LRT shader (with the ray tracer's and motion.wgsl's) with the fragment
+/// counter on or off and the moving lights compiled in or out.
+const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static str, f64); 11] {
     let s = SPECTRAL_OVERRIDES;
     let [slab, margin, lights] = shadow_overrides(moving_lights);
     [
         ("COUNT_FRAGMENTS", count_fragments),
+        ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
+        (
+            "MOTION_THRUST_PIECES_PER_SIZE",
+            crate::motion::THRUST_PIECES_PER_SIZE,
+        ),
         slab,
         margin,
         lights,
@@ -212,6 +220,7 @@ pub fn lrt(counting: bool, lit: bool) -> Shader {
             ("surface.wgsl", SURFACE),
             ("bvh.wgsl", BVH),
             ("shadows.wgsl", SHADOWS),
+            ("motion.wgsl", MOTION),
             ("lrt.wgsl", LRT),
             ("rt.wgsl", RT),
         ]),

@@ -23,6 +23,10 @@
 //! buffers, and srt asks for at most eight per stage (`context::device_descriptor`; WebGPU's
 //! default, and what llvmpipe's GL serves). A scene without moving lights binds a one-row
 //! buffer and the shaders never read it.
+//!
+//! Bodies that spin or thrust in their rest frames ([`crate::motion`]) are not shadow casters
+//! here: the walk meets static triangles only, and they are left out rather than drawn where
+//! they rest (the CPU reference shadows with them exactly; not yet mirrored).
 
 use bytemuck::Zeroable as _;
 use srt_scene::Scene;

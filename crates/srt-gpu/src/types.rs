@@ -262,6 +262,17 @@ pub struct ObjectUniforms {
     pub clock_face: [f32; 4],
     /// The clock's ink colour (rgb).
     pub clock_ink: [f32; 4],
+    /// Its motion within its rest frame: kind, rate or α, phase or elapsed time, final
+    /// rapidity ([`crate::motion::MotionUniforms`]).
+    pub motion: [f32; 4],
+    /// The spin axis or thrust direction (xyz) and the body's reach (w).
+    pub motion_axis: [f32; 4],
+    /// The spin centre (xyz); w unused.
+    pub motion_centre: [f32; 4],
+    /// The body's box at rest, lower corner (xyz), and its lowest height along the spin axis (w).
+    pub motion_low: [f32; 4],
+    /// The body's box at rest, upper corner (xyz), and its highest height along the spin axis (w).
+    pub motion_high: [f32; 4],
 }
 
 /// `ObjectUniforms::clock`, `clock_face` and `clock_ink` of a clock face, or zeros for none.

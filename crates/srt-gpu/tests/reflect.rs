@@ -11,6 +11,7 @@
 
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 use naga::{AddressSpace, Expression, ImageClass, ImageDimension, Literal, Module, TypeInner};
+use srt_gpu::motion::MotionCode;
 use srt_gpu::pipelines::{BindGroupSpec, PipelineSpec, Slot};
 use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
@@ -55,12 +56,18 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("SHADOW_OBJECT_ROWS", SHADOW_OBJECT_ROWS),
         ("SHADOW_NODE_ROWS", SHADOW_NODE_ROWS),
         ("SHADOW_TRIANGLE_ROWS", SHADOW_TRIANGLE_ROWS),
+        ("MOTION_REST", MotionCode::REST.0),
+        ("MOTION_SPIN", MotionCode::SPIN.0),
+        ("MOTION_THRUST", MotionCode::THRUST.0),
+        ("MOTION_MAX_PIECES", srt_gpu::motion::MAX_PIECES),
+        ("MOTION_BISECTIONS", srt_gpu::motion::BISECTIONS),
     ]
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 11] = [
+const SHARED_FAMILIES: [&str; 12] = [
     "BVH_",
+    "MOTION_",
     "DRAW_ARGS_",
     "EFFECTS_",
     "FOOTPRINT_",

@@ -2,6 +2,7 @@
 //! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
 
 use super::*;
+use crate::motion::{MotionUniforms, sweep_bounds};
 
 impl super::GpuRenderer {
     /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities) and
@@ -85,7 +86,7 @@ impl super::GpuRenderer {
         for (index, (object, resources)) in scene.objects.iter().zip(&self.objects).enumerate() {
             let (time, world_time) = object_time(object, index, &scene.world);
             let clock = ClockUniforms::from(object.clock.as_ref());
-            let uniforms = ObjectUniforms {
+            let mut uniforms = ObjectUniforms {
                 frame: GpuFrame::new(&object.frame, event),
                 style: [object.wireframe.unwrap_or(0.0) as f32, 0.0, 0.0, 0.0],
                 optics: optics4(&object.optics),
@@ -95,7 +96,9 @@ impl super::GpuRenderer {
                 clock: clock.clock,
                 clock_face: clock.face,
                 clock_ink: clock.ink,
+                ..bytemuck::Zeroable::zeroed()
             };
+            MotionUniforms::new(object, &resources.extent, event).apply(&mut uniforms);
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
             for batch in &resources.parts {
@@ -114,7 +117,11 @@ impl super::GpuRenderer {
                     .write_buffer(&batch.uniforms, 0, bytemuck::bytes_of(&material));
             }
             if let Ok(rt) = &resources.ray_tracing {
-                rt.write_culling(&ctx.queue, object.frame.to_rest(event).position);
+                rt.write_culling(
+                    &ctx.queue,
+                    object.frame.to_rest(event).position,
+                    sweep_bounds(object, &resources.extent, event),
+                );
             }
         }
         Ok(tone)
@@ -152,7 +159,7 @@ impl super::GpuRenderer {
     ) -> Result<(), GpuError> {
         let output = output.into();
         let tone = self.write_uniforms(ctx, scene, footprint, output)?;
-        let traced = self.traced_objects(method)?;
+        let traced = self.traced_objects(scene, method)?;
         if self.count_fragments {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
@@ -200,21 +207,37 @@ impl super::GpuRenderer {
     /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
     /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
     /// [`Method::Polygon`], and for [`Method::Auto`] those for which
-    /// [`ObjectRayTracing::preferred`] says so.
+    /// [`ObjectRayTracing::preferred`] says so. A body that spins or thrusts in its rest frame
+    /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
+    /// triangles do not hold a moving body's image); the polygon method refuses it.
     ///
     /// # Errors
-    /// Why an object has no ray tracer, when [`Method::Rt`] needs it.
+    /// Why an object has no ray tracer, when [`Method::Rt`] or a moving body needs it;
+    /// [`GpuError::Unsupported`] for the polygon method with a moving body.
     pub(super) fn traced_objects(
         &self,
+        scene: &Scene,
         method: Method,
     ) -> Result<Vec<Option<&ObjectRayTracing>>, GpuError> {
         self.objects
             .iter()
-            .map(|object| match (method, &object.ray_tracing) {
-                (Method::Rt, Ok(rt)) => Ok(Some(rt)),
-                (Method::Rt, Err(error)) => Err(error.clone()),
-                (Method::Auto, Ok(rt)) => Ok(rt.preferred().then_some(rt)),
-                _ => Ok(None),
+            .zip(&scene.objects)
+            .map(|(object, seen)| {
+                let moving = !seen.motion.is_rest();
+                match (method, &object.ray_tracing) {
+                    (Method::Polygon, _) if moving => Err(GpuError::Unsupported(format!(
+                        "the polygon method cannot draw {}, which spins or thrusts; use an exact \
+                         method",
+                        seen.name
+                    ))),
+                    (Method::Polygon, _) => Ok(None),
+                    (Method::Rt, Ok(rt)) => Ok(Some(rt)),
+                    (_, Ok(rt)) if moving => Ok(Some(rt)),
+                    (Method::Rt, Err(error)) => Err(error.clone()),
+                    (_, Err(error)) if moving => Err(error.clone()),
+                    (Method::Auto, Ok(rt)) => Ok(rt.preferred().then_some(rt)),
+                    _ => Ok(None),
+                }
             })
             .collect()
     }

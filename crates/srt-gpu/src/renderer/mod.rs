@@ -70,16 +70,19 @@ pub const SEEN_CHANNELS: [&str; 5] = [
 pub enum Method {
     /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is faster
     /// for it (by the layers of its triangles, `ObjectRayTracing::preferred`); the two compose
-    /// through the depth test.
+    /// through the depth test. A body that spins or thrusts in its rest frame is always traced.
     #[default]
     Auto,
-    /// Local ray tracing (the paper's method, exact per pixel): one footprint per triangle.
+    /// Local ray tracing (the paper's method, exact per pixel): one footprint per triangle. A
+    /// body that spins or thrusts in its rest frame has no static triangles to draw footprints
+    /// of: it is traced as by [`Method::Rt`] (`motion.wgsl`), the rest of the scene by LRT.
     Lrt,
     /// Ray tracing through a BVH per batch of parts in its rest frame (the reference's
     /// algorithm on the GPU), exact per pixel like LRT; its cost does not grow with the layers
     /// of a deep model or with footprints swept beside the camera.
     Rt,
-    /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline.
+    /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline. It refuses
+    /// a scene with a spinning or thrusting body ([`GpuError::Unsupported`]).
     Polygon,
 }
 

@@ -155,6 +155,8 @@ pub(super) struct ObjectResources {
     /// The object's BVH and box, for the ray tracer, or why it has none (the other methods
     /// render the object all the same).
     pub(super) ray_tracing: Result<ObjectRayTracing, GpuError>,
+    /// Its meshes' extent, for the uniforms of a spinning or thrusting body.
+    pub(super) extent: crate::motion::BodyExtent,
 }
 
 /// The vertices of `parts`, one after the other, each colour multiplied by its part's base
@@ -347,7 +349,11 @@ pub(super) fn upload_object(
         .as_ref()
         .map_err(Clone::clone)
         .map(|bvh| ObjectRayTracing::new(ctx, pipelines, &counter.counter, &rt_triangles, bvh));
-    let shadow = for_shadows.then(|| {
+    // A spinning or thrusting body casts no late shadow on the GPU (the shadow walk treats
+    // casters as static in their rest frames): excluded rather than drawn at rest. The CPU
+    // reference does shadow with it (srt-trace's `blocks`), so such scenes with moving lights
+    // differ there.
+    let shadow = (for_shadows && object.motion.is_rest()).then(|| {
         bvh.map(|bvh| {
             let ordered = bvh.in_leaf_order(&rt_triangles);
             (bvh, ordered)
@@ -359,6 +365,7 @@ pub(super) fn upload_object(
         culling,
         parts,
         ray_tracing,
+        extent: crate::motion::BodyExtent::of(object),
     };
     (resources, shadow)
 }

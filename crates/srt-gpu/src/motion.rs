@@ -1,0 +1,267 @@
+//! Bodies that spin or thrust within their rest frame (`srt_physics::motion`, docs/physics.md
+//! "Spinning and accelerating bodies") on the GPU: what `shaders/motion.wgsl` reads of an
+//! object's motion ([`MotionUniforms`], in `ObjectUniforms`), and the box in the object's rest
+//! coordinates that holds the body at every event a backward ray can meet it
+//! ([`sweep_bounds`]), whose footprints the ray tracer draws for it.
+//!
+//! The WGSL mirrors crates/srt-trace/src/moving.rs in f32: the backward ray's body-space curve
+//! cut into pieces (≤ [`SPIN_PIECE_ANGLE`] of rotation, or [`THRUST_PIECES_PER_SIZE`] per body
+//! size of a thrust's accelerating stretch; at most [`MAX_PIECES`], where the reference allows
+//! 2¹⁶), each piece's chord box padded by the curve's sagitta bound and met with the BVH, the
+//! sign change of the distance to each candidate triangle's plane bisected ([`BISECTIONS`]
+//! steps at most). What the f64 reference computes exactly — the spin phase ω·ct′₀ reduced mod
+//! 2π, the elapsed thrust time — is computed here in f64, so that the shaders see small numbers.
+
+use glam::DVec3;
+use srt_physics::Event;
+use srt_physics::motion::Motion;
+use srt_scene::Object;
+
+use crate::types::ObjectUniforms;
+
+/// Most rotation of a spinning body per piece of a curved ray, in radians (srt-trace's).
+pub const SPIN_PIECE_ANGLE: f64 = 0.05;
+/// Pieces of a thrusting body's curved stretch of ray per its size (srt-trace's).
+pub const THRUST_PIECES_PER_SIZE: f64 = 48.0;
+/// Most pieces of one curved stretch of ray on the GPU (WGSL `MOTION_MAX_PIECES`).
+pub const MAX_PIECES: u32 = 4096;
+/// Most bisection steps for one crossing in f32 (WGSL `MOTION_BISECTIONS`): more than the 24
+/// bits of an f32 mantissa need from any bracket.
+pub const BISECTIONS: u32 = 48;
+
+/// `ObjectUniforms.motion.x`: how the body moves in its rest frame (WGSL `MOTION_*`).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MotionCode(pub u32);
+
+impl MotionCode {
+    /// At rest (WGSL `MOTION_REST`).
+    pub const REST: Self = Self(0);
+    /// Spinning (WGSL `MOTION_SPIN`).
+    pub const SPIN: Self = Self(1);
+    /// Thrusting (WGSL `MOTION_THRUST`).
+    pub const THRUST: Self = Self(2);
+}
+
+/// The motion fields of `ObjectUniforms` for one object and observation event.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MotionUniforms {
+    /// Kind, rate or α, phase or elapsed time, final rapidity (< 0: none).
+    pub motion: [f32; 4],
+    /// Axis or direction (xyz), reach (w).
+    pub axis: [f32; 4],
+    /// Spin centre (xyz).
+    pub centre: [f32; 4],
+    /// Box lower corner (xyz), lowest axial height (w).
+    pub low: [f32; 4],
+    /// Box upper corner (xyz), highest axial height (w).
+    pub high: [f32; 4],
+}
+
+/// A spinning body's largest distance from its centre and its extent along the axis, or a
+/// body's box diagonal (srt-trace's `PreparedObject::reach` and `axial`), and its box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyExtent {
+    /// Largest distance from the spin centre (spin), the box's diagonal (otherwise).
+    pub reach: f64,
+    /// Lowest and highest heights along the spin axis from the centre (spin; 0 otherwise).
+    pub axial: (f64, f64),
+    /// The box around every vertex at rest.
+    pub bounds: (DVec3, DVec3),
+}
+
+impl BodyExtent {
+    /// The extent of `object`'s meshes as srt-trace measures it.
+    #[must_use]
+    pub fn of(object: &Object) -> Self {
+        let positions = || object.parts.iter().flat_map(|p| p.mesh.positions().iter());
+        let (lo, hi) = object
+            .parts
+            .iter()
+            .filter(|p| !p.mesh.triangles().is_empty())
+            .map(|p| p.mesh.bounds())
+            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
+            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
+        let (reach, axial) = match object.motion {
+            Motion::Spin(spin) => (
+                positions()
+                    .map(|p| (*p - spin.centre()).length())
+                    .fold(0.0, f64::max)
+                    * (1.0 + 1e-12),
+                positions()
+                    .map(|p| (*p - spin.centre()).dot(spin.axis()))
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                        (l.min(x), h.max(x))
+                    }),
+            ),
+            _ => ((hi - lo).length(), (0.0, 0.0)),
+        };
+        Self {
+            reach,
+            axial,
+            bounds: (lo, hi),
+        }
+    }
+}
+
+/// `v` as a vec4 with `w`.
+fn vec4(v: DVec3, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+impl MotionUniforms {
+    /// The motion of `object` (whose meshes measure `extent`) seen from the observation event
+    /// `observer` (in S).
+    #[must_use]
+    pub fn new(object: &Object, extent: &BodyExtent, observer: Event) -> Self {
+        // The object's S′ time at the observation event: where every backward ray starts.
+        let now = object.proper_time(object.frame.to_rest(observer).ct);
+        let (lo, hi) = extent.bounds;
+        let (axial_low, axial_high) = extent.axial;
+        let low = vec4(lo, axial_low);
+        let high = vec4(hi, axial_high);
+        match object.motion {
+            Motion::Rest => Self {
+                low,
+                high,
+                ..Self::default()
+            },
+            Motion::Spin(spin) => Self {
+                motion: [
+                    MotionCode::SPIN.0 as f32,
+                    spin.rate() as f32,
+                    (spin.rate() * now).rem_euclid(std::f64::consts::TAU) as f32,
+                    0.0,
+                ],
+                axis: vec4(spin.axis(), extent.reach),
+                centre: vec4(spin.centre(), 0.0),
+                low,
+                high,
+            },
+            Motion::Thrust(thrust) => Self {
+                motion: [
+                    MotionCode::THRUST.0 as f32,
+                    thrust.alpha() as f32,
+                    (now - thrust.start()) as f32,
+                    if thrust.final_rapidity().is_finite() {
+                        thrust.final_rapidity() as f32
+                    } else {
+                        -1.0
+                    },
+                ],
+                axis: vec4(thrust.direction(), extent.reach),
+                centre: [0.0; 4],
+                low,
+                high,
+            },
+        }
+    }
+
+    /// Writes these fields into `uniforms`.
+    pub fn apply(&self, uniforms: &mut ObjectUniforms) {
+        uniforms.motion = self.motion;
+        uniforms.motion_axis = self.axis;
+        uniforms.motion_centre = self.centre;
+        uniforms.motion_low = self.low;
+        uniforms.motion_high = self.high;
+    }
+}
+
+/// The box in the rest coordinates of `object` (measuring `extent`) that holds every point of
+/// the body at every event a backward ray from the observation event `observer` can meet it:
+/// for a spinning body, the body's box turned through the angles ω·ct′ of the S′ times at
+/// which the rays are inside the ball it sweeps (sampled every [`SWEEP_STEP`] radians, padded by
+/// the arcs' sagitta), within the cube around its centre of half-width its reach; for a
+/// thrusting one its box at rest swept along â by how far its points move during the S′ times
+/// at which the rays are inside its box swept by the whole elapsed time (no point moves faster
+/// than light, and earlier the body was where it rests); `None` at rest.
+#[must_use]
+pub fn sweep_bounds(
+    object: &Object,
+    extent: &BodyExtent,
+    observer: Event,
+) -> Option<(DVec3, DVec3)> {
+    let rest = object.frame.to_rest(observer);
+    let now = object.proper_time(rest.ct);
+    let pad = 1e-6 * (1.0 + extent.reach);
+    match object.motion {
+        Motion::Rest => None,
+        Motion::Spin(spin) => {
+            let r = DVec3::splat(extent.reach + pad);
+            let cube = (spin.centre() - r, spin.centre() + r);
+            // The rays are inside the ball for s within its distance ± its reach: S′ times
+            // now − s there.
+            let distance = (rest.position - spin.centre()).length();
+            let (near, far) = ((distance - extent.reach).max(0.0), distance + extent.reach);
+            let (first, last) = (spin.rate() * (now - far), spin.rate() * (now - near));
+            let arc = (last - first).abs();
+            if arc.is_nan() || arc >= std::f64::consts::TAU {
+                return Some(cube);
+            }
+            let steps = (arc / SWEEP_STEP).ceil().max(1.0);
+            let step = arc / steps;
+            let (lo, hi) = extent.bounds;
+            let corners = (0..8).map(|k: u32| {
+                DVec3::new(
+                    if k & 1 == 0 { lo.x } else { hi.x },
+                    if k & 2 == 0 { lo.y } else { hi.y },
+                    if k & 4 == 0 { lo.z } else { hi.z },
+                ) - spin.centre()
+            });
+            let corners: Vec<DVec3> = corners.collect();
+            let (mut min, mut max) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+            for i in 0..=(steps as u32) {
+                let angle = first.min(last) + step * f64::from(i);
+                let turn = glam::DQuat::from_axis_angle(spin.axis(), angle);
+                for &c in &corners {
+                    let p = spin.centre() + turn * c;
+                    min = min.min(p);
+                    max = max.max(p);
+                }
+            }
+            // Between two samples a point moves on an arc within its chord's sagitta.
+            let sagitta = DVec3::splat(extent.reach * step * step / 8.0 + pad);
+            Some(((min - sagitta).max(cube.0), (max + sagitta).min(cube.1)))
+        }
+        Motion::Thrust(thrust) => {
+            let (lo, hi) = extent.bounds;
+            let direction = thrust.direction();
+            let sweep = (now - thrust.start()).max(0.0) * direction;
+            let p = DVec3::splat(pad);
+            let (full_lo, full_hi) = (lo.min(lo + sweep) - p, hi.max(hi + sweep) + p);
+            // The rays are inside that box only for s between its nearest and farthest
+            // distance: S′ times now − s there. Every point's displacement along â grows with
+            // time and, at one time, is largest for the lowest point (Born rigidity): the
+            // body's box corners bound it.
+            let o = rest.position;
+            let near = (o - o.clamp(full_lo, full_hi)).length();
+            let far = (o - full_lo).abs().max((o - full_hi).abs()).length();
+            let (earliest, latest) = (now - far, now - near);
+            let corners: Vec<DVec3> = (0..8u32)
+                .map(|k| {
+                    DVec3::new(
+                        if k & 1 == 0 { lo.x } else { hi.x },
+                        if k & 2 == 0 { lo.y } else { hi.y },
+                        if k & 4 == 0 { lo.z } else { hi.z },
+                    )
+                })
+                .collect();
+            let moved = |c: DVec3, ct: f64| (thrust.position(c, ct) - c).dot(direction);
+            let least = corners
+                .iter()
+                .map(|&c| moved(c, earliest))
+                .fold(f64::INFINITY, f64::min);
+            let most = corners
+                .iter()
+                .map(|&c| moved(c, latest))
+                .fold(0.0, f64::max);
+            let (a, b) = (least.max(0.0) * direction, most * direction);
+            let margin = DVec3::splat(pad + 1e-9 * (1.0 + far));
+            let (window_lo, window_hi) = (lo + a.min(b) - margin, hi + a.max(b) + margin);
+            Some((window_lo.max(full_lo), window_hi.min(full_hi)))
+        }
+    }
+}
+
+/// Radians between the turned copies of a spinning body's box in [`sweep_bounds`].
+pub const SWEEP_STEP: f64 = 0.1;
