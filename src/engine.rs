@@ -110,16 +110,15 @@ impl Engine {
             })
         };
         // The GPU draws spinning and thrusting bodies with its exact methods (traced through
-        // their BVH, docs/physics.md "Spinning and accelerating bodies"); the polygon method
-        // cannot.
-        let moving = scene.objects.iter().find(|o| !o.motion.is_rest());
-        if let Some(object) = moving
-            && method == Method::Polygon
-        {
-            bail!(
-                "{} spins or thrusts, which the polygon method cannot draw; use an exact method",
-                object.name
-            );
+        // their BVH, docs/physics.md "Spinning and accelerating bodies"), but not with the
+        // polygon method, nor the moving lights' late shadows they cast.
+        if let Some(why) = method.cannot_draw(scene) {
+            if backend == Backend::Auto && method.is_exact() {
+                return cpu(Some(format!("{why}; rendering on the CPU instead")));
+            }
+            if backend != Backend::Cpu || method == Method::Polygon {
+                bail!("{why}");
+            }
         }
         let context = match backend {
             Backend::Cpu if method == Method::Polygon => {

@@ -814,3 +814,48 @@ fn lavapipe_installed() -> bool {
         .flatten()
         .any(|entry| entry.file_name().to_string_lossy().starts_with("lvp_icd"))
 }
+
+/// What the GPU does not draw of spinning and thrusting bodies — the polygon method, and the
+/// moving lights' late shadows they cast — is refused by `--backend gpu` with the reason, and
+/// drawn on the CPU by `auto`, which says so.
+#[test]
+fn what_the_gpu_cannot_draw_of_moving_bodies_is_refused_or_drawn_on_the_cpu() {
+    let dir = folder();
+    let scene = dir.path().join("spin.toml");
+    std::fs::write(
+        &scene,
+        "[observer]\nposition = [0.0, -6.0, 1.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+         [[light]]\nposition = [2.0, -2.0, 3.0]\nbeta = [0.5, 0.0, 0.0]\nstrength = 20.0\n\
+         [[object]]\nname = \"top\"\nshape = { type = \"cube\" }\n\
+         spin = { axis = [0.0, 0.0, 1.0], rate = 0.5 }\n",
+    )
+    .unwrap();
+    let args = |extra: &[&str]| {
+        let mut all = vec![
+            "render",
+            "spin.toml",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "-o",
+            "s.png",
+        ];
+        all.extend_from_slice(extra);
+        srt(&all, dir.path())
+    };
+    let on_gpu = args(&["--backend", "gpu"]);
+    assert_clean_failure(&on_gpu, &["late shadows", "top", "--backend cpu"]);
+    assert!(!dir.path().join("s.png").exists());
+    let polygon = args(&["--method", "polygon"]);
+    assert_clean_failure(&polygon, &["polygon method cannot draw top"]);
+    let auto = args(&["--backend", "auto"]);
+    let err = stderr(&auto);
+    assert!(auto.status.success(), "{err}");
+    assert!(
+        err.contains("note:") && err.contains("rendering on the CPU instead"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&auto.stdout).contains(", cpu,"));
+    assert!(dir.path().join("s.png").exists());
+}

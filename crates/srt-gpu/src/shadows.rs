@@ -25,8 +25,8 @@
 //! buffer and the shaders never read it.
 //!
 //! Bodies that spin or thrust in their rest frames ([`crate::motion`]) are not shadow casters
-//! here: the walk meets static triangles only, and they are left out rather than drawn where
-//! they rest (the CPU reference shadows with them exactly; not yet mirrored).
+//! here: the walk meets static triangles only. A scene whose moving lights' shadows such a body
+//! would cast is refused ([`crate::Method::cannot_draw`]); the CPU reference draws it exactly.
 
 use bytemuck::Zeroable as _;
 use srt_scene::Scene;

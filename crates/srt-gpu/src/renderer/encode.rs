@@ -213,23 +213,21 @@ impl super::GpuRenderer {
     ///
     /// # Errors
     /// Why an object has no ray tracer, when [`Method::Rt`] or a moving body needs it;
-    /// [`GpuError::Unsupported`] for the polygon method with a moving body.
+    /// [`GpuError::Unsupported`] for what [`Method::cannot_draw`] names.
     pub(super) fn traced_objects(
         &self,
         scene: &Scene,
         method: Method,
     ) -> Result<Vec<Option<&ObjectRayTracing>>, GpuError> {
+        if let Some(why) = method.cannot_draw(scene) {
+            return Err(GpuError::Unsupported(why));
+        }
         self.objects
             .iter()
             .zip(&scene.objects)
             .map(|(object, seen)| {
                 let moving = !seen.motion.is_rest();
                 match (method, &object.ray_tracing) {
-                    (Method::Polygon, _) if moving => Err(GpuError::Unsupported(format!(
-                        "the polygon method cannot draw {}, which spins or thrusts; use an exact \
-                         method",
-                        seen.name
-                    ))),
                     (Method::Polygon, _) => Ok(None),
                     (Method::Rt, Ok(rt)) => Ok(Some(rt)),
                     (_, Ok(rt)) if moving => Ok(Some(rt)),

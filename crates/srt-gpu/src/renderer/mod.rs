@@ -87,6 +87,28 @@ pub enum Method {
 }
 
 impl Method {
+    /// Why this method cannot draw `scene` on the GPU, if it cannot: the polygon method and a
+    /// body that spins or thrusts (no per-vertex motion), or late shadows of moving lights cast
+    /// by such a body (the GPU's shadow walk meets static triangles only; the CPU reference
+    /// draws both exactly).
+    #[must_use]
+    pub fn cannot_draw(self, scene: &Scene) -> Option<String> {
+        let moving = scene.objects.iter().find(|o| !o.motion.is_rest())?;
+        if self == Self::Polygon {
+            return Some(format!(
+                "the polygon method cannot draw {}, which spins or thrusts; use an exact method",
+                moving.name
+            ));
+        }
+        (scene.shadows && !scene.lights.is_empty()).then(|| {
+            format!(
+                "the GPU does not draw the late shadows {} casts while it spins or thrusts; \
+                 use --backend cpu, or render.shadows = false",
+                moving.name
+            )
+        })
+    }
+
     /// Whether the method is exact per pixel (what the CPU reference computes).
     #[must_use]
     pub const fn is_exact(self) -> bool {

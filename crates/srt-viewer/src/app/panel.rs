@@ -36,17 +36,6 @@ impl ViewerApp {
     pub(super) fn side_panel(&mut self, ui: &mut egui::Ui) {
         ui.heading("srt view");
         self.readout(ui);
-        if let Some(object) = self.editor.objects().iter().find(|o| !o.motion.is_rest()) {
-            ui.label(
-                RichText::new(format!(
-                    "{} spins or thrusts: the GPU picture shows it at rest in its frame; the \
-                     probe and `srt render --backend cpu` show it exactly",
-                    object.name
-                ))
-                .color(Color32::from_rgb(230, 180, 60))
-                .small(),
-            );
-        }
         egui::CollapsingHeader::new("Probe")
             .default_open(true)
             .show(ui, |ui| self.probe_section(ui));
