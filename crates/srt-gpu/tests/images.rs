@@ -11,22 +11,11 @@ use srt_scene::{
     Effects, Material, Mesh, Part, Scene, SceneDescription, SurfaceColour, builtin_scenes,
 };
 use srt_trace::compare::{compare, compare_radiance, compare_seen};
-use srt_trace::{Output, RenderSettings, RenderedImage, Tracer};
+use srt_trace::{Output, RenderSettings, Tracer};
 
-const WIDTH: u32 = 320;
-const HEIGHT: u32 = 180;
+mod common;
 
-/// The CPU reference's image of `scene` (one sample per pixel).
-fn cpu_image(scene: &Scene) -> RenderedImage {
-    Tracer::new(scene).render(
-        RenderSettings {
-            width: WIDTH,
-            height: HEIGHT,
-            samples: 1,
-        },
-        &|_| {},
-    )
-}
+use common::{HEIGHT, WIDTH, cpu_image};
 
 #[test]
 fn exact_methods_match_the_cpu_reference_on_every_builtin_scene() {

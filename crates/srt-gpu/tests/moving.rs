@@ -8,22 +8,11 @@ use srt_gpu::{FootprintShape, GpuError, GpuRenderer, Method, context_or_skip};
 use srt_physics::motion::Motion;
 use srt_scene::{Scene, SceneDescription, builtin_scenes};
 use srt_trace::compare::compare;
-use srt_trace::{RenderSettings, RenderedImage, Tracer};
+use srt_trace::{RenderSettings, Tracer};
 
-const WIDTH: u32 = 320;
-const HEIGHT: u32 = 180;
+mod common;
 
-/// The CPU reference's image of `scene` (one sample per pixel).
-fn cpu_image(scene: &Scene) -> RenderedImage {
-    Tracer::new(scene).render(
-        RenderSettings {
-            width: WIDTH,
-            height: HEIGHT,
-            samples: 1,
-        },
-        &|_| {},
-    )
-}
+use common::{HEIGHT, WIDTH, cpu_image};
 
 /// A scene from its TOML description.
 fn scene(toml: &str, name: &str) -> Scene {
