@@ -198,7 +198,8 @@ pub fn enclosing_case() -> anyhow::Result<Case> {
 
 /// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine
 /// passing through and beside the camera, the flythrough's observer further on (columns and
-/// ground passing beside and under it), and the camera inside a sphere and inside a long box.
+/// ground passing beside and under it), bodies spinning and thrusting in their frames
+/// ([`moving_body_cases`]), and the camera inside a sphere and inside a long box.
 ///
 /// # Errors
 /// If the engine model is missing.
@@ -225,10 +226,38 @@ pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
     for &ct in flythrough_sweep_times().iter().skip(3).step_by(4) {
         cases.push(at_time("flythrough", &flythrough.scene, ct));
     }
+    cases.extend(moving_body_cases()?);
     cases.push(enclosing_case()?);
     cases.push(corridor_case()?);
     cases.extend(sky_cases()?);
     cases.extend(spectral_cases()?);
+    Ok(cases)
+}
+
+/// Bodies moving within their frames, in motion past the camera: the rolling wheel passing
+/// 3 units in front of it (`wheel-passing`, the camera moved up to the ground's edge) before,
+/// while and after it crosses the line of sight, the rocket before its start, accelerating and
+/// far off, and Bell's ships while the thread falls behind.
+///
+/// # Errors
+/// If a built-in scene does not build (a bug).
+pub fn moving_body_cases() -> anyhow::Result<Vec<Case>> {
+    let builtin = |name: &str| {
+        srt_scene::builtin::find_builtin(name).with_context(|| format!("{name} is built in"))
+    };
+    let wheel = builtin("rolling-wheel")?;
+    let mut description = wheel.description();
+    description.observer.position = [0.0, -3.0, 1.0];
+    let (passing, _) = wheel.build_description(&description)?;
+    // The axle is at x = 0 at t = −8, seen from 3 away at ct = −5.
+    let mut cases: Vec<Case> = [-9.0, -6.0, -5.0, -3.0]
+        .iter()
+        .map(|&ct| at_time("wheel-passing", &passing, ct))
+        .collect();
+    let (rocket, _) = builtin("rocket")?.build()?;
+    cases.extend([3.0, 10.0, 25.0].map(|ct| at_time("rocket", &rocket, ct)));
+    let (bell, _) = builtin("bell")?.build()?;
+    cases.extend([16.0, 24.0].map(|ct| at_time("bell", &bell, ct)));
     Ok(cases)
 }
 
