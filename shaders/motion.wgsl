@@ -396,17 +396,22 @@ fn lorentz_boost(beta: vec3<f32>) -> mat4x4<f32> {
     );
 }
 
+// Where the body point `body` is at the S′ time ct′₀ − s, s a backward ray's parameter (mirror
+// of Motion::position).
+fn motion_position(body: vec3<f32>, s: f32) -> vec3<f32> {
+    if (motion_kind() == MOTION_SPIN) {
+        let centre = object.motion_centre.xyz;
+        return centre + spin_turn(body - centre, spin_angle(s));
+    }
+    return thrust_position(body, object.motion.z - s);
+}
+
 // The corners `corners` of a moving body's triangle where they are at ray parameter s (for the
 // texture differentials, as srt-trace places them).
 fn moving_corners(corners: array<vec3<f32>, 3>, s: f32) -> array<vec3<f32>, 3> {
     var placed = corners;
     for (var k = 0u; k < 3u; k++) {
-        if (motion_kind() == MOTION_SPIN) {
-            let centre = object.motion_centre.xyz;
-            placed[k] = centre + spin_turn(corners[k] - centre, spin_angle(s));
-        } else {
-            placed[k] = thrust_position(corners[k], object.motion.z - s);
-        }
+        placed[k] = motion_position(corners[k], s);
     }
     return placed;
 }

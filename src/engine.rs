@@ -110,8 +110,9 @@ impl Engine {
             })
         };
         // The GPU draws spinning and thrusting bodies with its exact methods (traced through
-        // their BVH, docs/physics.md "Spinning and accelerating bodies"), but not with the
-        // polygon method, nor the moving lights' late shadows they cast.
+        // their BVH, docs/physics.md "Spinning and accelerating bodies") and, approximately,
+        // with the polygon method (vertex by vertex), but not the moving lights' late shadows
+        // they cast.
         if let Some(why) = method.cannot_draw(scene) {
             if backend == Backend::Auto && method.is_exact() {
                 return cpu(Some(format!("{why}; rendering on the CPU instead")));

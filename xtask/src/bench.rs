@@ -10,12 +10,15 @@
 //! - the paper's static frames (the five scenes of the issue) at 1280×720 and 1920×1080;
 //! - fly-by sweeps at 1280×720: the teaser while the spider passes the camera, the engine
 //!   passing beside, above and behind it, and the `flythrough`'s observer flying on between
-//!   columns passing beside it, 12 frames each; one line per sweep with the worst
-//!   frame's ratio (`worst_ratio`), each method's worst ratio and slowest frame;
+//!   columns passing beside it, 12 frames each, and the `rolling-wheel` rolling past (6
+//!   frames); one line per sweep with the worst frame's ratio (`worst_ratio`), each method's
+//!   worst ratio and slowest frame;
 //! - a large scene: three engines side by side (364 488 triangles);
 //! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
 //!   `flythrough` (a moving observer under 6 000 stars), and two moving lights with their late
-//!   shadows against the same scene without shadows (`two moving lights`).
+//!   shadows against the same scene without shadows (`two moving lights`), and bodies that
+//!   move in their rest frame: the spinning `rolling-wheel` and the thrusting `rocket` (traced
+//!   along each ray's body-space curve; the polygon method moves each vertex).
 //!
 //! Prints one line per case. A full run rewrites the generated blocks of `docs/performance.md`
 //! (the table and the summary sentences, [`document`]) and saves every measurement as
@@ -367,7 +370,16 @@ fn static_cases() -> anyhow::Result<Vec<Case>> {
         builtin("flythrough")?,
         two_moving_lights(true)?,
         two_moving_lights(false)?,
+        builtin("rolling-wheel")?,
+        builtin("rocket")?,
     ])
+}
+
+/// The `rolling-wheel` rolling past the camera at 0.9c: its axle is seen straight ahead at
+/// ct = 0 and at the image's edges near ct = −3.5 and 5.4; 6 frames from entering to leaving.
+fn wheel_sweep_times() -> Vec<f64> {
+    // Exact quotients, so that the frames print as −3, −1.4, 0.2, 1.8, 3.4 and 5.
+    (0..6).map(|k| f64::from(8 * k - 15) / 5.0).collect()
 }
 
 /// The fly-by sweeps: name, scene and the observation times of their frames, timed at the first
@@ -384,6 +396,11 @@ fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
             "flythrough",
             builtin("flythrough")?.scene,
             flythrough_sweep_times(),
+        ),
+        (
+            "rolling-wheel",
+            builtin("rolling-wheel")?.scene,
+            wheel_sweep_times(),
         ),
     ])
 }

@@ -445,8 +445,8 @@ fn validate_image(
         [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon]
             .map(|method| renderer.render(ctx, scene, method, FootprintShape::Hull))
             .map(|result| result.map(|(image, _)| image.to_rgb8()));
-    // The polygon method cannot draw spinning or thrusting bodies (the exact methods trace
-    // them): no polygon image for such scenes.
+    // The GPU refuses what it cannot draw (`Method::cannot_draw`: late shadows cast by
+    // spinning or thrusting bodies): no polygon image for such scenes.
     let polygon_rgb = match polygon_rgb {
         Err(srt_gpu::GpuError::Unsupported(why)) => {
             println!("scene={}: no polygon image: {why}", case.name);

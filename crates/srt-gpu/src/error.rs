@@ -62,8 +62,8 @@ pub enum GpuError {
     /// Something was asked of a renderer or view before it had what it needs.
     #[error("{0}")]
     NotReady(&'static str),
-    /// The chosen method cannot draw something in the scene (the polygon method and a body
-    /// that spins or thrusts); another method can.
+    /// The chosen method cannot draw something in the scene (the late shadows a spinning or
+    /// thrusting body casts; [`crate::Method::cannot_draw`]); the CPU reference can.
     #[error("{0}")]
     Unsupported(String),
 }

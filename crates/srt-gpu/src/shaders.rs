@@ -112,12 +112,26 @@ const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static s
     ]
 }
 
-/// The overrides of the polygon shader, spectral.wgsl's and the shadow test's, with the moving
-/// lights compiled in or out.
-const fn polygon_overrides(moving_lights: f64) -> [(&'static str, f64); 8] {
+/// The overrides of the polygon shader, motion.wgsl's, spectral.wgsl's and the shadow test's,
+/// with the moving lights compiled in or out.
+const fn polygon_overrides(moving_lights: f64) -> [(&'static str, f64); 10] {
     let s = SPECTRAL_OVERRIDES;
     let [slab, margin, lights] = shadow_overrides(moving_lights);
-    [slab, margin, lights, s[0], s[1], s[2], s[3], s[4]]
+    [
+        ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
+        (
+            "MOTION_THRUST_PIECES_PER_SIZE",
+            crate::motion::THRUST_PIECES_PER_SIZE,
+        ),
+        slab,
+        margin,
+        lights,
+        s[0],
+        s[1],
+        s[2],
+        s[3],
+        s[4],
+    ]
 }
 
 /// The overrides of the LRT shader, indexed [counting][lit]: without and with the fragment
@@ -245,6 +259,7 @@ pub fn polygon(lit: bool) -> Shader {
             ("surface.wgsl", SURFACE),
             ("bvh.wgsl", BVH),
             ("shadows.wgsl", SHADOWS),
+            ("motion.wgsl", MOTION),
             ("polygon.wgsl", POLYGON),
         ]),
         overrides: POLYGON_OVERRIDES[usize::from(lit)],

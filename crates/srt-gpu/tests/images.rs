@@ -37,17 +37,7 @@ fn exact_methods_match_the_cpu_reference_on_every_builtin_scene() {
             (Method::Auto, FootprintShape::Hull),
             (Method::Polygon, FootprintShape::Hull),
         ] {
-            let rendered = renderer.render(&ctx, &scene, method, shape);
-            if method == Method::Polygon && moving {
-                // Spinning and thrusting bodies are traced by the exact methods only.
-                assert!(
-                    matches!(rendered, Err(srt_gpu::GpuError::Unsupported(_))),
-                    "{line}"
-                );
-                line += " polygon: refused (moving bodies)";
-                continue;
-            }
-            let (image, stats) = rendered.unwrap();
+            let (image, stats) = renderer.render(&ctx, &scene, method, shape).unwrap();
             let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
             line += &format!(
                 " {}/{:?}: mismatch={:.5} max={} fragments={:?}",
@@ -59,6 +49,13 @@ fn exact_methods_match_the_cpu_reference_on_every_builtin_scene() {
             );
             if method.is_exact() {
                 assert!(mismatch.fraction() <= 0.001, "{line}");
+            } else if moving {
+                // Spinning and thrusting bodies, vertex by vertex: drawn, not exactly.
+                let mut rest = scene.clone();
+                rest.objects.retain(|o| o.motion.is_rest());
+                let drawn = compare(&cpu_image(&rest), &image.to_rgb8(), 2, 1).fraction();
+                line += &format!(" (the moving bodies cover {drawn:.4})");
+                assert!(drawn > 0.002, "{line}");
             }
         }
         println!("{line}");

@@ -209,7 +209,7 @@ impl super::GpuRenderer {
     /// [`Method::Polygon`], and for [`Method::Auto`] those for which
     /// [`ObjectRayTracing::preferred`] says so. A body that spins or thrusts in its rest frame
     /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
-    /// triangles do not hold a moving body's image); the polygon method refuses it.
+    /// triangles do not hold a moving body's image); the polygon method moves its vertices.
     ///
     /// # Errors
     /// Why an object has no ray tracer, when [`Method::Rt`] or a moving body needs it;

@@ -81,25 +81,19 @@ pub enum Method {
     /// algorithm on the GPU), exact per pixel like LRT; its cost does not grow with the layers
     /// of a deep model or with footprints swept beside the camera.
     Rt,
-    /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline. It refuses
-    /// a scene with a spinning or thrusting body ([`GpuError::Unsupported`]).
+    /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline; a spinning
+    /// or thrusting body's vertices each show their point's emission event on the observer's
+    /// past light cone.
     Polygon,
 }
 
 impl Method {
-    /// Why this method cannot draw `scene` on the GPU, if it cannot: the polygon method and a
-    /// body that spins or thrusts (no per-vertex motion), or late shadows of moving lights cast
-    /// by such a body (the GPU's shadow walk meets static triangles only; the CPU reference
-    /// draws both exactly).
+    /// Why this method cannot draw `scene` on the GPU, if it cannot: late shadows of moving
+    /// lights cast by a body that spins or thrusts (the GPU's shadow walk meets static triangles
+    /// only; the CPU reference draws them exactly).
     #[must_use]
     pub fn cannot_draw(self, scene: &Scene) -> Option<String> {
         let moving = scene.objects.iter().find(|o| !o.motion.is_rest())?;
-        if self == Self::Polygon {
-            return Some(format!(
-                "the polygon method cannot draw {}, which spins or thrusts; use an exact method",
-                moving.name
-            ));
-        }
         (scene.shadows && !scene.lights.is_empty()).then(|| {
             format!(
                 "the GPU does not draw the late shadows {} casts while it spins or thrusts; \
