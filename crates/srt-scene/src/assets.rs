@@ -1,19 +1,47 @@
-//! Files embedded in the program (the built-in scenes' models) and how scene files refer to
-//! files: a path relative to the scene file's folder, or `builtin:NAME` for an embedded asset.
+//! Files embedded in the program (the built-in scenes' models), files a front end holds in
+//! memory (a model dropped on the web page), and how scene files refer to files: a path
+//! relative to the scene file's folder, `builtin:NAME` for an embedded asset, or `memory:NAME`
+//! for a file given to [`add_memory_file`].
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
 
-use crate::import::{self, ImportError, ImportFailure, Model};
-use crate::input_file::InputFileError;
+use crate::import::{self, ImportError, Model};
 use crate::limits::Budget;
 use crate::mesh::Texture;
 use crate::textures;
 
 /// Prefix of paths in scene files that name an embedded asset, e.g. `builtin:models/spider.stl`.
 pub const BUILTIN_PREFIX: &str = "builtin:";
+
+/// Prefix of paths that name a file held in memory ([`add_memory_file`]), e.g. `memory:ship.glb`.
+pub const MEMORY_PREFIX: &str = "memory:";
+
+/// The files given to [`add_memory_file`], by name.
+static MEMORY_FILES: Mutex<Option<HashMap<String, Arc<[u8]>>>> = Mutex::new(None);
+
+/// Holds `bytes` as the file `name` (a file name with its extension, e.g. `ship.glb`) for the
+/// rest of the process, replacing an earlier file of that name, and returns the path that names
+/// it in scenes and model arguments: `memory:NAME`. Where there is no file system (a web page),
+/// a dropped model goes this way through the same loaders, limits and messages as a file.
+pub fn add_memory_file(name: &str, bytes: Vec<u8>) -> String {
+    MEMORY_FILES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .get_or_insert_with(HashMap::new)
+        .insert(name.to_owned(), bytes.into());
+    format!("{MEMORY_PREFIX}{name}")
+}
+
+/// The bytes of the memory file `name` (without the prefix), if there is one.
+fn memory_file(name: &str) -> Option<Arc<[u8]>> {
+    MEMORY_FILES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .as_ref()
+        .and_then(|files| files.get(name).cloned())
+}
 
 /// The embedded assets by name (see `crates/srt-scene/assets/models/NOTICE.md` for sources and
 /// licences).
@@ -48,14 +76,42 @@ pub enum Resolved {
         /// Its content.
         bytes: &'static [u8],
     },
+    /// A file held in memory ([`add_memory_file`]).
+    Memory {
+        /// Its name, without the `memory:` prefix.
+        name: String,
+        /// Its content.
+        bytes: Arc<[u8]>,
+    },
+}
+
+impl Resolved {
+    /// How messages and caches name it: the file's path, `builtin:NAME` or `memory:NAME`.
+    #[must_use]
+    pub fn label(&self) -> String {
+        match self {
+            Self::File(path) => path.display().to_string(),
+            Self::Embedded { name, .. } => format!("{BUILTIN_PREFIX}{name}"),
+            Self::Memory { name, .. } => format!("{MEMORY_PREFIX}{name}"),
+        }
+    }
 }
 
 /// Resolves `path` from a scene file whose folder is `base_dir`: `builtin:NAME` is the embedded
-/// asset NAME; other paths are joined to `base_dir` (absolute paths stay as they are).
+/// asset NAME, `memory:NAME` the memory file NAME; other paths are joined to `base_dir`
+/// (absolute paths stay as they are).
 ///
 /// # Errors
-/// A message if `path` names an embedded asset that does not exist.
+/// A message if `path` names an embedded asset or a memory file that does not exist.
 pub fn resolve(base_dir: &Path, path: &str) -> Result<Resolved, String> {
+    if let Some(name) = path.strip_prefix(MEMORY_PREFIX) {
+        return memory_file(name)
+            .map(|bytes| Resolved::Memory {
+                name: name.to_owned(),
+                bytes,
+            })
+            .ok_or_else(|| format!("there is no file \"{name}\" in memory"));
+    }
     match path.strip_prefix(BUILTIN_PREFIX) {
         Some(name) => EMBEDDED
             .iter()
@@ -96,7 +152,7 @@ pub fn load_model(resolved: &Resolved, budget: &mut Budget) -> Result<Model, Imp
                     .map(|()| model)
                     .map_err(|e| ImportError::new(label, e.into()));
             }
-            let model = load_model_bytes(&label, bytes, budget)?;
+            let model = load_model_bytes(&label, bytes.to_vec(), budget)?;
             CACHE
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner)
@@ -104,47 +160,24 @@ pub fn load_model(resolved: &Resolved, budget: &mut Budget) -> Result<Model, Imp
                 .insert(name, model.clone());
             Ok(model)
         }
+        Resolved::Memory { bytes, .. } => {
+            load_model_bytes(&resolved.label(), bytes.to_vec(), budget)
+        }
     }
 }
 
 /// Loads a model from the bytes of a single-file model (STL, PLY, GLB, or OBJ/glTF without
 /// external files) called `name`, whose extension picks the format, with
-/// [`import::load_model_within`] and `budget`: the bytes are written to a fresh temporary
-/// folder, loaded and removed again. Warnings name `name` rather than the temporary file.
+/// [`import::load_model_bytes_within`] and `budget`.
 ///
 /// # Errors
-/// [`ImportError`] if the temporary file cannot be written or the model cannot be loaded.
+/// [`ImportError`] naming `name` if the model cannot be loaded.
 pub fn load_model_bytes(
     name: &str,
-    bytes: &[u8],
+    bytes: Vec<u8>,
     budget: &mut Budget,
 ) -> Result<Model, ImportError> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let file_name = Path::new(name)
-        .file_name()
-        .map_or_else(|| "model".into(), ToOwned::to_owned);
-    let dir = std::env::temp_dir().join(format!(
-        "srt-scene-{}-{}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let path = dir.join(file_name);
-    let written = std::fs::create_dir_all(&dir).and_then(|()| std::fs::write(&path, bytes));
-    let result = match written {
-        Ok(()) => import::load_model_within(&path, budget),
-        Err(error) => Err(ImportError::new(
-            name,
-            ImportFailure::Io(InputFileError::Io(error)),
-        )),
-    };
-    // Best effort: a leftover temporary folder is harmless.
-    let _ = std::fs::remove_dir_all(&dir);
-    let mut model = result?;
-    let temporary = path.display().to_string();
-    for warning in &mut model.warnings {
-        *warning = warning.replace(&temporary, name);
-    }
-    Ok(model)
+    import::load_model_bytes_within(Path::new(name), bytes, budget)
 }
 
 /// Loads the texture image at `resolved`, charging its texels to `budget`.
@@ -158,6 +191,10 @@ pub fn load_texture(resolved: &Resolved, budget: &mut Budget) -> Result<Texture,
             let extension = Path::new(name).extension().and_then(|e| e.to_str());
             let source = format!("{BUILTIN_PREFIX}{name}");
             textures::decode_image(bytes, extension, &source, budget)
+        }
+        Resolved::Memory { name, bytes } => {
+            let extension = Path::new(name).extension().and_then(|e| e.to_str());
+            textures::decode_image(bytes, extension, &resolved.label(), budget)
         }
     }
 }
@@ -195,5 +232,31 @@ mod tests {
         // Cached: the second load gives the same model, and is charged again.
         assert_eq!(load_model(&resolved, &mut budget).unwrap(), model);
         assert_eq!(budget.triangles(), 2 * 1368);
+    }
+
+    #[test]
+    fn a_memory_file_loads_like_the_file_and_names_itself_in_errors() {
+        let spider = embedded("models/spider.stl").unwrap().to_vec();
+        let path = add_memory_file("test-spider.stl", spider);
+        assert_eq!(path, "memory:test-spider.stl");
+        let resolved = resolve(Path::new("."), &path).unwrap();
+        assert_eq!(resolved.label(), path);
+        let model = load_model(&resolved, &mut Budget::new()).unwrap();
+        assert_eq!(model.triangle_count(), 1368);
+
+        let broken = add_memory_file("test-broken.glb", b"not a glb".to_vec());
+        let error = load_model(
+            &resolve(Path::new("."), &broken).unwrap(),
+            &mut Budget::new(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            error.contains("memory:test-broken.glb") && error.contains("glTF"),
+            "{error}"
+        );
+
+        let missing = resolve(Path::new("."), "memory:nothing.stl").unwrap_err();
+        assert!(missing.contains("nothing.stl"), "{missing}");
     }
 }

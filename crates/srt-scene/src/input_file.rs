@@ -126,7 +126,8 @@ pub fn read_text(path: &Path, kind: FileKind) -> Result<String, InputFileError> 
     String::from_utf8(bytes).map_err(|_| InputFileError::NotText)
 }
 
-fn too_large(size: u64, kind: FileKind) -> InputFileError {
+/// The error of a file of `size` bytes, more than `kind` allows.
+pub(crate) fn too_large(size: u64, kind: FileKind) -> InputFileError {
     InputFileError::TooLarge {
         size,
         max: kind.max_bytes(),

@@ -274,7 +274,8 @@ impl SceneSource {
     }
 
     /// How messages name the scene of `description`, read from this source.
-    fn origin(&self, description: &SceneDescription) -> String {
+    #[must_use]
+    pub fn origin(&self, description: &SceneDescription) -> String {
         match self {
             Self::Builtin(builtin) => builtin.origin(),
             Self::SceneFile(path) => path.display().to_string(),

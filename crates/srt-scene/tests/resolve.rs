@@ -136,3 +136,21 @@ fn other_files_and_unknown_names_are_refused_with_one_message_each() {
         "\"no-such-scene\" is neither a built-in scene (see `srt scenes`) nor an existing file"
     );
 }
+
+#[test]
+fn a_model_held_in_memory_is_a_bare_model_scene() {
+    let spider = srt_scene::assets::embedded("models/spider.stl")
+        .unwrap()
+        .to_vec();
+    let path = srt_scene::assets::add_memory_file("dropped-spider.stl", spider);
+    let source = SceneSource::from_path(Path::new(&path)).unwrap();
+    assert!(matches!(source, SceneSource::Model(_)));
+    let loaded = source.load(None).unwrap();
+    assert_eq!(loaded.scene.objects.len(), 1);
+    let triangles: usize = loaded.scene.objects[0]
+        .parts
+        .iter()
+        .map(|part| part.mesh.triangles().len())
+        .sum();
+    assert_eq!(triangles, 1368);
+}

@@ -288,10 +288,12 @@ impl SkyDescription {
     ) -> Result<Sky, SceneErrorKind> {
         let on_disk = |key: &str, path: &str| match assets::resolve(base_dir, path) {
             Ok(assets::Resolved::File(file)) => Ok(file),
-            Ok(assets::Resolved::Embedded { .. }) | Err(_) => Err(value_error(
-                key,
-                format!("\"{path}\" is not a file on disk"),
-            )),
+            Ok(assets::Resolved::Embedded { .. } | assets::Resolved::Memory { .. }) | Err(_) => {
+                Err(value_error(
+                    key,
+                    format!("\"{path}\" is not a file on disk"),
+                ))
+            }
         };
         let image = self
             .image
@@ -672,11 +674,7 @@ fn load_image(path: &str, base_dir: &Path, budget: &mut Budget) -> Result<Textur
 
 /// The key of the image at `path`: its resolved path (or `builtin:` name).
 fn image_key(path: &str, base_dir: &Path) -> String {
-    match assets::resolve(base_dir, path) {
-        Ok(assets::Resolved::File(file)) => file.display().to_string(),
-        Ok(assets::Resolved::Embedded { name, .. }) => format!("{}{name}", assets::BUILTIN_PREFIX),
-        Err(_) => path.to_owned(),
-    }
+    assets::resolve(base_dir, path).map_or_else(|_| path.to_owned(), |resolved| resolved.label())
 }
 
 /// Makes the texture `description` asks for, charging its texels to `budget`.

@@ -215,12 +215,43 @@ pub fn load_model(path: &Path) -> Result<Model, ImportError> {
 /// As [`load_model`]; [`ImportFailure::TooLarge`] when the model does not fit in what is left
 /// of `budget`.
 pub fn load_model_within(path: &Path, budget: &mut Budget) -> Result<Model, ImportError> {
+    let loader = loader_for(path)?;
+    let bytes = input_file::read(path, FileKind::Model)
+        .map_err(|e| ImportError::new(path, ImportFailure::Io(e)))?;
+    load_with(loader, path, bytes, budget)
+}
+
+/// Loads a model from `bytes`, the content of a single-file model (STL, PLY, GLB, or OBJ/glTF
+/// whose other files are not needed) called `path`: the extension of `path` picks the format,
+/// and messages name `path`. Nothing is read from disk except the files the model itself names
+/// (a glTF's buffers, an OBJ's materials), relative to `path`'s folder: a web page or a script
+/// hands over bytes, with the limits and messages of [`load_model_within`].
+///
+/// # Errors
+/// As [`load_model_within`] (the size limit of a model file included).
+pub fn load_model_bytes_within(
+    path: &Path,
+    bytes: Vec<u8>,
+    budget: &mut Budget,
+) -> Result<Model, ImportError> {
+    let loader = loader_for(path)?;
+    let max = FileKind::Model.max_bytes();
+    let size = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
+    if size > max {
+        let error = input_file::too_large(size, FileKind::Model);
+        return Err(ImportError::new(path, ImportFailure::Io(error)));
+    }
+    load_with(loader, path, bytes, budget)
+}
+
+/// The loader of `path`'s format, chosen by its extension (case-insensitive).
+fn loader_for(path: &Path) -> Result<Loader, ImportError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let loader: Loader = match extension.as_str() {
+    Ok(match extension.as_str() {
         "gltf" | "glb" => gltf_model::load,
         "obj" => obj::load,
         "ply" => ply::load,
@@ -235,9 +266,17 @@ pub fn load_model_within(path: &Path, budget: &mut Budget) -> Result<Model, Impo
                 ImportFailure::UnsupportedExtension { extension },
             ));
         }
-    };
-    let bytes = input_file::read(path, FileKind::Model)
-        .map_err(|e| ImportError::new(path, ImportFailure::Io(e)))?;
+    })
+}
+
+/// Runs `loader` on the model file `path`'s `bytes`: an empty file, a panicking parser and a
+/// model without triangles are errors naming `path`; a model that fails is not charged.
+fn load_with(
+    loader: Loader,
+    path: &Path,
+    bytes: Vec<u8>,
+    budget: &mut Budget,
+) -> Result<Model, ImportError> {
     if bytes.is_empty() {
         let detail = " (the file is empty)".to_owned();
         return Err(ImportError::new(path, ImportFailure::Empty { detail }));
