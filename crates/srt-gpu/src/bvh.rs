@@ -10,11 +10,12 @@
 //! widened by [`ObjectBvh::margin`] so that rounding in the f32 slab test never loses a hit that
 //! the triangle test would find.
 
-use std::time::Duration;
-
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
-use obvhs::bvh2::builder::build_bvh2;
+use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::leaf_collapser::collapse;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::ploc::PlocBuilder;
 use obvhs::{Boundable, BvhBuildParams};
 
 use crate::error::GpuError;
@@ -53,6 +54,32 @@ pub fn corners(vertices: &[GpuVertex], triangle: [u32; 3]) -> [[f32; 3]; 3] {
     })
 }
 
+/// obvhs's `build_bvh2` (PLOC, reinsertion, leaf collapse, reinsertion) without its build
+/// timer: std's clock does not exist in the browser's WebAssembly, where the page builds these
+/// trees too.
+fn build_tree(bounds: &[TriangleBounds], config: &BvhBuildParams) -> Bvh2 {
+    let mut bvh = PlocBuilder::with_capacity(bounds.len()).build(
+        config.ploc_search_distance,
+        bounds,
+        (0..bounds.len() as u32).collect(),
+        config.sort_precision,
+        config.search_depth_threshold,
+    );
+    let mut reinsertion = ReinsertionOptimizer::default();
+    reinsertion.run(&mut bvh, config.reinsertion_batch_ratio, None);
+    collapse(
+        &mut bvh,
+        config.max_prims_per_leaf.clamp(1, 255),
+        config.collapse_traversal_cost,
+    );
+    reinsertion.run(
+        &mut bvh,
+        config.reinsertion_batch_ratio * config.post_collapse_reinsertion_batch_ratio_multiplier,
+        None,
+    );
+    bvh
+}
+
 impl ObjectBvh {
     /// Builds the BVH over `triangles` (their corners; at least one triangle: the caller,
     /// [`crate::ray_tracing`], refuses objects without any).
@@ -68,11 +95,7 @@ impl ObjectBvh {
             .iter()
             .map(|t| TriangleBounds(Aabb::from_points(&t.map(Vec3A::from))))
             .collect();
-        let bvh = build_bvh2(
-            &bounds,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
+        let bvh = build_tree(&bounds, &BvhBuildParams::medium_build());
         // Rounding in the slab test is relative to the coordinates: widen every box by a few
         // thousand f32 units of the largest coordinate (and never by nothing).
         let largest = bounds

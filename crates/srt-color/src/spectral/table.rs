@@ -69,26 +69,32 @@ impl CoefficientTable {
         // One task per (m, j) row; each returns its n × n (i, k) coefficients.
         let tasks = 3 * n;
         let next = AtomicUsize::new(0);
+        let work = || {
+            let mut done = Vec::new();
+            loop {
+                let task = next.fetch_add(1, Ordering::Relaxed);
+                if task >= tasks {
+                    break done;
+                }
+                done.push((task, fit_row(task / n, task % n, &scale)));
+            }
+        };
+        // This thread works too; helpers are added where threads exist (not in a browser's
+        // WebAssembly, where the build runs on this thread alone).
         let threads = std::thread::available_parallelism().map_or(1, usize::from);
         let mut rows: Vec<(usize, Vec<[f64; 3]>)> = std::thread::scope(|scope| {
-            let workers: Vec<_> = (0..threads.min(tasks))
-                .map(|_| {
-                    scope.spawn(|| {
-                        let mut done = Vec::new();
-                        loop {
-                            let task = next.fetch_add(1, Ordering::Relaxed);
-                            if task >= tasks {
-                                break done;
-                            }
-                            done.push((task, fit_row(task / n, task % n, &scale)));
-                        }
-                    })
-                })
+            let helpers: Vec<_> = (1..threads.min(tasks))
+                .map_while(|_| std::thread::Builder::new().spawn_scoped(scope, work).ok())
                 .collect();
-            workers
-                .into_iter()
-                .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                .collect()
+            let mut rows = work();
+            for helper in helpers {
+                rows.extend(
+                    helper
+                        .join()
+                        .unwrap_or_else(|e| std::panic::resume_unwind(e)),
+                );
+            }
+            rows
         });
         rows.sort_by_key(|&(task, _)| task);
         let mut texels = vec![[0.0_f32; 3]; 3 * n * n * n];
