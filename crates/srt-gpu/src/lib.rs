@@ -15,7 +15,9 @@
 //! - `polygon` — the per-vertex photo-object method of §3.2, for comparison;
 //! - `sky` — the stars of a scene's sky: a compute pass splats each aberrated, Doppler-shifted
 //!   star into a per-pixel buffer, a full-screen pass writes background and stars before the
-//!   objects are drawn (mirror: `srt-trace`'s sky).
+//!   objects are drawn (mirror: `srt-trace`'s sky);
+//! - `display` — shows a frame: its display colours into a window's or a canvas's 8-bit target,
+//!   quantised as the PNG is ([`display`]).
 //!
 //! The shading passes colour surfaces with the paper's colour table or, for scenes with spectral
 //! colour, with `spectral.wgsl`, the mirror of `srt-color`'s reflectance spectra (tables uploaded
@@ -34,6 +36,7 @@
 pub mod bvh;
 pub mod context;
 pub mod culling;
+pub mod display;
 pub mod error;
 pub mod formats;
 pub mod limits;

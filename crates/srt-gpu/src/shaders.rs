@@ -41,6 +41,9 @@ pub const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The pinhole camera: viewing directions through pixels and back.
 pub const CAMERA: &str = include_str!("../shaders/camera.wgsl");
 
+/// Showing a frame: display colours into an 8-bit target (see [`crate::display`]).
+pub const DISPLAY: &str = include_str!("../shaders/display.wgsl");
+
 /// Invocations per workgroup of every compute entry point (WGSL `override WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;
 
@@ -319,6 +322,7 @@ pub fn all() -> Vec<Shader> {
             overrides: &[],
         },
         proxy(),
+        crate::display::shader(),
         lrt(false, false),
         lrt(true, false),
         lrt(false, true),

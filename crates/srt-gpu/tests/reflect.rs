@@ -567,6 +567,7 @@ fn all_specs() -> Vec<PipelineSpec> {
     }
     specs.extend(srt_gpu::probe::specs());
     specs.extend(srt_gpu::pipelines::sky_specs());
+    specs.push(srt_gpu::display::spec());
     specs
 }
 

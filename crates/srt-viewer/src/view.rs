@@ -1,7 +1,7 @@
 //! Drawing the scene into textures the UI shows: the srt-gpu passes (the same ones `srt render`
-//! uses) render into their `Rgba32Float` target, and a small blit pass copies that into an
+//! uses) render into their `Rgba32Float` target, and srt-gpu's display pass copies that into an
 //! `Rgba8Unorm` texture registered with egui. The values are already display-encoded (sRGB), and
-//! egui expects exactly that of a non-sRGB texture, so the blit only clamps.
+//! egui expects exactly that of a non-sRGB texture.
 //!
 //! The screen is a row of [`Pane`]s: a view of the scene (seen, measured or Newtonian, made by
 //! [`View::apply`] as `srt render --view` makes it) drawn with a method (local ray tracing or
@@ -12,6 +12,7 @@
 
 use eframe::egui;
 use eframe::egui_wgpu;
+use srt_gpu::display::DisplayPass;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_scene::{Scene, View};
 
@@ -159,109 +160,6 @@ pub struct PaneScene<'a> {
     pub method: Method,
 }
 
-const BLIT_WGSL: &str = r"
-@group(0) @binding(0) var source: texture_2d<f32>;
-
-@vertex
-fn blit_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    // One triangle covering the whole target.
-    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
-@fragment
-fn blit_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let colour = textureLoad(source, vec2<i32>(position.xy), 0);
-    return vec4<f32>(clamp(colour.rgb, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
-}
-";
-
-/// The blit pipeline: `Rgba32Float` texels → `Rgba8Unorm`.
-struct Blit {
-    layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::RenderPipeline,
-}
-
-impl Blit {
-    fn new(device: &wgpu::Device) -> Self {
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("srt-viewer blit"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            }],
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("srt-viewer blit"),
-            source: wgpu::ShaderSource::Wgsl(BLIT_WGSL.into()),
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("srt-viewer blit"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("srt-viewer blit"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("blit_vertex"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("blit_fragment"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: DISPLAY_FORMAT,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Self { layout, pipeline }
-    }
-
-    fn encode(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        source: &wgpu::Texture,
-        target: &wgpu::TextureView,
-    ) {
-        let source_view = source.create_view(&wgpu::TextureViewDescriptor::default());
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("srt-viewer blit"),
-            layout: &self.layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&source_view),
-            }],
-        });
-        let mut pass = srt_gpu::passes::begin_colour_pass(
-            encoder,
-            "srt-viewer blit",
-            target,
-            wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-        );
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
-        pass.draw(0..3, 0..1);
-    }
-}
-
 /// One texture egui shows.
 struct Display {
     texture: wgpu::Texture,
@@ -303,7 +201,7 @@ impl Display {
 
 /// The uploaded scenes and the textures the UI shows.
 pub struct SceneView {
-    blit: Blit,
+    display_pass: DisplayPass,
     /// One renderer per set of meshes the panes need, with the key of those meshes.
     renderers: Vec<(UploadKey, GpuRenderer)>,
     displays: Vec<Display>,
@@ -314,11 +212,11 @@ pub struct SceneView {
 }
 
 impl SceneView {
-    /// Creates the blit pipeline; nothing is uploaded yet.
+    /// Creates the display pipeline; nothing is uploaded yet.
     #[must_use]
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
-            blit: Blit::new(&ctx.device),
+            display_pass: DisplayPass::new(&ctx.device, DISPLAY_FORMAT),
             renderers: Vec::new(),
             displays: Vec::new(),
             spare_ids: Vec::new(),
@@ -431,11 +329,13 @@ impl SceneView {
                 pane.method,
                 FootprintShape::Hull,
             )?;
-            self.blit.encode(
+            self.display_pass.encode(
                 &ctx.device,
                 &mut encoder,
                 renderer.color_texture(),
                 &self.displays[index].view,
+                None,
+                true,
             );
             ctx.queue.submit([encoder.finish()]);
         }

@@ -109,6 +109,15 @@ impl Method {
         !matches!(self, Self::Polygon)
     }
 
+    /// Every method, the default first.
+    pub const ALL: [Self; 4] = [Self::Auto, Self::Lrt, Self::Rt, Self::Polygon];
+
+    /// The method called `name` ([`Method::name`]), if there is one.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|method| method.name() == name)
+    }
+
     /// The name used on the command line.
     #[must_use]
     pub const fn name(self) -> &'static str {
