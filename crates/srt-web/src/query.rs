@@ -1,0 +1,262 @@
+//! The page's address as settings: `index.html?scene=fig7&width=320&height=180&ct=5&embed=1`.
+//! Every key has the meaning of the `srt render` option of the same name, so an embedded page
+//! and the command draw the same picture; `ct` is `--time`. A key the page does not know, or a
+//! value it cannot read, is refused with a message naming the key.
+
+use glam::DVec3;
+use srt_gpu::Method;
+use srt_scene::{Effects, OverrideNames, Overrides, SurfaceColour};
+
+/// The largest canvas side the page draws, in pixels (WebGPU's guaranteed texture size).
+pub const MAX_CANVAS_SIDE: u32 = 8192;
+
+/// What a page's override keys are called in messages: the address's keys.
+pub const QUERY_NAMES: OverrideNames = OverrideNames {
+    colour: "colour",
+    exposure: "exposure",
+    time: "ct",
+    beta: "beta",
+    observer_beta: "observer_beta",
+};
+
+/// Which renderer draws the page.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BackendChoice {
+    /// WebGPU where the browser has it, else the CPU tracer.
+    #[default]
+    Auto,
+    /// The exact CPU tracer in a Web Worker.
+    Cpu,
+    /// WebGPU, or an error.
+    Webgpu,
+}
+
+/// The settings an address gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PageQuery {
+    /// The built-in scene (`scene`); `None`: the one shown now (at first, `teaser`).
+    pub scene: Option<String>,
+    /// The canvas size in CSS pixels (`width`, `height`); `None`: the page's own layout.
+    pub size: Option<(u32, u32)>,
+    /// Only the canvas, at the page's top-left corner (`embed=1`).
+    pub embed: bool,
+    /// Which renderer (`backend=auto|cpu|webgpu`).
+    pub backend: BackendChoice,
+    /// The GPU method (`method=auto|lrt|rt|polygon`).
+    pub method: Method,
+    /// Split view: the left half exact, the right half the polygon method (`split=1`).
+    pub split: bool,
+    /// Values in place of the scene's own (`ct`, `beta`, `observer_beta`, `effects`, `colour`,
+    /// `exposure`), named by their keys in messages.
+    pub overrides: Overrides,
+}
+
+impl Default for PageQuery {
+    fn default() -> Self {
+        Self {
+            scene: None,
+            size: None,
+            embed: false,
+            backend: BackendChoice::Auto,
+            method: Method::Auto,
+            split: false,
+            overrides: Overrides {
+                names: QUERY_NAMES,
+                ..Overrides::default()
+            },
+        }
+    }
+}
+
+/// A key or value of the address the page cannot use.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum QueryError {
+    /// A key the page does not know.
+    #[error("the address has an unknown key \"{0}\" (known: {known})", known = KEYS.join(", "))]
+    UnknownKey(String),
+    /// A value that is not what its key takes.
+    #[error("{key}={value}: {reason}")]
+    Value {
+        /// The key.
+        key: String,
+        /// The value as written.
+        value: String,
+        /// What the key takes.
+        reason: String,
+    },
+}
+
+/// Every key the page reads.
+pub const KEYS: [&str; 13] = [
+    "scene",
+    "width",
+    "height",
+    "embed",
+    "backend",
+    "method",
+    "split",
+    "ct",
+    "beta",
+    "observer_beta",
+    "effects",
+    "colour",
+    "exposure",
+];
+
+/// Reads `query`, the part of the address after `?` (a leading `?` is allowed), with
+/// percent-encoding and `+` for spaces as browsers write them.
+///
+/// # Errors
+/// [`QueryError`] for the first unknown key or unreadable value.
+pub fn parse_query(query: &str) -> Result<PageQuery, QueryError> {
+    let mut page = PageQuery::default();
+    let (mut width, mut height) = (None, None);
+    for pair in query.trim_start_matches('?').split('&') {
+        if pair.is_empty() {
+            continue;
+        }
+        let (key, value) = pair.split_once('=').unwrap_or((pair, ""));
+        let key = decode(key);
+        let value = decode(value);
+        let bad = |reason: &str| QueryError::Value {
+            key: key.clone(),
+            value: value.clone(),
+            reason: reason.to_owned(),
+        };
+        let overrides = &mut page.overrides;
+        match key.as_str() {
+            "scene" => page.scene = Some(value.clone()),
+            "width" => width = Some(side(&value).ok_or_else(|| bad(SIDE_RULE))?),
+            "height" => height = Some(side(&value).ok_or_else(|| bad(SIDE_RULE))?),
+            "embed" => page.embed = flag(&value).ok_or_else(|| bad(FLAG_RULE))?,
+            "split" => page.split = flag(&value).ok_or_else(|| bad(FLAG_RULE))?,
+            "backend" => {
+                page.backend = match value.as_str() {
+                    "auto" => BackendChoice::Auto,
+                    "cpu" => BackendChoice::Cpu,
+                    "webgpu" => BackendChoice::Webgpu,
+                    _ => return Err(bad("the backend is auto, cpu or webgpu")),
+                };
+            }
+            "method" => {
+                page.method = Method::from_name(&value)
+                    .ok_or_else(|| bad("the method is auto, lrt, rt or polygon"))?;
+            }
+            "ct" => overrides.time = Some(number(&value).ok_or_else(|| bad(NUMBER_RULE))?),
+            "exposure" => {
+                overrides.exposure = Some(number(&value).ok_or_else(|| bad(NUMBER_RULE))?);
+            }
+            "beta" => overrides.beta = Some(vector(&value).ok_or_else(|| bad(VECTOR_RULE))?),
+            "observer_beta" => {
+                overrides.observer_beta = Some(vector(&value).ok_or_else(|| bad(VECTOR_RULE))?);
+            }
+            "effects" => {
+                overrides.effects = Some(
+                    Effects::from_name(&value)
+                        .ok_or_else(|| bad("the effects are geometry, doppler or searchlight"))?,
+                );
+            }
+            "colour" => {
+                overrides.colour = Some(
+                    SurfaceColour::from_name(&value)
+                        .ok_or_else(|| bad("the colour is paper or spectral"))?,
+                );
+            }
+            _ => return Err(QueryError::UnknownKey(key)),
+        }
+    }
+    page.size = match (width, height) {
+        (None, None) => None,
+        (Some(width), Some(height)) => Some((width, height)),
+        (Some(_), None) | (None, Some(_)) => {
+            return Err(QueryError::Value {
+                key: if width.is_some() { "height" } else { "width" }.to_owned(),
+                value: String::new(),
+                reason: "width and height are given together".to_owned(),
+            });
+        }
+    };
+    Ok(page)
+}
+
+const SIDE_RULE: &str = "a canvas side is a whole number of pixels from 1 to 8192";
+const FLAG_RULE: &str = "a switch is 1 or 0";
+const NUMBER_RULE: &str = "not a finite number";
+const VECTOR_RULE: &str = "a velocity is three numbers separated by commas, e.g. 0,0,0.9";
+
+fn decode(text: &str) -> String {
+    percent_encoding::percent_decode_str(&text.replace('+', " "))
+        .decode_utf8_lossy()
+        .into_owned()
+}
+
+fn side(value: &str) -> Option<u32> {
+    value
+        .parse::<u32>()
+        .ok()
+        .filter(|side| (1..=MAX_CANVAS_SIDE).contains(side))
+}
+
+fn flag(value: &str) -> Option<bool> {
+    match value {
+        "1" | "" | "true" => Some(true),
+        "0" | "false" => Some(false),
+        _ => None,
+    }
+}
+
+fn number(value: &str) -> Option<f64> {
+    value.trim().parse::<f64>().ok().filter(|x| x.is_finite())
+}
+
+fn vector(value: &str) -> Option<DVec3> {
+    let parts: Vec<f64> = value.split(',').map(number).collect::<Option<_>>()?;
+    <[f64; 3]>::try_from(parts).ok().map(DVec3::from_array)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_embed_address_reads_as_the_command_line_options() {
+        let page = parse_query(
+            "?scene=fig7&width=320&height=180&ct=5.5&embed=1&backend=cpu&beta=0%2C0%2C0.9\
+             &effects=searchlight&colour=spectral&method=rt&split=0",
+        )
+        .unwrap();
+        assert_eq!(page.scene.as_deref(), Some("fig7"));
+        assert_eq!(page.size, Some((320, 180)));
+        assert!(page.embed && !page.split);
+        assert_eq!(page.backend, BackendChoice::Cpu);
+        assert_eq!(page.method, Method::Rt);
+        assert_eq!(page.overrides.time, Some(5.5));
+        assert_eq!(page.overrides.beta, Some(DVec3::new(0.0, 0.0, 0.9)));
+        assert_eq!(page.overrides.effects, Some(Effects::Searchlight));
+        assert_eq!(page.overrides.colour, Some(SurfaceColour::Spectral));
+        assert_eq!(parse_query("").unwrap(), PageQuery::default());
+    }
+
+    #[test]
+    fn bad_keys_and_values_are_named() {
+        let unknown = parse_query("scene=fig7&sped=0.9").unwrap_err().to_string();
+        assert!(
+            unknown.contains("\"sped\"") && unknown.contains("beta"),
+            "{unknown}"
+        );
+        for (query, key) in [
+            ("ct=soon", "ct="),
+            ("width=0&height=10", "width=0"),
+            ("width=10", "height"),
+            ("beta=0,0", "beta=0,0"),
+            ("beta=0,0,NaN", "beta="),
+            ("method=fast", "method=fast"),
+            ("backend=gl", "backend=gl"),
+            ("embed=yes", "embed=yes"),
+            ("effects=all", "effects=all"),
+        ] {
+            let message = parse_query(query).unwrap_err().to_string();
+            assert!(message.starts_with(key), "{query}: {message}");
+        }
+    }
+}

@@ -1,0 +1,247 @@
+//! The scene a page shows, as `srt render` loads it: a built-in scene or a dropped model, with
+//! the page's [`Overrides`] in place of the scene's own values (srt-scene's one route for them,
+//! [`SceneSource::load_with`]). The scene is built again only when something other than the
+//! time changed; playing time costs no build. The CPU picture is the exact tracer's, quantised
+//! as `srt render` writes its PNG.
+
+use glam::DVec3;
+use srt_color::quantize_8bit;
+use srt_scene::description::observation_time;
+use srt_scene::resolve::ResolveError;
+use srt_scene::{
+    LoadedScene, Overrides, Scene, SceneError, SceneSource, ValueName, builtin_scenes,
+};
+use srt_trace::{RenderSettings, Tracer};
+
+use crate::query::QUERY_NAMES;
+
+/// Why the page cannot show what was asked.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    /// A scene name that is no built-in scene.
+    #[error("there is no built-in scene \"{name}\" (there are: {known})")]
+    UnknownScene {
+        /// The name asked for.
+        name: String,
+        /// The built-in scenes' names.
+        known: String,
+    },
+    /// A dropped file that is no model (judged by its extension).
+    #[error(transparent)]
+    Resolve(#[from] ResolveError),
+    /// A scene or model that does not load, or a value its rules refuse (the message names the
+    /// file or the key).
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// The scene a page shows and the values it overrides.
+pub struct Session {
+    source: SceneSource,
+    overrides: Overrides,
+    built: Built,
+    version: u64,
+}
+
+/// A built scene and the overrides it was built with.
+struct Built {
+    loaded: LoadedScene,
+    overrides: Overrides,
+}
+
+/// What the page's controls start from: the scene's own values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneInfo {
+    /// The scene's name.
+    pub name: String,
+    /// The observation time (the observer's clock).
+    pub ct: f64,
+    /// The velocity of the first moving object (zero if none moves).
+    pub beta: DVec3,
+    /// Whether the observer moves (then objects' velocities cannot be overridden).
+    pub observer_moves: bool,
+    /// The effect mode's name.
+    pub effects: &'static str,
+    /// The surface colour's name.
+    pub colour: &'static str,
+    /// Warnings of the last build.
+    pub warnings: Vec<String>,
+}
+
+impl Session {
+    /// A session showing the built-in scene `name` with its own values (built now).
+    ///
+    /// # Errors
+    /// [`SessionError::UnknownScene`] when there is no such built-in scene, or one that does
+    /// not build.
+    pub fn new(name: &str) -> Result<Self, SessionError> {
+        let source = builtin_source(name)?;
+        let overrides = Overrides {
+            names: QUERY_NAMES,
+            ..Overrides::default()
+        };
+        let built = Built {
+            loaded: source.load_with(&overrides)?,
+            overrides: overrides.clone(),
+        };
+        Ok(Self {
+            source,
+            overrides,
+            built,
+            version: 0,
+        })
+    }
+
+    /// Shows the built-in scene `name`, built at once with the values set; when it does not
+    /// exist or build, the session keeps showing what it showed.
+    ///
+    /// # Errors
+    /// [`SessionError::UnknownScene`], or the scene's build error.
+    pub fn set_builtin(&mut self, name: &str) -> Result<(), SessionError> {
+        let source = builtin_source(name)?;
+        if source != self.source {
+            self.show(source)?;
+        }
+        Ok(())
+    }
+
+    /// Shows the model `file_name` (its extension picks the format) made of `bytes`, placed as
+    /// `srt render MODEL` places it. The model is loaded at once, with the command's limits and
+    /// messages; when it fails, the session keeps showing what it showed. Returns the warnings.
+    ///
+    /// # Errors
+    /// [`SessionError`] naming the file and the reason.
+    pub fn load_model(
+        &mut self,
+        file_name: &str,
+        bytes: Vec<u8>,
+    ) -> Result<Vec<String>, SessionError> {
+        let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
+        let path = srt_scene::assets::add_memory_file(base, bytes);
+        self.show(SceneSource::from_path(std::path::Path::new(&path))?)?;
+        Ok(self.built.loaded.warnings.clone())
+    }
+
+    /// Builds `source` with the values set and shows it, or leaves everything as it was.
+    fn show(&mut self, source: SceneSource) -> Result<(), SessionError> {
+        let loaded = source.load_with(&self.overrides)?;
+        self.source = source;
+        self.built = Built {
+            loaded,
+            overrides: self.overrides.clone(),
+        };
+        self.version += 1;
+        Ok(())
+    }
+
+    /// Sets the values in place of the scene's own (their names in messages stay the page's);
+    /// they are judged when the scene is next asked for.
+    pub fn set_overrides(&mut self, overrides: Overrides) {
+        self.overrides = Overrides {
+            names: QUERY_NAMES,
+            ..overrides
+        };
+    }
+
+    /// The scene as it is now to be shown: built again if a value other than the time changed,
+    /// else the built scene at the new time.
+    ///
+    /// # Errors
+    /// [`SessionError::Scene`] when it does not build or a value is refused; the scene shown
+    /// before stays.
+    pub fn scene(&mut self) -> Result<&Scene, SessionError> {
+        let built = &mut self.built;
+        let only_time_changed = Overrides {
+            time: built.overrides.time,
+            ..self.overrides.clone()
+        } == built.overrides;
+        match self.overrides.time {
+            Some(ct) if only_time_changed => {
+                observation_time(ValueName::Option(QUERY_NAMES.time), ct).map_err(|kind| {
+                    SceneError::new(self.source.origin(&built.loaded.source.description), kind)
+                })?;
+                built.overrides.time = Some(ct);
+                self.overrides.apply_to_scene(&mut built.loaded.scene);
+            }
+            _ if built.overrides != self.overrides => {
+                *built = Built {
+                    loaded: self.source.load_with(&self.overrides)?,
+                    overrides: self.overrides.clone(),
+                };
+                self.version += 1;
+            }
+            _ => {}
+        }
+        Ok(&self.built.loaded.scene)
+    }
+
+    /// A number that changes whenever the scene is built again (its meshes, materials or
+    /// velocities may have changed; a GPU renderer must upload it again).
+    #[must_use]
+    pub const fn version(&self) -> u64 {
+        self.version
+    }
+
+    /// The scene's own values (before the page's) for the page's controls, and the warnings
+    /// of the last build.
+    ///
+    /// # Errors
+    /// A scene file that cannot be read (never for built-in scenes and dropped models).
+    pub fn info(&self) -> Result<SceneInfo, SessionError> {
+        let own = self.source.description(None)?.description;
+        let beta = own
+            .objects
+            .iter()
+            .map(|object| DVec3::from_array(object.beta))
+            .find(|beta| *beta != DVec3::ZERO)
+            .unwrap_or(DVec3::ZERO);
+        Ok(SceneInfo {
+            name: self.built.loaded.scene.name.clone(),
+            ct: own.observer.ct,
+            beta,
+            observer_moves: DVec3::from_array(own.observer.beta) != DVec3::ZERO,
+            effects: own.render.effects.name(),
+            colour: own.render.colour.name(),
+            warnings: self.built.loaded.warnings.clone(),
+        })
+    }
+
+    /// The exact CPU picture at `width`×`height`, RGBA with 8 bits per channel, rows from the
+    /// top: the bytes `srt render --backend cpu` writes (plus an opaque alpha).
+    ///
+    /// # Errors
+    /// As [`Session::scene`].
+    pub fn render_cpu(&mut self, width: u32, height: u32) -> Result<Vec<u8>, SessionError> {
+        let scene = self.scene()?;
+        let settings = RenderSettings {
+            width,
+            height,
+            samples: 1,
+        };
+        let image = Tracer::new(scene).render(settings, &|_| {});
+        Ok(image
+            .pixels
+            .iter()
+            .flat_map(|p| {
+                let [r, g, b] = p.to_array().map(quantize_8bit);
+                [r, g, b, u8::MAX]
+            })
+            .collect())
+    }
+}
+
+/// The source of the built-in scene `name`.
+fn builtin_source(name: &str) -> Result<SceneSource, SessionError> {
+    srt_scene::builtin::find_builtin(name)
+        .map(SceneSource::Builtin)
+        .ok_or_else(|| SessionError::UnknownScene {
+            name: name.to_owned(),
+            known: scene_names().join(", "),
+        })
+}
+
+/// The names of the built-in scenes, in `srt scenes` order.
+#[must_use]
+pub fn scene_names() -> Vec<&'static str> {
+    builtin_scenes().iter().map(|scene| scene.name).collect()
+}

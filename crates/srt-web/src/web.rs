@@ -1,0 +1,430 @@
+//! What the page's JavaScript calls (wasm32 only, through wasm-bindgen): [`GpuPage`] draws on a
+//! canvas with WebGPU — srt-gpu's passes, the same as on the desktop, shown by its display pass —
+//! and [`CpuPage`] renders the exact CPU picture to bytes (in a Web Worker, where WebGPU is
+//! missing). Both hold a [`Session`] set from the page's address ([`crate::query`]).
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use srt_gpu::display::DisplayPass;
+use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
+use wasm_bindgen::prelude::*;
+
+use crate::query::{PageQuery, parse_query};
+use crate::session::{Session, SessionError, scene_names as builtin_names};
+
+/// Installs the panic hook that sends Rust panics to the browser's console.
+#[wasm_bindgen(start)]
+pub fn start() {
+    console_error_panic_hook::set_once();
+}
+
+/// The names of the built-in scenes, in `srt scenes` order.
+#[wasm_bindgen]
+#[must_use]
+pub fn scene_names() -> Vec<String> {
+    builtin_names().into_iter().map(str::to_owned).collect()
+}
+
+/// The page settings of the address `query` as JSON (`scene`, `width`, `height`, `embed`,
+/// `backend`, `method`, `split`): what the page's script needs before it picks a renderer.
+///
+/// # Errors
+/// The address's first unknown key or unreadable value, named.
+#[wasm_bindgen]
+pub fn page_settings(query: &str) -> Result<String, JsError> {
+    let page = parse_query(query).map_err(js_error)?;
+    let (width, height) = page.size.unzip();
+    Ok(serde_json::json!({
+        "scene": page.scene,
+        "width": width,
+        "height": height,
+        "embed": page.embed,
+        "backend": format!("{:?}", page.backend).to_lowercase(),
+        "method": page.method.name(),
+        "split": page.split,
+    })
+    .to_string())
+}
+
+fn js_error(error: impl std::fmt::Display) -> JsError {
+    JsError::new(&error.to_string())
+}
+
+/// Sets `session` from the address `query` and returns the settings.
+fn apply_query(session: &mut Session, query: &str) -> Result<PageQuery, JsError> {
+    let page = parse_query(query).map_err(js_error)?;
+    if let Some(scene) = &page.scene {
+        session.set_builtin(scene).map_err(js_error)?;
+    }
+    session.set_overrides(page.overrides.clone());
+    Ok(page)
+}
+
+/// The scene's own values as JSON (`name`, `ct`, `beta`, `observer_moves`, `effects`,
+/// `colour`, `warnings`).
+fn info_json(session: &Session) -> Result<String, JsError> {
+    let info = session.info().map_err(js_error)?;
+    Ok(serde_json::json!({
+        "name": info.name,
+        "ct": info.ct,
+        "beta": info.beta.to_array(),
+        "observer_moves": info.observer_moves,
+        "effects": info.effects,
+        "colour": info.colour,
+        "warnings": info.warnings,
+    })
+    .to_string())
+}
+
+/// The exact CPU renderer of a page (run it in a Web Worker: a frame takes a while).
+#[wasm_bindgen]
+pub struct CpuPage {
+    session: Session,
+}
+
+#[wasm_bindgen]
+impl CpuPage {
+    /// A page showing the teaser.
+    ///
+    /// # Errors
+    /// Never in practice (the teaser is built in).
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> Result<Self, JsError> {
+        Ok(Self {
+            session: Session::new(DEFAULT_SCENE).map_err(js_error)?,
+        })
+    }
+
+    /// Takes the scene and values of the address `query` (what it leaves out stays).
+    ///
+    /// # Errors
+    /// An unknown key or scene, an unreadable value.
+    pub fn set_query(&mut self, query: &str) -> Result<(), JsError> {
+        apply_query(&mut self.session, query).map(drop)
+    }
+
+    /// Shows the model file `name` made of `bytes`; returns its warnings, one per line.
+    ///
+    /// # Errors
+    /// The file and the reason, as `srt render MODEL` gives them.
+    pub fn load_model(&mut self, name: &str, bytes: Vec<u8>) -> Result<String, JsError> {
+        load_model(&mut self.session, name, bytes)
+    }
+
+    /// The scene's own values as JSON.
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn info(&self) -> Result<String, JsError> {
+        info_json(&self.session)
+    }
+
+    /// The exact picture, RGBA bytes, rows from the top.
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn render(&mut self, width: u32, height: u32) -> Result<Vec<u8>, JsError> {
+        self.session.render_cpu(width, height).map_err(js_error)
+    }
+}
+
+/// The scene a page opens with.
+const DEFAULT_SCENE: &str = "teaser";
+
+fn load_model(session: &mut Session, name: &str, bytes: Vec<u8>) -> Result<String, JsError> {
+    session
+        .load_model(name, bytes)
+        .map(|warnings| warnings.join("\n"))
+        .map_err(|error: SessionError| js_error(error))
+}
+
+/// A renderer of one method with the scene version it holds.
+struct Uploaded {
+    version: u64,
+    method: Method,
+    renderer: GpuRenderer,
+}
+
+/// A canvas drawn with WebGPU.
+#[wasm_bindgen]
+pub struct GpuPage {
+    session: Session,
+    context: GpuContext,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    display: DisplayPass,
+    method: Method,
+    split: bool,
+    /// The exact (or the chosen) method's renderer, and the polygon method's in split view.
+    renderers: Vec<Uploaded>,
+}
+
+#[wasm_bindgen]
+impl GpuPage {
+    /// Opens WebGPU on `canvas` (sized by the caller) and shows the teaser.
+    ///
+    /// # Errors
+    /// No WebGPU adapter or device, or a canvas WebGPU cannot draw on.
+    pub async fn create(canvas: web_sys::HtmlCanvasElement) -> Result<Self, JsError> {
+        let (width, height) = (canvas.width().max(1), canvas.height().max(1));
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::BROWSER_WEBGPU,
+            ..wgpu::InstanceDescriptor::new_without_display_handle()
+        });
+        let surface = instance
+            .create_surface(wgpu::SurfaceTarget::Canvas(canvas))
+            .map_err(|e| js_error(format!("WebGPU cannot draw on the canvas: {e}")))?;
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: Some(&surface),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| js_error(format!("this browser offers no WebGPU adapter: {e}")))?;
+        let context = GpuContext::from_adapter(&adapter).await.map_err(js_error)?;
+        let capabilities = surface.get_capabilities(&adapter);
+        let format = capabilities
+            .formats
+            .iter()
+            .copied()
+            .find(|f| {
+                matches!(
+                    f,
+                    wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm
+                )
+            })
+            .ok_or_else(|| js_error("the canvas offers no 8-bit colour format"))?;
+        let config = wgpu::SurfaceConfiguration {
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            format,
+            width,
+            height,
+            present_mode: wgpu::PresentMode::Fifo,
+            desired_maximum_frame_latency: 1,
+            alpha_mode: wgpu::CompositeAlphaMode::Opaque,
+            view_formats: vec![],
+            color_space: wgpu::SurfaceColorSpace::Srgb,
+        };
+        surface.configure(&context.device, &config);
+        let display = DisplayPass::new(&context.device, format);
+        Ok(Self {
+            session: Session::new(DEFAULT_SCENE).map_err(js_error)?,
+            context,
+            surface,
+            config,
+            display,
+            method: Method::Auto,
+            split: false,
+            renderers: Vec::new(),
+        })
+    }
+
+    /// The adapter, in words.
+    #[must_use]
+    pub fn adapter(&self) -> String {
+        self.context.adapter_summary()
+    }
+
+    /// Takes the scene, method, split view and values of the address `query`.
+    ///
+    /// # Errors
+    /// An unknown key or scene, an unreadable value.
+    pub fn set_query(&mut self, query: &str) -> Result<(), JsError> {
+        let page = apply_query(&mut self.session, query)?;
+        self.method = page.method;
+        self.split = page.split;
+        Ok(())
+    }
+
+    /// Shows the model file `name` made of `bytes`; returns its warnings, one per line.
+    ///
+    /// # Errors
+    /// The file and the reason, as `srt render MODEL` gives them.
+    pub fn load_model(&mut self, name: &str, bytes: Vec<u8>) -> Result<String, JsError> {
+        load_model(&mut self.session, name, bytes)
+    }
+
+    /// The scene's own values as JSON.
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn info(&self) -> Result<String, JsError> {
+        info_json(&self.session)
+    }
+
+    /// Draws at `width`×`height` pixels from now on (the canvas's own size).
+    pub fn resize(&mut self, width: u32, height: u32) {
+        let (width, height) = (width.max(1), height.max(1));
+        if (width, height) != (self.config.width, self.config.height) {
+            self.config.width = width;
+            self.config.height = height;
+            self.surface.configure(&self.context.device, &self.config);
+        }
+    }
+
+    /// Draws the scene on the canvas. Returns why the GPU cannot draw this scene, if it cannot
+    /// (then the page asks the CPU), or `undefined` once the frame is submitted.
+    ///
+    /// # Errors
+    /// A scene that does not build, a value it refuses, or a WebGPU failure.
+    pub fn draw(&mut self) -> Result<Option<String>, JsError> {
+        let (width, height) = (self.config.width, self.config.height);
+        let mut methods = vec![self.method];
+        if self.split {
+            methods.push(Method::Polygon);
+        }
+        // Built first (if needed), so that the version read next is the scene's.
+        self.session.scene().map_err(js_error)?;
+        let version = self.session.version();
+        let scene = self.session.scene().map_err(js_error)?;
+        if let Some(reason) = methods.iter().find_map(|m| m.cannot_draw(scene)) {
+            return Ok(Some(reason));
+        }
+        let context = &self.context;
+        self.renderers.truncate(methods.len());
+        for (index, &method) in methods.iter().enumerate() {
+            match self.renderers.get_mut(index) {
+                Some(uploaded) if uploaded.version == version => {
+                    uploaded.method = method;
+                    uploaded
+                        .renderer
+                        .resize(context, width, height)
+                        .map_err(js_error)?;
+                }
+                _ => {
+                    let renderer =
+                        GpuRenderer::new(context, scene, width, height).map_err(js_error)?;
+                    let uploaded = Uploaded {
+                        version,
+                        method,
+                        renderer,
+                    };
+                    if index < self.renderers.len() {
+                        self.renderers[index] = uploaded;
+                    } else {
+                        self.renderers.push(uploaded);
+                    }
+                }
+            }
+            let uploaded = &self.renderers[index];
+            let mut encoder =
+                context
+                    .device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                        label: Some("srt-web frame"),
+                    });
+            uploaded
+                .renderer
+                .encode(context, &mut encoder, scene, method, FootprintShape::Hull)
+                .map_err(js_error)?;
+            context.queue.submit([encoder.finish()]);
+        }
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
+            other => {
+                // Configured again for the next frame (the canvas changed or was lost).
+                self.surface.configure(&context.device, &self.config);
+                return Err(js_error(format!(
+                    "the canvas gave no texture to draw into ({})",
+                    surface_problem(&other)
+                )));
+            }
+        };
+        let target = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let mut encoder = context
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("srt-web display"),
+            });
+        let half = width / 2;
+        for (index, uploaded) in self.renderers.iter().enumerate() {
+            let columns = self
+                .split
+                .then(|| if index == 0 { 0..half } else { half..width });
+            self.display.encode(
+                &context.device,
+                &mut encoder,
+                uploaded.renderer.color_texture(),
+                &target,
+                columns,
+                index == 0,
+            );
+        }
+        context.queue.submit([encoder.finish()]);
+        context.queue.present(frame);
+        context.take_errors().map_err(js_error)?;
+        Ok(None)
+    }
+
+    /// The WebGPU errors reported since the last call (validation errors arrive after the
+    /// frame that caused them), or `undefined`.
+    #[must_use]
+    pub fn errors(&self) -> Option<String> {
+        self.context
+            .take_errors()
+            .err()
+            .map(|error| error.to_string())
+    }
+
+    /// A promise that resolves once the GPU has finished the frames drawn so far (a pixel of
+    /// the last picture is read back: the browser resolves the read after the work before it).
+    #[must_use]
+    pub fn finished(&self) -> js_sys::Promise {
+        let Some(uploaded) = self.renderers.first() else {
+            return js_sys::Promise::resolve(&JsValue::UNDEFINED);
+        };
+        let device = &self.context.device;
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("srt-web frame done"),
+            size: 16,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("srt-web frame done"),
+        });
+        encoder.copy_texture_to_buffer(
+            uploaded.renderer.color_texture().as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout::default(),
+            },
+            wgpu::Extent3d::default(),
+        );
+        self.context.queue.submit([encoder.finish()]);
+        // The buffer lives until its mapping settles (the callback holds it).
+        let kept = Rc::new(buffer);
+        js_sys::Promise::new(&mut move |resolve, reject| {
+            let kept = Rc::clone(&kept);
+            let settle = RefCell::new(Some((resolve, reject)));
+            kept.clone()
+                .map_async(wgpu::MapMode::Read, .., move |result| {
+                    kept.unmap();
+                    if let Some((resolve, reject)) = settle.borrow_mut().take() {
+                        let _ = match result {
+                            Ok(()) => resolve.call0(&JsValue::UNDEFINED),
+                            Err(error) => reject
+                                .call1(&JsValue::UNDEFINED, &JsValue::from_str(&error.to_string())),
+                        };
+                    }
+                });
+        })
+    }
+}
+
+/// Why the canvas gave no texture, in words.
+fn surface_problem(status: &wgpu::CurrentSurfaceTexture) -> &'static str {
+    match status {
+        wgpu::CurrentSurfaceTexture::Timeout => "timeout",
+        wgpu::CurrentSurfaceTexture::Occluded => "occluded",
+        wgpu::CurrentSurfaceTexture::Outdated => "outdated",
+        wgpu::CurrentSurfaceTexture::Lost => "lost",
+        _ => "validation",
+    }
+}
