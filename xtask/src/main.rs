@@ -6,6 +6,7 @@ mod figures;
 mod plot;
 mod provenance;
 mod validate;
+mod web;
 
 use std::path::PathBuf;
 
@@ -66,6 +67,30 @@ enum Command {
         )]
         compare: Option<Vec<PathBuf>>,
     },
+    /// Build the web page into target/web (wasm with Debian's wasm toolchain, its JavaScript
+    /// glue with wasm-bindgen), then serve it on localhost or test it in headless Chromium.
+    Web {
+        /// Serve target/web on 127.0.0.1 until stopped.
+        #[arg(long)]
+        serve: bool,
+        /// The port to serve on.
+        #[arg(long, default_value_t = 8080, requires = "serve")]
+        port: u16,
+        /// Load the embed page of several scenes on WebGPU and on the CPU path in headless
+        /// Chromium and compare each screenshot with the exact CPU picture.
+        #[arg(long, conflicts_with = "serve")]
+        test: bool,
+        /// Save a screenshot of the whole page (its controls included) at PATH, 1280×800, once
+        /// its first frame is drawn (with --query for the address).
+        #[arg(long, value_name = "PATH", conflicts_with_all = ["serve", "test"])]
+        screenshot: Option<PathBuf>,
+        /// The address's query for --screenshot, e.g. "scene=fig7&split=1".
+        #[arg(long, default_value = "", requires = "screenshot")]
+        query: String,
+        /// Use the page already in target/web.
+        #[arg(long)]
+        no_build: bool,
+    },
 }
 
 /// The workspace root (xtask lives one level below it).
@@ -106,6 +131,28 @@ fn main() -> anyhow::Result<()> {
             only.as_deref(),
             results.as_deref(),
         )?,
+        Command::Web {
+            serve,
+            port,
+            test,
+            screenshot,
+            query,
+            no_build,
+        } => {
+            let root = workspace_root();
+            let page = if no_build {
+                root.join(web::OUT_DIR)
+            } else {
+                web::build(&root)?
+            };
+            if serve {
+                web::serve_forever(&page, port)?;
+            } else if test {
+                web::test(&root, &page)?;
+            } else if let Some(path) = screenshot {
+                web::screenshot(&root, &page, &query, &path)?;
+            }
+        }
     }
     Ok(())
 }

@@ -45,10 +45,10 @@ use crate::cases::{Case, ENGINE, builtin_cases, fly_by_cases, model_case, with_s
 const WIDTH: u32 = 640;
 const HEIGHT: u32 = 360;
 /// Channel tolerance (steps of 1/255) and silhouette margin (pixels) of the image metric.
-const TOLERANCE: u8 = 2;
-const EDGE_MARGIN: u32 = 1;
+pub const TOLERANCE: u8 = 2;
+pub const EDGE_MARGIN: u32 = 1;
 /// Largest mismatch of an exact method accepted.
-const MAX_MISMATCH: f64 = 0.001;
+pub const MAX_MISMATCH: f64 = 0.001;
 /// Radiance: a pixel differs when a channel is off by more than this fraction of the reference
 /// pixel's largest channel, or of [`RADIANCE_FLOOR`] where that is smaller.
 const RADIANCE_TOLERANCE: f64 = 0.02;

@@ -1,0 +1,439 @@
+//! `cargo xtask web`: builds the web page into `target/web/` (the page's files from
+//! `crates/srt-web/web/`, the wasm module and its JavaScript glue, nothing from elsewhere),
+//! serves it on localhost (`--serve`), and tests it in headless Chromium (`--test`): the embed
+//! page of several scenes, on WebGPU and on the CPU path, screenshot and compared with the exact
+//! CPU reference at the same size, with `cargo xtask validate`'s tolerance.
+//!
+//! The wasm is built with Debian's wasm toolchain (`rustc-web`, `cargo-web`, `rust-web-src`,
+//! `lld-16`: its standard library is built from source with `-Zbuild-std`), so the project's own
+//! rustup toolchain needs no wasm target; `SRT_WEB_CARGO`, `SRT_WEB_RUSTC` and
+//! `SRT_WEB_LINKER` name another. The JavaScript glue comes from `wasm-bindgen-cli` of the
+//! version in Cargo.lock.
+
+mod devtools;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use anyhow::{Context as _, bail};
+use srt_scene::SceneSource;
+use srt_trace::compare::compare;
+use srt_trace::{RenderSettings, Tracer};
+use srt_web::parse_query;
+
+use crate::validate::{EDGE_MARGIN, MAX_MISMATCH, TOLERANCE};
+use devtools::Browser;
+
+/// Where the page is built, below the workspace.
+pub const OUT_DIR: &str = "target/web";
+
+/// The page's own files (HTML, JavaScript, CSS), below the workspace.
+const PAGE_DIR: &str = "crates/srt-web/web";
+
+/// The browser test's cases: a scene and more of the address, at [`TEST_SIZE`].
+const TEST_CASES: [&str; 3] = [
+    "scene=fig7",
+    "scene=teaser&effects=searchlight",
+    "scene=rolling-wheel",
+];
+
+/// The canvas size of the browser test, in pixels.
+const TEST_SIZE: (u32, u32) = (320, 180);
+
+/// How long a page may take to draw its first frame.
+const FIRST_FRAME_TIMEOUT: Duration = Duration::from_secs(300);
+
+/// A program the build needs, and how to get it.
+struct Tool {
+    path: PathBuf,
+    install: &'static str,
+}
+
+fn tool(variable: &str, default: &str, install: &'static str) -> Tool {
+    Tool {
+        path: std::env::var_os(variable).map_or_else(|| PathBuf::from(default), PathBuf::from),
+        install,
+    }
+}
+
+const DEBIAN_WASM: &str =
+    "apt-get install rustc-web cargo-web rust-web-src lld-16 (Debian's wasm toolchain)";
+
+/// Builds the page into `workspace/target/web` and returns that folder.
+///
+/// # Errors
+/// A missing tool (the message says how to install it), or a failed build.
+pub fn build(workspace: &Path) -> anyhow::Result<PathBuf> {
+    let cargo = tool("SRT_WEB_CARGO", "/usr/bin/cargo", DEBIAN_WASM);
+    let rustc = tool("SRT_WEB_RUSTC", "/usr/bin/rustc", DEBIAN_WASM);
+    let linker = tool(
+        "SRT_WEB_LINKER",
+        "/usr/lib/llvm-16/bin/wasm-ld",
+        DEBIAN_WASM,
+    );
+    for needed in [&cargo, &rustc, &linker] {
+        if !needed.path.is_file() {
+            bail!("{} is missing: {}", needed.path.display(), needed.install);
+        }
+    }
+    let bindgen_version = locked_version(workspace, "wasm-bindgen")?;
+    check_bindgen(&bindgen_version)?;
+
+    let build_dir = workspace.join("target/web-build");
+    let started = Instant::now();
+    let status = Command::new(&cargo.path)
+        .current_dir(workspace)
+        .args([
+            "build",
+            "--release",
+            "--locked",
+            "-Zbuild-std=std,panic_abort",
+        ])
+        .args([
+            "--target",
+            "wasm32-unknown-unknown",
+            "-p",
+            "srt-web",
+            "--target-dir",
+        ])
+        .arg(&build_dir)
+        .env("RUSTC", &rustc.path)
+        .env("RUSTC_BOOTSTRAP", "1")
+        .env("CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER", &linker.path)
+        // getrandom (through rand) reaches the browser's crypto; the page's own crates build
+        // without warnings, as clippy holds the native build to.
+        .env(
+            "RUSTFLAGS",
+            "--cfg getrandom_backend=\"wasm_js\" -D warnings",
+        )
+        .env("CARGO_PROFILE_RELEASE_DEBUG", "false")
+        .env_remove("CARGO")
+        .env_remove("RUSTC_WRAPPER")
+        .env_remove("CARGO_TARGET_DIR")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .status()
+        .with_context(|| format!("cannot run {}", cargo.path.display()))?;
+    if !status.success() {
+        bail!("the wasm build of srt-web failed ({status})");
+    }
+    let out = workspace.join(OUT_DIR);
+    if out.exists() {
+        std::fs::remove_dir_all(&out).with_context(|| format!("cannot empty {}", out.display()))?;
+    }
+    let wasm = build_dir.join("wasm32-unknown-unknown/release/srt_web.wasm");
+    let status = Command::new("wasm-bindgen")
+        .args(["--target", "web", "--no-typescript", "--out-dir"])
+        .arg(&out)
+        .arg(&wasm)
+        .status()
+        .context("cannot run wasm-bindgen")?;
+    if !status.success() {
+        bail!("wasm-bindgen failed on {} ({status})", wasm.display());
+    }
+    for entry in std::fs::read_dir(workspace.join(PAGE_DIR))? {
+        let path = entry?.path();
+        let name = path.file_name().context("a page file")?;
+        std::fs::copy(&path, out.join(name))
+            .with_context(|| format!("cannot copy {}", path.display()))?;
+    }
+    let size = std::fs::metadata(out.join("srt_web_bg.wasm"))?.len();
+    println!(
+        "built the page into {} in {:.0} s (wasm {:.1} MB)",
+        out.display(),
+        started.elapsed().as_secs_f64(),
+        size as f64 / 1e6
+    );
+    Ok(out)
+}
+
+/// The version of `package` in the workspace's Cargo.lock.
+fn locked_version(workspace: &Path, package: &str) -> anyhow::Result<String> {
+    let lock = std::fs::read_to_string(workspace.join("Cargo.lock"))?;
+    let name_line = format!("name = \"{package}\"");
+    let mut lines = lock.lines();
+    while let Some(line) = lines.next() {
+        if line == name_line
+            && let Some(version) = lines.next().and_then(|l| l.strip_prefix("version = \""))
+        {
+            return Ok(version.trim_end_matches('"').to_owned());
+        }
+    }
+    bail!("Cargo.lock has no {package}")
+}
+
+/// Refuses a missing `wasm-bindgen` or one of another version than the crate's.
+fn check_bindgen(version: &str) -> anyhow::Result<()> {
+    let install = format!("cargo install wasm-bindgen-cli --version ={version}");
+    let output = Command::new("wasm-bindgen")
+        .arg("--version")
+        .output()
+        .with_context(|| format!("wasm-bindgen is missing: {install}"))?;
+    let found = String::from_utf8_lossy(&output.stdout);
+    if found.split_whitespace().nth(1) != Some(version) {
+        bail!(
+            "wasm-bindgen {} is installed, the crate is {version}: {install}",
+            found.trim()
+        );
+    }
+    Ok(())
+}
+
+/// Serves `root` on 127.0.0.1:`port` (0: any free port) from a background thread; returns the
+/// address.
+///
+/// # Errors
+/// When the port cannot be opened.
+pub fn serve(root: &Path, port: u16) -> anyhow::Result<String> {
+    let server = tiny_http::Server::http(("127.0.0.1", port))
+        .map_err(|e| anyhow::anyhow!("cannot serve on port {port}: {e}"))?;
+    let address = format!("http://{}/", server.server_addr());
+    let root = root.to_path_buf();
+    std::thread::spawn(move || {
+        for request in server.incoming_requests() {
+            let _ = respond(&root, request);
+        }
+    });
+    Ok(address)
+}
+
+/// Answers one request with a file of `root` (no folders above it), or 404.
+fn respond(root: &Path, request: tiny_http::Request) -> std::io::Result<()> {
+    let path = request.url().split(['?', '#']).next().unwrap_or("/");
+    let relative = path.trim_start_matches('/');
+    let relative = if relative.is_empty() {
+        "index.html"
+    } else {
+        relative
+    };
+    let file = root.join(relative);
+    let inside = !relative
+        .split('/')
+        .any(|part| part == ".." || part.is_empty());
+    match std::fs::read(&file) {
+        Ok(bytes) if inside => {
+            let kind = match file.extension().and_then(|e| e.to_str()) {
+                Some("html") => "text/html; charset=utf-8",
+                Some("js") => "text/javascript; charset=utf-8",
+                Some("css") => "text/css; charset=utf-8",
+                Some("wasm") => "application/wasm",
+                _ => "application/octet-stream",
+            };
+            let header =
+                tiny_http::Header::from_bytes("Content-Type", kind).expect("a valid header");
+            request.respond(tiny_http::Response::from_data(bytes).with_header(header))
+        }
+        _ => request.respond(tiny_http::Response::from_string("not found").with_status_code(404)),
+    }
+}
+
+/// Serves the built page until the process is stopped.
+///
+/// # Errors
+/// When the port cannot be opened.
+pub fn serve_forever(root: &Path, port: u16) -> anyhow::Result<()> {
+    let address = serve(root, port)?;
+    println!("serving {} at {address} (Ctrl-C stops)", root.display());
+    println!("embed example: {address}index.html?scene=fig7&width=320&height=180&embed=1");
+    loop {
+        std::thread::park();
+    }
+}
+
+/// The browser test: every case of [`TEST_CASES`] on WebGPU and on the CPU path, compared with
+/// the exact CPU reference.
+///
+/// # Errors
+/// A case whose picture differs beyond the tolerance, a page that reports an error or never
+/// draws, or no browser.
+pub fn test(workspace: &Path, root: &Path) -> anyhow::Result<()> {
+    let address = serve(root, 0)?;
+    let out = workspace.join("target/web-test");
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out)?;
+    let profile = out.join("profile");
+    let _ = std::fs::remove_dir_all(&profile);
+    let executable = devtools::find_browser()?;
+    let mut browser = Browser::start(&executable, &profile, &out.join("chromium.log"))?;
+    let (width, height) = TEST_SIZE;
+    let mut failures = Vec::new();
+    for case in TEST_CASES {
+        let reference = reference_image(case, width, height)?;
+        for backend in ["webgpu", "cpu"] {
+            let query = format!("{case}&width={width}&height={height}&embed=1&backend={backend}");
+            let started = Instant::now();
+            browser.open(&format!("{address}index.html?{query}"))?;
+            let title = browser.wait_for_title(
+                |title| title.starts_with("srt ready") || title.starts_with("srt error"),
+                FIRST_FRAME_TIMEOUT,
+            )?;
+            println!(
+                "web {query}: drawn in {:.1} s",
+                started.elapsed().as_secs_f64()
+            );
+            let expected = format!("srt ready ({backend})");
+            if title != expected {
+                let console = browser.console().join("\n  ");
+                failures.push(format!(
+                    "{query}: the page says {title:?}, not {expected:?}; its console:\n  {console}"
+                ));
+                println!("web {query} FAIL ({title})");
+                continue;
+            }
+            let png = browser.screenshot((0.0, 0.0), width, height)?;
+            if let Some(failure) = check_picture(&out, &query, &png, &reference)? {
+                failures.push(failure);
+            }
+        }
+    }
+    failures.extend(check_controls(&mut browser, &address, &out)?);
+    if !failures.is_empty() {
+        bail!(
+            "the web page differs from the CPU reference:\n{}",
+            failures.join("\n")
+        );
+    }
+    println!(
+        "web: all {} pages and the controls' picture equal the CPU reference",
+        TEST_CASES.len() * 2
+    );
+    Ok(())
+}
+
+/// Compares the screenshot `png` of the page `query` with `reference`, saves it in `out`, and
+/// prints the verdict; returns the failure, if it fails.
+fn check_picture(
+    out: &Path,
+    query: &str,
+    png: &[u8],
+    reference: &srt_trace::RenderedImage,
+) -> anyhow::Result<Option<String>> {
+    let file = out.join(format!("{}.png", query.replace(['&', '=', ',', ' '], "_")));
+    std::fs::write(&file, png)?;
+    let shot = image::load_from_memory(png)?.to_rgb8();
+    if shot.dimensions() != (reference.width, reference.height) {
+        return Ok(Some(format!(
+            "{query}: a {:?} screenshot",
+            shot.dimensions()
+        )));
+    }
+    let pixels: Vec<[u8; 3]> = shot.pixels().map(|p| p.0).collect();
+    let mismatch = compare(reference, &pixels, TOLERANCE, EDGE_MARGIN);
+    let ok = mismatch.fraction() <= MAX_MISMATCH;
+    println!(
+        "web {query} mismatch={:.6} max={} {}",
+        mismatch.fraction(),
+        mismatch.max_difference,
+        if ok { "ok" } else { "FAIL" }
+    );
+    Ok((!ok).then(|| {
+        format!(
+            "{query}: mismatch {:.6} > {MAX_MISMATCH} (screenshot {})",
+            mismatch.fraction(),
+            file.display()
+        )
+    }))
+}
+
+/// The page with its controls reacts to them: on the teaser, the velocity, effect and time
+/// controls are moved as a person moves them, and the next frame (on WebGPU) must equal
+/// the CPU reference of the address the page reports drawing.
+fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::Result<Vec<String>> {
+    let (width, height) = TEST_SIZE;
+    browser.open(&format!(
+        "{address}index.html?scene=teaser&width={width}&height={height}"
+    ))?;
+    browser.wait_for_title(|title| title == "srt ready (webgpu)", FIRST_FRAME_TIMEOUT)?;
+    let frames = browser.evaluate("Number(document.body.dataset.frames)")?;
+    browser.evaluate(
+        "(() => {
+            const set = (id, value, kind) => {
+                const control = document.getElementById(id);
+                if (control.type === 'checkbox') control.checked = value; else control.value = value;
+                control.dispatchEvent(new Event(kind));
+            };
+            set('set-velocity', true, 'change');
+            set('speed', '0.8', 'input');
+            set('effects', 'searchlight', 'change');
+            set('ct', '0.5', 'input');
+            return true;
+        })()",
+    )?;
+    let frames = frames.as_u64().unwrap_or(0);
+    // The first frame after the last change shows all of them.
+    let shown = browser.wait_for(
+        "[Number(document.body.dataset.frames), document.body.dataset.query]",
+        |value| {
+            value[0].as_u64().unwrap_or(0) > frames
+                && value[1]
+                    .as_str()
+                    .is_some_and(|q| q.contains("effects=searchlight") && q.contains("ct=0.5"))
+        },
+        FIRST_FRAME_TIMEOUT,
+    )?;
+    let query = shown[1].as_str().unwrap_or_default().to_owned();
+    let corner = browser.evaluate(
+        "(() => { const r = document.getElementById('canvas').getBoundingClientRect(); \
+         return [r.left, r.top]; })()",
+    )?;
+    let at = (
+        corner[0].as_f64().unwrap_or(0.0),
+        corner[1].as_f64().unwrap_or(0.0),
+    );
+    let png = browser.screenshot(at, width, height)?;
+    let reference = reference_image(&query, width, height)?;
+    Ok(
+        check_picture(out, &format!("controls {query}"), &png, &reference)?
+            .into_iter()
+            .collect(),
+    )
+}
+
+/// Saves a screenshot of the whole page at `index.html?query` (1280×800 CSS pixels) to `path`
+/// once its first frame is drawn.
+///
+/// # Errors
+/// No browser, a page that reports an error, or an unwritable `path`.
+pub fn screenshot(workspace: &Path, root: &Path, query: &str, path: &Path) -> anyhow::Result<()> {
+    let address = serve(root, 0)?;
+    let out = workspace.join("target/web-test");
+    std::fs::create_dir_all(&out)?;
+    let profile = out.join("profile-screenshot");
+    let _ = std::fs::remove_dir_all(&profile);
+    let executable = devtools::find_browser()?;
+    let mut browser = Browser::start(&executable, &profile, &out.join("chromium-screenshot.log"))?;
+    browser.set_viewport(1280, 800)?;
+    browser.open(&format!("{address}index.html?{query}"))?;
+    let title = browser.wait_for_title(
+        |title| title.starts_with("srt ready") || title.starts_with("srt error"),
+        FIRST_FRAME_TIMEOUT,
+    )?;
+    if !title.starts_with("srt ready") {
+        bail!(
+            "{title}; the page's console:\n{}",
+            browser.console().join("\n")
+        );
+    }
+    std::fs::write(path, browser.screenshot((0.0, 0.0), 1280, 800)?)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    println!("wrote {} ({title})", path.display());
+    Ok(())
+}
+
+/// The exact CPU picture of the page address `case` at `width`×`height`: the scene loaded with
+/// the address's values as `srt render` loads it with the same options.
+fn reference_image(
+    case: &str,
+    width: u32,
+    height: u32,
+) -> anyhow::Result<srt_trace::RenderedImage> {
+    let page = parse_query(case)?;
+    let scene = page.scene.as_deref().unwrap_or("teaser");
+    let loaded = SceneSource::resolve(scene)?.load_with(&page.overrides)?;
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    Ok(Tracer::new(&loaded.scene).render(settings, &|_| {}))
+}
