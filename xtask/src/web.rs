@@ -287,6 +287,7 @@ pub fn test(workspace: &Path, root: &Path) -> anyhow::Result<()> {
         }
     }
     failures.extend(check_controls(&mut browser, &address, &out)?);
+    failures.extend(check_model_drop(&mut browser, &address, &out)?);
     if !failures.is_empty() {
         bail!(
             "the web page differs from the CPU reference:\n{}",
@@ -294,7 +295,7 @@ pub fn test(workspace: &Path, root: &Path) -> anyhow::Result<()> {
         );
     }
     println!(
-        "web: all {} pages and the controls' picture equal the CPU reference",
+        "web: all {} pages, the controls' picture and a dropped model's equal the CPU reference",
         TEST_CASES.len() * 2
     );
     Ok(())
@@ -372,14 +373,7 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
         FIRST_FRAME_TIMEOUT,
     )?;
     let query = shown[1].as_str().unwrap_or_default().to_owned();
-    let corner = browser.evaluate(
-        "(() => { const r = document.getElementById('canvas').getBoundingClientRect(); \
-         return [r.left, r.top]; })()",
-    )?;
-    let at = (
-        corner[0].as_f64().unwrap_or(0.0),
-        corner[1].as_f64().unwrap_or(0.0),
-    );
+    let at = canvas_corner(browser)?;
     let png = browser.screenshot(at, width, height)?;
     let reference = reference_image(&query, width, height)?;
     Ok(
@@ -387,6 +381,88 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
             .into_iter()
             .collect(),
     )
+}
+
+/// Drops `name` made of `bytes` on the page, as a person drops a file from their desktop.
+fn drop_file(browser: &mut Browser, name: &str, bytes: &[u8]) -> anyhow::Result<()> {
+    use base64::Engine as _;
+    let data = base64::engine::general_purpose::STANDARD.encode(bytes);
+    browser.evaluate(&format!(
+        "(() => {{
+            const bytes = Uint8Array.from(atob('{data}'), (c) => c.charCodeAt(0));
+            const transfer = new DataTransfer();
+            transfer.items.add(new File([bytes], {name:?}));
+            window.dispatchEvent(new DragEvent('drop', {{ dataTransfer: transfer, cancelable: true }}));
+            return true;
+        }})()"
+    ))?;
+    Ok(())
+}
+
+/// A model dropped on the page is shown as `srt render MODEL` shows the file, and a broken one
+/// is refused with the file named while the model shown stays.
+fn check_model_drop(
+    browser: &mut Browser,
+    address: &str,
+    out: &Path,
+) -> anyhow::Result<Vec<String>> {
+    let (width, height) = TEST_SIZE;
+    let mut failures = Vec::new();
+    browser.open(&format!(
+        "{address}index.html?scene=fig7&width={width}&height={height}"
+    ))?;
+    browser.wait_for_title(|title| title == "srt ready (webgpu)", FIRST_FRAME_TIMEOUT)?;
+    let spider = srt_scene::assets::embedded("models/spider.stl").context("the spider")?;
+    let file = out.join("spider.stl");
+    std::fs::write(&file, spider)?;
+    drop_file(browser, "spider.stl", spider)?;
+    let shown = browser.wait_for(
+        "document.body.dataset.query",
+        |query| query.as_str().is_some_and(|q| !q.contains("scene=")),
+        FIRST_FRAME_TIMEOUT,
+    )?;
+    let query = shown.as_str().unwrap_or_default().to_owned();
+    let reference = reference_of(&file.display().to_string(), &query, width, height)?;
+    let at = canvas_corner(browser)?;
+    let png = browser.screenshot(at, width, height)?;
+    failures.extend(check_picture(
+        out,
+        &format!("dropped spider.stl {query}"),
+        &png,
+        &reference,
+    )?);
+
+    drop_file(browser, "broken.glb", b"not a glb")?;
+    let status = browser.wait_for(
+        "document.getElementById('status').textContent",
+        |text| text.as_str().is_some_and(|t| t.contains("broken.glb")),
+        Duration::from_secs(30),
+    )?;
+    let status = status.as_str().unwrap_or_default().to_owned();
+    println!("web dropped broken.glb: the page says {status:?}");
+    if !status.contains("glTF") {
+        failures.push(format!("a broken glb: the page says {status:?}"));
+    }
+    let png = browser.screenshot(at, width, height)?;
+    failures.extend(check_picture(
+        out,
+        "after broken.glb, still spider.stl",
+        &png,
+        &reference,
+    )?);
+    Ok(failures)
+}
+
+/// Where the page's canvas is, in CSS pixels from the page's top-left corner.
+fn canvas_corner(browser: &mut Browser) -> anyhow::Result<(f64, f64)> {
+    let corner = browser.evaluate(
+        "(() => { const r = document.getElementById('canvas').getBoundingClientRect(); \
+         return [r.left, r.top]; })()",
+    )?;
+    Ok((
+        corner[0].as_f64().unwrap_or(0.0),
+        corner[1].as_f64().unwrap_or(0.0),
+    ))
 }
 
 /// Saves a screenshot of the whole page at `index.html?query` (1280×800 CSS pixels) to `path`
@@ -428,8 +504,25 @@ fn reference_image(
     height: u32,
 ) -> anyhow::Result<srt_trace::RenderedImage> {
     let page = parse_query(case)?;
-    let scene = page.scene.as_deref().unwrap_or("teaser");
-    let loaded = SceneSource::resolve(scene)?.load_with(&page.overrides)?;
+    reference_of(
+        page.scene.as_deref().unwrap_or("teaser"),
+        case,
+        width,
+        height,
+    )
+}
+
+/// The exact CPU picture of the scene argument `argument` (a built-in scene's name or a file)
+/// with the values of the page address `query`, as `srt render ARGUMENT` with the same options
+/// renders it.
+fn reference_of(
+    argument: &str,
+    query: &str,
+    width: u32,
+    height: u32,
+) -> anyhow::Result<srt_trace::RenderedImage> {
+    let page = parse_query(query)?;
+    let loaded = SceneSource::resolve(argument)?.load_with(&page.overrides)?;
     let settings = RenderSettings {
         width,
         height,

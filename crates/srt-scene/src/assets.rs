@@ -160,9 +160,8 @@ pub fn load_model(resolved: &Resolved, budget: &mut Budget) -> Result<Model, Imp
                 .insert(name, model.clone());
             Ok(model)
         }
-        Resolved::Memory { bytes, .. } => {
-            load_model_bytes(&resolved.label(), bytes.to_vec(), budget)
-        }
+        // Named as it was given (the dropped file's name), without the prefix.
+        Resolved::Memory { name, bytes } => load_model_bytes(name, bytes.to_vec(), budget),
     }
 }
 
@@ -252,7 +251,7 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(
-            error.contains("memory:test-broken.glb") && error.contains("glTF"),
+            error.contains("\"test-broken.glb\"") && error.contains("glTF"),
             "{error}"
         );
 

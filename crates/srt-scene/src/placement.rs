@@ -44,13 +44,19 @@ impl SceneDescription {
     /// A scene showing the model file `path` (stored as given: relative paths are resolved
     /// against the `base_dir` passed to [`SceneDescription::build`], usually the current
     /// folder) fitted to radius [`FIT_RADIUS`], moving with `beta` (units of c), placed as the
-    /// [module documentation](self) explains. Named after the file stem.
+    /// [module documentation](self) explains. Named after the file stem (of a memory file,
+    /// `memory:NAME`, NAME's).
     #[must_use]
     pub fn for_model(path: &Path, beta: DVec3) -> Self {
         let mut object = ObjectDescription::new(ShapeDescription::Model {
             path: path.to_string_lossy().into_owned(),
         });
-        object.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+        object.name = path.file_stem().map(|s| {
+            let stem = s.to_string_lossy();
+            stem.strip_prefix(crate::assets::MEMORY_PREFIX)
+                .unwrap_or(&stem)
+                .to_owned()
+        });
         object.fit = true;
         let mut scene = Self::for_object(object, beta);
         scene.name.clone_from(&scene.objects[0].name);

@@ -146,6 +146,7 @@ fn a_model_held_in_memory_is_a_bare_model_scene() {
     let source = SceneSource::from_path(Path::new(&path)).unwrap();
     assert!(matches!(source, SceneSource::Model(_)));
     let loaded = source.load(None).unwrap();
+    assert_eq!(loaded.scene.name, "dropped-spider");
     assert_eq!(loaded.scene.objects.len(), 1);
     let triangles: usize = loaded.scene.objects[0]
         .parts

@@ -40,7 +40,10 @@ pub struct Session {
     source: SceneSource,
     overrides: Overrides,
     built: Built,
-    version: u64,
+    /// Scenes built so far.
+    builds: u64,
+    /// Changes when a build changed what a GPU renderer uploads ([`srt_gpu::same_upload`]).
+    upload_version: u64,
 }
 
 /// A built scene and the overrides it was built with.
@@ -88,7 +91,8 @@ impl Session {
             source,
             overrides,
             built,
-            version: 0,
+            builds: 1,
+            upload_version: 0,
         })
     }
 
@@ -126,12 +130,20 @@ impl Session {
     fn show(&mut self, source: SceneSource) -> Result<(), SessionError> {
         let loaded = source.load_with(&self.overrides)?;
         self.source = source;
+        self.replace(loaded);
+        Ok(())
+    }
+
+    /// Shows `loaded`, built with the values set.
+    fn replace(&mut self, loaded: LoadedScene) {
+        if !srt_gpu::same_upload(&self.built.loaded.scene, &loaded.scene) {
+            self.upload_version += 1;
+        }
         self.built = Built {
             loaded,
             overrides: self.overrides.clone(),
         };
-        self.version += 1;
-        Ok(())
+        self.builds += 1;
     }
 
     /// Sets the values in place of the scene's own (their names in messages stay the page's);
@@ -164,22 +176,26 @@ impl Session {
                 self.overrides.apply_to_scene(&mut built.loaded.scene);
             }
             _ if built.overrides != self.overrides => {
-                *built = Built {
-                    loaded: self.source.load_with(&self.overrides)?,
-                    overrides: self.overrides.clone(),
-                };
-                self.version += 1;
+                let loaded = self.source.load_with(&self.overrides)?;
+                self.replace(loaded);
             }
             _ => {}
         }
         Ok(&self.built.loaded.scene)
     }
 
-    /// A number that changes whenever the scene is built again (its meshes, materials or
-    /// velocities may have changed; a GPU renderer must upload it again).
+    /// A number that changes whenever the scene changed in a way a GPU renderer must upload
+    /// again ([`srt_gpu::same_upload`]: other meshes, materials or sky); velocities, times,
+    /// effects and colours leave it.
     #[must_use]
-    pub const fn version(&self) -> u64 {
-        self.version
+    pub const fn upload_version(&self) -> u64 {
+        self.upload_version
+    }
+
+    /// How many times the scene has been built (playing time builds nothing).
+    #[must_use]
+    pub const fn builds(&self) -> u64 {
+        self.builds
     }
 
     /// The scene's own values (before the page's) for the page's controls, and the warnings

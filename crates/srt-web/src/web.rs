@@ -139,7 +139,7 @@ fn load_model(session: &mut Session, name: &str, bytes: Vec<u8>) -> Result<Strin
         .map_err(|error: SessionError| js_error(error))
 }
 
-/// A renderer of one method with the scene version it holds.
+/// A renderer of one method with the upload version of the scene it holds.
 struct Uploaded {
     version: u64,
     method: Method,
@@ -278,7 +278,7 @@ impl GpuPage {
         }
         // Built first (if needed), so that the version read next is the scene's.
         self.session.scene().map_err(js_error)?;
-        let version = self.session.version();
+        let version = self.session.upload_version();
         let scene = self.session.scene().map_err(js_error)?;
         if let Some(reason) = methods.iter().find_map(|m| m.cannot_draw(scene)) {
             return Ok(Some(reason));

@@ -65,19 +65,21 @@ fn the_page_shows_what_the_command_renders() {
 fn playing_time_builds_nothing_and_matches_a_fresh_build() {
     let mut session = Session::new("fig7").unwrap();
     session_picture(&mut session, "scene=fig7&ct=1");
-    let version = session.version();
+    let builds = session.builds();
+    let upload = session.upload_version();
     for ct in [2.0, 3.5, -1.0] {
         let query = format!("scene=fig7&ct={ct}");
         let played = session_picture(&mut session, &query);
-        assert_eq!(
-            session.version(),
-            version,
-            "ct = {ct} built the scene again"
-        );
+        assert_eq!(session.builds(), builds, "ct = {ct} built the scene again");
         assert!(played == command_picture(&query), "ct = {ct}");
     }
-    session_picture(&mut session, "scene=fig7&ct=1&effects=geometry");
-    assert_eq!(session.version(), version + 1);
+    // Another mode or velocity is built again, on the same upload.
+    session_picture(
+        &mut session,
+        "scene=fig7&ct=1&effects=geometry&beta=0,0,0.5",
+    );
+    assert_eq!(session.builds(), builds + 1);
+    assert_eq!(session.upload_version(), upload);
     let info = session.info().unwrap();
     assert_eq!(
         info.effects,
@@ -85,6 +87,11 @@ fn playing_time_builds_nothing_and_matches_a_fresh_build() {
         "the scene's own mode"
     );
     assert!(info.beta.length() > 0.9);
+    // fig4's cube is fig7's (one upload draws both); the teaser's objects are others.
+    session_picture(&mut session, "scene=fig4");
+    assert_eq!(session.upload_version(), upload);
+    session_picture(&mut session, "scene=teaser");
+    assert_eq!(session.upload_version(), upload + 1);
 }
 
 #[test]
@@ -136,9 +143,9 @@ fn a_dropped_model_is_shown_as_the_command_shows_a_model_file() {
         .unwrap()
         .to_vec();
     let mut session = Session::new("teaser").unwrap();
-    let version = session.version();
+    let version = session.upload_version();
     session.load_model("folder/spider.stl", spider).unwrap();
-    assert_eq!(session.version(), version + 1);
+    assert_eq!(session.upload_version(), version + 1);
     let scene = session.scene().unwrap();
     assert_eq!(scene.objects.len(), 1);
     // The same picture as `srt render spider.stl` of the file.
