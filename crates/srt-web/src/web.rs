@@ -222,10 +222,22 @@ impl GpuPage {
         })
     }
 
-    /// The adapter, in words.
+    /// The adapter, in words (browsers may keep its name to themselves).
     #[must_use]
     pub fn adapter(&self) -> String {
-        self.context.adapter_summary()
+        let info = &self.context.adapter_info;
+        let kind = match info.device_type {
+            wgpu::DeviceType::Cpu => "a software adapter",
+            wgpu::DeviceType::IntegratedGpu => "an integrated GPU",
+            wgpu::DeviceType::DiscreteGpu => "a discrete GPU",
+            wgpu::DeviceType::VirtualGpu => "a virtual GPU",
+            wgpu::DeviceType::Other => "an adapter",
+        };
+        if info.name.is_empty() {
+            kind.to_owned()
+        } else {
+            format!("{} ({kind})", info.name)
+        }
     }
 
     /// Takes the scene, method, split view and values of the address `query`.

@@ -115,6 +115,7 @@ function sizeCanvas() {
 // ---- drawing
 async function drawOnce() {
   const [width, height] = sizeCanvas();
+  $('split-labels').style.height = `${canvas.clientHeight}px`;
   const shown = query();
   const started = performance.now();
   let drawnBy = backend;
@@ -260,6 +261,7 @@ function showControls() {
   $('colour').value = state.colour || info.colour;
   $('method').value = state.method;
   $('split').checked = state.split;
+  $('split-labels').hidden = !state.split;
   $('play').textContent = state.playing ? 'Pause' : 'Play';
 }
 
@@ -352,7 +354,7 @@ function wireControls() {
   $('play').addEventListener('click', () => { state.playing = !state.playing; showControls(); });
   $('rate').addEventListener('change', (e) => { state.rate = Number(e.target.value); });
   $('method').addEventListener('change', (e) => { state.method = e.target.value; redraw(); });
-  $('split').addEventListener('change', (e) => { state.split = e.target.checked; redraw(); });
+  $('split').addEventListener('change', (e) => { state.split = e.target.checked; showControls(); redraw(); });
   const stage = $('stage');
   window.addEventListener('dragover', (event) => { event.preventDefault(); stage.classList.add('dragging'); });
   window.addEventListener('dragleave', () => stage.classList.remove('dragging'));
