@@ -376,11 +376,29 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
     let at = canvas_corner(browser)?;
     let png = browser.screenshot(at, width, height)?;
     let reference = reference_image(&query, width, height)?;
-    Ok(
+    let mut failures: Vec<String> =
         check_picture(out, &format!("controls {query}"), &png, &reference)?
             .into_iter()
-            .collect(),
-    )
+            .collect();
+    // Play runs the observer's clock: frames keep coming, each at a later time.
+    let clock = "(() => { const q = new URLSearchParams(document.body.dataset.query); \
+                 return [Number(document.body.dataset.frames), Number(q.get('ct'))]; })()";
+    let before = browser.evaluate(clock)?;
+    browser.evaluate("document.getElementById('play').click(), true")?;
+    let later = browser.wait_for(
+        clock,
+        |now| {
+            now[0].as_u64().unwrap_or(0) >= before[0].as_u64().unwrap_or(0) + 2
+                && now[1].as_f64() > before[1].as_f64()
+        },
+        FIRST_FRAME_TIMEOUT,
+    );
+    browser.evaluate("document.getElementById('play').click(), true")?;
+    match later {
+        Ok(now) => println!("web Play: (frames, ct) {before} -> {now}"),
+        Err(error) => failures.push(format!("Play did not run the clock: {error}")),
+    }
+    Ok(failures)
 }
 
 /// Drops `name` made of `bytes` on the page, as a person drops a file from their desktop.
