@@ -576,10 +576,10 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        29,
+        30,
         "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (four times: \
-         without and with counting, without and with moving lights), three probes and the sky's \
-         two passes"
+         without and with counting, without and with moving lights), three probes, the sky's \
+         two passes and the display pass"
     );
     let mut failures = Vec::new();
     for spec in &specs {
