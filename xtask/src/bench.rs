@@ -13,12 +13,16 @@
 //!   columns passing beside it, 12 frames each, and the `rolling-wheel` rolling past (6
 //!   frames); one line per sweep with the worst frame's ratio (`worst_ratio`), each method's
 //!   worst ratio and slowest frame;
-//! - a large scene: three engines side by side (364 488 triangles);
+//! - large scenes: three engines side by side (364 488 triangles), and nine in a 3 × 3 grid
+//!   (1 093 464 triangles);
 //! - what the newer features cost: the teaser with spectral colour (`teaser-spectral`) and the
 //!   `flythrough` (a moving observer under 6 000 stars), and two moving lights with their late
 //!   shadows against the same scene without shadows (`two moving lights`), and bodies that
 //!   move in their rest frame: the spinning `rolling-wheel` and the thrusting `rocket` (traced
 //!   along each ray's body-space curve; the polygon method moves each vertex).
+//!
+//! `--throughput` measures instead how many frames per second each method sustains on the
+//! static cases at 1280×720 ([`throughput`]).
 //!
 //! Prints one line per case. A full run rewrites the generated blocks of `docs/performance.md`
 //! (the table and the summary sentences, [`document`]) and saves every measurement as
@@ -29,6 +33,7 @@ mod compare;
 mod document;
 mod results;
 mod summary;
+mod throughput;
 
 use std::path::Path;
 use std::time::Instant;
@@ -316,6 +321,26 @@ fn three_engines() -> anyhow::Result<Case> {
     })
 }
 
+/// Nine engines in a 3 × 3 grid, each approaching at 0.9c: over a million triangles.
+fn nine_engines() -> anyhow::Result<Case> {
+    let engine = model_case(ENGINE, 0.9)?;
+    let mut scene = engine.scene.clone();
+    scene.objects.clear();
+    for row in [-1.0, 0.0, 1.0] {
+        for column in [-1.0, 0.0, 1.0] {
+            let copy = shifted(
+                &engine.scene,
+                glam::DVec3::new(3.0 * column, 0.8 * column, 2.0 * row),
+            );
+            scene.objects.extend(copy.objects);
+        }
+    }
+    Ok(Case {
+        name: "nine engines".to_owned(),
+        scene,
+    })
+}
+
 /// The `shadows` scene with a second moving light (3500 K, flying the other way at 0.7c in
 /// front of the columns), with the late shadows (`shadows` true) or without them: what shadows
 /// cost.
@@ -366,6 +391,7 @@ fn static_cases() -> anyhow::Result<Vec<Case>> {
         model_case(ENGINE, 0.9)?,
         builtin("teaser")?,
         three_engines()?,
+        nine_engines()?,
         with_spectral_colour(builtin("teaser")?),
         builtin("flythrough")?,
         two_moving_lights(true)?,
@@ -502,6 +528,51 @@ pub fn run(
     }
     if only.is_none() {
         document::write(workspace, &measured)?;
+    }
+    Ok(())
+}
+
+/// Measures the sustained frame rate of every method on the static cases whose name contains
+/// `only` (all without it) at the first size of [`SIZES`], `frames` frames each, printing each;
+/// a full run rewrites the throughput block of docs/performance.md.
+///
+/// # Errors
+/// No GPU, missing models, or an unwritable file.
+pub fn run_throughput(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<()> {
+    let ctx =
+        GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
+    let adapter = ctx.adapter_summary();
+    println!("adapter: {adapter}");
+    let (width, height) = SIZES[0];
+    let pictures = workspace.join("target/bench-throughput");
+    let mut measured = Vec::new();
+    for case in static_cases()?
+        .iter()
+        .filter(|c| only.is_none_or(|o| c.name.contains(o)))
+    {
+        let renderer = GpuRenderer::new(&ctx, &case.scene, width, height)?;
+        throughput::save_first_frame(&ctx, &renderer, &case.scene, &case.name, &pictures)?;
+        let fps = throughput::measure(&ctx, &renderer, &case.scene, frames)?;
+        let line = throughput::Throughput {
+            name: case.name.clone(),
+            width,
+            height,
+            triangles: case.scene.triangle_count(),
+            frames,
+            fps,
+        };
+        println!("{}", line.text());
+        measured.push(line);
+    }
+    println!("first frames: {}", pictures.display());
+    if only.is_none() {
+        let block = throughput::table(
+            &measured,
+            &adapter,
+            &crate::provenance::today(),
+            &crate::provenance::commit(workspace),
+        );
+        throughput::write(&workspace.join(document::DOCUMENT), &block)?;
     }
     Ok(())
 }

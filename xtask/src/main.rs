@@ -66,6 +66,17 @@ enum Command {
             conflicts_with_all = ["frames", "only", "results"]
         )]
         compare: Option<Vec<PathBuf>>,
+        /// Measure instead each method's sustained frames per second: FRAMES frames (default
+        /// 30) back to back at 1280×720, the scene moving on, frames in flight, no readback; a
+        /// full run rewrites the throughput block of docs/performance.md.
+        #[arg(
+            long,
+            value_name = "FRAMES",
+            num_args = 0..=1,
+            default_missing_value = "30",
+            conflicts_with_all = ["frames", "results", "compare"]
+        )]
+        throughput: Option<u32>,
     },
     /// Build the web page into target/web (wasm with Debian's wasm toolchain, its JavaScript
     /// glue with wasm-bindgen), then serve it on localhost or test it in headless Chromium.
@@ -121,10 +132,16 @@ fn main() -> anyhow::Result<()> {
             ..
         } => bench::run_compare(&files[0], &files[1])?,
         Command::Bench {
+            throughput: Some(frames),
+            only,
+            ..
+        } => bench::run_throughput(&workspace_root(), frames, only.as_deref())?,
+        Command::Bench {
             frames,
             only,
             results,
             compare: None,
+            throughput: None,
         } => bench::run(
             &workspace_root(),
             frames,

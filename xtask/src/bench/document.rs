@@ -160,7 +160,7 @@ fn table(results: &Results, validation: &Validation) -> String {
 
 /// `text` with the block from `start` to `end` (markers included) replaced by `block`, or with
 /// `block` appended where the markers are missing.
-fn replace_block(text: &str, start: &str, end: &str, block: &str) -> String {
+pub(super) fn replace_block(text: &str, start: &str, end: &str, block: &str) -> String {
     match (text.find(start), text.find(end)) {
         (Some(a), Some(b)) if a < b => {
             format!("{}{block}{}", &text[..a], &text[b + end.len()..])

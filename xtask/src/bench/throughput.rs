@@ -1,0 +1,191 @@
+//! `cargo xtask bench --throughput`: sustained frames per second of each method — N frames
+//! rendered back to back, each at a later observation time (the scene moves on, as in an
+//! animation or the viewer), with up to [`IN_FLIGHT`] frames queued on the GPU and no readback;
+//! the clock runs from the first frame's encoding to the GPU's idle after the last. The first
+//! frame of each case is saved as a PNG (`target/bench-throughput/`) to look at what was timed.
+
+use std::collections::VecDeque;
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::Context as _;
+use serde::{Deserialize, Serialize};
+use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
+use srt_scene::Scene;
+
+use super::WARM_UP;
+use super::document::replace_block;
+use super::results::{METHODS, method_name};
+
+/// Frames a method may have queued on the GPU while the next is encoded.
+pub const IN_FLIGHT: usize = 2;
+/// How far the observation time moves per frame, in scene units of ct (30 frames: 1.5 units).
+pub const CT_STEP: f64 = 0.05;
+/// First line of the throughput block of docs/performance.md.
+pub const THROUGHPUT_START: &str =
+    "<!-- throughput:start (written by cargo xtask bench --throughput) -->";
+/// Last line of the throughput block.
+pub const THROUGHPUT_END: &str = "<!-- throughput:end -->";
+
+/// One case's sustained frame rates.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Throughput {
+    /// The case.
+    pub name: String,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Triangles in the scene.
+    pub triangles: usize,
+    /// Frames rendered back to back per method.
+    pub frames: u32,
+    /// Frames per second of each of [`METHODS`], in that order.
+    pub fps: [f64; 4],
+}
+
+impl Throughput {
+    /// The report line.
+    #[must_use]
+    pub fn text(&self) -> String {
+        let rates: Vec<String> = METHODS
+            .iter()
+            .zip(self.fps)
+            .map(|(method, fps)| format!("{}_fps={fps:.2}", method_name(*method).to_lowercase()))
+            .collect();
+        format!(
+            "throughput scene={} size={}x{} tris={} frames={} in_flight={IN_FLIGHT} {}",
+            self.name,
+            self.width,
+            self.height,
+            self.triangles,
+            self.frames,
+            rates.join(" ")
+        )
+    }
+}
+
+/// Encodes and submits one frame of `scene` with `method`; returns its submission.
+fn submit(
+    ctx: &GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    method: Method,
+) -> anyhow::Result<wgpu::SubmissionIndex> {
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("xtask bench throughput frame"),
+        });
+    renderer.encode(ctx, &mut encoder, scene, method, FootprintShape::Hull)?;
+    Ok(ctx.queue.submit([encoder.finish()]))
+}
+
+/// Sustained frames per second of each of [`METHODS`] on `scene` with `renderer`: `frames`
+/// frames each, from the scene's own time on by [`CT_STEP`] per frame, after [`WARM_UP`]
+/// frames.
+///
+/// # Errors
+/// A GPU failure.
+pub fn measure(
+    ctx: &GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    frames: u32,
+) -> anyhow::Result<[f64; 4]> {
+    let mut moving = scene.clone();
+    let start_ct = scene.observer.ct;
+    let mut fps = [0.0; 4];
+    for (rate, method) in fps.iter_mut().zip(METHODS) {
+        for _ in 0..WARM_UP {
+            submit(ctx, renderer, scene, method)?;
+        }
+        ctx.wait()?;
+        let start = Instant::now();
+        let mut queued = VecDeque::new();
+        for frame in 0..frames {
+            moving.observer.ct = start_ct + CT_STEP * f64::from(frame);
+            queued.push_back(submit(ctx, renderer, &moving, method)?);
+            if queued.len() > IN_FLIGHT
+                && let Some(oldest) = queued.pop_front()
+            {
+                ctx.device
+                    .poll(wgpu::PollType::Wait {
+                        submission_index: Some(oldest),
+                        timeout: None,
+                    })
+                    .map_err(|e| anyhow::anyhow!("waiting for a frame: {e}"))?;
+            }
+        }
+        ctx.wait()?;
+        *rate = f64::from(frames) / start.elapsed().as_secs_f64();
+        ctx.take_errors()?;
+    }
+    Ok(fps)
+}
+
+/// Saves `renderer`'s picture of `scene` (exact, display colours) as `folder/NAME_WxH.png`.
+///
+/// # Errors
+/// A GPU failure or an unwritable folder.
+pub fn save_first_frame(
+    ctx: &GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    name: &str,
+    folder: &Path,
+) -> anyhow::Result<()> {
+    let (width, height) = renderer.size();
+    let (image, _) = renderer.render(ctx, scene, Method::Auto, FootprintShape::Hull)?;
+    let bytes: Vec<u8> = image.to_rgb8().into_iter().flatten().collect();
+    std::fs::create_dir_all(folder)?;
+    let file = folder.join(format!(
+        "{}_{width}x{height}.png",
+        name.replace([' ', '/'], "-")
+    ));
+    image::RgbImage::from_raw(width, height, bytes)
+        .context("one colour per pixel")?
+        .save(&file)
+        .with_context(|| format!("cannot write {}", file.display()))?;
+    Ok(())
+}
+
+/// The Markdown table of `measured` on `adapter`, between the block's markers.
+#[must_use]
+pub fn table(measured: &[Throughput], adapter: &str, date: &str, commit: &str) -> String {
+    let mut table = format!(
+        "{THROUGHPUT_START}\nAdapter: {adapter}. {date}, commit {commit}. Frames per second, \
+         sustained: each method renders the case's frames back to back (the observation time \
+         moving by {CT_STEP} per frame), up to {IN_FLIGHT} frames queued, no readback; timed \
+         from the first frame's encoding to the GPU's idle after the last.\n\n\
+         | case | size | triangles | frames | auto fps | LRT fps | RT fps | polygon fps | auto / polygon time |\n\
+         |---|---|---|---|---|---|---|---|---|\n"
+    );
+    for line in measured {
+        let [auto, lrt, rt, polygon] = line.fps;
+        table.push_str(&format!(
+            "| {} | {}×{} | {} | {} | {auto:.2} | {lrt:.2} | {rt:.2} | {polygon:.2} | {:.2} |\n",
+            line.name,
+            line.width,
+            line.height,
+            line.triangles,
+            line.frames,
+            polygon / auto
+        ));
+    }
+    table + THROUGHPUT_END
+}
+
+/// Rewrites the throughput block of `document` (appended where it is missing).
+///
+/// # Errors
+/// An unreadable or unwritable document.
+pub fn write(document: &Path, block: &str) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(document)
+        .with_context(|| format!("cannot read {}", document.display()))?;
+    let updated = replace_block(&text, THROUGHPUT_START, THROUGHPUT_END, block);
+    std::fs::write(document, updated)
+        .with_context(|| format!("cannot write {}", document.display()))?;
+    println!("updated {}", document.display());
+    Ok(())
+}
