@@ -321,18 +321,19 @@ fn three_engines() -> anyhow::Result<Case> {
     })
 }
 
-/// Nine engines in a 3 × 3 grid, each approaching at 0.9c: over a million triangles.
+/// Nine engines in a 3 × 3 grid across the line of sight, 6 units farther than the bare model
+/// is placed, each approaching at 0.9c: over a million triangles, all in view.
 fn nine_engines() -> anyhow::Result<Case> {
     let engine = model_case(ENGINE, 0.9)?;
     let mut scene = engine.scene.clone();
     scene.objects.clear();
+    let farther = -0.6 * DVec3::from_array(srt_scene::placement::VIEW_FROM).normalize();
     for row in [-1.0, 0.0, 1.0] {
         for column in [-1.0, 0.0, 1.0] {
-            let copy = shifted(
-                &engine.scene,
-                glam::DVec3::new(3.0 * column, 0.8 * column, 2.0 * row),
-            );
-            scene.objects.extend(copy.objects);
+            let across = DVec3::new(1.9 * column, 0.0, 1.1 * row);
+            scene
+                .objects
+                .extend(shifted(&engine.scene, farther + across).objects);
         }
     }
     Ok(Case {
