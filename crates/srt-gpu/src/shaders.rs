@@ -92,31 +92,8 @@ const fn shadow_overrides(moving_lights: f64) -> [(&'static str, f64); 3] {
     ]
 }
 
-/// The overrides of the LRT shader (with the ray tracer's and motion.wgsl's) with the fragment
-/// counter on or off and the moving lights compiled in or out.
-const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static str, f64); 11] {
-    let s = SPECTRAL_OVERRIDES;
-    let [slab, margin, lights] = shadow_overrides(moving_lights);
-    [
-        ("COUNT_FRAGMENTS", count_fragments),
-        ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
-        (
-            "MOTION_THRUST_PIECES_PER_SIZE",
-            crate::motion::THRUST_PIECES_PER_SIZE,
-        ),
-        slab,
-        margin,
-        lights,
-        s[0],
-        s[1],
-        s[2],
-        s[3],
-        s[4],
-    ]
-}
-
 /// The overrides of the polygon shader, motion.wgsl's, spectral.wgsl's and the shadow test's,
-/// with the moving lights compiled in or out.
+/// with the moving lights compiled in or out: what the polygon and LRT shaders share.
 const fn polygon_overrides(moving_lights: f64) -> [(&'static str, f64); 10] {
     let s = SPECTRAL_OVERRIDES;
     let [slab, margin, lights] = shadow_overrides(moving_lights);
@@ -135,6 +112,19 @@ const fn polygon_overrides(moving_lights: f64) -> [(&'static str, f64); 10] {
         s[3],
         s[4],
     ]
+}
+
+/// The overrides of the LRT shader (with the ray tracer's and motion.wgsl's): the fragment
+/// counter on or off, then [`polygon_overrides`].
+const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static str, f64); 11] {
+    let shared = polygon_overrides(moving_lights);
+    let mut all = [("COUNT_FRAGMENTS", count_fragments); 11];
+    let mut i = 0;
+    while i < shared.len() {
+        all[i + 1] = shared[i];
+        i += 1;
+    }
+    all
 }
 
 /// The overrides of the LRT shader, indexed [counting][lit]: without and with the fragment
