@@ -106,7 +106,7 @@ fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     // Only a clock, a flipbook or a blinking emission needs the fragment's proper time, and only
     // moving lights' shadows its emission event (one light-cone solve).
     let timed = object.blink.x > 0.0 || has_clock() || part.frames > 1u;
-    let lit = MOVING_LIGHTS && lights.counts.x > 0u;
+    let lit = MOVING_LIGHTS && frame_uniforms.lights.counts.x > 0u;
     var emission = vec4<f32>(0.0);
     if (timed || lit) {
         emission = polygon_emission(in);

@@ -8,11 +8,9 @@
 // lights up as srt_trace::shade::arriving_unless_shadowed does.
 //
 // Composed into the passes that shade (lrt, polygon), with bvh.wgsl (the slab test) and
-// surface.wgsl (the triangle test). The buffers are srt_gpu::shadows': `lights` always,
-// `shadow_scene` read only while a scene has moving lights.
+// surface.wgsl (the triangle test). The values are srt_gpu::shadows': the lights in
+// FrameUniforms.lights always, `shadow_scene` read only while a scene has moving lights.
 
-// The lamp's strength and the moving lights (LightUniforms, srt_gpu::shadows::light_uniforms).
-@group(0) @binding(11) var<uniform> lights: LightUniforms;
 // Every object's BVH, in rows of 16 bytes (srt_gpu::shadows): LightUniforms.counts.y
 // ShadowObjects, then from row counts.z the BVH nodes (BvhNode), from row counts.w the triangles
 // (RtTriangle's layout).
@@ -80,7 +78,7 @@ fn shadow_object(index: u32) -> ShadowObject {
 
 // BVH node `index` (among every caster's nodes) of shadow_scene.
 fn shadow_node(index: u32) -> BvhNode {
-    let row = lights.counts.z + SHADOW_NODE_ROWS * index;
+    let row = frame_uniforms.lights.counts.z + SHADOW_NODE_ROWS * index;
     let a = shadow_scene[row];
     let b = shadow_scene[row + 1u];
     return BvhNode(bitcast<vec3<f32>>(a.xyz), a.w, bitcast<vec3<f32>>(b.xyz), b.w);
@@ -88,7 +86,7 @@ fn shadow_node(index: u32) -> BvhNode {
 
 // The corners of triangle `index` (among every caster's triangles) of shadow_scene.
 fn shadow_triangle(index: u32) -> array<vec3<f32>, 3> {
-    let row = lights.counts.w + SHADOW_TRIANGLE_ROWS * index;
+    let row = frame_uniforms.lights.counts.w + SHADOW_TRIANGLE_ROWS * index;
     return array<vec3<f32>, 3>(
         bitcast<vec3<f32>>(shadow_scene[row].xyz),
         bitcast<vec3<f32>>(shadow_scene[row + 1u].xyz),
@@ -168,7 +166,7 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
 // (scene index `own`) the event's rest coordinates `receiver_rest` are used as they are, rather
 // than rounded once more through S. Mirror of Tracer::shadowed.
 fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, receiver_rest: vec4<f32>) -> bool {
-    for (var i = 0u; i < lights.counts.y; i++) {
+    for (var i = 0u; i < frame_uniforms.lights.counts.y; i++) {
         let caster = shadow_object(i);
         if (caster.bvh.y != 0u) {
             continue;

@@ -15,10 +15,11 @@
 //    Doppler-shifted like a surface's) + star light, as output_pixel writes it, into the colour
 //    target; the object passes then draw over it.
 
-@group(0) @binding(0) var<uniform> frame_uniforms: FrameUniforms;
+// Read-only storage, not uniform, as in render_bindings.wgsl (which says why).
+@group(0) @binding(0) var<storage, read> frame_uniforms: FrameUniforms;
 @group(0) @binding(1) var lut_table: texture_2d<f32>;
 
-@group(1) @binding(0) var<uniform> sky: SkyUniforms;
+@group(1) @binding(0) var<storage, read> sky: SkyUniforms;
 @group(1) @binding(1) var<storage, read> stars: array<Star>;
 // Star light per pixel (row-major, STAR_LIGHT_WORDS_PER_PIXEL words each): the peak (the f32
 // bits of the largest channel magnitude any contribution has there: non-negative floats order

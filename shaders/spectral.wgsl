@@ -8,7 +8,8 @@
 // Composed into the shaders that shade (lrt, polygon) and the probe. The tables are the CPU's,
 // uploaded once per renderer (srt_gpu::spectral), bound in group 0 of those passes.
 
-// One row of the CIE 1931 2° table (twin of srt_gpu::types::GpuCieSample).
+// One row of the CIE 1931 2° table (twin of srt_gpu::types::GpuCieSample, as spectral_tables
+// holds it).
 struct CieSample {
     // x̄, ȳ, z̄ at this wavelength.
     xyz_bar: vec3<f32>,
@@ -16,12 +17,36 @@ struct CieSample {
     wavelength_nm: f32,
 }
 
-// The CIE 1931 2° table (srt_color::cie_1931), 360–830 nm at 1 nm.
-@group(0) @binding(8) var<storage, read> cie_table: array<CieSample>;
-// The coefficient table's brightness scale z₀ … z_{n−1} (CoefficientTable::scale).
-@group(0) @binding(9) var<storage, read> coefficient_scale: array<f32>;
-// Its 3 · n³ texels of (c₀, c₁, c₂), three f32 each, in CoefficientTable::texels' layout.
-@group(0) @binding(10) var<storage, read> coefficient_table: array<f32>;
+// The spectral tables in one array (srt_gpu::spectral::spectral_words; one binding, not three,
+// to stay within eight storage buffers per stage): a header of SPECTRAL_HEADER_WORDS words (n,
+// the coefficient table's brightness scale entries, and c, the CIE 1931 2° table's rows, as f32),
+// the scale z₀ … z_{n−1} (CoefficientTable::scale), the CIE rows 360–830 nm at 1 nm (CieSample,
+// four words each: srt_color::cie_1931), then the 3 · n³ texels of (c₀, c₁, c₂), three words
+// each, in CoefficientTable::texels' layout. Read only through the accessors below.
+@group(0) @binding(8) var<storage, read> spectral_tables: array<f32>;
+// Words before the scale (srt_gpu::spectral::SPECTRAL_HEADER_WORDS).
+const SPECTRAL_HEADER_WORDS: u32 = 2u;
+
+// n, the brightness scale's entries (the coefficient table's resolution).
+fn coefficient_resolution() -> u32 {
+    return u32(spectral_tables[0]);
+}
+
+// z_k of the brightness scale.
+fn coefficient_scale(k: u32) -> f32 {
+    return spectral_tables[SPECTRAL_HEADER_WORDS + k];
+}
+
+// c, the CIE table's rows.
+fn cie_rows() -> u32 {
+    return u32(spectral_tables[1]);
+}
+
+// Row `s` of the CIE table.
+fn cie_sample(s: u32) -> CieSample {
+    let at = SPECTRAL_HEADER_WORDS + coefficient_resolution() + 4u * s;
+    return CieSample(vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]), spectral_tables[at + 3u]);
+}
 
 // Values Rust owns, set at pipeline creation (srt_gpu::shaders): c₂ = hc/k in m·K and 2hc²
 // (Eq. 10), the CIE table's step Δλ in m (Eq. 11), and the band edges of the reflectance policy
@@ -74,7 +99,8 @@ struct SpectralLight {
 
 // Coefficient (c) of texel `index` of the coefficient table.
 fn coefficient_texel(index: u32) -> vec3<f32> {
-    return vec3<f32>(coefficient_table[3u * index], coefficient_table[3u * index + 1u], coefficient_table[3u * index + 2u]);
+    let at = SPECTRAL_HEADER_WORDS + coefficient_resolution() + 4u * cie_rows() + 3u * index;
+    return vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]);
 }
 
 // Jakob–Hanika coefficients of linear sRGB `rgb` in [0, 1]³ by table lookup and trilinear
@@ -93,7 +119,7 @@ fn coefficient_lookup(rgb: vec3<f32>, ultraviolet: f32, infrared: f32) -> Reflec
     } else if (rgb.y > rgb.z) {
         m = 1u;
     }
-    let n = arrayLength(&coefficient_scale);
+    let n = coefficient_resolution();
     let z = rgb[m];
     let last = f32(n - 1u);
     let x = rgb[(m + 1u) % 3u] / z * last;
@@ -105,7 +131,7 @@ fn coefficient_lookup(rgb: vec3<f32>, ultraviolet: f32, infrared: f32) -> Reflec
     var hi = n;
     while (lo < hi) {
         let mid = (lo + hi) / 2u;
-        if (coefficient_scale[mid] <= z) {
+        if (coefficient_scale(mid) <= z) {
             lo = mid + 1u;
         } else {
             hi = mid;
@@ -115,7 +141,7 @@ fn coefficient_lookup(rgb: vec3<f32>, ultraviolet: f32, infrared: f32) -> Reflec
     let t = vec3<f32>(
         x - f32(i),
         y - f32(j),
-        (z - coefficient_scale[k]) / (coefficient_scale[k + 1u] - coefficient_scale[k]),
+        (z - coefficient_scale(k)) / (coefficient_scale(k + 1u) - coefficient_scale(k)),
     );
     var sum = vec3<f32>(0.0);
     for (var corner = 0u; corner < 8u; corner++) {
@@ -146,7 +172,7 @@ fn reflectance_evaluate(r: Reflectance, wavelength_nm: f32) -> f32 {
     if (r.grey >= 0.0) {
         return r.grey;
     }
-    let l = clamp(wavelength_nm, cie_table[0].wavelength_nm, cie_table[arrayLength(&cie_table) - 1u].wavelength_nm);
+    let l = clamp(wavelength_nm, cie_sample(0u).wavelength_nm, cie_sample(cie_rows() - 1u).wavelength_nm);
     let c = r.coefficients;
     return spectral_sigmoid((c.x * l + c.y) * l + c.z);
 }
@@ -174,8 +200,8 @@ fn ln_planck(wavelength_nm: f32, temperature_k: f32) -> f32 {
 // unimodal in λ with its peak at c₂/(x_max T) (Wien), so the maximum over the 1 nm grid lies on
 // one of the two grid wavelengths around the peak, held to the table.
 fn ln_planck_max(temperature_k: f32) -> f32 {
-    let first = cie_table[0].wavelength_nm;
-    let last = cie_table[arrayLength(&cie_table) - 1u].wavelength_nm;
+    let first = cie_sample(0u).wavelength_nm;
+    let last = cie_sample(cie_rows() - 1u).wavelength_nm;
     let peak = clamp(SECOND_RADIATION_CONSTANT / (WIEN_X * temperature_k) * 1.0e9, first, last);
     return max(ln_planck(floor(peak), temperature_k), ln_planck(min(floor(peak) + 1.0, last), temperature_k));
 }
@@ -197,9 +223,9 @@ fn reflected_light(r: Reflectance, temperature_k: f32, d_in: f32, d_out: f32) ->
     let ln_max = ln_planck_max(apparent);
     var light = vec3<f32>(0.0);
     var white = vec3<f32>(0.0);
-    let count = arrayLength(&cie_table);
+    let count = cie_rows();
     for (var s = 0u; s < count; s++) {
-        let sample = cie_table[s];
+        let sample = cie_sample(s);
         let radiance = exp(ln_planck(sample.wavelength_nm, apparent) - ln_max) * sample.xyz_bar;
         light += reflectance_evaluate(r, d_out * sample.wavelength_nm) * radiance;
         white += radiance;

@@ -233,7 +233,7 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
         normal = -normal;
     }
     let phong = phong_terms(normal, to_light, to_observer);
-    let geometry = lights.lamp.x * (frame_uniforms.shading.x + phong.x + phong.y);
+    let geometry = frame_uniforms.lights.lamp.x * (frame_uniforms.shading.x + phong.x + phong.y);
     let grey = 0.5 * (grey_value(albedo) + 1.0);
     var lamp: Arriving;
     if (spectral) {
@@ -242,15 +242,15 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
     } else {
         lamp = table_light(grey * geometry, combined * frame_uniforms.light.w);
     }
-    if (!MOVING_LIGHTS || lights.counts.x == 0u) {
+    if (!MOVING_LIGHTS || frame_uniforms.lights.counts.x == 0u) {
         return arriving_output(lamp);
     }
     let follows_luminance = relativistic && frame_uniforms.tone_map == TONE_MAP_SEARCHLIGHT;
     let own = u32(object.time.x);
     var sum = light_sum_of(lamp);
     var sources = 0u;
-    for (var i = 0u; i < lights.counts.x; i++) {
-        let light = lights.moving[i];
+    for (var i = 0u; i < frame_uniforms.lights.counts.x; i++) {
+        let light = frame_uniforms.lights.moving[i];
         let arriving = retarded_light(light, receiver.event);
         if (!arriving.found) {
             continue;

@@ -79,6 +79,9 @@ struct FrameUniforms {
     // How light becomes radiance (light.wgsl, arriving_radiance): ln Y of the lamp's black body,
     // 1/g, 1 where brightness follows luminance else 0, the largest value the target holds.
     radiance: vec4<f32>,
+    // The lamp's strength and the moving lights (shadows.wgsl): in this buffer, not one of their
+    // own, to keep the shading pass within eight storage buffers.
+    lights: LightUniforms,
 }
 
 // Per object: its rest frame and drawing style.

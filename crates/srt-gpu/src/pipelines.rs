@@ -7,7 +7,7 @@
 //! the WGSL (`shaders/render_bindings.wgsl` for groups 0–2, each pass for its group 3).
 
 use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
-use crate::shaders::{self, Shader};
+use crate::shaders::{self, BlockSpace, Shader};
 
 /// One binding of a bind group: the WGSL global it feeds, its `@binding` and what is bound.
 #[derive(Debug, Clone, Copy)]
@@ -23,13 +23,13 @@ pub struct Slot {
 }
 
 impl Slot {
-    /// The bind group layout entry.
+    /// The bind group layout entry, with the render passes' blocks in `space`.
     #[must_use]
-    pub const fn layout_entry(&self) -> wgpu::BindGroupLayoutEntry {
+    pub fn layout_entry(&self, space: BlockSpace) -> wgpu::BindGroupLayoutEntry {
         wgpu::BindGroupLayoutEntry {
             binding: self.binding,
             visibility: self.visibility,
-            ty: self.ty,
+            ty: space.binding_type(self.wgsl_name, self.ty),
             count: None,
         }
     }
@@ -56,11 +56,15 @@ pub struct BindGroupSpec {
 }
 
 impl BindGroupSpec {
-    /// Creates the bind group layout.
+    /// Creates the bind group layout (the blocks in the device's [`BlockSpace`]).
     #[must_use]
     pub fn create_layout(&self, device: &wgpu::Device) -> wgpu::BindGroupLayout {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> =
-            self.slots.iter().map(Slot::layout_entry).collect();
+        let space = BlockSpace::of(device);
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = self
+            .slots
+            .iter()
+            .map(|slot| slot.layout_entry(space))
+            .collect();
         device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(self.label),
             entries: &entries,
@@ -86,7 +90,9 @@ pub struct PipelineSpec {
 const ALL_STAGES: wgpu::ShaderStages =
     wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
 
-/// A uniform buffer.
+/// A uniform buffer: for the probes' parameters only. The render passes read their per-frame,
+/// per-object and per-part values from read-only storage buffers instead (render_bindings.wgsl
+/// says why; `tests/reflect.rs` checks that none binds a uniform buffer).
 pub const UNIFORM: wgpu::BindingType = wgpu::BindingType::Buffer {
     ty: wgpu::BufferBindingType::Uniform,
     has_dynamic_offset: false,
@@ -112,7 +118,7 @@ pub const TEXTURE_2D: wgpu::BindingType = wgpu::BindingType::Texture {
 
 /// The bindings of the render passes, by WGSL name.
 pub mod slots {
-    use super::{ALL_STAGES, Slot, TEXTURE_2D, UNIFORM, storage};
+    use super::{ALL_STAGES, Slot, TEXTURE_2D, storage};
     use wgpu::ShaderStages;
 
     /// Group 0: `frame_uniforms`.
@@ -120,7 +126,7 @@ pub mod slots {
         wgsl_name: "frame_uniforms",
         binding: 0,
         visibility: ALL_STAGES,
-        ty: UNIFORM,
+        ty: storage(true),
     };
     /// Group 0: `lut_table`, the colour table.
     pub const LUT_TABLE: Slot = Slot {
@@ -134,14 +140,14 @@ pub mod slots {
         wgsl_name: "object",
         binding: 0,
         visibility: ALL_STAGES,
-        ty: UNIFORM,
+        ty: storage(true),
     };
     /// Group 2: `part`, the part's uniforms.
     pub const PART: Slot = Slot {
         wgsl_name: "part",
         binding: 0,
         visibility: ALL_STAGES,
-        ty: UNIFORM,
+        ty: storage(true),
     };
     /// Group 2: `vertices`.
     pub const VERTICES: Slot = Slot {
@@ -215,7 +221,7 @@ pub mod slots {
         wgsl_name: "sky",
         binding: 0,
         visibility: ShaderStages::COMPUTE.union(ShaderStages::FRAGMENT),
-        ty: UNIFORM,
+        ty: storage(true),
     };
     /// Group 1 of the sky's compose pass: `sky_image`, the equirectangular sky image.
     pub const SKY_IMAGE: Slot = Slot {
@@ -245,35 +251,13 @@ pub mod slots {
         visibility: ShaderStages::FRAGMENT,
         ty: storage(true),
     };
-    /// Group 0 of the shading passes: `cie_table`, the CIE 1931 table (spectral colour).
-    pub const CIE_TABLE: Slot = Slot {
-        wgsl_name: "cie_table",
+    /// Group 0 of the shading passes: `spectral_tables`, the CIE 1931 and Jakob–Hanika tables of
+    /// spectral colour in one array ([`crate::spectral::spectral_words`]).
+    pub const SPECTRAL_TABLES: Slot = Slot {
+        wgsl_name: "spectral_tables",
         binding: 8,
         visibility: ShaderStages::FRAGMENT,
         ty: storage(true),
-    };
-    /// Group 0 of the shading passes: `coefficient_scale`, the coefficient table's brightness
-    /// scale.
-    pub const COEFFICIENT_SCALE: Slot = Slot {
-        wgsl_name: "coefficient_scale",
-        binding: 9,
-        visibility: ShaderStages::FRAGMENT,
-        ty: storage(true),
-    };
-    /// Group 0 of the shading passes: `coefficient_table`, the Jakob–Hanika coefficients.
-    pub const COEFFICIENT_TABLE: Slot = Slot {
-        wgsl_name: "coefficient_table",
-        binding: 10,
-        visibility: ShaderStages::FRAGMENT,
-        ty: storage(true),
-    };
-    /// Group 0 of the shading passes: `lights`, the lamp's strength and the moving lights
-    /// ([`crate::shadows`]).
-    pub const LIGHTS: Slot = Slot {
-        wgsl_name: "lights",
-        binding: 11,
-        visibility: ShaderStages::FRAGMENT,
-        ty: UNIFORM,
     };
     /// Group 0 of the shading passes: `shadow_scene`, every object's BVH for the shadows of
     /// moving lights ([`crate::shadows`]).
@@ -323,10 +307,7 @@ pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
         slots::FRAME_UNIFORMS,
         slots::LUT_TABLE,
         slots::VISIBLE_IDS,
-        slots::CIE_TABLE,
-        slots::COEFFICIENT_SCALE,
-        slots::COEFFICIENT_TABLE,
-        slots::LIGHTS,
+        slots::SPECTRAL_TABLES,
         slots::SHADOW_SCENE,
     ],
 };
@@ -338,10 +319,7 @@ pub const POLYGON_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     slots: &[
         slots::FRAME_UNIFORMS,
         slots::LUT_TABLE,
-        slots::CIE_TABLE,
-        slots::COEFFICIENT_SCALE,
-        slots::COEFFICIENT_TABLE,
-        slots::LIGHTS,
+        slots::SPECTRAL_TABLES,
         slots::SHADOW_SCENE,
     ],
 };
@@ -352,9 +330,7 @@ pub const SKY_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     slots: &[
         slots::FRAME_UNIFORMS,
         slots::LUT_TABLE,
-        slots::CIE_TABLE,
-        slots::COEFFICIENT_SCALE,
-        slots::COEFFICIENT_TABLE,
+        slots::SPECTRAL_TABLES,
     ],
 };
 /// Group 1: object uniforms.

@@ -676,20 +676,10 @@ pub mod slots {
         visibility: ShaderStages::COMPUTE,
         ty: UNIFORM,
     };
-    /// `cie_table`, as the render passes bind it, for the compute stage.
-    pub const CIE_TABLE: Slot = Slot {
+    /// `spectral_tables`, as the render passes bind it, for the compute stage.
+    pub const SPECTRAL_TABLES: Slot = Slot {
         visibility: ShaderStages::COMPUTE,
-        ..crate::pipelines::slots::CIE_TABLE
-    };
-    /// `coefficient_scale`, as the render passes bind it, for the compute stage.
-    pub const COEFFICIENT_SCALE: Slot = Slot {
-        visibility: ShaderStages::COMPUTE,
-        ..crate::pipelines::slots::COEFFICIENT_SCALE
-    };
-    /// `coefficient_table`, as the render passes bind it, for the compute stage.
-    pub const COEFFICIENT_TABLE: Slot = Slot {
-        visibility: ShaderStages::COMPUTE,
-        ..crate::pipelines::slots::COEFFICIENT_TABLE
+        ..crate::pipelines::slots::SPECTRAL_TABLES
     };
 }
 
@@ -719,9 +709,7 @@ pub const SPECTRAL_PROBE_GROUP: BindGroupSpec = BindGroupSpec {
     slots: &[
         slots::SPECTRAL_INPUTS,
         slots::SPECTRAL_OUTPUTS,
-        slots::CIE_TABLE,
-        slots::COEFFICIENT_SCALE,
-        slots::COEFFICIENT_TABLE,
+        slots::SPECTRAL_TABLES,
         slots::SPECTRAL_PARAMS,
     ],
 };
@@ -1122,7 +1110,6 @@ pub fn run_spectral_probe(
         mapped_at_creation: false,
     });
     let [_, _, spectral] = specs();
-    let [cie, scale, coefficients] = tables.entries();
     let bytes = dispatch(
         ctx,
         &spectral,
@@ -1130,9 +1117,7 @@ pub fn run_spectral_probe(
         &[
             slots::SPECTRAL_INPUTS.entry(input.as_entire_binding()),
             slots::SPECTRAL_OUTPUTS.entry(output.as_entire_binding()),
-            cie,
-            scale,
-            coefficients,
+            tables.entry(),
             slots::SPECTRAL_PARAMS.entry(params.as_entire_binding()),
         ],
         cases.len(),

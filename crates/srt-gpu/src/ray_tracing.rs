@@ -120,7 +120,7 @@ impl BoxBuffers {
             uniforms: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("srt box uniforms"),
                 contents: bytemuck::bytes_of(&box_uniforms(false)),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: crate::shaders::BlockSpace::BUFFER_USAGES,
             }),
             vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("srt box vertices"),

@@ -155,6 +155,70 @@ const SKY_OVERRIDES: [(&str, f64); 7] = {
 /// The overrides of the probe shader.
 const PROBE_OVERRIDES: &[(&str, f64)] = &with_spectral(("WORKGROUP_SIZE", WORKGROUP_SIZE as f64));
 
+/// WGSL names of the render passes' blocks of per-frame, per-object and per-part values.
+pub const BLOCKS: [&str; 4] = ["frame_uniforms", "object", "part", "sky"];
+
+/// How the render passes' [`BLOCKS`] are bound on a device: as read-only storage buffers, as
+/// the WGSL declares them, or as uniform buffers on the GL backend.
+///
+/// Storage, because Mesa 22.3's lavapipe recompiles a shader at every bind group change while
+/// a uniform buffer decides one of its branches (shaders/render_bindings.wgsl says more);
+/// uniform on GL, because llvmpipe's GL driver reads a storage-buffer `object` wrongly in the
+/// spinning body's ray search (blocks of missed pixels in `rolling-wheel`), and it does not
+/// recompile for uniforms. The two read alike on GPUs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BlockSpace {
+    /// `var<storage, read>`.
+    Storage,
+    /// `var<uniform>`.
+    Uniform,
+}
+
+impl BlockSpace {
+    /// The usages of a block's buffer: bindable in either space, written by the queue.
+    pub const BUFFER_USAGES: wgpu::BufferUsages = wgpu::BufferUsages::STORAGE
+        .union(wgpu::BufferUsages::UNIFORM)
+        .union(wgpu::BufferUsages::COPY_DST);
+
+    /// The space of `device`'s backend.
+    #[must_use]
+    pub fn of(device: &wgpu::Device) -> Self {
+        if device.adapter_info().backend == wgpu::Backend::Gl {
+            Self::Uniform
+        } else {
+            Self::Storage
+        }
+    }
+
+    /// `source` with the blocks declared in this space.
+    #[must_use]
+    pub fn declare(self, source: &str) -> String {
+        let mut declared = source.to_owned();
+        if self == Self::Uniform {
+            for name in BLOCKS {
+                declared = declared.replace(
+                    &format!("var<storage, read> {name}:"),
+                    &format!("var<uniform> {name}:"),
+                );
+            }
+        }
+        declared
+    }
+
+    /// The binding type of `slot` (named `wgsl_name`) in this space.
+    #[must_use]
+    pub fn binding_type(self, wgsl_name: &str, ty: wgpu::BindingType) -> wgpu::BindingType {
+        match self {
+            Self::Uniform if BLOCKS.contains(&wgsl_name) => wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            _ => ty,
+        }
+    }
+}
+
 /// A composed shader and the values of its pipeline-overridable constants.
 #[derive(Debug, Clone)]
 pub struct Shader {
@@ -167,12 +231,12 @@ pub struct Shader {
 }
 
 impl Shader {
-    /// The shader module on `device`.
+    /// The shader module on `device`, its blocks declared in the device's [`BlockSpace`].
     #[must_use]
     pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
         device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(self.name),
-            source: wgpu::ShaderSource::Wgsl(self.source.as_str().into()),
+            source: wgpu::ShaderSource::Wgsl(BlockSpace::of(device).declare(&self.source).into()),
         })
     }
 

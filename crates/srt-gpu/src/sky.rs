@@ -142,7 +142,7 @@ impl SkyResources {
             uniforms: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("srt sky uniforms"),
                 size: size_of::<SkyUniforms>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: crate::shaders::BlockSpace::BUFFER_USAGES,
                 mapped_at_creation: false,
             }),
             image: image_texture(ctx, scene.sky.image.as_ref()),

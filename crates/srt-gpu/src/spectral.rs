@@ -1,5 +1,5 @@
 //! The tables of spectral colour on the GPU (`shaders/spectral.wgsl`): the CIE 1931 table and
-//! the Jakob–Hanika coefficient table, uploaded once per renderer from the CPU's own tables
+//! the Jakob–Hanika coefficient table, in one buffer uploaded once per renderer from the CPU's own tables
 //! (`srt_color::cie_1931`, `srt_color::srgb_coefficient_table`), so that both sides use the same
 //! numbers.
 
@@ -12,7 +12,7 @@ use crate::limits::DeviceLimits;
 use crate::pipelines::slots;
 use crate::types::GpuCieSample;
 
-/// The CIE table as WGSL `cie_table` reads it, in f32.
+/// The CIE table as WGSL `cie_sample` reads it, in f32.
 #[must_use]
 pub fn cie_rows() -> Vec<GpuCieSample> {
     cie_1931()
@@ -24,51 +24,62 @@ pub fn cie_rows() -> Vec<GpuCieSample> {
         .collect()
 }
 
-/// The three storage buffers of spectral colour.
+/// Words before the tables in [`SpectralTables`]' buffer: the number of brightness-scale
+/// entries and of CIE rows (as f32, exact for any table size up to 2²⁴).
+pub const SPECTRAL_HEADER_WORDS: usize = 2;
+
+/// The spectral tables as WGSL `spectral_tables` reads them (spectral.wgsl's accessors), one
+/// array of f32: the header ([`SPECTRAL_HEADER_WORDS`]: n scale entries, c CIE rows), the
+/// coefficient table's brightness scale (n), the CIE rows ([`GpuCieSample`], four words each),
+/// then the coefficient texels (three words each, in `CoefficientTable::texels`' layout). One
+/// buffer, not three: every storage binding counts against the shading pass's limit of eight
+/// per stage, which its uniforms now share (docs/ARCHITECTURE.md, "No uniform buffers").
+#[must_use]
+pub fn spectral_words() -> Vec<f32> {
+    let table = srgb_coefficient_table();
+    let rows = cie_rows();
+    let scale = table.scale();
+    let mut words = Vec::with_capacity(
+        SPECTRAL_HEADER_WORDS + scale.len() + 4 * rows.len() + 3 * table.texels().len(),
+    );
+    words.push(scale.len() as f32);
+    words.push(rows.len() as f32);
+    words.extend(scale.iter().map(|&z| z as f32));
+    words.extend_from_slice(bytemuck::cast_slice(&rows));
+    words.extend_from_slice(bytemuck::cast_slice(table.texels()));
+    words
+}
+
+/// The storage buffer of spectral colour ([`spectral_words`]).
 pub struct SpectralTables {
-    cie: wgpu::Buffer,
-    scale: wgpu::Buffer,
-    coefficients: wgpu::Buffer,
+    words: wgpu::Buffer,
 }
 
 impl SpectralTables {
     /// Uploads the tables (the coefficient table is built on first use, on the CPU).
     ///
     /// # Errors
-    /// [`GpuError::ExceedsLimit`] when a table exceeds the device's storage-buffer limit.
+    /// [`GpuError::ExceedsLimit`] when the tables exceed the device's storage-buffer limit.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
-        let table = srgb_coefficient_table();
-        let scale: Vec<f32> = table.scale().iter().map(|&z| z as f32).collect();
-        let limits = DeviceLimits::of(ctx);
-        let buffer = |label: &'static str, contents: &[u8]| {
-            limits.check_storage_buffer(|| label.to_owned(), contents.len() as u64)?;
-            Ok(ctx
+        let label = "the spectral tables";
+        let words = spectral_words();
+        let contents: &[u8] = bytemuck::cast_slice(&words);
+        DeviceLimits::of(ctx).check_storage_buffer(|| label.to_owned(), contents.len() as u64)?;
+        Ok(Self {
+            words: ctx
                 .device
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(label),
                     contents,
                     usage: wgpu::BufferUsages::STORAGE,
-                }))
-        };
-        Ok(Self {
-            cie: buffer("the CIE 1931 table", bytemuck::cast_slice(&cie_rows()))?,
-            scale: buffer("the coefficient scale", bytemuck::cast_slice(&scale))?,
-            coefficients: buffer(
-                "the coefficient table",
-                bytemuck::cast_slice(table.texels()),
-            )?,
+                }),
         })
     }
 
-    /// The bind group entries of the tables (WGSL `cie_table`, `coefficient_scale`,
-    /// `coefficient_table`).
+    /// The bind group entry of the tables (WGSL `spectral_tables`).
     #[must_use]
-    pub fn entries(&self) -> [wgpu::BindGroupEntry<'_>; 3] {
-        [
-            slots::CIE_TABLE.entry(self.cie.as_entire_binding()),
-            slots::COEFFICIENT_SCALE.entry(self.scale.as_entire_binding()),
-            slots::COEFFICIENT_TABLE.entry(self.coefficients.as_entire_binding()),
-        ]
+    pub fn entry(&self) -> wgpu::BindGroupEntry<'_> {
+        slots::SPECTRAL_TABLES.entry(self.words.as_entire_binding())
     }
 }
 
@@ -86,5 +97,20 @@ mod tests {
             let cpu = [sample.xbar, sample.ybar, sample.zbar].map(|v| v as f32);
             assert_eq!(row.xyz_bar, cpu);
         }
+    }
+
+    #[test]
+    fn spectral_words_hold_the_header_then_each_table() {
+        let words = spectral_words();
+        let table = srgb_coefficient_table();
+        let (n, c) = (words[0] as usize, words[1] as usize);
+        assert_eq!((n, c), (table.scale().len(), cie_1931().len()));
+        let scale = &words[SPECTRAL_HEADER_WORDS..SPECTRAL_HEADER_WORDS + n];
+        assert_eq!(scale[n - 1], table.scale()[n - 1] as f32);
+        let rows = &words[SPECTRAL_HEADER_WORDS + n..SPECTRAL_HEADER_WORDS + n + 4 * c];
+        assert_eq!(rows[3], 360.0, "the first row's wavelength");
+        assert_eq!(rows[4 * c - 1], 830.0, "the last row's wavelength");
+        let texels: &[f32] = bytemuck::cast_slice(table.texels());
+        assert_eq!(&words[SPECTRAL_HEADER_WORDS + n + 4 * c..], texels);
     }
 }

@@ -200,6 +200,9 @@ pub struct FrameUniforms {
     /// How light becomes radiance: ln Y of the lamp, 1/g, 1 where brightness follows luminance
     /// else 0, and the largest value the colour target holds ([`radiance_params`]).
     pub radiance: [f32; 4],
+    /// The lamp's strength and the moving lights: per frame like the rest, and in the same
+    /// buffer to keep the shading pass within eight storage buffers.
+    pub lights: LightUniforms,
 }
 
 /// `FrameUniforms::output`: what the passes write per pixel (WGSL `OUTPUT_*` in light.wgsl).

@@ -61,11 +61,15 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("MOTION_THRUST", MotionCode::THRUST.0),
         ("MOTION_MAX_PIECES", srt_gpu::motion::MAX_PIECES),
         ("MOTION_BISECTIONS", srt_gpu::motion::BISECTIONS),
+        (
+            "SPECTRAL_HEADER_WORDS",
+            srt_gpu::spectral::SPECTRAL_HEADER_WORDS as u32,
+        ),
     ]
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 12] = [
+const SHARED_FAMILIES: [&str; 13] = [
     "BVH_",
     "MOTION_",
     "DRAW_ARGS_",
@@ -75,6 +79,7 @@ const SHARED_FAMILIES: [&str; 12] = [
     "OUTPUT_",
     "PART_",
     "SHADOW_",
+    "SPECTRAL_HEADER_",
     "STAR_LIGHT_WORDS_",
     "SURFACE_COLOUR_",
     "TONE_MAP_",
@@ -616,4 +621,108 @@ fn a_binding_mismatch_is_detected() {
     ] {
         assert!(joined.contains(text), "missing {text:?} in:\n{joined}");
     }
+}
+
+/// Storage buffers that `spec`'s layout makes visible to `stage` (what wgpu counts against
+/// `max_storage_buffers_per_shader_stage`).
+fn storage_buffers(spec: &PipelineSpec, stage: wgpu::ShaderStages) -> usize {
+    spec.groups
+        .iter()
+        .flat_map(|g| g.slots)
+        .filter(|s| s.visibility.contains(stage))
+        .filter(|s| {
+            matches!(
+                s.ty,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { .. },
+                    ..
+                }
+            )
+        })
+        .count()
+}
+
+#[test]
+fn render_passes_bind_no_uniform_buffer_and_fit_the_storage_limits() {
+    // Lavapipe (Mesa 22.3) recompiles a shader at every bind while a uniform buffer decides one
+    // of its branches (render_bindings.wgsl); so the render passes read storage buffers only,
+    // at most WebGPU's default of 8 per stage, which `device_descriptor` asks for.
+    let limit = wgpu::Limits::default().max_storage_buffers_per_shader_stage as usize;
+    let mut render = Vec::new();
+    for (counting, lit) in [(false, false), (true, false), (false, true), (true, true)] {
+        render.extend(srt_gpu::pipelines::specs(counting, lit));
+    }
+    render.extend(srt_gpu::pipelines::sky_specs());
+    render.push(srt_gpu::display::spec());
+    let mut failures = Vec::new();
+    let mut most = 0;
+    for spec in &render {
+        for slot in spec.groups.iter().flat_map(|g| g.slots) {
+            if matches!(
+                slot.ty,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    ..
+                }
+            ) {
+                failures.push(format!(
+                    "{}: {} is a uniform buffer",
+                    spec.label, slot.wgsl_name
+                ));
+            }
+        }
+        for stage in [
+            wgpu::ShaderStages::VERTEX,
+            wgpu::ShaderStages::FRAGMENT,
+            wgpu::ShaderStages::COMPUTE,
+        ] {
+            let count = storage_buffers(spec, stage);
+            most = most.max(count);
+            if count > limit {
+                failures.push(format!(
+                    "{}: {count} storage buffers for {stage:?}, more than {limit}",
+                    spec.label
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert_eq!(
+        most, limit,
+        "the shading pass binds 8 storage buffers per stage"
+    );
+}
+
+#[test]
+fn blocks_declared_as_uniforms_for_gl_match_their_layouts() {
+    // On the GL backend the render passes' blocks are uniform buffers (BlockSpace): the WGSL
+    // declared that way must still match the layouts made in that space, and every render
+    // pass must have had a block to declare.
+    let space = shaders::BlockSpace::Uniform;
+    let mut render = Vec::new();
+    for (counting, lit) in [(false, false), (true, true)] {
+        render.extend(srt_gpu::pipelines::specs(counting, lit));
+    }
+    render.extend(srt_gpu::pipelines::sky_specs());
+    let mut failures = Vec::new();
+    for spec in render {
+        let mut gl = spec.clone();
+        gl.shader.source = space.declare(&spec.shader.source);
+        if gl.shader.source == spec.shader.source {
+            failures.push(format!("{}: no block declared as a uniform", spec.label));
+        }
+        for group in &mut gl.groups {
+            let slots: Vec<Slot> = group
+                .slots
+                .iter()
+                .map(|slot| Slot {
+                    ty: space.binding_type(slot.wgsl_name, slot.ty),
+                    ..*slot
+                })
+                .collect();
+            group.slots = Vec::leak(slots);
+        }
+        failures.extend(check_bindings(&gl));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

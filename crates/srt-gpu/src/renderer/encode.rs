@@ -73,12 +73,10 @@ impl super::GpuRenderer {
                 &scene.radiance_scale(RadianceTable::shared()),
                 largest_value(ctx.color_format),
             ),
+            lights: light_uniforms(scene, self.shadows.as_ref()),
         };
         ctx.queue
             .write_buffer(&self.frame.uniforms, 0, bytemuck::bytes_of(&uniforms));
-        let lights: LightUniforms = light_uniforms(scene, self.shadows.as_ref());
-        ctx.queue
-            .write_buffer(&self.frame.lights, 0, bytemuck::bytes_of(&lights));
         if let Some(shadows) = &self.shadows {
             shadows.write(&ctx.queue, scene);
         }

@@ -30,6 +30,7 @@ use crate::pipelines::{
 use crate::projection::view_projection;
 use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing, object_bvh};
 use crate::readback::{TextureReadback, texel_bytes};
+use crate::shaders::BlockSpace;
 use crate::shaders::WORKGROUP_SIZE;
 use crate::shadows::{ShadowRows, ShadowScene, empty_shadow_buffer, light_uniforms};
 use crate::sky::{SkyResources, sky_shape};
@@ -38,9 +39,9 @@ use crate::textures::part_texture;
 use crate::types::{
     ClockUniforms, DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
     FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
-    GpuVertex, LightUniforms, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags,
-    PartUniforms, SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, blink4, footprint_slots, mat4,
-    object_time, optics4, radiance_params, vec4,
+    GpuVertex, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags, PartUniforms,
+    SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, blink4, footprint_slots, mat4, object_time,
+    optics4, radiance_params, vec4,
 };
 
 mod encode;

@@ -57,7 +57,6 @@ impl Targets {
             .lut_views
             .iter()
             .map(|lut| {
-                let [cie, scale, coefficients] = frame.spectral.entries();
                 ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(SHADE_FRAME_GROUP.label),
                     layout: &pipelines.shade_frame_layout,
@@ -65,10 +64,7 @@ impl Targets {
                         slots::FRAME_UNIFORMS.entry(frame.uniforms.as_entire_binding()),
                         slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(lut)),
                         slots::VISIBLE_IDS.entry(wgpu::BindingResource::TextureView(&ids_view)),
-                        cie,
-                        scale,
-                        coefficients,
-                        slots::LIGHTS.entry(frame.lights.as_entire_binding()),
+                        frame.spectral.entry(),
                         slots::SHADOW_SCENE.entry(frame.shadow_scene.as_entire_binding()),
                     ],
                 })
@@ -101,12 +97,11 @@ impl Targets {
     }
 }
 
-/// The frame uniforms and, per tone map, the colour table bound with them; the spectral tables;
-/// the lights and the shadow casters.
+/// The frame uniforms (the lights among them) and, per tone map, the colour table bound with
+/// them; the spectral tables; the shadow casters.
 pub(super) struct FrameResources {
+    /// WGSL `frame_uniforms` ([`FrameUniforms`]), written every frame.
     pub(super) uniforms: wgpu::Buffer,
-    /// The lights' uniforms (WGSL `lights`, [`crate::shadows::light_uniforms`]).
-    pub(super) lights: wgpu::Buffer,
     /// WGSL `shadow_scene` ([`crate::shadows::ShadowScene`], or one unread row).
     pub(super) shadow_scene: wgpu::Buffer,
     /// One bind group per tone map, indexed as [`ToneMap::ALL`] (the colour tables differ).
@@ -130,16 +125,15 @@ impl FrameResources {
         pipelines: &Pipelines,
         shadow_scene: &wgpu::Buffer,
     ) -> Result<Self, GpuError> {
-        let uniform = |label, size| {
+        let written_per_frame = |label, size| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: BlockSpace::BUFFER_USAGES,
                 mapped_at_creation: false,
             })
         };
-        let uniforms = uniform("srt frame uniforms", size_of::<FrameUniforms>() as u64);
-        let lights = uniform("srt lights", size_of::<LightUniforms>() as u64);
+        let uniforms = written_per_frame("srt frame uniforms", size_of::<FrameUniforms>() as u64);
         let spectral = SpectralTables::new(ctx)?;
         let mut bind_groups = Vec::new();
         let mut polygon_groups = Vec::new();
@@ -158,37 +152,29 @@ impl FrameResources {
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
                 ],
             }));
-            let [cie, scale, coefficients] = spectral.entries();
             polygon_groups.push(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(POLYGON_FRAME_GROUP.label),
                 layout: &pipelines.polygon_frame_layout,
                 entries: &[
                     slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
-                    cie,
-                    scale,
-                    coefficients,
-                    slots::LIGHTS.entry(lights.as_entire_binding()),
+                    spectral.entry(),
                     slots::SHADOW_SCENE.entry(shadow_scene.as_entire_binding()),
                 ],
             }));
-            let [cie, scale, coefficients] = spectral.entries();
             sky_groups.push(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(SKY_FRAME_GROUP.label),
                 layout: &pipelines.sky_frame_layout,
                 entries: &[
                     slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
-                    cie,
-                    scale,
-                    coefficients,
+                    spectral.entry(),
                 ],
             }));
             lut_views.push(view);
         }
         Ok(Self {
             uniforms,
-            lights,
             shadow_scene: shadow_scene.clone(),
             bind_groups,
             polygon_groups,

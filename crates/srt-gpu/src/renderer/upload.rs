@@ -215,7 +215,7 @@ pub(super) fn upload_batch(
     let uniforms = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt part uniforms"),
         contents: bytemuck::bytes_of(&material),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        usage: BlockSpace::BUFFER_USAGES,
     });
     let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("srt vertices"),
@@ -314,7 +314,7 @@ pub(super) fn upload_object(
     let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("srt object uniforms"),
         size: size_of::<ObjectUniforms>() as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        usage: BlockSpace::BUFFER_USAGES,
         mapped_at_creation: false,
     });
     let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
