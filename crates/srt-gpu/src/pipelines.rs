@@ -90,9 +90,9 @@ pub struct PipelineSpec {
 const ALL_STAGES: wgpu::ShaderStages =
     wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
 
-/// A uniform buffer: for the probes' parameters only. The render passes read their per-frame,
-/// per-object and per-part values from read-only storage buffers instead (render_bindings.wgsl
-/// says why; `tests/reflect.rs` checks that none binds a uniform buffer).
+/// A uniform buffer: for the probes' parameters. The render passes read their per-frame,
+/// per-object and per-part values from read-only storage buffers instead, uniforms only on the
+/// GL backend ([`crate::shaders::BlockSpace`] says why; `tests/reflect.rs` checks both).
 pub const UNIFORM: wgpu::BindingType = wgpu::BindingType::Buffer {
     ty: wgpu::BufferBindingType::Uniform,
     has_dynamic_offset: false,

@@ -217,7 +217,7 @@ mod tests {
         for kept in ["Prose.", "More prose.", "End.", SUMMARY_END, TABLE_END] {
             assert_eq!(text.matches(kept).count(), 1, "{kept}");
         }
-        assert!(text.contains("every sweep frame: missed** at fly@ct=6 1280×720 (2.50)"));
+        assert!(text.contains("every sweep frame: missed** at spider 1280×720 (1.50)"));
         assert!(
             text.contains("| cube | 1280×720 | 300 | 10.00 | 11.00 | 22.00 | 10.00 | **1.00** |")
         );

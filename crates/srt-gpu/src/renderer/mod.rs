@@ -30,8 +30,7 @@ use crate::pipelines::{
 use crate::projection::view_projection;
 use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing, object_bvh};
 use crate::readback::{TextureReadback, texel_bytes};
-use crate::shaders::BlockSpace;
-use crate::shaders::WORKGROUP_SIZE;
+use crate::shaders::{BlockSpace, WORKGROUP_SIZE};
 use crate::shadows::{ShadowRows, ShadowScene, empty_shadow_buffer, light_uniforms};
 use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
