@@ -8,7 +8,7 @@ use std::sync::LazyLock;
 
 use glam::{DVec2, DVec3};
 
-use crate::planck::ln_planck_radiance;
+use crate::planck::{SECOND_RADIATION_CONSTANT, WIEN_X, ln_planck_radiance};
 
 /// The CSV text of the CIE 1931 2° colour-matching functions, 360–830 nm at 1 nm.
 const CIE_1931_CSV: &str = include_str!("../data/cie1931_2deg_1nm.csv");
@@ -148,27 +148,97 @@ impl ScaledXyz {
     }
 }
 
-/// The Planck radiance of Eq. 10 at the wavelengths of [`cie_1931`], relative to its largest
-/// value there, with the logarithm of that largest value: `L(λᵢ, T) = wᵢ · exp(ln_max)`.
+/// The Planck radiance of Eq. 10 at the wavelengths of [`cie_1931`] relative to its largest
+/// value there, `L(λᵢ, T) = wᵢ · exp(ln_max)`: the weights every spectral sum at one temperature
+/// shares (Eq. 11).
 ///
-/// `None` for a non-positive or non-finite temperature. Every weight lies in [0, 1] and the
-/// largest is exactly 1, so sums against the table neither overflow nor underflow.
-pub(crate) fn planck_weights(temperature_k: f64) -> Option<(Vec<f64>, f64)> {
-    if !(temperature_k.is_finite() && temperature_k > 0.0) {
-        return None;
+/// Every weight lies in [0, 1] and the largest is 1 (to rounding), so sums against the table
+/// neither overflow nor underflow. L is unimodal in λ with its peak at c₂/(x_max T) (Wien's
+/// displacement law, [`WIEN_X`]), so `ln_max` is found among the grid wavelengths around the
+/// peak rather than over the whole table. Each weight is then taken relative to the table's
+/// longest wavelength λₗ, where x = c₂/(λT) is smallest (x ≥ xₗ):
+///
+/// L(λ)/L(λₗ) = (λₗ/λ)⁵ · e^(−(x − xₗ)) · g(xₗ)/g(x), with g(x) = 1 − e^(−x),
+///
+/// one exponential per wavelength (e^(−x) = e^(−xₗ) · e^(−(x − xₗ))) and no logarithm, in a
+/// range where neither factor overflows at any temperature; the GPU mirror (spectral.wgsl's
+/// `planck_weight`) computes the same form in f32.
+pub(crate) struct PlanckWeights {
+    /// ln L_max, the largest ln L(λᵢ, T) on the grid.
+    ln_max: f64,
+    /// c₂/T in nm: x = c₂/(λT) = `x_per_inverse_nm` / λ with λ in nm.
+    x_per_inverse_nm: f64,
+    /// λₗ, the table's longest wavelength, in nm.
+    longest_nm: f64,
+    /// 1/λₗ in nm⁻¹.
+    inverse_longest_nm: f64,
+    /// e^(−xₗ).
+    exp_minus_x_longest: f64,
+    /// L(λₗ)/L_max · g(xₗ).
+    longest_factor: f64,
+}
+
+/// g(x) = 1 − e^(−x) for x ≥ 0 given e^(−x): by subtraction where that loses at most a few
+/// bits (x ≥ ¼), else as −expm1(−x).
+fn one_minus_exp_minus(x: f64, exp_minus_x: f64) -> f64 {
+    if x >= 0.25 {
+        1.0 - exp_minus_x
+    } else {
+        -(-x).exp_m1()
     }
-    let mut weights: Vec<f64> = cie_1931()
-        .iter()
-        .map(|s| ln_planck_radiance(s.wavelength_m(), temperature_k))
-        .collect();
-    let ln_max = weights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if !ln_max.is_finite() {
-        return None;
+}
+
+impl PlanckWeights {
+    /// The weights at `temperature_k`; `None` unless it is positive and finite and the visible
+    /// radiance is representable in logarithms.
+    pub(crate) fn new(temperature_k: f64) -> Option<Self> {
+        if !(temperature_k.is_finite() && temperature_k > 0.0) {
+            return None;
+        }
+        let table = cie_1931();
+        let last = table.len() - 1;
+        let peak_nm = SECOND_RADIATION_CONSTANT / (WIEN_X * temperature_k) * 1e9;
+        // The grid rows around the peak, held to the table (both neighbours of an unrounded
+        // peak, and one more against rounding in the peak's position).
+        let below = ((peak_nm - CIE_1931_MIN_NM).floor().max(0.0) as usize).min(last);
+        let ln_max = [below.saturating_sub(1), below, (below + 1).min(last)]
+            .into_iter()
+            .map(|i| ln_planck_radiance(table[i].wavelength_m(), temperature_k))
+            .fold(f64::NEG_INFINITY, f64::max);
+        if !ln_max.is_finite() {
+            return None;
+        }
+        let longest = table[last];
+        let x_per_inverse_nm = SECOND_RADIATION_CONSTANT * 1e9 / temperature_k;
+        let x_longest = x_per_inverse_nm / longest.wavelength_nm;
+        let exp_minus_x_longest = (-x_longest).exp();
+        let longest_weight =
+            (ln_planck_radiance(longest.wavelength_m(), temperature_k) - ln_max).exp();
+        Some(Self {
+            ln_max,
+            x_per_inverse_nm,
+            longest_nm: longest.wavelength_nm,
+            inverse_longest_nm: 1.0 / longest.wavelength_nm,
+            exp_minus_x_longest,
+            longest_factor: longest_weight * one_minus_exp_minus(x_longest, exp_minus_x_longest),
+        })
     }
-    for w in &mut weights {
-        *w = (*w - ln_max).exp();
+
+    /// ln L_max: `L(λᵢ, T) = weight(λᵢ) · exp(ln_max)`.
+    pub(crate) fn ln_max(&self) -> f64 {
+        self.ln_max
     }
-    Some((weights, ln_max))
+
+    /// L(λ, T) / L_max at the table's row `sample` (Eq. 10, in the form of the type's
+    /// documentation).
+    pub(crate) fn weight(&self, sample: &CmfSample) -> f64 {
+        let inverse = 1.0 / sample.wavelength_nm;
+        let x = self.x_per_inverse_nm * inverse;
+        let beyond = (-(self.x_per_inverse_nm * (inverse - self.inverse_longest_nm))).exp();
+        let ratio = self.longest_nm * inverse;
+        self.longest_factor * ratio.powi(5) * beyond
+            / one_minus_exp_minus(x, self.exp_minus_x_longest * beyond)
+    }
 }
 
 /// [`blackbody_xyz`] as a [`ScaledXyz`], with the largest spectral term of `relative` equal to 1
@@ -184,15 +254,14 @@ pub fn blackbody_xyz_scaled(temperature_k: f64) -> ScaledXyz {
 /// `relative` equal to 1, so that ratios such as X/Y are available at any positive finite
 /// temperature (Eq. 11 without overflow or underflow). Returns `(ZERO, -inf)` for invalid input.
 pub(crate) fn blackbody_xyz_relative(temperature_k: f64) -> (DVec3, f64) {
-    let Some((weights, ln_max)) = planck_weights(temperature_k) else {
+    let Some(weights) = PlanckWeights::new(temperature_k) else {
         return (DVec3::ZERO, f64::NEG_INFINITY);
     };
     let relative = cie_1931()
         .iter()
-        .zip(&weights)
-        .map(|(s, &w)| w * s.tristimulus())
+        .map(|s| weights.weight(s) * s.tristimulus())
         .sum::<DVec3>();
-    (relative, ln_max + CIE_1931_STEP_M.ln())
+    (relative, weights.ln_max() + CIE_1931_STEP_M.ln())
 }
 
 /// Chromaticity coordinates (x, y) = (X, Y) / (X + Y + Z) of a tristimulus value.
@@ -275,6 +344,50 @@ mod tests {
             assert!(
                 (rel * ln_scale.exp() - direct).abs().max_element() <= 1e-12 * direct.max_element()
             );
+        }
+    }
+
+    /// The weights by definition: exp(ln L(λᵢ) − max over every row of ln L).
+    fn weights_by_definition(temperature_k: f64) -> (Vec<f64>, f64) {
+        let ln: Vec<f64> = cie_1931()
+            .iter()
+            .map(|s| ln_planck_radiance(s.wavelength_m(), temperature_k))
+            .collect();
+        let ln_max = ln.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (ln.iter().map(|l| (l - ln_max).exp()).collect(), ln_max)
+    }
+
+    #[test]
+    fn planck_weights_agree_with_their_definition() {
+        // 1 K to 10¹⁰ K in steps of 10^0.05: both sides of the table's ends (the peak leaves
+        // 360–830 nm below 3 490 K and above 8 050 K) and of x = ¼ (g's two forms).
+        for i in 0..=200 {
+            let t = 10f64.powf(f64::from(i) * 0.05);
+            let weights = PlanckWeights::new(t).expect("positive finite temperature");
+            let (want, ln_max) = weights_by_definition(t);
+            assert!(
+                (weights.ln_max() - ln_max).abs() <= 1e-12 * ln_max.abs().max(1.0),
+                "T {t}"
+            );
+            for (sample, want) in cie_1931().iter().zip(want) {
+                let got = weights.weight(sample);
+                assert!(
+                    (got - want).abs() <= 1e-12,
+                    "T {t}, λ {}: {got} vs {want}",
+                    sample.wavelength_nm
+                );
+            }
+        }
+        assert!(PlanckWeights::new(0.0).is_none());
+        assert!(PlanckWeights::new(f64::INFINITY).is_none());
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn planck_weights_peak_at_one(log_t in 0.0_f64..12.0) {
+            let weights = PlanckWeights::new(10f64.powf(log_t)).expect("positive finite");
+            let largest = cie_1931().iter().map(|s| weights.weight(s)).fold(0.0, f64::max);
+            proptest::prop_assert!((largest - 1.0).abs() <= 1e-12, "largest weight {}", largest);
         }
     }
 

@@ -52,7 +52,8 @@ pub use cie::{
 pub use error::ColourError;
 pub use lut::{LutError, TemperatureLut};
 pub use planck::{
-    BOLTZMANN_CONSTANT, PLANCK_CONSTANT, SECOND_RADIATION_CONSTANT, SPEED_OF_LIGHT, planck_radiance,
+    BOLTZMANN_CONSTANT, PLANCK_CONSTANT, SECOND_RADIATION_CONSTANT, SPEED_OF_LIGHT, WIEN_X,
+    planck_radiance,
 };
 pub use radiance::{Output, RadianceScale, RadianceTable};
 pub use rgb::{

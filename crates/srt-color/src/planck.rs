@@ -14,6 +14,10 @@ pub const BOLTZMANN_CONSTANT: f64 = 1.380_649e-23;
 /// The second radiation constant c₂ = hc/k in m·K, the scale of the exponent in Eq. 10.
 pub const SECOND_RADIATION_CONSTANT: f64 = PLANCK_CONSTANT * SPEED_OF_LIGHT / BOLTZMANN_CONSTANT;
 
+/// x_max = hc/(kλT) at the maximum of Planck's law in λ (Wien's displacement law): the root of
+/// 5(1 − e^(−x)) = x, so that the peak lies at λ = hc/(k · x_max · T).
+pub const WIEN_X: f64 = 4.965_114_231_744_276;
+
 /// Spectral radiance of a black body, Eq. 10: L(λ, T) = 2hc²/λ⁵ · [exp(hc/(kTλ)) − 1]⁻¹.
 ///
 /// `wavelength_m` is λ in metres, `temperature_k` is T in kelvin; the result is in

@@ -32,7 +32,7 @@
 use glam::DVec3;
 
 use super::sigmoid::{MODEL_MAX_NM, MODEL_MIN_NM, SigmoidPolynomial};
-use crate::cie::{CIE_1931_STEP_M, ScaledXyz, blackbody_xyz_scaled, cie_1931, planck_weights};
+use crate::cie::{CIE_1931_STEP_M, PlanckWeights, ScaledXyz, blackbody_xyz_scaled, cie_1931};
 use crate::error::{ColourError, positive_finite, unit_interval};
 use crate::tonemap::ToneMap;
 
@@ -159,15 +159,15 @@ pub fn reflected_light(
     d_out: f64,
 ) -> Result<ReflectedLight, ColourError> {
     let apparent = apparent_temperature(light_temperature_k, &[d_in, d_out])?;
-    let (weights, ln_max) =
-        planck_weights(apparent).ok_or(ColourError::ApparentTemperatureOutOfRange(apparent))?;
+    let weights =
+        PlanckWeights::new(apparent).ok_or(ColourError::ApparentTemperatureOutOfRange(apparent))?;
     let (mut light, mut white) = (DVec3::ZERO, DVec3::ZERO);
-    for (sample, &w) in cie_1931().iter().zip(&weights) {
-        let radiance = w * sample.tristimulus();
+    for sample in cie_1931() {
+        let radiance = weights.weight(sample) * sample.tristimulus();
         light += reflectance.evaluate(d_out * sample.wavelength_nm) * radiance;
         white += radiance;
     }
-    let ln_scale = ln_max + CIE_1931_STEP_M.ln();
+    let ln_scale = weights.ln_max() + CIE_1931_STEP_M.ln();
     Ok(ReflectedLight {
         light: ScaledXyz {
             relative: light,
