@@ -30,9 +30,16 @@ const MOTION_MAX_PIECES: u32 = 4096u;
 // Most bisection steps of one crossing (srt_gpu::motion::BISECTIONS).
 const MOTION_BISECTIONS: u32 = 48u;
 
+// The MOTION_* code this variant of the shader draws (srt_gpu::shaders::lrt, ::polygon): one
+// variant per code, each object drawn by its own, so that the other kinds' code is compiled out.
+// A software rasteriser runs every side of a branch its pixels do not all take, so a branch on
+// the object's kind read at run time cost every object the spinning and the thrusting bodies'
+// searches.
+override MOTION_VARIANT: u32;
+
 // The current object's MOTION_* code.
 fn motion_kind() -> u32 {
-    return u32(object.motion.x);
+    return MOTION_VARIANT;
 }
 
 // `v` turned right-handedly by `angle` about the spin axis (Rodrigues' formula).

@@ -27,9 +27,25 @@ struct CieSample {
 // Words before the scale (srt_gpu::spectral::SPECTRAL_HEADER_WORDS).
 const SPECTRAL_HEADER_WORDS: u32 = 2u;
 
-// n, the brightness scale's entries (the coefficient table's resolution).
-fn coefficient_resolution() -> u32 {
-    return u32(spectral_tables[0]);
+// Where each part of spectral_tables starts, read from its header once per shading call rather
+// than once per CIE sample.
+struct SpectralLayout {
+    // n, the brightness scale's entries (the coefficient table's resolution).
+    resolution: u32,
+    // c, the CIE table's rows.
+    rows: u32,
+    // The word of the CIE table's first row.
+    cie_at: u32,
+    // The word of the coefficient table's first texel.
+    texels_at: u32,
+}
+
+// The layout of spectral_tables from its header.
+fn spectral_layout() -> SpectralLayout {
+    let resolution = u32(spectral_tables[0]);
+    let rows = u32(spectral_tables[1]);
+    let cie_at = SPECTRAL_HEADER_WORDS + resolution;
+    return SpectralLayout(resolution, rows, cie_at, cie_at + 4u * rows);
 }
 
 // z_k of the brightness scale.
@@ -37,29 +53,28 @@ fn coefficient_scale(k: u32) -> f32 {
     return spectral_tables[SPECTRAL_HEADER_WORDS + k];
 }
 
-// c, the CIE table's rows.
-fn cie_rows() -> u32 {
-    return u32(spectral_tables[1]);
+// x̄, ȳ, z̄ of row `s` of the CIE table laid out as `tables`.
+fn cie_tristimulus(tables: SpectralLayout, s: u32) -> vec3<f32> {
+    let at = tables.cie_at + 4u * s;
+    return vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]);
 }
 
-// Row `s` of the CIE table.
-fn cie_sample(s: u32) -> CieSample {
-    let at = SPECTRAL_HEADER_WORDS + coefficient_resolution() + 4u * s;
+// Row `s` of the CIE table laid out as `tables`.
+fn cie_sample(tables: SpectralLayout, s: u32) -> CieSample {
+    let at = tables.cie_at + 4u * s;
     return CieSample(vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]), spectral_tables[at + 3u]);
 }
 
 // Values Rust owns, set at pipeline creation (srt_gpu::shaders): c₂ = hc/k in m·K and 2hc²
-// (Eq. 10), the CIE table's step Δλ in m (Eq. 11), and the band edges of the reflectance policy
-// (srt_color::spectral::{ULTRAVIOLET_BELOW_NM, INFRARED_ABOVE_NM}).
+// (Eq. 10), x_max = hc/(kλT) at the maximum of Planck's law in λ (Wien's displacement law,
+// srt_color::WIEN_X), the CIE table's step Δλ in m (Eq. 11), and the band edges of the
+// reflectance policy (srt_color::spectral::{ULTRAVIOLET_BELOW_NM, INFRARED_ABOVE_NM}).
 override SECOND_RADIATION_CONSTANT: f32;
 override RADIANCE_CONSTANT: f32;
+override WIEN_X: f32;
 override CIE_1931_STEP_M: f32;
 override ULTRAVIOLET_BELOW_NM: f32;
 override INFRARED_ABOVE_NM: f32;
-
-// x_max = hc/(kλT) at the maximum of Planck's law in λ (Wien's displacement law): the root of
-// 5(1 − e^(−x)) = x.
-const WIEN_X: f32 = 4.965114231744276;
 
 // Largest natural-log gain applied to XYZ normalised by its largest component: e^80 keeps
 // Eq. 12 finite in f32, and beyond it every channel the light has saturates on the CPU too (its
@@ -97,9 +112,9 @@ struct SpectralLight {
     valid: bool,
 }
 
-// Coefficient (c) of texel `index` of the coefficient table.
-fn coefficient_texel(index: u32) -> vec3<f32> {
-    let at = SPECTRAL_HEADER_WORDS + coefficient_resolution() + 4u * cie_rows() + 3u * index;
+// Coefficient (c) of texel `index` of the coefficient table laid out as `tables`.
+fn coefficient_texel(tables: SpectralLayout, index: u32) -> vec3<f32> {
+    let at = tables.texels_at + 3u * index;
     return vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]);
 }
 
@@ -119,7 +134,8 @@ fn coefficient_lookup(rgb: vec3<f32>, ultraviolet: f32, infrared: f32) -> Reflec
     } else if (rgb.y > rgb.z) {
         m = 1u;
     }
-    let n = coefficient_resolution();
+    let tables = spectral_layout();
+    let n = tables.resolution;
     let z = rgb[m];
     let last = f32(n - 1u);
     let x = rgb[(m + 1u) % 3u] / z * last;
@@ -148,7 +164,7 @@ fn coefficient_lookup(rgb: vec3<f32>, ultraviolet: f32, infrared: f32) -> Reflec
         let d = vec3<u32>(corner & 1u, (corner >> 1u) & 1u, (corner >> 2u) & 1u);
         let w = select(1.0 - t, t, d == vec3<u32>(1u));
         let index = ((m * n + k + d.z) * n + j + d.y) * n + i + d.x;
-        sum += (w.x * w.y * w.z) * coefficient_texel(index);
+        sum += (w.x * w.y * w.z) * coefficient_texel(tables, index);
     }
     return Reflectance(sum, -1.0, ultraviolet, infrared);
 }
@@ -160,9 +176,15 @@ fn spectral_sigmoid(x: f32) -> f32 {
     return 0.5 + 0.5 * c * inverseSqrt(1.0 + c * c);
 }
 
+// The CIE table's wavelengths, first and last (nm): the domain the reflectance model was fitted
+// on.
+fn cie_domain(tables: SpectralLayout) -> vec2<f32> {
+    return vec2<f32>(cie_sample(tables, 0u).wavelength_nm, cie_sample(tables, tables.rows - 1u).wavelength_nm);
+}
+
 // R(λ) under the policy of reflect.rs: the band constant where one applies, else the model at λ
-// held to the CIE table's (the fitted) domain (mirror of Reflectance::evaluate).
-fn reflectance_evaluate(r: Reflectance, wavelength_nm: f32) -> f32 {
+// held to `domain`, the CIE table's (the fitted) one (mirror of Reflectance::evaluate).
+fn reflectance_evaluate(r: Reflectance, wavelength_nm: f32, domain: vec2<f32>) -> f32 {
     if (r.ultraviolet >= 0.0 && wavelength_nm < ULTRAVIOLET_BELOW_NM) {
         return r.ultraviolet;
     }
@@ -172,7 +194,7 @@ fn reflectance_evaluate(r: Reflectance, wavelength_nm: f32) -> f32 {
     if (r.grey >= 0.0) {
         return r.grey;
     }
-    let l = clamp(wavelength_nm, cie_sample(0u).wavelength_nm, cie_sample(cie_rows() - 1u).wavelength_nm);
+    let l = clamp(wavelength_nm, domain.x, domain.y);
     let c = r.coefficients;
     return spectral_sigmoid((c.x * l + c.y) * l + c.z);
 }
@@ -198,12 +220,66 @@ fn ln_planck(wavelength_nm: f32, temperature_k: f32) -> f32 {
 
 // The largest ln L(λ, T) over the CIE table's wavelengths (planck_weights' ln_max): L is
 // unimodal in λ with its peak at c₂/(x_max T) (Wien), so the maximum over the 1 nm grid lies on
-// one of the two grid wavelengths around the peak, held to the table.
-fn ln_planck_max(temperature_k: f32) -> f32 {
-    let first = cie_sample(0u).wavelength_nm;
-    let last = cie_sample(cie_rows() - 1u).wavelength_nm;
+// one of the two grid wavelengths around the peak, held to the table's `domain`.
+fn ln_planck_max(temperature_k: f32, domain: vec2<f32>) -> f32 {
+    let first = domain.x;
+    let last = domain.y;
     let peak = clamp(SECOND_RADIATION_CONSTANT / (WIEN_X * temperature_k) * 1.0e9, first, last);
     return max(ln_planck(floor(peak), temperature_k), ln_planck(min(floor(peak) + 1.0, last), temperature_k));
+}
+
+// Planck's law relative to its largest value on the CIE grid at one temperature (mirror of
+// srt_color's PlanckWeights, whose documentation derives the form): what every sample of a
+// spectral sum shares.
+struct PlanckWeights {
+    // ln L_max, the largest ln L(λ, T) on the grid.
+    ln_max: f32,
+    // c₂/T in nm: x = c₂/(λT) = x_per_inverse_nm / λ.
+    x_per_inverse_nm: f32,
+    // λₗ, the table's longest wavelength, in nm.
+    longest_nm: f32,
+    // 1/λₗ in nm⁻¹.
+    inverse_longest_nm: f32,
+    // e^(−xₗ).
+    exp_minus_x_longest: f32,
+    // L(λₗ)/L_max · g(xₗ).
+    longest_factor: f32,
+}
+
+// g(x) = 1 − e^(−x) for x ≥ 0 given e^(−x): by subtraction from x = ¼ up, else the series of
+// −expm1(−x), chosen without a branch (a software rasteriser runs both sides of one).
+fn one_minus_exp_minus(x: f32, exp_minus_x: f32) -> f32 {
+    let series = x * (1.0 - x / 2.0 * (1.0 - x / 3.0 * (1.0 - x / 4.0 * (1.0 - x / 5.0 * (1.0 - x / 6.0)))));
+    return select(series, 1.0 - exp_minus_x, x >= 0.25);
+}
+
+// The weights at `temperature_k` over the grid `domain` (nm).
+fn planck_weights(temperature_k: f32, domain: vec2<f32>) -> PlanckWeights {
+    let ln_max = ln_planck_max(temperature_k, domain);
+    let x_per_inverse_nm = SECOND_RADIATION_CONSTANT * 1.0e9 / temperature_k;
+    let x_longest = x_per_inverse_nm / domain.y;
+    let exp_minus_x_longest = exp(-x_longest);
+    let longest_weight = exp(ln_planck(domain.y, temperature_k) - ln_max);
+    return PlanckWeights(
+        ln_max,
+        x_per_inverse_nm,
+        domain.y,
+        1.0 / domain.y,
+        exp_minus_x_longest,
+        longest_weight * one_minus_exp_minus(x_longest, exp_minus_x_longest),
+    );
+}
+
+// L(λ, T) / L_max at `wavelength_nm` (Eq. 10): (λₗ/λ)⁵ · e^(−(x − xₗ)) · g(xₗ)/g(x) · L(λₗ)/L_max,
+// one exponential.
+fn planck_weight(weights: PlanckWeights, wavelength_nm: f32) -> f32 {
+    let inverse = 1.0 / wavelength_nm;
+    let x = weights.x_per_inverse_nm * inverse;
+    let beyond = exp(-(weights.x_per_inverse_nm * (inverse - weights.inverse_longest_nm)));
+    let ratio = weights.longest_nm * inverse;
+    let ratio_squared = ratio * ratio;
+    return weights.longest_factor * (ratio_squared * ratio_squared * ratio) * beyond
+        / one_minus_exp_minus(x, weights.exp_minus_x_longest * beyond);
 }
 
 // Whether `t` is a positive finite f32 (read from the bits, as lut_is_positive_finite).
@@ -220,17 +296,22 @@ fn reflected_light(r: Reflectance, temperature_k: f32, d_in: f32, d_out: f32) ->
     if (!(spectral_is_positive_finite(apparent) && d_in > 0.0 && d_out > 0.0)) {
         return SpectralLight(vec3<f32>(0.0), vec3<f32>(0.0), 0.0, false);
     }
-    let ln_max = ln_planck_max(apparent);
+    let tables = spectral_layout();
+    let domain = cie_domain(tables);
+    let weights = planck_weights(apparent, domain);
+    // The rows are evenly spaced (srt_gpu::spectral's tests), so a row's wavelength is computed,
+    // not read: on a software rasteriser each storage read in this loop costs about as much as
+    // the Planck weight.
+    let step_nm = (domain.y - domain.x) / f32(tables.rows - 1u);
     var light = vec3<f32>(0.0);
     var white = vec3<f32>(0.0);
-    let count = cie_rows();
-    for (var s = 0u; s < count; s++) {
-        let sample = cie_sample(s);
-        let radiance = exp(ln_planck(sample.wavelength_nm, apparent) - ln_max) * sample.xyz_bar;
-        light += reflectance_evaluate(r, d_out * sample.wavelength_nm) * radiance;
+    for (var s = 0u; s < tables.rows; s++) {
+        let wavelength_nm = domain.x + f32(s) * step_nm;
+        let radiance = planck_weight(weights, wavelength_nm) * cie_tristimulus(tables, s);
+        light += reflectance_evaluate(r, d_out * wavelength_nm, domain) * radiance;
         white += radiance;
     }
-    return SpectralLight(light, white, ln_max + log(CIE_1931_STEP_M), true);
+    return SpectralLight(light, white, weights.ln_max + log(CIE_1931_STEP_M), true);
 }
 
 // sRGB encoding of one linear component, Eq. 13 (srt_color::srgb_encode) for c ≥ 0.

@@ -108,7 +108,7 @@ struct ObjectUniforms {
     // The clock's ink colour.
     clock_ink: vec4<f32>,
     // Its motion within its rest frame (srt_physics::motion::Motion; motion.wgsl, filled by
-    // srt_gpu::motion::MotionUniforms): x one of MOTION_*; y the spin rate ω or the thrust's
+    // srt_gpu::motion::MotionUniforms): x unused (the kind is motion.wgsl's MOTION_VARIANT); y the spin rate ω or the thrust's
     // proper acceleration α; z the spin phase ω·ct′₀ (mod 2π) or the thrust's elapsed time
     // ct′₀ − ct₀, ct′₀ the object's S′ time at the observation event; w the thrust's final
     // rapidity (< 0: it never ends).
@@ -125,7 +125,8 @@ struct ObjectUniforms {
     motion_high: vec4<f32>,
 }
 
-// ObjectUniforms.motion.x (srt_gpu::motion::MotionCode).
+// How a body moves in its rest frame: the value of motion.wgsl's MOTION_VARIANT
+// (srt_gpu::motion::MotionCode).
 const MOTION_REST: u32 = 0u;
 const MOTION_SPIN: u32 = 1u;
 const MOTION_THRUST: u32 = 2u;

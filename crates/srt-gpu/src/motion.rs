@@ -29,7 +29,9 @@ pub const MAX_PIECES: u32 = 4096;
 /// bits of an f32 mantissa need from any bracket.
 pub const BISECTIONS: u32 = 48;
 
-/// `ObjectUniforms.motion.x`: how the body moves in its rest frame (WGSL `MOTION_*`).
+/// How a body moves in its rest frame (WGSL `MOTION_*`): the LRT and polygon shaders are
+/// compiled once per code (`MOTION_VARIANT`, [`crate::shaders::lrt`]) and each object is drawn
+/// by its code's variant, so that no shader carries the other kinds' code.
 #[repr(transparent)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MotionCode(pub u32);
@@ -41,12 +43,31 @@ impl MotionCode {
     pub const SPIN: Self = Self(1);
     /// Thrusting (WGSL `MOTION_THRUST`).
     pub const THRUST: Self = Self(2);
+    /// Every code, in order: the index of a code is its value.
+    pub const ALL: [Self; 3] = [Self::REST, Self::SPIN, Self::THRUST];
+
+    /// The code of `motion`.
+    #[must_use]
+    pub fn of(motion: &Motion) -> Self {
+        match motion {
+            Motion::Rest => Self::REST,
+            Motion::Spin(_) => Self::SPIN,
+            Motion::Thrust(_) => Self::THRUST,
+        }
+    }
+
+    /// The code's index in [`MotionCode::ALL`].
+    #[must_use]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
 }
 
 /// The motion fields of `ObjectUniforms` for one object and observation event.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MotionUniforms {
-    /// Kind, rate or α, phase or elapsed time, final rapidity (< 0: none).
+    /// Unused (x: the kind is the pipeline variant's, WGSL `MOTION_VARIANT`), rate or α, phase
+    /// or elapsed time, final rapidity (< 0: none).
     pub motion: [f32; 4],
     /// Axis or direction (xyz), reach (w).
     pub axis: [f32; 4],
@@ -128,7 +149,7 @@ impl MotionUniforms {
             },
             Motion::Spin(spin) => Self {
                 motion: [
-                    MotionCode::SPIN.0 as f32,
+                    0.0,
                     spin.rate() as f32,
                     (spin.rate() * now).rem_euclid(std::f64::consts::TAU) as f32,
                     0.0,
@@ -140,7 +161,7 @@ impl MotionUniforms {
             },
             Motion::Thrust(thrust) => Self {
                 motion: [
-                    MotionCode::THRUST.0 as f32,
+                    0.0,
                     thrust.alpha() as f32,
                     (now - thrust.start()) as f32,
                     if thrust.final_rapidity().is_finite() {

@@ -7,6 +7,7 @@
 //! the WGSL (`shaders/render_bindings.wgsl` for groups 0–2, each pass for its group 3).
 
 use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
+use crate::motion::MotionCode;
 use crate::shaders::{self, BlockSpace, Shader};
 
 /// One binding of a bind group: the WGSL global it feeds, its `@binding` and what is bound.
@@ -440,9 +441,10 @@ const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 /// The six pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
 /// shading, ray-tracer visibility (the three with the fragment counter when `counting`),
 /// polygon, and the LRT part-depth pass between visibility and shading; the shading passes with
-/// moving lights where `lit` ([`shaders::lrt`]).
+/// moving lights where `lit`, the object passes for objects moving as `motion`
+/// ([`shaders::lrt`]).
 #[must_use]
-pub fn specs(counting: bool, lit: bool) -> [PipelineSpec; 6] {
+pub fn specs(counting: bool, lit: bool, motion: MotionCode) -> [PipelineSpec; 6] {
     let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
     [
         PipelineSpec {
@@ -453,31 +455,31 @@ pub fn specs(counting: bool, lit: bool) -> [PipelineSpec; 6] {
         },
         PipelineSpec {
             label: "srt lrt visibility",
-            shader: shaders::lrt(counting, lit),
+            shader: shaders::lrt(counting, lit, motion),
             entry_points: &LRT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[LRT_INPUT_GROUP]].concat(),
         },
         PipelineSpec {
             label: "srt lrt shading",
-            shader: shaders::lrt(counting, lit),
+            shader: shaders::lrt(counting, lit, motion),
             entry_points: &LRT_SHADE_ENTRIES,
             groups: vec![SHADE_FRAME_GROUP, OBJECT_GROUP, PART_GROUP, LRT_INPUT_GROUP],
         },
         PipelineSpec {
             label: "srt rt visibility",
-            shader: shaders::lrt(counting, lit),
+            shader: shaders::lrt(counting, lit, motion),
             entry_points: &RT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[RT_INPUT_GROUP]].concat(),
         },
         PipelineSpec {
             label: "srt polygon",
-            shader: shaders::polygon(lit),
+            shader: shaders::polygon(lit, motion),
             entry_points: &POLYGON_ENTRIES,
             groups: vec![POLYGON_FRAME_GROUP, OBJECT_GROUP, PART_GROUP],
         },
         PipelineSpec {
             label: "srt lrt part depth",
-            shader: shaders::lrt(counting, lit),
+            shader: shaders::lrt(counting, lit, motion),
             entry_points: &PART_DEPTH_ENTRIES,
             groups: vec![SHADE_FRAME_GROUP],
         },
@@ -558,17 +560,17 @@ pub struct Pipelines {
     pub sky_frame_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
-    /// The local ray tracing pipelines.
-    pub lrt: LrtPipelines,
-    /// The local ray tracing pipelines that count fragments, made when first asked for
-    /// ([`Pipelines::lrt_counting`]).
-    lrt_counting: std::sync::OnceLock<LrtPipelines>,
+    /// The local ray tracing pipelines, indexed [counting][motion] ([`Pipelines::lrt`]): the
+    /// normal ones for bodies at rest made with the renderer, every other made when first
+    /// asked for (only measurements count fragments, only some scenes move bodies).
+    lrt: [[std::sync::OnceLock<LrtPipelines>; 3]; 2],
+    /// The polygon-rendering pipelines, indexed [motion] ([`Pipelines::polygon`]), made as
+    /// `lrt`'s.
+    polygon: [std::sync::OnceLock<wgpu::RenderPipeline>; 3],
     /// The colour format the render pipelines draw into.
     color_format: wgpu::TextureFormat,
     /// Whether the shading passes draw moving lights.
     lit: bool,
-    /// The polygon-rendering pipeline.
-    pub polygon: wgpu::RenderPipeline,
 }
 
 impl Pipelines {
@@ -579,8 +581,8 @@ impl Pipelines {
     /// the layouts kept here fit every pipeline.
     #[must_use]
     pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat, lit: bool) -> Self {
-        let specs = specs(false, lit);
-        let [proxy_spec, _, _, _, polygon_spec, _] = &specs;
+        let specs = specs(false, lit, MotionCode::REST);
+        let [proxy_spec, ..] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(proxy_spec.label),
@@ -590,15 +592,7 @@ impl Pipelines {
             compilation_options: proxy_spec.shader.compilation_options(),
             cache: None,
         });
-        let lrt = LrtPipelines::new(device, &specs, color_format);
-        let polygon = render_pipeline(
-            device,
-            polygon_spec,
-            POLYGON_ENTRIES,
-            Some(color_format),
-            DepthTest::Nearest,
-        );
-        Self {
+        let pipelines = Self {
             frame_layout: FRAME_GROUP.create_layout(device),
             object_layout: OBJECT_GROUP.create_layout(device),
             part_layout: PART_GROUP.create_layout(device),
@@ -609,19 +603,40 @@ impl Pipelines {
             polygon_frame_layout: POLYGON_FRAME_GROUP.create_layout(device),
             sky_frame_layout: SKY_FRAME_GROUP.create_layout(device),
             proxy,
-            lrt,
-            lrt_counting: std::sync::OnceLock::new(),
+            lrt: Default::default(),
+            polygon: Default::default(),
             color_format,
             lit,
-            polygon,
-        }
+        };
+        pipelines.lrt(device, false, MotionCode::REST);
+        pipelines.polygon(device, MotionCode::REST);
+        pipelines
     }
 
-    /// The LRT pipelines that count their fragments, created on first use (only measurements
-    /// need them).
-    pub fn lrt_counting(&self, device: &wgpu::Device) -> &LrtPipelines {
-        self.lrt_counting
-            .get_or_init(|| LrtPipelines::new(device, &specs(true, self.lit), self.color_format))
+    /// The LRT pipelines for objects moving as `motion`, counting their fragments where
+    /// `counting`, created on first use.
+    pub fn lrt(&self, device: &wgpu::Device, counting: bool, motion: MotionCode) -> &LrtPipelines {
+        self.lrt[usize::from(counting)][motion.index()].get_or_init(|| {
+            LrtPipelines::new(
+                device,
+                &specs(counting, self.lit, motion),
+                self.color_format,
+            )
+        })
+    }
+
+    /// The polygon pipeline for objects moving as `motion`, created on first use.
+    pub fn polygon(&self, device: &wgpu::Device, motion: MotionCode) -> &wgpu::RenderPipeline {
+        self.polygon[motion.index()].get_or_init(|| {
+            let [.., polygon_spec, _] = &specs(false, self.lit, motion);
+            render_pipeline(
+                device,
+                polygon_spec,
+                POLYGON_ENTRIES,
+                Some(self.color_format),
+                DepthTest::Nearest,
+            )
+        })
     }
 }
 

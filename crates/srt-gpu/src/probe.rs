@@ -1070,8 +1070,8 @@ pub fn spectral_seeded_cases(seed: u64, count: usize) -> Vec<SpectralProbeCase> 
 /// analysis: the sum's own `f32` error is small (relative errors of order 10⁻⁵ in XYZ, amplified
 /// at most 12.92× by the sRGB curve), but the trilinear interpolation and the sigmoid polynomial
 /// cancel terms of the coefficients' size, and a driver's `exp`/`log` may be less accurate than
-/// lavapipe's; on Mesa lavapipe the worst over 4096 seeded cases is 6.0 × 10⁻⁵ (reflected) and
-/// 1.3 × 10⁻⁵ (emitted), 33× inside it.
+/// lavapipe's; on Mesa lavapipe the worst over 4096 seeded cases is 2.5 × 10⁻⁵ (reflected) and
+/// 2.6 × 10⁻⁵ (emitted), 75× inside it.
 pub const SPECTRAL_TOLERANCE: f64 = 0.5 / 255.0;
 
 /// Evaluates `spectral_reflected_display` and `spectral_emitted_display` on the GPU for each

@@ -2,6 +2,8 @@
 //! values of their pipeline-overridable constants (WGSL `override`s without a default: the
 //! value lives here, in Rust, and the pipeline cannot be created without it).
 
+use crate::motion::MotionCode;
+
 /// Shared physics (mirror of srt-physics).
 pub const PHYSICS: &str = include_str!("../shaders/physics.wgsl");
 /// Shared data layouts (twins of [`crate::types`]).
@@ -48,7 +50,7 @@ pub const DISPLAY: &str = include_str!("../shaders/display.wgsl");
 pub const WORKGROUP_SIZE: u32 = 64;
 
 /// The overrides of the proxy shader.
-const PROXY_OVERRIDES: &[(&str, f64)] = &[
+const PROXY_OVERRIDES: &[Override] = &[
     ("WORKGROUP_SIZE", WORKGROUP_SIZE as f64),
     ("MAX_TANGENT_REACH", srt_proxy::MAX_TANGENT_REACH),
     ("MAX_SCREEN_REACH", srt_proxy::MAX_SCREEN_REACH),
@@ -57,9 +59,31 @@ const PROXY_OVERRIDES: &[(&str, f64)] = &[
     ("NEAR_CLIP_FRACTION", srt_proxy::NEAR_CLIP_FRACTION),
 ];
 
-/// The overrides of spectral.wgsl: the constants of Planck's law (Eq. 10: c₂ = hc/k and 2hc²),
-/// the CIE table's step (Eq. 11) and the band edges of the reflectance policy.
-const SPECTRAL_OVERRIDES: [(&str, f64); 5] = [
+/// One pipeline-overridable constant: its WGSL name and the value Rust gives it.
+type Override = (&'static str, f64);
+
+/// `first` then `second` as one array of `N` = `A` + `B` overrides (checked at compile time).
+const fn joined<const A: usize, const B: usize, const N: usize>(
+    first: [Override; A],
+    second: [Override; B],
+) -> [Override; N] {
+    assert!(A + B == N, "joined: N must be A + B");
+    let mut all = [("", 0.0); N];
+    let mut i = 0;
+    while i < A {
+        all[i] = first[i];
+        i += 1;
+    }
+    while i < N {
+        all[i] = second[i - A];
+        i += 1;
+    }
+    all
+}
+
+/// The overrides of spectral.wgsl: the constants of Planck's law (Eq. 10: c₂ = hc/k and 2hc²;
+/// Wien's x_max), the CIE table's step (Eq. 11) and the band edges of the reflectance policy.
+const SPECTRAL_OVERRIDES: [Override; 6] = [
     (
         "SECOND_RADIATION_CONSTANT",
         srt_color::SECOND_RADIATION_CONSTANT,
@@ -68,6 +92,7 @@ const SPECTRAL_OVERRIDES: [(&str, f64); 5] = [
         "RADIANCE_CONSTANT",
         2.0 * srt_color::PLANCK_CONSTANT * srt_color::SPEED_OF_LIGHT * srt_color::SPEED_OF_LIGHT,
     ),
+    ("WIEN_X", srt_color::WIEN_X),
     ("CIE_1931_STEP_M", srt_color::CIE_1931_STEP_M),
     (
         "ULTRAVIOLET_BELOW_NM",
@@ -76,15 +101,9 @@ const SPECTRAL_OVERRIDES: [(&str, f64); 5] = [
     ("INFRARED_ABOVE_NM", srt_color::spectral::INFRARED_ABOVE_NM),
 ];
 
-/// [`SPECTRAL_OVERRIDES`] after one more override.
-const fn with_spectral(first: (&'static str, f64)) -> [(&'static str, f64); 6] {
-    let s = SPECTRAL_OVERRIDES;
-    [first, s[0], s[1], s[2], s[3], s[4]]
-}
-
 /// The overrides of the shadow test (shadows.wgsl) and its slab test (bvh.wgsl), with the
 /// moving lights compiled in (1) or out (0): `MOVING_LIGHTS`.
-const fn shadow_overrides(moving_lights: f64) -> [(&'static str, f64); 3] {
+const fn shadow_overrides(moving_lights: f64) -> [Override; 3] {
     [
         ("SLAB_TOLERANCE", crate::bvh::SLAB_TOLERANCE as f64),
         ("SHADOW_MARGIN", crate::shadows::SHADOW_MARGIN as f64),
@@ -93,67 +112,119 @@ const fn shadow_overrides(moving_lights: f64) -> [(&'static str, f64); 3] {
 }
 
 /// The overrides of the polygon shader, motion.wgsl's, spectral.wgsl's and the shadow test's,
-/// with the moving lights compiled in or out: what the polygon and LRT shaders share.
-const fn polygon_overrides(moving_lights: f64) -> [(&'static str, f64); 10] {
-    let s = SPECTRAL_OVERRIDES;
-    let [slab, margin, lights] = shadow_overrides(moving_lights);
-    [
+/// with the moving lights compiled in or out and the variant for bodies moving as `motion`
+/// (a [`MotionCode`]'s value): what the polygon and LRT shaders share.
+const fn polygon_overrides(moving_lights: f64, motion: f64) -> [Override; 12] {
+    let motion = [
+        ("MOTION_VARIANT", motion),
         ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
         (
             "MOTION_THRUST_PIECES_PER_SIZE",
             crate::motion::THRUST_PIECES_PER_SIZE,
         ),
-        slab,
-        margin,
-        lights,
-        s[0],
-        s[1],
-        s[2],
-        s[3],
-        s[4],
-    ]
+    ];
+    let with_shadows: [Override; 6] = joined(motion, shadow_overrides(moving_lights));
+    joined(with_shadows, SPECTRAL_OVERRIDES)
 }
 
 /// The overrides of the LRT shader (with the ray tracer's and motion.wgsl's): the fragment
 /// counter on or off, then [`polygon_overrides`].
-const fn lrt_overrides(count_fragments: f64, moving_lights: f64) -> [(&'static str, f64); 11] {
-    let shared = polygon_overrides(moving_lights);
-    let mut all = [("COUNT_FRAGMENTS", count_fragments); 11];
-    let mut i = 0;
-    while i < shared.len() {
-        all[i + 1] = shared[i];
-        i += 1;
-    }
-    all
+const fn lrt_overrides(count_fragments: f64, moving_lights: f64, motion: f64) -> [Override; 13] {
+    joined(
+        [("COUNT_FRAGMENTS", count_fragments)],
+        polygon_overrides(moving_lights, motion),
+    )
 }
 
-/// The overrides of the LRT shader, indexed [counting][lit]: without and with the fragment
-/// counter, without and with moving lights.
-const LRT_OVERRIDES: [[&[(&str, f64)]; 2]; 2] = [
-    [&lrt_overrides(0.0, 0.0), &lrt_overrides(0.0, 1.0)],
-    [&lrt_overrides(1.0, 0.0), &lrt_overrides(1.0, 1.0)],
+/// The overrides of the LRT shader, indexed [counting][lit][motion]: without and with the
+/// fragment counter, without and with moving lights, for each [`MotionCode`] in order.
+const LRT_OVERRIDES: [[[&[Override]; 3]; 2]; 2] = [
+    [
+        [
+            &lrt_overrides(0.0, 0.0, 0.0),
+            &lrt_overrides(0.0, 0.0, 1.0),
+            &lrt_overrides(0.0, 0.0, 2.0),
+        ],
+        [
+            &lrt_overrides(0.0, 1.0, 0.0),
+            &lrt_overrides(0.0, 1.0, 1.0),
+            &lrt_overrides(0.0, 1.0, 2.0),
+        ],
+    ],
+    [
+        [
+            &lrt_overrides(1.0, 0.0, 0.0),
+            &lrt_overrides(1.0, 0.0, 1.0),
+            &lrt_overrides(1.0, 0.0, 2.0),
+        ],
+        [
+            &lrt_overrides(1.0, 1.0, 0.0),
+            &lrt_overrides(1.0, 1.0, 1.0),
+            &lrt_overrides(1.0, 1.0, 2.0),
+        ],
+    ],
 ];
 
-/// The overrides of the polygon shader, indexed [lit]: without and with moving lights.
-const POLYGON_OVERRIDES: [&[(&str, f64)]; 2] = [&polygon_overrides(0.0), &polygon_overrides(1.0)];
+/// The LRT shader's names, indexed as [`LRT_OVERRIDES`].
+const LRT_NAMES: [[[&str; 3]; 2]; 2] = [
+    [
+        ["lrt", "lrt (spin)", "lrt (thrust)"],
+        ["lrt (lit)", "lrt (lit, spin)", "lrt (lit, thrust)"],
+    ],
+    [
+        [
+            "lrt (counting)",
+            "lrt (counting, spin)",
+            "lrt (counting, thrust)",
+        ],
+        [
+            "lrt (counting, lit)",
+            "lrt (counting, lit, spin)",
+            "lrt (counting, lit, thrust)",
+        ],
+    ],
+];
+
+/// The overrides of the polygon shader, indexed [lit][motion]: without and with moving lights,
+/// for each [`MotionCode`] in order.
+const POLYGON_OVERRIDES: [[&[Override]; 3]; 2] = [
+    [
+        &polygon_overrides(0.0, 0.0),
+        &polygon_overrides(0.0, 1.0),
+        &polygon_overrides(0.0, 2.0),
+    ],
+    [
+        &polygon_overrides(1.0, 0.0),
+        &polygon_overrides(1.0, 1.0),
+        &polygon_overrides(1.0, 2.0),
+    ],
+];
+
+/// The polygon shader's names, indexed as [`POLYGON_OVERRIDES`].
+const POLYGON_NAMES: [[&str; 3]; 2] = [
+    ["polygon", "polygon (spin)", "polygon (thrust)"],
+    [
+        "polygon (lit)",
+        "polygon (lit, spin)",
+        "polygon (lit, thrust)",
+    ],
+];
 
 /// The overrides of the sky shader: its workgroup size, the colour temperature of a sky
 /// image's light, and spectral.wgsl's.
-const SKY_OVERRIDES: [(&str, f64); 7] = {
-    let s = SPECTRAL_OVERRIDES;
+const SKY_OVERRIDES: [Override; 8] = joined(
     [
         ("WORKGROUP_SIZE", WORKGROUP_SIZE as f64),
         ("SKY_IMAGE_WHITE_K", srt_scene::sky::SKY_IMAGE_WHITE_K),
-        s[0],
-        s[1],
-        s[2],
-        s[3],
-        s[4],
-    ]
-};
+    ],
+    SPECTRAL_OVERRIDES,
+);
 
-/// The overrides of the probe shader.
-const PROBE_OVERRIDES: &[(&str, f64)] = &with_spectral(("WORKGROUP_SIZE", WORKGROUP_SIZE as f64));
+/// The overrides of the probe shader: its workgroup size and spectral.wgsl's.
+const PROBE_OVERRIDES: [Override; 7] = joined(
+    [("WORKGROUP_SIZE", WORKGROUP_SIZE as f64)],
+    SPECTRAL_OVERRIDES,
+);
 
 /// WGSL names of the render passes' blocks of per-frame, per-object and per-part values.
 pub const BLOCKS: [&str; 4] = ["frame_uniforms", "object", "part", "sky"];
@@ -269,16 +340,14 @@ pub fn proxy() -> Shader {
 /// `counting`, every visibility fragment it runs and every pixel it shades adds 1 to the
 /// fragment counter (for measurements only: one global atomic per fragment); with `lit`, the
 /// shading pass adds the light of moving lights and their shadows (shadows.wgsl), which
-/// otherwise are compiled out (a software rasteriser pays for code it does not run).
+/// otherwise are compiled out (a software rasteriser pays for code it does not run); for
+/// objects that move as `motion` in their rest frame (motion.wgsl's `MOTION_VARIANT`: the
+/// other kinds' code is compiled out, for the same reason).
 #[must_use]
-pub fn lrt(counting: bool, lit: bool) -> Shader {
+pub fn lrt(counting: bool, lit: bool, motion: MotionCode) -> Shader {
+    let [counting, lit] = [counting, lit].map(usize::from);
     Shader {
-        name: match (counting, lit) {
-            (false, false) => "lrt",
-            (false, true) => "lrt (lit)",
-            (true, false) => "lrt (counting)",
-            (true, true) => "lrt (counting, lit)",
-        },
+        name: LRT_NAMES[counting][lit][motion.index()],
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -295,16 +364,17 @@ pub fn lrt(counting: bool, lit: bool) -> Shader {
             ("lrt.wgsl", LRT),
             ("rt.wgsl", RT),
         ]),
-        overrides: LRT_OVERRIDES[usize::from(counting)][usize::from(lit)],
+        overrides: LRT_OVERRIDES[counting][lit][motion.index()],
     }
 }
 
-/// The polygon-rendering shader, with the moving lights compiled in where `lit` (as
-/// [`lrt`]'s).
+/// The polygon-rendering shader, with the moving lights compiled in where `lit`, for objects
+/// that move as `motion` (as [`lrt`]'s).
 #[must_use]
-pub fn polygon(lit: bool) -> Shader {
+pub fn polygon(lit: bool, motion: MotionCode) -> Shader {
+    let lit = usize::from(lit);
     Shader {
-        name: if lit { "polygon (lit)" } else { "polygon" },
+        name: POLYGON_NAMES[lit][motion.index()],
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -319,7 +389,7 @@ pub fn polygon(lit: bool) -> Shader {
             ("motion.wgsl", MOTION),
             ("polygon.wgsl", POLYGON),
         ]),
-        overrides: POLYGON_OVERRIDES[usize::from(lit)],
+        overrides: POLYGON_OVERRIDES[lit][motion.index()],
     }
 }
 
@@ -353,7 +423,7 @@ pub fn probe() -> Shader {
             ("spectral.wgsl", SPECTRAL),
             ("probe.wgsl", PROBE),
         ]),
-        overrides: PROBE_OVERRIDES,
+        overrides: &PROBE_OVERRIDES,
     }
 }
 
@@ -377,12 +447,18 @@ pub fn all() -> Vec<Shader> {
         },
         proxy(),
         crate::display::shader(),
-        lrt(false, false),
-        lrt(true, false),
-        lrt(false, true),
-        lrt(true, true),
-        polygon(false),
-        polygon(true),
+        lrt(false, false, MotionCode::REST),
+        lrt(true, false, MotionCode::REST),
+        lrt(false, true, MotionCode::REST),
+        lrt(true, true, MotionCode::REST),
+        lrt(false, false, MotionCode::SPIN),
+        lrt(true, true, MotionCode::SPIN),
+        lrt(false, false, MotionCode::THRUST),
+        lrt(true, true, MotionCode::THRUST),
+        polygon(false, MotionCode::REST),
+        polygon(true, MotionCode::REST),
+        polygon(false, MotionCode::SPIN),
+        polygon(true, MotionCode::THRUST),
         sky(),
         Shader {
             name: "colour",

@@ -100,6 +100,17 @@ mod tests {
     }
 
     #[test]
+    fn cie_rows_are_evenly_spaced_as_the_shader_computes_them() {
+        // spectral.wgsl's reflected_light computes row s's wavelength as first + s · step.
+        let rows = cie_rows();
+        let (first, last) = (rows[0].wavelength_nm, rows[rows.len() - 1].wavelength_nm);
+        let step = (last - first) / (rows.len() - 1) as f32;
+        for (s, row) in rows.iter().enumerate() {
+            assert_eq!(row.wavelength_nm, first + s as f32 * step, "row {s}");
+        }
+    }
+
+    #[test]
     fn spectral_words_hold_the_header_then_each_table() {
         let words = spectral_words();
         let table = srgb_coefficient_table();

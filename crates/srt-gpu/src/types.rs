@@ -265,8 +265,8 @@ pub struct ObjectUniforms {
     pub clock_face: [f32; 4],
     /// The clock's ink colour (rgb).
     pub clock_ink: [f32; 4],
-    /// Its motion within its rest frame: kind, rate or α, phase or elapsed time, final
-    /// rapidity ([`crate::motion::MotionUniforms`]).
+    /// Its motion within its rest frame: x unused (the kind is the pipeline variant's), rate or
+    /// α, phase or elapsed time, final rapidity ([`crate::motion::MotionUniforms`]).
     pub motion: [f32; 4],
     /// The spin axis or thrust direction (xyz) and the body's reach (w).
     pub motion_axis: [f32; 4],

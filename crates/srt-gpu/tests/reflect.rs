@@ -565,11 +565,22 @@ fn check_bindings(spec: &PipelineSpec) -> Vec<String> {
     failures
 }
 
-fn all_specs() -> Vec<PipelineSpec> {
+/// The renderer's six pipelines in every variant: without and with counting, without and with
+/// moving lights, for each kind of motion.
+fn renderer_specs() -> Vec<PipelineSpec> {
     let mut specs = Vec::new();
-    for (counting, lit) in [(false, false), (true, false), (false, true), (true, true)] {
-        specs.extend(srt_gpu::pipelines::specs(counting, lit));
+    for counting in [false, true] {
+        for lit in [false, true] {
+            for motion in MotionCode::ALL {
+                specs.extend(srt_gpu::pipelines::specs(counting, lit, motion));
+            }
+        }
     }
+    specs
+}
+
+fn all_specs() -> Vec<PipelineSpec> {
+    let mut specs = renderer_specs();
     specs.extend(srt_gpu::probe::specs());
     specs.extend(srt_gpu::pipelines::sky_specs());
     specs.push(srt_gpu::display::spec());
@@ -581,10 +592,10 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        30,
-        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (four times: \
-         without and with counting, without and with moving lights), three probes, the sky's \
-         two passes and the display pass"
+        78,
+        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (twelve \
+         times: without and with counting, without and with moving lights, for each kind of \
+         motion), three probes, the sky's two passes and the display pass"
     );
     let mut failures = Vec::new();
     for spec in &specs {
@@ -603,7 +614,7 @@ fn bindings_match_the_wgsl() {
 fn a_binding_mismatch_is_detected() {
     // Guards the comparison against passing vacuously: move the LRT's fragment counter to
     // binding 7, make its footprints writable and hide them from the vertex stage.
-    let mut lrt = srt_gpu::pipelines::specs(true, false)[1].clone();
+    let mut lrt = srt_gpu::pipelines::specs(true, false, MotionCode::REST)[1].clone();
     let mut group = lrt.groups[3];
     let mut slots = group.slots.to_vec();
     slots[0].ty = srt_gpu::pipelines::storage(false);
@@ -648,10 +659,7 @@ fn render_passes_bind_no_uniform_buffer_and_fit_the_storage_limits() {
     // of its branches (render_bindings.wgsl); so the render passes read storage buffers only,
     // at most WebGPU's default of 8 per stage, which `device_descriptor` asks for.
     let limit = wgpu::Limits::default().max_storage_buffers_per_shader_stage as usize;
-    let mut render = Vec::new();
-    for (counting, lit) in [(false, false), (true, false), (false, true), (true, true)] {
-        render.extend(srt_gpu::pipelines::specs(counting, lit));
-    }
+    let mut render = renderer_specs();
     render.extend(srt_gpu::pipelines::sky_specs());
     render.push(srt_gpu::display::spec());
     let mut failures = Vec::new();
@@ -699,10 +707,7 @@ fn blocks_declared_as_uniforms_for_gl_match_their_layouts() {
     // declared that way must still match the layouts made in that space, and every render
     // pass must have had a block to declare.
     let space = shaders::BlockSpace::Uniform;
-    let mut render = Vec::new();
-    for (counting, lit) in [(false, false), (true, true)] {
-        render.extend(srt_gpu::pipelines::specs(counting, lit));
-    }
+    let mut render = renderer_specs();
     render.extend(srt_gpu::pipelines::sky_specs());
     let mut failures = Vec::new();
     for spec in render {

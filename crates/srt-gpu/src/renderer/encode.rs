@@ -2,7 +2,7 @@
 //! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
 
 use super::*;
-use crate::motion::{MotionUniforms, sweep_bounds};
+use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 
 impl super::GpuRenderer {
     /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities) and
@@ -185,7 +185,20 @@ impl super::GpuRenderer {
             self.encode_proxy_pass(encoder, tone, &traced);
         }
         let background = background_as(output, scene.background);
-        self.encode_render_pass(&ctx.device, encoder, background, method, tone, &traced);
+        let motions: Vec<MotionCode> = scene
+            .objects
+            .iter()
+            .map(|o| MotionCode::of(&o.motion))
+            .collect();
+        self.encode_render_pass(
+            &ctx.device,
+            encoder,
+            background,
+            method,
+            tone,
+            &traced,
+            &motions,
+        );
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
             encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
@@ -279,7 +292,9 @@ impl super::GpuRenderer {
     /// The render passes into the targets (timestamps 2 and 3): for the polygon method one
     /// pass into colour and depth; for the exact methods the visibility pass into ids and depth
     /// (each object by its triangles' footprints, or, where `traced`, by its box's footprints
-    /// and its BVH), then the shading pass into colour.
+    /// and its BVH), then the shading pass into colour. Each object is drawn by the pipelines of
+    /// its kind of motion (`motions`, one per object).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn encode_render_pass(
         &self,
         device: &wgpu::Device,
@@ -288,6 +303,7 @@ impl super::GpuRenderer {
         method: Method,
         tone: usize,
         traced: &[Option<&ObjectRayTracing>],
+        motions: &[MotionCode],
     ) {
         let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
         let (color_view, depth_view, ids_view) = (
@@ -313,23 +329,24 @@ impl super::GpuRenderer {
                 Some(depth),
                 [Some(2), Some(3)],
             );
-            pass.set_pipeline(&self.pipelines.polygon);
             pass.set_bind_group(
                 POLYGON_FRAME_GROUP.index,
                 &self.frame.polygon_groups[tone],
                 &[],
             );
-            self.draw_parts(&mut pass, |pass, part| {
-                // Checked at upload: 3 × triangles fits in u32.
-                pass.draw(0..3 * part.sizes.triangles, 0..1);
-            });
+            let mut variant = PipelineVariant::default();
+            for (object, &motion) in self.objects.iter().zip(motions) {
+                variant.set(&mut pass, motion, || self.pipelines.polygon(device, motion));
+                pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+                for part in &object.parts {
+                    pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                    // Checked at upload: 3 × triangles fits in u32.
+                    pass.draw(0..3 * part.sizes.triangles, 0..1);
+                }
+            }
             return;
         }
-        let lrt = if self.count_fragments {
-            self.pipelines.lrt_counting(device)
-        } else {
-            &self.pipelines.lrt
-        };
+        let lrt = |motion| self.pipelines.lrt(device, self.count_fragments, motion);
         let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
         let mut pass = self.begin_pass(
             encoder,
@@ -340,7 +357,7 @@ impl super::GpuRenderer {
             [Some(2), None],
         );
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-        self.draw_visibility(&mut pass, lrt, traced);
+        self.draw_visibility(&mut pass, lrt, traced, motions);
         drop(pass);
         let part_depth_view = view(&self.targets.part_depth);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -358,7 +375,7 @@ impl super::GpuRenderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&lrt.part_depth);
+        pass.set_pipeline(&lrt(MotionCode::REST).part_depth);
         pass.set_bind_group(
             SHADE_FRAME_GROUP.index,
             &self.targets.shade_frame_groups[tone],
@@ -382,13 +399,12 @@ impl super::GpuRenderer {
             Some(tested),
             [None, Some(3)],
         );
-        pass.set_pipeline(&lrt.shade);
         pass.set_bind_group(
             SHADE_FRAME_GROUP.index,
             &self.targets.shade_frame_groups[tone],
             &[],
         );
-        self.draw_shading(&mut pass, traced);
+        self.draw_shading(&mut pass, lrt, traced, motions);
     }
 
     /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
@@ -421,24 +437,31 @@ impl super::GpuRenderer {
     }
 
     /// The visibility pass's draws: objects drawn by their footprints, then those traced
-    /// through their BVH; the depth test keeps the nearest hit across both.
-    fn draw_visibility(
+    /// through their BVH, each by the pipelines `lrt` gives for its motion; the depth test
+    /// keeps the nearest hit across both.
+    fn draw_visibility<'p>(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        lrt: &LrtPipelines,
+        lrt: impl Fn(MotionCode) -> &'p LrtPipelines,
         traced: &[Option<&ObjectRayTracing>],
+        motions: &[MotionCode],
     ) {
-        pass.set_pipeline(&lrt.visibility);
-        for (object, _) in self.objects.iter().zip(traced).filter(|(_, t)| t.is_none()) {
+        let mut variant = PipelineVariant::default();
+        for ((object, rt), &motion) in self.objects.iter().zip(traced).zip(motions) {
+            if rt.is_some() {
+                continue;
+            }
+            variant.set(pass, motion, || &lrt(motion).visibility);
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
                 self.draw_footprints(pass, part);
             }
         }
-        pass.set_pipeline(&lrt.rt_visibility);
-        for (object, rt) in self.objects.iter().zip(traced) {
+        let mut variant = PipelineVariant::default();
+        for ((object, rt), &motion) in self.objects.iter().zip(traced).zip(motions) {
             if let Some(rt) = rt {
+                variant.set(pass, motion, || &lrt(motion).rt_visibility);
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
                 pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
@@ -447,9 +470,18 @@ impl super::GpuRenderer {
         }
     }
 
-    /// The shading pass's draws: each part's screen bound (for a traced object its box's).
-    fn draw_shading(&self, pass: &mut wgpu::RenderPass<'_>, traced: &[Option<&ObjectRayTracing>]) {
-        for (object, traced) in self.objects.iter().zip(traced) {
+    /// The shading pass's draws: each part's screen bound (for a traced object its box's), by
+    /// the shading pipeline `lrt` gives for the object's motion.
+    fn draw_shading<'p>(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        lrt: impl Fn(MotionCode) -> &'p LrtPipelines,
+        traced: &[Option<&ObjectRayTracing>],
+        motions: &[MotionCode],
+    ) {
+        let mut variant = PipelineVariant::default();
+        for ((object, traced), &motion) in self.objects.iter().zip(traced).zip(motions) {
+            variant.set(pass, motion, || &lrt(motion).shade);
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
@@ -483,22 +515,6 @@ impl super::GpuRenderer {
                 end_of_pass_write_index: end,
             });
         crate::passes::begin_pass(encoder, label, target, load, depth, timestamps)
-    }
-
-    /// Binds each object's and part's groups in `pass` (groups 1 and 2) and lets `draw` draw the
-    /// part.
-    pub(super) fn draw_parts(
-        &self,
-        pass: &mut wgpu::RenderPass<'_>,
-        draw: impl Fn(&mut wgpu::RenderPass<'_>, &PartResources),
-    ) {
-        for object in &self.objects {
-            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
-            for part in &object.parts {
-                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
-                draw(pass, part);
-            }
-        }
     }
 
     /// Draws a part's screen bound as two triangles (`part_bound_vertex`), if any footprint
@@ -550,5 +566,25 @@ fn background_as(output: OutputCode, display: DVec3) -> DVec4 {
         OutputCode::SEEN_EVENT => DVec4::ZERO,
         OutputCode::SEEN_OBJECT => DVec4::new(-1.0, 0.0, 0.0, 0.0),
         _ => display.extend(1.0),
+    }
+}
+
+/// The pipeline variant (by kind of motion) a render pass has set, so that a run of objects of
+/// one kind sets its pipeline once.
+#[derive(Default)]
+struct PipelineVariant(Option<MotionCode>);
+
+impl PipelineVariant {
+    /// Sets in `pass` the pipeline `pipeline` gives for `motion`, unless it is the one set.
+    fn set<'p>(
+        &mut self,
+        pass: &mut wgpu::RenderPass<'_>,
+        motion: MotionCode,
+        pipeline: impl FnOnce() -> &'p wgpu::RenderPipeline,
+    ) {
+        if self.0 != Some(motion) {
+            pass.set_pipeline(pipeline());
+            self.0 = Some(motion);
+        }
     }
 }
