@@ -204,9 +204,21 @@ impl Observer {
     /// Agrees with [`Observer::view_projection`].
     #[must_use]
     pub fn view_direction(&self, ndc: DVec2, aspect: f64) -> DVec3 {
+        self.view_rays(aspect).direction(ndc)
+    }
+
+    /// What [`Observer::view_direction`] needs for every point of an image of `aspect` =
+    /// width / height, computed once (the basis and the field of view's tangent).
+    #[must_use]
+    pub fn view_rays(&self, aspect: f64) -> ViewRays {
         let (forward, right, up) = self.basis();
-        let tan_half = (0.5 * self.fov_y_deg.to_radians()).tan();
-        forward + (ndc.x * tan_half * aspect) * right + (ndc.y * tan_half) * up
+        ViewRays {
+            forward,
+            right,
+            up,
+            tan_half: (0.5 * self.fov_y_deg.to_radians()).tan(),
+            aspect,
+        }
     }
 
     /// View-projection matrix (S → clip space; NDC depth in [0, 1], y up) for an image of
@@ -216,6 +228,30 @@ impl Observer {
         let (forward, _, up) = self.basis();
         perspective(self.fov_y_deg.to_radians(), aspect, near, far)
             * look_to_mat4(self.position, forward, up)
+    }
+}
+
+/// The viewing directions of one observer's image ([`Observer::view_rays`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewRays {
+    /// The observer's forward, right and up unit vectors.
+    forward: DVec3,
+    right: DVec3,
+    up: DVec3,
+    /// tan(fov_y / 2).
+    tan_half: f64,
+    /// Width / height.
+    aspect: f64,
+}
+
+impl ViewRays {
+    /// The (unnormalised) viewing direction in S through the point `ndc` of normalised device
+    /// coordinates (x right, y up, both in [−1, 1]), as [`Observer::view_direction`].
+    #[must_use]
+    pub fn direction(&self, ndc: DVec2) -> DVec3 {
+        self.forward
+            + (ndc.x * self.tan_half * self.aspect) * self.right
+            + (ndc.y * self.tan_half) * self.up
     }
 }
 

@@ -1,6 +1,8 @@
 //! Reference-renderer throughput (rays per second) at 1280×720, one sample per pixel, on the
-//! built-in `fig10-cube50` scene and on the 2CylinderEngine model of Debian's assimp-testmodels
-//! (skipped with a printed notice when that package is not installed).
+//! built-in `fig10-cube50`, `teaser` and `flythrough` scenes and on the 2CylinderEngine model of
+//! Debian's assimp-testmodels (skipped with a printed notice when that package is not
+//! installed): the frames `cargo xtask bench` times on the GPU, for docs/performance.md's
+//! comparison of the two.
 
 use std::path::Path;
 
@@ -32,11 +34,13 @@ fn bench_scene(c: &mut Criterion, name: &str, scene: &Scene) {
 }
 
 fn bench_render(c: &mut Criterion) {
-    let (scene, _) = find_builtin("fig10-cube50")
-        .expect("built-in scene")
-        .build()
-        .expect("valid scene");
-    bench_scene(c, "fig10-cube50", &scene);
+    for name in ["fig10-cube50", "teaser", "flythrough"] {
+        let (scene, _) = find_builtin(name)
+            .expect("built-in scene")
+            .build()
+            .expect("valid scene");
+        bench_scene(c, name, &scene);
+    }
     if Path::new(ENGINE).exists() {
         let description = SceneDescription::for_model(Path::new(ENGINE), DVec3::new(0.0, 0.9, 0.0));
         let (scene, _) = description

@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay, RetardedLight};
-use srt_scene::{Mesh, Object, Part, Scene};
+use srt_scene::{Mesh, Object, Part, Scene, ViewRays};
 
 use crate::clock::clock_albedo;
 use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
@@ -466,7 +466,7 @@ impl<'a> Tracer<'a> {
         }
         let centre = sample_offsets(1)[0];
         let (sx, sy) = (f64::from(x) + centre.x, f64::from(y) + centre.y);
-        self.trace(pixel_direction(self.scene, width, height, sx, sy))
+        self.trace(ImageRays::new(self.scene, width, height).direction(sx, sy))
     }
 
     /// Display colour of a hit. `neighbour_directions` are the viewing directions one pixel to
@@ -675,7 +675,8 @@ impl<'a> Tracer<'a> {
             height,
             samples,
         } = settings;
-        let direction_at = |x: f64, y: f64| pixel_direction(self.scene, width, height, x, y);
+        let image_rays = ImageRays::new(self.scene, width, height);
+        let direction_at = |x: f64, y: f64| image_rays.direction(x, y);
         let offsets = sample_offsets(samples.max(1));
         let table = RadianceTable::shared();
         let scale = self.scene.radiance_scale(table);
@@ -785,15 +786,33 @@ fn rows_in_parallel<T: Send>(
     rows.into_iter().collect()
 }
 
-/// The viewing direction (in S, unnormalised) through the point (`x`, `y`) of a `width` ×
-/// `height` image of `scene`, in pixels from the top-left corner (pixel centres at +0.5).
-fn pixel_direction(scene: &Scene, width: u32, height: u32, x: f64, y: f64) -> DVec3 {
-    let aspect = f64::from(width) / f64::from(height);
-    let ndc = DVec2::new(
-        2.0 * x / f64::from(width) - 1.0,
-        1.0 - 2.0 * y / f64::from(height),
-    );
-    scene.observer.view_direction(ndc, aspect)
+/// The viewing directions (in S, unnormalised) through the points of a `width` × `height`
+/// image of a scene, the observer's basis and field of view computed once.
+struct ImageRays {
+    /// The observer's rays for the image's aspect.
+    rays: ViewRays,
+    /// The image's size in pixels.
+    width: f64,
+    height: f64,
+}
+
+impl ImageRays {
+    /// The rays of a `width` × `height` image of `scene`.
+    fn new(scene: &Scene, width: u32, height: u32) -> Self {
+        let (width, height) = (f64::from(width), f64::from(height));
+        Self {
+            rays: scene.observer.view_rays(width / height),
+            width,
+            height,
+        }
+    }
+
+    /// The direction through the point (`x`, `y`), in pixels from the top-left corner (pixel
+    /// centres at +0.5).
+    fn direction(&self, x: f64, y: f64) -> DVec3 {
+        let ndc = DVec2::new(2.0 * x / self.width - 1.0, 1.0 - 2.0 * y / self.height);
+        self.rays.direction(ndc)
+    }
 }
 
 /// Sub-pixel sample positions in [0, 1)²: the pixel centre first, then the R2 low-discrepancy
@@ -885,8 +904,8 @@ mod tests {
         let mut hits = 0;
         for y in 0..height {
             for x in 0..width {
-                let direction =
-                    pixel_direction(scene, width, height, f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let direction = ImageRays::new(scene, width, height)
+                    .direction(f64::from(x) + 0.5, f64::from(y) + 0.5);
                 // Every triangle of every part of every object, in its own rest frame.
                 let brute = (scene.objects.iter().enumerate())
                     .filter_map(|(object, o)| {
