@@ -2,6 +2,11 @@
 // moving lights included (with shadows.wgsl): the f32 mirror of crates/srt-trace (intersect.rs,
 // shade.rs and Tracer::shade).
 
+// The SURFACE_COLOUR_* code this variant of the shader shades with (srt_gpu::shaders::
+// ObjectVariant; the frame's FrameUniforms.colour): compiled in, because a software rasteriser
+// runs every side of a branch its pixels do not all take, and the spectral side is long.
+override SURFACE_COLOUR_VARIANT: u32;
+
 struct TriangleHit {
     found: bool,
     distance: f32,
@@ -213,7 +218,7 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
         d_out = doppler_factor(beta, outgoing);
         combined = reflection_doppler(beta, incident, outgoing);
     }
-    let spectral = frame_uniforms.colour == SURFACE_COLOUR_SPECTRAL;
+    let spectral = SURFACE_COLOUR_VARIANT == SURFACE_COLOUR_SPECTRAL;
     let optics = object.optics;
     if (optics.z > 0.0 && emitter_shines(proper_time)) {
         if (spectral) {

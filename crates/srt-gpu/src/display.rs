@@ -34,9 +34,9 @@ const ENTRIES: [&str; 2] = ["display_vertex", "display_fragment"];
 #[must_use]
 pub fn shader() -> Shader {
     Shader {
-        name: "display",
+        name: "display".into(),
         source: shaders::DISPLAY.to_owned(),
-        overrides: &[],
+        overrides: Vec::new(),
     }
 }
 

@@ -7,8 +7,7 @@
 //! the WGSL (`shaders/render_bindings.wgsl` for groups 0–2, each pass for its group 3).
 
 use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
-use crate::motion::MotionCode;
-use crate::shaders::{self, BlockSpace, Shader};
+use crate::shaders::{self, BlockSpace, ObjectVariant, Shader};
 
 /// One binding of a bind group: the WGSL global it feeds, its `@binding` and what is bound.
 #[derive(Debug, Clone, Copy)]
@@ -440,11 +439,10 @@ const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
 /// The six pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
 /// shading, ray-tracer visibility (the three with the fragment counter when `counting`),
-/// polygon, and the LRT part-depth pass between visibility and shading; the shading passes with
-/// moving lights where `lit`, the object passes for objects moving as `motion`
-/// ([`shaders::lrt`]).
+/// polygon, and the LRT part-depth pass between visibility and shading; all compiled for
+/// `variant` ([`ObjectVariant`]; the polygon pass never counts).
 #[must_use]
-pub fn specs(counting: bool, lit: bool, motion: MotionCode) -> [PipelineSpec; 6] {
+pub fn specs(variant: ObjectVariant) -> [PipelineSpec; 6] {
     let base = [FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
     [
         PipelineSpec {
@@ -455,31 +453,34 @@ pub fn specs(counting: bool, lit: bool, motion: MotionCode) -> [PipelineSpec; 6]
         },
         PipelineSpec {
             label: "srt lrt visibility",
-            shader: shaders::lrt(counting, lit, motion),
+            shader: shaders::lrt(variant),
             entry_points: &LRT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[LRT_INPUT_GROUP]].concat(),
         },
         PipelineSpec {
             label: "srt lrt shading",
-            shader: shaders::lrt(counting, lit, motion),
+            shader: shaders::lrt(variant),
             entry_points: &LRT_SHADE_ENTRIES,
             groups: vec![SHADE_FRAME_GROUP, OBJECT_GROUP, PART_GROUP, LRT_INPUT_GROUP],
         },
         PipelineSpec {
             label: "srt rt visibility",
-            shader: shaders::lrt(counting, lit, motion),
+            shader: shaders::lrt(variant),
             entry_points: &RT_VISIBILITY_ENTRIES,
             groups: [&base[..], &[RT_INPUT_GROUP]].concat(),
         },
         PipelineSpec {
             label: "srt polygon",
-            shader: shaders::polygon(lit, motion),
+            shader: shaders::polygon(ObjectVariant {
+                counting: false,
+                ..variant
+            }),
             entry_points: &POLYGON_ENTRIES,
             groups: vec![POLYGON_FRAME_GROUP, OBJECT_GROUP, PART_GROUP],
         },
         PipelineSpec {
             label: "srt lrt part depth",
-            shader: shaders::lrt(counting, lit, motion),
+            shader: shaders::lrt(variant),
             entry_points: &PART_DEPTH_ENTRIES,
             groups: vec![SHADE_FRAME_GROUP],
         },
@@ -560,13 +561,13 @@ pub struct Pipelines {
     pub sky_frame_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
-    /// The local ray tracing pipelines, indexed [counting][motion] ([`Pipelines::lrt`]): the
-    /// normal ones for bodies at rest made with the renderer, every other made when first
-    /// asked for (only measurements count fragments, only some scenes move bodies).
-    lrt: [[std::sync::OnceLock<LrtPipelines>; 3]; 2],
-    /// The polygon-rendering pipelines, indexed [motion] ([`Pipelines::polygon`]), made as
-    /// `lrt`'s.
-    polygon: [std::sync::OnceLock<wgpu::RenderPipeline>; 3],
+    /// The local ray tracing pipelines, indexed [counting][colour][motion] ([`Pipelines::lrt`]):
+    /// those of the plain variant made with the renderer, every other made when first asked for
+    /// (only measurements count fragments; only some frames move bodies or use spectra).
+    lrt: [[[std::sync::OnceLock<LrtPipelines>; 3]; 2]; 2],
+    /// The polygon-rendering pipelines, indexed [colour][motion] ([`Pipelines::polygon`]), made
+    /// as `lrt`'s.
+    polygon: [[std::sync::OnceLock<wgpu::RenderPipeline>; 3]; 2],
     /// The colour format the render pipelines draw into.
     color_format: wgpu::TextureFormat,
     /// Whether the shading passes draw moving lights.
@@ -581,7 +582,11 @@ impl Pipelines {
     /// the layouts kept here fit every pipeline.
     #[must_use]
     pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat, lit: bool) -> Self {
-        let specs = specs(false, lit, MotionCode::REST);
+        let plain = ObjectVariant {
+            lit,
+            ..ObjectVariant::PLAIN
+        };
+        let specs = specs(plain);
         let [proxy_spec, ..] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -608,27 +613,26 @@ impl Pipelines {
             color_format,
             lit,
         };
-        pipelines.lrt(device, false, MotionCode::REST);
-        pipelines.polygon(device, MotionCode::REST);
+        pipelines.lrt(device, plain);
+        pipelines.polygon(device, plain);
         pipelines
     }
 
-    /// The LRT pipelines for objects moving as `motion`, counting their fragments where
-    /// `counting`, created on first use.
-    pub fn lrt(&self, device: &wgpu::Device, counting: bool, motion: MotionCode) -> &LrtPipelines {
-        self.lrt[usize::from(counting)][motion.index()].get_or_init(|| {
-            LrtPipelines::new(
-                device,
-                &specs(counting, self.lit, motion),
-                self.color_format,
-            )
-        })
+    /// The LRT pipelines of `variant` (whose `lit` must be the renderer's), created on first
+    /// use.
+    pub fn lrt(&self, device: &wgpu::Device, variant: ObjectVariant) -> &LrtPipelines {
+        debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
+        let slot = &self.lrt[usize::from(variant.counting)][variant.colour.index()]
+            [variant.motion.index()];
+        slot.get_or_init(|| LrtPipelines::new(device, &specs(variant), self.color_format))
     }
 
-    /// The polygon pipeline for objects moving as `motion`, created on first use.
-    pub fn polygon(&self, device: &wgpu::Device, motion: MotionCode) -> &wgpu::RenderPipeline {
-        self.polygon[motion.index()].get_or_init(|| {
-            let [.., polygon_spec, _] = &specs(false, self.lit, motion);
+    /// The polygon pipeline of `variant` (whose `lit` must be the renderer's; its `counting` is
+    /// ignored), created on first use.
+    pub fn polygon(&self, device: &wgpu::Device, variant: ObjectVariant) -> &wgpu::RenderPipeline {
+        debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
+        self.polygon[variant.colour.index()][variant.motion.index()].get_or_init(|| {
+            let [.., polygon_spec, _] = &specs(variant);
             render_pipeline(
                 device,
                 polygon_spec,
@@ -637,6 +641,12 @@ impl Pipelines {
                 DepthTest::Nearest,
             )
         })
+    }
+
+    /// Whether the shading passes draw moving lights (every variant's `lit`).
+    #[must_use]
+    pub fn lit(&self) -> bool {
+        self.lit
     }
 }
 

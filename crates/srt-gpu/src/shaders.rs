@@ -3,6 +3,7 @@
 //! value lives here, in Rust, and the pipeline cannot be created without it).
 
 use crate::motion::MotionCode;
+use crate::types::SurfaceColourCode;
 
 /// Shared physics (mirror of srt-physics).
 pub const PHYSICS: &str = include_str!("../shaders/physics.wgsl");
@@ -111,104 +112,101 @@ const fn shadow_overrides(moving_lights: f64) -> [Override; 3] {
     ]
 }
 
-/// The overrides of the polygon shader, motion.wgsl's, spectral.wgsl's and the shadow test's,
-/// with the moving lights compiled in or out and the variant for bodies moving as `motion`
-/// (a [`MotionCode`]'s value): what the polygon and LRT shaders share.
-const fn polygon_overrides(moving_lights: f64, motion: f64) -> [Override; 12] {
-    let motion = [
-        ("MOTION_VARIANT", motion),
-        ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
-        (
-            "MOTION_THRUST_PIECES_PER_SIZE",
-            crate::motion::THRUST_PIECES_PER_SIZE,
-        ),
-    ];
-    let with_shadows: [Override; 6] = joined(motion, shadow_overrides(moving_lights));
-    joined(with_shadows, SPECTRAL_OVERRIDES)
+/// What a shader of the object passes (LRT, the ray tracer's visibility, polygon) is compiled
+/// for: the choices that are fixed for a whole draw or frame. Each is a pipeline override, not a
+/// run-time branch, because a software rasteriser (Mesa's llvmpipe) runs every side of a branch
+/// its pixels do not all take, so code for a case the draw does not have costs as much as code
+/// it runs (docs/ARCHITECTURE.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ObjectVariant {
+    /// Every visibility fragment and every shaded pixel adds 1 to the fragment counter (for
+    /// measurements only: one global atomic per fragment; `COUNT_FRAGMENTS`).
+    pub counting: bool,
+    /// The shading passes add the light of moving lights and their shadows (shadows.wgsl;
+    /// `MOVING_LIGHTS`).
+    pub lit: bool,
+    /// How the objects drawn move in their rest frame (motion.wgsl's `MOTION_VARIANT`).
+    pub motion: MotionCode,
+    /// How lit surfaces are coloured (surface.wgsl's `SURFACE_COLOUR_VARIANT`).
+    pub colour: SurfaceColourCode,
 }
 
-/// The overrides of the LRT shader (with the ray tracer's and motion.wgsl's): the fragment
-/// counter on or off, then [`polygon_overrides`].
-const fn lrt_overrides(count_fragments: f64, moving_lights: f64, motion: f64) -> [Override; 13] {
-    joined(
-        [("COUNT_FRAGMENTS", count_fragments)],
-        polygon_overrides(moving_lights, motion),
-    )
+impl ObjectVariant {
+    /// The variant of the ordinary frame: no counting, no moving lights, bodies at rest, the
+    /// paper's colour.
+    pub const PLAIN: Self = Self {
+        counting: false,
+        lit: false,
+        motion: MotionCode::REST,
+        colour: SurfaceColourCode::PAPER,
+    };
+
+    /// Every variant.
+    #[must_use]
+    pub fn all() -> Vec<Self> {
+        let mut all = Vec::new();
+        for counting in [false, true] {
+            for lit in [false, true] {
+                for motion in MotionCode::ALL {
+                    for colour in SurfaceColourCode::ALL {
+                        all.push(Self {
+                            counting,
+                            lit,
+                            motion,
+                            colour,
+                        });
+                    }
+                }
+            }
+        }
+        all
+    }
+
+    /// The variant's part of a shader's name, e.g. " (lit, spin, spectral)"; empty for
+    /// [`ObjectVariant::PLAIN`].
+    fn describe(self) -> String {
+        let words: Vec<&str> = [
+            (self.counting, "counting"),
+            (self.lit, "lit"),
+            (self.motion == MotionCode::SPIN, "spin"),
+            (self.motion == MotionCode::THRUST, "thrust"),
+            (self.colour == SurfaceColourCode::SPECTRAL, "spectral"),
+        ]
+        .into_iter()
+        .filter_map(|(on, word)| on.then_some(word))
+        .collect();
+        if words.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", words.join(", "))
+        }
+    }
+
+    /// The overrides of the polygon shader for this variant (the counter aside): motion.wgsl's,
+    /// surface.wgsl's, the shadow test's and spectral.wgsl's.
+    fn polygon_overrides(self) -> Vec<Override> {
+        let mut overrides = vec![
+            ("MOTION_VARIANT", f64::from(self.motion.0)),
+            ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
+            (
+                "MOTION_THRUST_PIECES_PER_SIZE",
+                crate::motion::THRUST_PIECES_PER_SIZE,
+            ),
+            ("SURFACE_COLOUR_VARIANT", f64::from(self.colour.0)),
+        ];
+        overrides.extend(shadow_overrides(f64::from(u8::from(self.lit))));
+        overrides.extend(SPECTRAL_OVERRIDES);
+        overrides
+    }
+
+    /// The overrides of the LRT shader (with the ray tracer's): the fragment counter, then
+    /// [`ObjectVariant::polygon_overrides`].
+    fn lrt_overrides(self) -> Vec<Override> {
+        let mut overrides = vec![("COUNT_FRAGMENTS", f64::from(u8::from(self.counting)))];
+        overrides.extend(self.polygon_overrides());
+        overrides
+    }
 }
-
-/// The overrides of the LRT shader, indexed [counting][lit][motion]: without and with the
-/// fragment counter, without and with moving lights, for each [`MotionCode`] in order.
-const LRT_OVERRIDES: [[[&[Override]; 3]; 2]; 2] = [
-    [
-        [
-            &lrt_overrides(0.0, 0.0, 0.0),
-            &lrt_overrides(0.0, 0.0, 1.0),
-            &lrt_overrides(0.0, 0.0, 2.0),
-        ],
-        [
-            &lrt_overrides(0.0, 1.0, 0.0),
-            &lrt_overrides(0.0, 1.0, 1.0),
-            &lrt_overrides(0.0, 1.0, 2.0),
-        ],
-    ],
-    [
-        [
-            &lrt_overrides(1.0, 0.0, 0.0),
-            &lrt_overrides(1.0, 0.0, 1.0),
-            &lrt_overrides(1.0, 0.0, 2.0),
-        ],
-        [
-            &lrt_overrides(1.0, 1.0, 0.0),
-            &lrt_overrides(1.0, 1.0, 1.0),
-            &lrt_overrides(1.0, 1.0, 2.0),
-        ],
-    ],
-];
-
-/// The LRT shader's names, indexed as [`LRT_OVERRIDES`].
-const LRT_NAMES: [[[&str; 3]; 2]; 2] = [
-    [
-        ["lrt", "lrt (spin)", "lrt (thrust)"],
-        ["lrt (lit)", "lrt (lit, spin)", "lrt (lit, thrust)"],
-    ],
-    [
-        [
-            "lrt (counting)",
-            "lrt (counting, spin)",
-            "lrt (counting, thrust)",
-        ],
-        [
-            "lrt (counting, lit)",
-            "lrt (counting, lit, spin)",
-            "lrt (counting, lit, thrust)",
-        ],
-    ],
-];
-
-/// The overrides of the polygon shader, indexed [lit][motion]: without and with moving lights,
-/// for each [`MotionCode`] in order.
-const POLYGON_OVERRIDES: [[&[Override]; 3]; 2] = [
-    [
-        &polygon_overrides(0.0, 0.0),
-        &polygon_overrides(0.0, 1.0),
-        &polygon_overrides(0.0, 2.0),
-    ],
-    [
-        &polygon_overrides(1.0, 0.0),
-        &polygon_overrides(1.0, 1.0),
-        &polygon_overrides(1.0, 2.0),
-    ],
-];
-
-/// The polygon shader's names, indexed as [`POLYGON_OVERRIDES`].
-const POLYGON_NAMES: [[&str; 3]; 2] = [
-    ["polygon", "polygon (spin)", "polygon (thrust)"],
-    [
-        "polygon (lit)",
-        "polygon (lit, spin)",
-        "polygon (lit, thrust)",
-    ],
-];
 
 /// The overrides of the sky shader: its workgroup size, the colour temperature of a sky
 /// image's light, and spectral.wgsl's.
@@ -294,11 +292,11 @@ impl BlockSpace {
 #[derive(Debug, Clone)]
 pub struct Shader {
     /// Name, for labels and test reports.
-    pub name: &'static str,
+    pub name: String,
     /// The composed WGSL source.
     pub source: String,
     /// Value of every WGSL `override` of the source, by name, as wgpu takes them.
-    pub overrides: &'static [(&'static str, f64)],
+    pub overrides: Vec<(&'static str, f64)>,
 }
 
 impl Shader {
@@ -306,16 +304,16 @@ impl Shader {
     #[must_use]
     pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
         device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(self.name),
+            label: Some(&self.name),
             source: wgpu::ShaderSource::Wgsl(BlockSpace::of(device).declare(&self.source).into()),
         })
     }
 
     /// Pipeline compilation options that set every override of this shader.
     #[must_use]
-    pub fn compilation_options(&self) -> wgpu::PipelineCompilationOptions<'static> {
+    pub fn compilation_options(&self) -> wgpu::PipelineCompilationOptions<'_> {
         wgpu::PipelineCompilationOptions {
-            constants: self.overrides,
+            constants: &self.overrides,
             ..Default::default()
         }
     }
@@ -325,29 +323,23 @@ impl Shader {
 #[must_use]
 pub fn proxy() -> Shader {
     Shader {
-        name: "proxy",
+        name: "proxy".into(),
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("proxy.wgsl", PROXY),
         ]),
-        overrides: PROXY_OVERRIDES,
+        overrides: PROXY_OVERRIDES.to_vec(),
     }
 }
 
-/// The local ray tracing shader, with the GPU ray tracer's visibility pass (rt.wgsl); with
-/// `counting`, every visibility fragment it runs and every pixel it shades adds 1 to the
-/// fragment counter (for measurements only: one global atomic per fragment); with `lit`, the
-/// shading pass adds the light of moving lights and their shadows (shadows.wgsl), which
-/// otherwise are compiled out (a software rasteriser pays for code it does not run); for
-/// objects that move as `motion` in their rest frame (motion.wgsl's `MOTION_VARIANT`: the
-/// other kinds' code is compiled out, for the same reason).
+/// The local ray tracing shader, with the GPU ray tracer's visibility pass (rt.wgsl), compiled
+/// for `variant`.
 #[must_use]
-pub fn lrt(counting: bool, lit: bool, motion: MotionCode) -> Shader {
-    let [counting, lit] = [counting, lit].map(usize::from);
+pub fn lrt(variant: ObjectVariant) -> Shader {
     Shader {
-        name: LRT_NAMES[counting][lit][motion.index()],
+        name: format!("lrt{}", variant.describe()),
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -364,17 +356,16 @@ pub fn lrt(counting: bool, lit: bool, motion: MotionCode) -> Shader {
             ("lrt.wgsl", LRT),
             ("rt.wgsl", RT),
         ]),
-        overrides: LRT_OVERRIDES[counting][lit][motion.index()],
+        overrides: variant.lrt_overrides(),
     }
 }
 
-/// The polygon-rendering shader, with the moving lights compiled in where `lit`, for objects
-/// that move as `motion` (as [`lrt`]'s).
+/// The polygon-rendering shader, compiled for `variant` (which must not count fragments: the
+/// polygon pass has no counter).
 #[must_use]
-pub fn polygon(lit: bool, motion: MotionCode) -> Shader {
-    let lit = usize::from(lit);
+pub fn polygon(variant: ObjectVariant) -> Shader {
     Shader {
-        name: POLYGON_NAMES[lit][motion.index()],
+        name: format!("polygon{}", variant.describe()),
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -389,7 +380,7 @@ pub fn polygon(lit: bool, motion: MotionCode) -> Shader {
             ("motion.wgsl", MOTION),
             ("polygon.wgsl", POLYGON),
         ]),
-        overrides: POLYGON_OVERRIDES[lit][motion.index()],
+        overrides: variant.polygon_overrides(),
     }
 }
 
@@ -397,7 +388,7 @@ pub fn polygon(lit: bool, motion: MotionCode) -> Shader {
 #[must_use]
 pub fn sky() -> Shader {
     Shader {
-        name: "sky",
+        name: "sky".into(),
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -407,7 +398,7 @@ pub fn sky() -> Shader {
             ("camera.wgsl", CAMERA),
             ("sky.wgsl", SKY),
         ]),
-        overrides: &SKY_OVERRIDES,
+        overrides: SKY_OVERRIDES.to_vec(),
     }
 }
 
@@ -415,7 +406,7 @@ pub fn sky() -> Shader {
 #[must_use]
 pub fn probe() -> Shader {
     Shader {
-        name: "probe",
+        name: "probe".into(),
         source: compose(&[
             ("physics.wgsl", PHYSICS),
             ("types.wgsl", TYPES),
@@ -423,7 +414,7 @@ pub fn probe() -> Shader {
             ("spectral.wgsl", SPECTRAL),
             ("probe.wgsl", PROBE),
         ]),
-        overrides: &PROBE_OVERRIDES,
+        overrides: PROBE_OVERRIDES.to_vec(),
     }
 }
 
@@ -439,32 +430,26 @@ pub fn compose(modules: &[(&str, &str)]) -> String {
 /// Every complete shader srt builds, for validation.
 #[must_use]
 pub fn all() -> Vec<Shader> {
-    vec![
+    let variants = ObjectVariant::all();
+    let mut all = vec![
         Shader {
-            name: "physics+types",
+            name: "physics+types".into(),
             source: compose(&[("physics.wgsl", PHYSICS), ("types.wgsl", TYPES)]),
-            overrides: &[],
+            overrides: Vec::new(),
         },
         proxy(),
         crate::display::shader(),
-        lrt(false, false, MotionCode::REST),
-        lrt(true, false, MotionCode::REST),
-        lrt(false, true, MotionCode::REST),
-        lrt(true, true, MotionCode::REST),
-        lrt(false, false, MotionCode::SPIN),
-        lrt(true, true, MotionCode::SPIN),
-        lrt(false, false, MotionCode::THRUST),
-        lrt(true, true, MotionCode::THRUST),
-        polygon(false, MotionCode::REST),
-        polygon(true, MotionCode::REST),
-        polygon(false, MotionCode::SPIN),
-        polygon(true, MotionCode::THRUST),
+    ];
+    all.extend(variants.iter().map(|&v| lrt(v)));
+    all.extend(variants.iter().filter(|v| !v.counting).map(|&v| polygon(v)));
+    all.extend([
         sky(),
         Shader {
-            name: "colour",
+            name: "colour".into(),
             source: compose(&[("colour.wgsl", COLOUR)]),
-            overrides: &[],
+            overrides: Vec::new(),
         },
         probe(),
-    ]
+    ]);
+    all
 }

@@ -87,7 +87,8 @@ impl From<Effects> for EffectsCode {
     }
 }
 
-/// `FrameUniforms::colour`: how lit surfaces are coloured (WGSL `SURFACE_COLOUR_*`).
+/// `FrameUniforms::colour`: how lit surfaces are coloured (WGSL `SURFACE_COLOUR_*`); the object
+/// passes are compiled once per code (`SURFACE_COLOUR_VARIANT`, [`crate::shaders::ObjectVariant`]).
 #[repr(transparent)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
 pub struct SurfaceColourCode(pub u32);
@@ -97,6 +98,14 @@ impl SurfaceColourCode {
     pub const PAPER: Self = Self(0);
     /// Reflectance spectra (WGSL `SURFACE_COLOUR_SPECTRAL`).
     pub const SPECTRAL: Self = Self(1);
+    /// Every code, in order: the index of a code is its value.
+    pub const ALL: [Self; 2] = [Self::PAPER, Self::SPECTRAL];
+
+    /// The code's index in [`SurfaceColourCode::ALL`].
+    #[must_use]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
 }
 
 impl From<SurfaceColour> for SurfaceColourCode {

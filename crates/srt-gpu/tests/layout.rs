@@ -184,7 +184,7 @@ fn wgsl_layout(module: &Module, layouter: &Layouter, name: &str) -> Option<(usiz
 
 #[test]
 fn rust_twins_match_naga_layouts() {
-    let shaders: Vec<(&str, Module, Layouter)> = srt_gpu::shaders::all()
+    let shaders: Vec<(String, Module, Layouter)> = srt_gpu::shaders::all()
         .into_iter()
         .map(|srt_gpu::shaders::Shader { name, source, .. }| {
             let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
@@ -207,7 +207,7 @@ fn rust_twins_match_naga_layouts() {
             let Some((size, members)) = wgsl_layout(module, layouter, twin.wgsl) else {
                 continue;
             };
-            found_in.push(*shader);
+            found_in.push(shader.as_str());
             if size != twin.size {
                 failures.push(format!(
                     "{} is {} bytes but WGSL {} in shader {shader} is {size}",

@@ -13,7 +13,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 use naga::{AddressSpace, Expression, ImageClass, ImageDimension, Literal, Module, TypeInner};
 use srt_gpu::motion::MotionCode;
 use srt_gpu::pipelines::{BindGroupSpec, PipelineSpec, Slot};
-use srt_gpu::shaders::{self, Shader, WORKGROUP_SIZE};
+use srt_gpu::shaders::{self, ObjectVariant, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
     BVH_STACK_SIZE, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN, DRAW_ARGS_SHADE_VERTICES,
     DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
@@ -147,8 +147,8 @@ fn shared_consts_equal_their_rust_twins() {
     let mut failures = Vec::new();
     let mut seen = Vec::new();
     for shader in shaders::all() {
-        let (module, _) = parse(shader.name, &shader.source);
-        failures.extend(check_consts(shader.name, &module, &table, &mut seen));
+        let (module, _) = parse(&shader.name, &shader.source);
+        failures.extend(check_consts(&shader.name, &module, &table, &mut seen));
         // The hull array of the Footprint struct is as long as the const says.
         if let Some((_, ty)) = module
             .types
@@ -248,7 +248,7 @@ fn the_clock_face_equals_the_reference() {
     ];
     let mut found = 0;
     for shader in shaders::all() {
-        let (module, _) = parse(shader.name, &shader.source);
+        let (module, _) = parse(&shader.name, &shader.source);
         let Some(segments) = u32_array_const(&module, "CLOCK_SEGMENTS") else {
             continue;
         };
@@ -273,7 +273,7 @@ fn grey_weights_equal_the_reference() {
     let reference = srt_trace::GREY_WEIGHTS.map(|w| w as f32).to_vec();
     let mut found = 0;
     for shader in shaders::all() {
-        let (module, _) = parse(shader.name, &shader.source);
+        let (module, _) = parse(&shader.name, &shader.source);
         if let Some(weights) = f32_vector_const(&module, "GREY_WEIGHTS") {
             assert_eq!(weights, Ok(reference.clone()), "{}", shader.name);
             found += 1;
@@ -349,7 +349,7 @@ fn check_overrides(shader: &Shader, module: &Module) -> Vec<String> {
             failures.push(format!("{}: override {name} is never used", shader.name));
         }
     }
-    for (rust, _) in shader.overrides {
+    for (rust, _) in &shader.overrides {
         if !declared.iter().any(|name| name == rust) {
             failures.push(format!(
                 "{}: Rust sets {rust}, which the shader does not declare",
@@ -382,7 +382,7 @@ fn overrides_get_their_values_from_rust_and_are_used() {
     let mut failures = Vec::new();
     let mut compute_shaders = 0;
     for shader in shaders::all() {
-        let (module, _) = parse(shader.name, &shader.source);
+        let (module, _) = parse(&shader.name, &shader.source);
         failures.extend(check_overrides(&shader, &module));
         if module
             .entry_points
@@ -409,9 +409,9 @@ fn an_override_without_a_rust_value_or_use_is_detected() {
                   @compute @workgroup_size(8) fn main() { let x = A; }";
     let (module, _) = parse("test", source);
     let shader = Shader {
-        name: "test",
+        name: "test".into(),
         source: source.to_owned(),
-        overrides: &[("A", 1.0), ("C", 2.0)],
+        overrides: vec![("A", 1.0), ("C", 2.0)],
     };
     let failures = check_overrides(&shader, &module);
     let expected = [
@@ -565,18 +565,12 @@ fn check_bindings(spec: &PipelineSpec) -> Vec<String> {
     failures
 }
 
-/// The renderer's six pipelines in every variant: without and with counting, without and with
-/// moving lights, for each kind of motion.
+/// The renderer's six pipelines in every variant ([`ObjectVariant::all`]).
 fn renderer_specs() -> Vec<PipelineSpec> {
-    let mut specs = Vec::new();
-    for counting in [false, true] {
-        for lit in [false, true] {
-            for motion in MotionCode::ALL {
-                specs.extend(srt_gpu::pipelines::specs(counting, lit, motion));
-            }
-        }
-    }
-    specs
+    ObjectVariant::all()
+        .into_iter()
+        .flat_map(srt_gpu::pipelines::specs)
+        .collect()
 }
 
 fn all_specs() -> Vec<PipelineSpec> {
@@ -592,10 +586,10 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        78,
-        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (twelve \
-         times: without and with counting, without and with moving lights, for each kind of \
-         motion), three probes, the sky's two passes and the display pass"
+        150,
+        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (24 times: \
+         without and with counting, without and with moving lights, for each kind of motion, \
+         for each surface colour), three probes, the sky's two passes and the display pass"
     );
     let mut failures = Vec::new();
     for spec in &specs {
@@ -614,7 +608,11 @@ fn bindings_match_the_wgsl() {
 fn a_binding_mismatch_is_detected() {
     // Guards the comparison against passing vacuously: move the LRT's fragment counter to
     // binding 7, make its footprints writable and hide them from the vertex stage.
-    let mut lrt = srt_gpu::pipelines::specs(true, false, MotionCode::REST)[1].clone();
+    let mut lrt = srt_gpu::pipelines::specs(ObjectVariant {
+        counting: true,
+        ..ObjectVariant::PLAIN
+    })[1]
+        .clone();
     let mut group = lrt.groups[3];
     let mut slots = group.slots.to_vec();
     slots[0].ty = srt_gpu::pipelines::storage(false);

@@ -28,7 +28,7 @@ fn every_shader_parses_and_validates() {
     assert!(!shaders.is_empty(), "shaders::all() lists no shader");
     let mut failures = Vec::new();
     for shader in &shaders {
-        let name = shader.name;
+        let name = &shader.name;
         match validate(name, &shader.source) {
             Ok(_) => println!("{name}: ok ({} lines)", shader.source.lines().count()),
             Err(message) => failures.push(format!("{name}: {message}")),
@@ -46,7 +46,7 @@ fn every_shader_parses_and_validates() {
 #[test]
 fn shader_names_are_unique() {
     let shaders = srt_gpu::shaders::all();
-    let mut names: Vec<&str> = shaders.iter().map(|shader| shader.name).collect();
+    let mut names: Vec<&str> = shaders.iter().map(|shader| shader.name.as_str()).collect();
     names.sort_unstable();
     let before = names.len();
     names.dedup();

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
+use crate::shaders::ObjectVariant;
 
 impl super::GpuRenderer {
     /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities) and
@@ -185,10 +186,19 @@ impl super::GpuRenderer {
             self.encode_proxy_pass(encoder, tone, &traced);
         }
         let background = background_as(output, scene.background);
-        let motions: Vec<MotionCode> = scene
+        let variant = ObjectVariant {
+            counting: self.count_fragments,
+            lit: self.pipelines.lit(),
+            motion: MotionCode::REST,
+            colour: SurfaceColourCode::from(scene.colour),
+        };
+        let variants: Vec<ObjectVariant> = scene
             .objects
             .iter()
-            .map(|o| MotionCode::of(&o.motion))
+            .map(|o| ObjectVariant {
+                motion: MotionCode::of(&o.motion),
+                ..variant
+            })
             .collect();
         self.encode_render_pass(
             &ctx.device,
@@ -197,7 +207,7 @@ impl super::GpuRenderer {
             method,
             tone,
             &traced,
-            &motions,
+            &variants,
         );
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
@@ -293,7 +303,7 @@ impl super::GpuRenderer {
     /// pass into colour and depth; for the exact methods the visibility pass into ids and depth
     /// (each object by its triangles' footprints, or, where `traced`, by its box's footprints
     /// and its BVH), then the shading pass into colour. Each object is drawn by the pipelines of
-    /// its kind of motion (`motions`, one per object).
+    /// its variant (`variants`, one per object: the frame's, for the object's kind of motion).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn encode_render_pass(
         &self,
@@ -303,7 +313,7 @@ impl super::GpuRenderer {
         method: Method,
         tone: usize,
         traced: &[Option<&ObjectRayTracing>],
-        motions: &[MotionCode],
+        variants: &[ObjectVariant],
     ) {
         let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
         let (color_view, depth_view, ids_view) = (
@@ -334,9 +344,11 @@ impl super::GpuRenderer {
                 &self.frame.polygon_groups[tone],
                 &[],
             );
-            let mut variant = PipelineVariant::default();
-            for (object, &motion) in self.objects.iter().zip(motions) {
-                variant.set(&mut pass, motion, || self.pipelines.polygon(device, motion));
+            let mut set = PipelineVariant::default();
+            for (object, &object_variant) in self.objects.iter().zip(variants) {
+                set.set(&mut pass, object_variant, || {
+                    self.pipelines.polygon(device, object_variant)
+                });
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 for part in &object.parts {
                     pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
@@ -346,7 +358,7 @@ impl super::GpuRenderer {
             }
             return;
         }
-        let lrt = |motion| self.pipelines.lrt(device, self.count_fragments, motion);
+        let lrt = |variant| self.pipelines.lrt(device, variant);
         let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
         let mut pass = self.begin_pass(
             encoder,
@@ -357,7 +369,7 @@ impl super::GpuRenderer {
             [Some(2), None],
         );
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-        self.draw_visibility(&mut pass, lrt, traced, motions);
+        self.draw_visibility(&mut pass, lrt, traced, variants);
         drop(pass);
         let part_depth_view = view(&self.targets.part_depth);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -375,7 +387,14 @@ impl super::GpuRenderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&lrt(MotionCode::REST).part_depth);
+        // Any variant's part-depth pipeline: it reads only the ids (and the first variant is
+        // made already for the first object's passes).
+        let frame_variant = variants.first().copied().unwrap_or(ObjectVariant {
+            counting: self.count_fragments,
+            lit: self.pipelines.lit(),
+            ..ObjectVariant::PLAIN
+        });
+        pass.set_pipeline(&lrt(frame_variant).part_depth);
         pass.set_bind_group(
             SHADE_FRAME_GROUP.index,
             &self.targets.shade_frame_groups[tone],
@@ -404,7 +423,7 @@ impl super::GpuRenderer {
             &self.targets.shade_frame_groups[tone],
             &[],
         );
-        self.draw_shading(&mut pass, lrt, traced, motions);
+        self.draw_shading(&mut pass, lrt, traced, variants);
     }
 
     /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
@@ -442,26 +461,26 @@ impl super::GpuRenderer {
     fn draw_visibility<'p>(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        lrt: impl Fn(MotionCode) -> &'p LrtPipelines,
+        lrt: impl Fn(ObjectVariant) -> &'p LrtPipelines,
         traced: &[Option<&ObjectRayTracing>],
-        motions: &[MotionCode],
+        variants: &[ObjectVariant],
     ) {
-        let mut variant = PipelineVariant::default();
-        for ((object, rt), &motion) in self.objects.iter().zip(traced).zip(motions) {
+        let mut set = PipelineVariant::default();
+        for ((object, rt), &variant) in self.objects.iter().zip(traced).zip(variants) {
             if rt.is_some() {
                 continue;
             }
-            variant.set(pass, motion, || &lrt(motion).visibility);
+            set.set(pass, variant, || &lrt(variant).visibility);
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
                 self.draw_footprints(pass, part);
             }
         }
-        let mut variant = PipelineVariant::default();
-        for ((object, rt), &motion) in self.objects.iter().zip(traced).zip(motions) {
+        let mut set = PipelineVariant::default();
+        for ((object, rt), &variant) in self.objects.iter().zip(traced).zip(variants) {
             if let Some(rt) = rt {
-                variant.set(pass, motion, || &lrt(motion).rt_visibility);
+                set.set(pass, variant, || &lrt(variant).rt_visibility);
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
                 pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
@@ -475,13 +494,13 @@ impl super::GpuRenderer {
     fn draw_shading<'p>(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        lrt: impl Fn(MotionCode) -> &'p LrtPipelines,
+        lrt: impl Fn(ObjectVariant) -> &'p LrtPipelines,
         traced: &[Option<&ObjectRayTracing>],
-        motions: &[MotionCode],
+        variants: &[ObjectVariant],
     ) {
-        let mut variant = PipelineVariant::default();
-        for ((object, traced), &motion) in self.objects.iter().zip(traced).zip(motions) {
-            variant.set(pass, motion, || &lrt(motion).shade);
+        let mut set = PipelineVariant::default();
+        for ((object, traced), &variant) in self.objects.iter().zip(traced).zip(variants) {
+            set.set(pass, variant, || &lrt(variant).shade);
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
@@ -569,22 +588,22 @@ fn background_as(output: OutputCode, display: DVec3) -> DVec4 {
     }
 }
 
-/// The pipeline variant (by kind of motion) a render pass has set, so that a run of objects of
-/// one kind sets its pipeline once.
+/// The pipeline variant a render pass has set, so that a run of objects of one variant sets its
+/// pipeline once.
 #[derive(Default)]
-struct PipelineVariant(Option<MotionCode>);
+struct PipelineVariant(Option<ObjectVariant>);
 
 impl PipelineVariant {
-    /// Sets in `pass` the pipeline `pipeline` gives for `motion`, unless it is the one set.
+    /// Sets in `pass` the pipeline `pipeline` gives for `variant`, unless it is the one set.
     fn set<'p>(
         &mut self,
         pass: &mut wgpu::RenderPass<'_>,
-        motion: MotionCode,
+        variant: ObjectVariant,
         pipeline: impl FnOnce() -> &'p wgpu::RenderPipeline,
     ) {
-        if self.0 != Some(motion) {
+        if self.0 != Some(variant) {
             pass.set_pipeline(pipeline());
-            self.0 = Some(motion);
+            self.0 = Some(variant);
         }
     }
 }
