@@ -172,7 +172,7 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     // on the triangle where it is at the event.
     var uv_ddx = vec2<f32>(0.0);
     var uv_ddy = vec2<f32>(0.0);
-    if ((part_has(PART_TEXTURED) || has_clock()) && object.style.x <= 0.0) {
+    if ((part_is_textured() || has_clock()) && object.style.x <= 0.0) {
         let uv = triangle_uv(t, hit.zeta, hit.xi);
         let rx = backward_ray(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0)));
         let ry = backward_ray(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0)));

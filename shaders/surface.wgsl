@@ -2,10 +2,18 @@
 // moving lights included (with shadows.wgsl): the f32 mirror of crates/srt-trace (intersect.rs,
 // shade.rs and Tracer::shade).
 
-// The SURFACE_COLOUR_* code this variant of the shader shades with (srt_gpu::shaders::
-// ObjectVariant; the frame's FrameUniforms.colour): compiled in, because a software rasteriser
-// runs every side of a branch its pixels do not all take, and the spectral side is long.
+// What this variant of the shader shades (srt_gpu::shaders::ObjectVariant): compiled in, because
+// a software rasteriser runs every side of a branch its pixels do not all take, and these sides
+// are long. The SURFACE_COLOUR_* code of the frame (its FrameUniforms.colour); whether the part
+// may have a texture (TEXTURED_VARIANT), the object a clock face (CLOCK_VARIANT) or wireframe
+// edges (WIREFRAME_VARIANT), and whether the frame may write seen events (SEEN_VARIANT), each
+// still checked against the part's flags, the object's uniforms or the frame's output where
+// compiled in.
 override SURFACE_COLOUR_VARIANT: u32;
+override TEXTURED_VARIANT: bool;
+override CLOCK_VARIANT: bool;
+override WIREFRAME_VARIANT: bool;
+override SEEN_VARIANT: bool;
 
 struct TriangleHit {
     found: bool,
@@ -125,7 +133,7 @@ fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>, frame: u32
 fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f32>, proper_time: f32) -> vec4<f32> {
     let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
     let wireframe = object.style.x;
-    if (wireframe > 0.0) {
+    if (WIREFRAME_VARIANT && wireframe > 0.0) {
         let p = triangle_corners(t);
         let twice_area = length(cross(p[1] - p[0], p[2] - p[0]));
         let heights = twice_area / vec3<f32>(length(p[2] - p[1]), length(p[0] - p[2]), length(p[1] - p[0]));
@@ -140,7 +148,7 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
     }
     if (has_clock()) {
         albedo *= clock_albedo(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, proper_time);
-    } else if (part_has(PART_TEXTURED)) {
+    } else if (part_is_textured()) {
         albedo *= sample_part_texture(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, part_frame(proper_time));
     }
     return albedo;
@@ -298,7 +306,12 @@ fn shade(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, loc
 
 // Whether the current object wears a clock face (clock.wgsl).
 fn has_clock() -> bool {
-    return object.clock.w > 0.0;
+    return CLOCK_VARIANT && object.clock.w > 0.0;
+}
+
+// Whether the current part has a texture.
+fn part_is_textured() -> bool {
+    return TEXTURED_VARIANT && part_has(PART_TEXTURED);
 }
 
 // Whether the current object's emission is on at its proper time `proper_time` (mirror of
@@ -338,5 +351,6 @@ fn seen_pixel(emission_rest: vec4<f32>, local: LocalFrame) -> vec4<f32> {
 
 // Whether the frame writes what pixels see of time rather than light.
 fn writes_seen_events() -> bool {
-    return frame_uniforms.output == OUTPUT_SEEN_EVENT || frame_uniforms.output == OUTPUT_SEEN_OBJECT;
+    return SEEN_VARIANT
+        && (frame_uniforms.output == OUTPUT_SEEN_EVENT || frame_uniforms.output == OUTPUT_SEEN_OBJECT);
 }

@@ -1,10 +1,13 @@
-//! Bind groups and the five pipelines (proxy compute, LRT visibility, ray-tracer visibility,
-//! LRT shading, polygon).
+//! Bind groups and the pipelines (proxy compute, LRT visibility, ray-tracer visibility, LRT
+//! part depth, LRT shading, polygon), the object passes' in every [`ObjectVariant`] made on
+//! first use.
 //!
 //! Every binding is described once, as data ([`Slot`], [`BindGroupSpec`]): the bind group
 //! layouts, the bind groups the renderer creates and the `set_bind_group` calls all read it, and
 //! `tests/reflect.rs` checks it against the `@group`/`@binding` declarations naga reflects from
 //! the WGSL (`shaders/render_bindings.wgsl` for groups 0–2, each pass for its group 3).
+
+use std::sync::OnceLock;
 
 use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT};
 use crate::shaders::{self, BlockSpace, ObjectVariant, Shader};
@@ -487,24 +490,19 @@ pub fn specs(variant: ObjectVariant) -> [PipelineSpec; 6] {
     ]
 }
 
-/// The pipelines of the two exact methods: local ray tracing and the ray tracer, which share
-/// the shading pass.
-pub struct LrtPipelines {
+/// The visibility pipelines of the two exact methods, local ray tracing and the ray tracer, for
+/// one [`ObjectVariant::for_visibility`].
+pub struct VisibilityPipelines {
     /// Nearest hit per pixel by footprints: depth and id.
     pub visibility: wgpu::RenderPipeline,
     /// Nearest hit per pixel through each batch's BVH: depth and id.
     pub rt_visibility: wgpu::RenderPipeline,
-    /// One shading per pixel: each part's bound at the part's depth, tested for equality.
-    pub shade: wgpu::RenderPipeline,
-    /// The depth of the part kept at each pixel, which the shading pass tests.
-    pub part_depth: wgpu::RenderPipeline,
 }
 
-impl LrtPipelines {
+impl VisibilityPipelines {
     fn new(
         device: &wgpu::Device,
-        [_, visibility, shade, rt_visibility, _, part_depth]: &[PipelineSpec; 6],
-        color_format: wgpu::TextureFormat,
+        [_, visibility, _, rt_visibility, ..]: &[PipelineSpec; 6],
     ) -> Self {
         Self {
             visibility: render_pipeline(
@@ -520,20 +518,6 @@ impl LrtPipelines {
                 RT_VISIBILITY_ENTRIES,
                 Some(VISIBLE_ID_FORMAT),
                 DepthTest::Nearest,
-            ),
-            shade: render_pipeline(
-                device,
-                shade,
-                LRT_SHADE_ENTRIES,
-                Some(color_format),
-                DepthTest::Equal,
-            ),
-            part_depth: render_pipeline(
-                device,
-                part_depth,
-                PART_DEPTH_ENTRIES,
-                None,
-                DepthTest::Overwrite,
             ),
         }
     }
@@ -561,13 +545,18 @@ pub struct Pipelines {
     pub sky_frame_layout: wgpu::BindGroupLayout,
     /// The footprint compute pipeline.
     pub proxy: wgpu::ComputePipeline,
-    /// The local ray tracing pipelines, indexed [counting][colour][motion] ([`Pipelines::lrt`]):
-    /// those of the plain variant made with the renderer, every other made when first asked for
-    /// (only measurements count fragments; only some frames move bodies or use spectra).
-    lrt: [[[std::sync::OnceLock<LrtPipelines>; 3]; 2]; 2],
-    /// The polygon-rendering pipelines, indexed [colour][motion] ([`Pipelines::polygon`]), made
-    /// as `lrt`'s.
-    polygon: [[std::sync::OnceLock<wgpu::RenderPipeline>; 3]; 2],
+    /// The exact methods' visibility pipelines, by [`ObjectVariant::index`] of
+    /// [`ObjectVariant::for_visibility`]; the shading pipelines (one shading per pixel: each
+    /// part's bound at the part's depth, tested for equality) and the polygon pipelines, by
+    /// [`ObjectVariant::index`]. The plain variant's are made with the renderer, every other
+    /// when first asked for (only measurements count fragments; only some frames move bodies,
+    /// use spectra, textures or clocks).
+    visibility: Vec<std::sync::OnceLock<VisibilityPipelines>>,
+    shade: Vec<std::sync::OnceLock<wgpu::RenderPipeline>>,
+    polygon: Vec<std::sync::OnceLock<wgpu::RenderPipeline>>,
+    /// The depth of the part kept at each pixel, which the shading pass tests (the same for
+    /// every variant).
+    pub part_depth: wgpu::RenderPipeline,
     /// The colour format the render pipelines draw into.
     color_format: wgpu::TextureFormat,
     /// Whether the shading passes draw moving lights.
@@ -587,7 +576,7 @@ impl Pipelines {
             ..ObjectVariant::PLAIN
         };
         let specs = specs(plain);
-        let [proxy_spec, ..] = &specs;
+        let [proxy_spec, .., part_depth_spec] = &specs;
         let proxy_module = proxy_spec.shader.module(device);
         let proxy = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(proxy_spec.label),
@@ -608,30 +597,63 @@ impl Pipelines {
             polygon_frame_layout: POLYGON_FRAME_GROUP.create_layout(device),
             sky_frame_layout: SKY_FRAME_GROUP.create_layout(device),
             proxy,
-            lrt: Default::default(),
-            polygon: Default::default(),
+            visibility: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
+            shade: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
+            polygon: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
+            part_depth: render_pipeline(
+                device,
+                part_depth_spec,
+                PART_DEPTH_ENTRIES,
+                None,
+                DepthTest::Overwrite,
+            ),
             color_format,
             lit,
         };
-        pipelines.lrt(device, plain);
+        pipelines.visibility(device, plain);
+        pipelines.shade(device, plain);
         pipelines.polygon(device, plain);
         pipelines
     }
 
-    /// The LRT pipelines of `variant` (whose `lit` must be the renderer's), created on first
-    /// use.
-    pub fn lrt(&self, device: &wgpu::Device, variant: ObjectVariant) -> &LrtPipelines {
+    /// The visibility pipelines for objects drawn as `variant` (whose `lit` must be the
+    /// renderer's), created on first use.
+    pub fn visibility(
+        &self,
+        device: &wgpu::Device,
+        variant: ObjectVariant,
+    ) -> &VisibilityPipelines {
         debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
-        let slot = &self.lrt[usize::from(variant.counting)][variant.colour.index()]
-            [variant.motion.index()];
-        slot.get_or_init(|| LrtPipelines::new(device, &specs(variant), self.color_format))
+        let variant = variant.for_visibility();
+        self.visibility[variant.index()]
+            .get_or_init(|| VisibilityPipelines::new(device, &specs(variant)))
     }
 
-    /// The polygon pipeline of `variant` (whose `lit` must be the renderer's; its `counting` is
-    /// ignored), created on first use.
+    /// The LRT shading pipeline for parts drawn as `variant` (whose `lit` must be the
+    /// renderer's), created on first use.
+    pub fn shade(&self, device: &wgpu::Device, variant: ObjectVariant) -> &wgpu::RenderPipeline {
+        debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
+        self.shade[variant.index()].get_or_init(|| {
+            let [_, _, shade_spec, ..] = &specs(variant);
+            render_pipeline(
+                device,
+                shade_spec,
+                LRT_SHADE_ENTRIES,
+                Some(self.color_format),
+                DepthTest::Equal,
+            )
+        })
+    }
+
+    /// The polygon pipeline for parts drawn as `variant` (whose `lit` must be the renderer's;
+    /// it never counts), created on first use.
     pub fn polygon(&self, device: &wgpu::Device, variant: ObjectVariant) -> &wgpu::RenderPipeline {
         debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
-        self.polygon[variant.colour.index()][variant.motion.index()].get_or_init(|| {
+        let variant = ObjectVariant {
+            counting: false,
+            ..variant
+        };
+        self.polygon[variant.index()].get_or_init(|| {
             let [.., polygon_spec, _] = &specs(variant);
             render_pipeline(
                 device,

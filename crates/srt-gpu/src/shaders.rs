@@ -129,37 +129,126 @@ pub struct ObjectVariant {
     pub motion: MotionCode,
     /// How lit surfaces are coloured (surface.wgsl's `SURFACE_COLOUR_VARIANT`).
     pub colour: SurfaceColourCode,
+    /// Whether the part drawn may have a texture (surface.wgsl's `TEXTURED_VARIANT`).
+    pub textured: bool,
+    /// Whether the object drawn may wear a clock face (surface.wgsl's `CLOCK_VARIANT`).
+    pub clock: bool,
+    /// Whether the object drawn may be a wireframe (surface.wgsl's `WIREFRAME_VARIANT`).
+    pub wireframe: bool,
+    /// Whether the frame may write seen events instead of colour (surface.wgsl's
+    /// `SEEN_VARIANT`).
+    pub seen: bool,
 }
 
 impl ObjectVariant {
     /// The variant of the ordinary frame: no counting, no moving lights, bodies at rest, the
-    /// paper's colour.
+    /// paper's colour, no texture, no clock, no wireframe, colour written.
     pub const PLAIN: Self = Self {
         counting: false,
         lit: false,
         motion: MotionCode::REST,
         colour: SurfaceColourCode::PAPER,
+        textured: false,
+        clock: false,
+        wireframe: false,
+        seen: false,
     };
 
-    /// Every variant.
+    /// How many on/off switches a variant has.
+    const SWITCHES: usize = 6;
+
+    /// How many variants there are: the range of [`ObjectVariant::index`].
+    pub const COUNT: usize =
+        MotionCode::ALL.len() * SurfaceColourCode::ALL.len() * (1 << Self::SWITCHES);
+
+    /// The variant's on/off switches, in the order of [`ObjectVariant::index`].
+    fn switches(self) -> [bool; Self::SWITCHES] {
+        [
+            self.counting,
+            self.lit,
+            self.textured,
+            self.clock,
+            self.wireframe,
+            self.seen,
+        ]
+    }
+
+    /// The variant of `motion`, `colour` and the `switches` as [`ObjectVariant::switches`]
+    /// lists them.
+    fn with_switches(
+        motion: MotionCode,
+        colour: SurfaceColourCode,
+        [counting, lit, textured, clock, wireframe, seen]: [bool; Self::SWITCHES],
+    ) -> Self {
+        Self {
+            counting,
+            lit,
+            motion,
+            colour,
+            textured,
+            clock,
+            wireframe,
+            seen,
+        }
+    }
+
+    /// Every variant, in the order of [`ObjectVariant::index`].
     #[must_use]
     pub fn all() -> Vec<Self> {
-        let mut all = Vec::new();
-        for counting in [false, true] {
-            for lit in [false, true] {
-                for motion in MotionCode::ALL {
-                    for colour in SurfaceColourCode::ALL {
-                        all.push(Self {
-                            counting,
-                            lit,
-                            motion,
-                            colour,
-                        });
-                    }
+        let mut all = Vec::with_capacity(Self::COUNT);
+        for motion in MotionCode::ALL {
+            for colour in SurfaceColourCode::ALL {
+                for bits in 0..1_usize << Self::SWITCHES {
+                    let switches =
+                        std::array::from_fn(|i| (bits >> (Self::SWITCHES - 1 - i)) & 1 == 1);
+                    all.push(Self::with_switches(motion, colour, switches));
                 }
             }
         }
         all
+    }
+
+    /// Variants that between them compile every piece of the object passes' code, and leave
+    /// each out: for each kind of motion and colour, every switch off, every switch on, and
+    /// each switch on alone. What tests parse and check instead of all
+    /// [`ObjectVariant::COUNT`].
+    #[must_use]
+    pub fn covering() -> Vec<Self> {
+        let mut covering = Vec::new();
+        for motion in MotionCode::ALL {
+            for colour in SurfaceColourCode::ALL {
+                covering.push(Self::with_switches(motion, colour, [false; Self::SWITCHES]));
+                covering.push(Self::with_switches(motion, colour, [true; Self::SWITCHES]));
+                for on in 0..Self::SWITCHES {
+                    let switches = std::array::from_fn(|i| i == on);
+                    covering.push(Self::with_switches(motion, colour, switches));
+                }
+            }
+        }
+        covering
+    }
+
+    /// A dense index in 0..[`ObjectVariant::COUNT`], the position in [`ObjectVariant::all`].
+    #[must_use]
+    pub fn index(self) -> usize {
+        let kind = self.motion.index() * SurfaceColourCode::ALL.len() + self.colour.index();
+        let bits = self
+            .switches()
+            .into_iter()
+            .fold(0, |bits, on| (bits << 1) | usize::from(on));
+        (kind << Self::SWITCHES) | bits
+    }
+
+    /// The variant whose visibility pipelines this one's are: the visibility passes find hits
+    /// and shade nothing, so only the counter and the kind of motion matter to them.
+    #[must_use]
+    pub fn for_visibility(self) -> Self {
+        Self {
+            counting: self.counting,
+            lit: self.lit,
+            motion: self.motion,
+            ..Self::PLAIN
+        }
     }
 
     /// The variant's part of a shader's name, e.g. " (lit, spin, spectral)"; empty for
@@ -171,6 +260,10 @@ impl ObjectVariant {
             (self.motion == MotionCode::SPIN, "spin"),
             (self.motion == MotionCode::THRUST, "thrust"),
             (self.colour == SurfaceColourCode::SPECTRAL, "spectral"),
+            (self.textured, "textured"),
+            (self.clock, "clock"),
+            (self.wireframe, "wireframe"),
+            (self.seen, "seen"),
         ]
         .into_iter()
         .filter_map(|(on, word)| on.then_some(word))
@@ -193,6 +286,10 @@ impl ObjectVariant {
                 crate::motion::THRUST_PIECES_PER_SIZE,
             ),
             ("SURFACE_COLOUR_VARIANT", f64::from(self.colour.0)),
+            ("TEXTURED_VARIANT", f64::from(u8::from(self.textured))),
+            ("CLOCK_VARIANT", f64::from(u8::from(self.clock))),
+            ("WIREFRAME_VARIANT", f64::from(u8::from(self.wireframe))),
+            ("SEEN_VARIANT", f64::from(u8::from(self.seen))),
         ];
         overrides.extend(shadow_overrides(f64::from(u8::from(self.lit))));
         overrides.extend(SPECTRAL_OVERRIDES);
@@ -427,10 +524,11 @@ pub fn compose(modules: &[(&str, &str)]) -> String {
         .collect()
 }
 
-/// Every complete shader srt builds, for validation.
+/// Every complete shader srt builds, for validation (the object passes in the variants of
+/// [`ObjectVariant::covering`]).
 #[must_use]
 pub fn all() -> Vec<Shader> {
-    let variants = ObjectVariant::all();
+    let variants = ObjectVariant::covering();
     let mut all = vec![
         Shader {
             name: "physics+types".into(),
@@ -452,4 +550,47 @@ pub fn all() -> Vec<Shader> {
         probe(),
     ]);
     all
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn object_variants_are_indexed_densely_in_their_listed_order() {
+        let all = ObjectVariant::all();
+        assert_eq!(all.len(), ObjectVariant::COUNT);
+        for (position, variant) in all.iter().enumerate() {
+            assert_eq!(variant.index(), position, "{variant:?}");
+        }
+        assert_eq!(ObjectVariant::PLAIN.index(), 0);
+        let names: std::collections::HashSet<String> = all.iter().map(|&v| lrt(v).name).collect();
+        assert_eq!(names.len(), ObjectVariant::COUNT, "one name per variant");
+        let covering = ObjectVariant::covering();
+        assert!(covering.iter().all(|v| all.contains(v)));
+        assert!(covering.contains(&ObjectVariant::PLAIN));
+    }
+
+    #[test]
+    fn the_visibility_variant_keeps_only_what_finds_hits() {
+        let shaded = ObjectVariant {
+            counting: true,
+            lit: true,
+            motion: MotionCode::SPIN,
+            colour: SurfaceColourCode::SPECTRAL,
+            textured: true,
+            clock: true,
+            wireframe: true,
+            seen: true,
+        };
+        assert_eq!(
+            shaded.for_visibility(),
+            ObjectVariant {
+                counting: true,
+                lit: true,
+                motion: MotionCode::SPIN,
+                ..ObjectVariant::PLAIN
+            }
+        );
+    }
 }

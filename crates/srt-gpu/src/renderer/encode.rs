@@ -186,18 +186,22 @@ impl super::GpuRenderer {
             self.encode_proxy_pass(encoder, tone, &traced);
         }
         let background = background_as(output, scene.background);
-        let variant = ObjectVariant {
+        let frame = ObjectVariant {
             counting: self.count_fragments,
             lit: self.pipelines.lit(),
-            motion: MotionCode::REST,
             colour: SurfaceColourCode::from(scene.colour),
+            seen: output == OutputCode::SEEN_EVENT || output == OutputCode::SEEN_OBJECT,
+            ..ObjectVariant::PLAIN
         };
+        // Each object's variant; each part's adds whether it is textured (variant_of_part).
         let variants: Vec<ObjectVariant> = scene
             .objects
             .iter()
             .map(|o| ObjectVariant {
                 motion: MotionCode::of(&o.motion),
-                ..variant
+                clock: o.clock.is_some(),
+                wireframe: o.wireframe.is_some_and(|width| width > 0.0),
+                ..frame
             })
             .collect();
         self.encode_render_pass(
@@ -302,8 +306,8 @@ impl super::GpuRenderer {
     /// The render passes into the targets (timestamps 2 and 3): for the polygon method one
     /// pass into colour and depth; for the exact methods the visibility pass into ids and depth
     /// (each object by its triangles' footprints, or, where `traced`, by its box's footprints
-    /// and its BVH), then the shading pass into colour. Each object is drawn by the pipelines of
-    /// its variant (`variants`, one per object: the frame's, for the object's kind of motion).
+    /// and its BVH), then the shading pass into colour. Each part is drawn by the pipelines of its
+    /// variant: its object's (`variants`, one per object) with its own texture.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn encode_render_pass(
         &self,
@@ -346,11 +350,12 @@ impl super::GpuRenderer {
             );
             let mut set = PipelineVariant::default();
             for (object, &object_variant) in self.objects.iter().zip(variants) {
-                set.set(&mut pass, object_variant, || {
-                    self.pipelines.polygon(device, object_variant)
-                });
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 for part in &object.parts {
+                    let variant = variant_of_part(object_variant, part);
+                    set.set(&mut pass, variant, || {
+                        self.pipelines.polygon(device, variant)
+                    });
                     pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
                     // Checked at upload: 3 × triangles fits in u32.
                     pass.draw(0..3 * part.sizes.triangles, 0..1);
@@ -358,7 +363,6 @@ impl super::GpuRenderer {
             }
             return;
         }
-        let lrt = |variant| self.pipelines.lrt(device, variant);
         let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
         let mut pass = self.begin_pass(
             encoder,
@@ -369,7 +373,7 @@ impl super::GpuRenderer {
             [Some(2), None],
         );
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-        self.draw_visibility(&mut pass, lrt, traced, variants);
+        self.draw_visibility(device, &mut pass, traced, variants);
         drop(pass);
         let part_depth_view = view(&self.targets.part_depth);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -387,14 +391,7 @@ impl super::GpuRenderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        // Any variant's part-depth pipeline: it reads only the ids (and the first variant is
-        // made already for the first object's passes).
-        let frame_variant = variants.first().copied().unwrap_or(ObjectVariant {
-            counting: self.count_fragments,
-            lit: self.pipelines.lit(),
-            ..ObjectVariant::PLAIN
-        });
-        pass.set_pipeline(&lrt(frame_variant).part_depth);
+        pass.set_pipeline(&self.pipelines.part_depth);
         pass.set_bind_group(
             SHADE_FRAME_GROUP.index,
             &self.targets.shade_frame_groups[tone],
@@ -423,7 +420,7 @@ impl super::GpuRenderer {
             &self.targets.shade_frame_groups[tone],
             &[],
         );
-        self.draw_shading(&mut pass, lrt, traced, variants);
+        self.draw_shading(device, &mut pass, traced, variants);
     }
 
     /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
@@ -456,21 +453,23 @@ impl super::GpuRenderer {
     }
 
     /// The visibility pass's draws: objects drawn by their footprints, then those traced
-    /// through their BVH, each by the pipelines `lrt` gives for its motion; the depth test
-    /// keeps the nearest hit across both.
-    fn draw_visibility<'p>(
+    /// through their BVH, each by the visibility pipelines of its variant (`variants`); the
+    /// depth test keeps the nearest hit across both.
+    fn draw_visibility(
         &self,
+        device: &wgpu::Device,
         pass: &mut wgpu::RenderPass<'_>,
-        lrt: impl Fn(ObjectVariant) -> &'p LrtPipelines,
         traced: &[Option<&ObjectRayTracing>],
         variants: &[ObjectVariant],
     ) {
+        let visibility = |variant| self.pipelines.visibility(device, variant);
         let mut set = PipelineVariant::default();
         for ((object, rt), &variant) in self.objects.iter().zip(traced).zip(variants) {
             if rt.is_some() {
                 continue;
             }
-            set.set(pass, variant, || &lrt(variant).visibility);
+            let variant = variant.for_visibility();
+            set.set(pass, variant, || &visibility(variant).visibility);
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
@@ -480,7 +479,8 @@ impl super::GpuRenderer {
         let mut set = PipelineVariant::default();
         for ((object, rt), &variant) in self.objects.iter().zip(traced).zip(variants) {
             if let Some(rt) = rt {
-                set.set(pass, variant, || &lrt(variant).rt_visibility);
+                let variant = variant.for_visibility();
+                set.set(pass, variant, || &visibility(variant).rt_visibility);
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
                 pass.set_bind_group(RT_INPUT_GROUP.index, &rt.visibility_group, &[]);
@@ -490,19 +490,20 @@ impl super::GpuRenderer {
     }
 
     /// The shading pass's draws: each part's screen bound (for a traced object its box's), by
-    /// the shading pipeline `lrt` gives for the object's motion.
-    fn draw_shading<'p>(
+    /// the shading pipeline of the part's variant ([`variant_of_part`]).
+    fn draw_shading(
         &self,
+        device: &wgpu::Device,
         pass: &mut wgpu::RenderPass<'_>,
-        lrt: impl Fn(ObjectVariant) -> &'p LrtPipelines,
         traced: &[Option<&ObjectRayTracing>],
         variants: &[ObjectVariant],
     ) {
         let mut set = PipelineVariant::default();
-        for ((object, traced), &variant) in self.objects.iter().zip(traced).zip(variants) {
-            set.set(pass, variant, || &lrt(variant).shade);
+        for ((object, traced), &object_variant) in self.objects.iter().zip(traced).zip(variants) {
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
+                let variant = variant_of_part(object_variant, part);
+                set.set(pass, variant, || self.pipelines.shade(device, variant));
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
                 let (group, draw_args) = match traced {
                     Some(rt) => (&rt.shade_group, &rt.box_draw_args),
@@ -588,7 +589,16 @@ fn background_as(output: OutputCode, display: DVec3) -> DVec4 {
     }
 }
 
-/// The pipeline variant a render pass has set, so that a run of objects of one variant sets its
+/// The variant a part of an object drawn as `object` is drawn as: the object's, textured where
+/// the part has a texture.
+fn variant_of_part(object: ObjectVariant, part: &PartResources) -> ObjectVariant {
+    ObjectVariant {
+        textured: part.material.flags.contains(PartFlags::TEXTURED),
+        ..object
+    }
+}
+
+/// The pipeline variant a render pass has set, so that a run of draws of one variant sets its
 /// pipeline once.
 #[derive(Default)]
 struct PipelineVariant(Option<ObjectVariant>);

@@ -24,7 +24,7 @@ use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT, largest_value};
 use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
 use crate::pipelines::{
-    FRAME_GROUP, LRT_INPUT_GROUP, LrtPipelines, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
+    FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
     PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, SKY_FRAME_GROUP, slots,
 };
 use crate::projection::view_projection;
