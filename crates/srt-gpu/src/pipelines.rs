@@ -548,9 +548,9 @@ pub struct Pipelines {
     /// The exact methods' visibility pipelines, by [`ObjectVariant::index`] of
     /// [`ObjectVariant::for_visibility`]; the shading pipelines (one shading per pixel: each
     /// part's bound at the part's depth, tested for equality) and the polygon pipelines, by
-    /// [`ObjectVariant::index`]. The plain variant's are made with the renderer, every other
-    /// when first asked for (only measurements count fragments; only some frames move bodies,
-    /// use spectra, textures or clocks).
+    /// [`ObjectVariant::index`]. Each is made when first asked for, so that a renderer compiles
+    /// only the variants its frames draw (on a software adapter a pipeline of the object passes
+    /// takes a noticeable part of a second to compile).
     visibility: Vec<std::sync::OnceLock<VisibilityPipelines>>,
     shade: Vec<std::sync::OnceLock<wgpu::RenderPipeline>>,
     polygon: Vec<std::sync::OnceLock<wgpu::RenderPipeline>>,
@@ -564,8 +564,9 @@ pub struct Pipelines {
 }
 
 impl Pipelines {
-    /// Creates layouts, shader modules and pipelines on `device`, rendering into
-    /// `color_format`, the shading passes with moving lights where `lit` ([`shaders::lrt`]).
+    /// Creates the layouts and the proxy and part-depth pipelines on `device` (the object passes'
+    /// come on first use), rendering into `color_format`, the shading passes with moving lights
+    /// where `lit` ([`shaders::lrt`]).
     /// Each pipeline's layout is made from its [`PipelineSpec`]; bind group layouts with the same
     /// entries are interchangeable (WebGPU's group equivalence), so the bind groups made with
     /// the layouts kept here fit every pipeline.
@@ -586,7 +587,7 @@ impl Pipelines {
             compilation_options: proxy_spec.shader.compilation_options(),
             cache: None,
         });
-        let pipelines = Self {
+        Self {
             frame_layout: FRAME_GROUP.create_layout(device),
             object_layout: OBJECT_GROUP.create_layout(device),
             part_layout: PART_GROUP.create_layout(device),
@@ -609,11 +610,7 @@ impl Pipelines {
             ),
             color_format,
             lit,
-        };
-        pipelines.visibility(device, plain);
-        pipelines.shade(device, plain);
-        pipelines.polygon(device, plain);
-        pipelines
+        }
     }
 
     /// The visibility pipelines for objects drawn as `variant` (whose `lit` must be the
