@@ -5,8 +5,10 @@
 //
 // 1. Visibility (`lrt_visibility`): a hit writes the apparent distance (Eq. 7–8) as depth and the
 //    triangle's id (part id, triangle) — the depth test keeps the nearest.
-// 2. Part depth (`id_depth_vertex`, `id_depth`): one full-screen triangle writes, per pixel, the
-//    depth of the part the visibility pass kept there (`part_depth`; 0 where none).
+// 2. Part depth (`id_depth_vertex`, `id_depth`): one rectangle, the frame's screen bound (the
+//    union of every footprint's rectangle, `frame_bound`), writes per pixel the depth of the part
+//    the visibility pass kept there (`part_depth`; 0 where none, and outside the rectangle,
+//    where no footprint reached, the target stays cleared to 0).
 // 3. Shading (`part_bound_vertex`, `lrt_shade`): one rectangle per part, its screen bound, drawn
 //    at the part's depth with the depth test "equal": only the pixels where the visibility pass
 //    kept a triangle of this part pass, and they pass before the fragment shader runs, so the
@@ -23,11 +25,15 @@
 // srt_gpu::shaders::lrt(counting), true only for measurements (global atomics per fragment
 // contend on a real GPU).
 override COUNT_FRAGMENTS: bool;
-// The part's screen bound written by the proxy pass (see proxy.wgsl): the shading pass draws it.
-@group(3) @binding(2) var<storage, read> part_bound: array<u32, 4>;
+// The part's draw arguments and screen bound written by the proxy pass (types.wgsl's
+// DRAW_ARGS_*): the shading pass draws the bound.
+@group(3) @binding(2) var<storage, read> part_draw_args: array<u32, DRAW_ARGS_WORDS>;
 // The triangle the visibility pass kept at each pixel: (part id, triangle), (0, 0) for none.
 // Bound only for the shading pass (the visibility pass renders into it).
 @group(0) @binding(2) var visible_ids: texture_2d<u32>;
+// The frame's screen bound written by the proxy pass (see proxy.wgsl): the part-depth pass
+// draws it. Bound only for the part-depth and shading passes.
+@group(0) @binding(13) var<storage, read> frame_bound: array<u32, 4>;
 
 struct LrtVarying {
     @builtin(position) position: vec4<f32>,
@@ -109,11 +115,22 @@ fn part_depth(id: u32) -> f32 {
     return f32(id) / PART_DEPTH_UNITS;
 }
 
-// One triangle covering the viewport (step 2).
+// Corner `v` (0 to 5) of the screen bound (!min x, !min y, max x, max y) as two triangles at
+// depth `depth`; an empty bound (min > max) is made degenerate.
+fn bound_corner(bound: vec4<u32>, v: u32, depth: f32) -> vec4<f32> {
+    let lo = vec2<f32>(f32(~bound.x), f32(~bound.y));
+    let hi = vec2<f32>(f32(bound.z), f32(bound.w));
+    let far = select(lo, hi, all(lo < hi));
+    let corners = array<vec2<f32>, 6>(lo, vec2<f32>(far.x, lo.y), far, lo, far, vec2<f32>(lo.x, far.y));
+    let pixel = corners[min(v, 5u)];
+    let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
+    return vec4<f32>(ndc, depth, 1.0);
+}
+
+// The frame's screen bound (step 2): only where some footprint reached can a part be kept.
 @vertex
 fn id_depth_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
-    let corner = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
-    return vec4<f32>(2.0 * corner - vec2<f32>(1.0), 0.0, 1.0);
+    return bound_corner(vec4<u32>(frame_bound[0], frame_bound[1], frame_bound[2], frame_bound[3]), v, 0.0);
 }
 
 // The depth of the part the visibility pass kept at this pixel (step 2).
@@ -126,14 +143,9 @@ fn id_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 
 // the bound of the object's box).
 @vertex
 fn part_bound_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
-    let lo = vec2<f32>(f32(~part_bound[0]), f32(~part_bound[1]));
-    let hi = vec2<f32>(f32(part_bound[2]), f32(part_bound[3]));
-    // Two triangles; an empty bound (lo > hi) is made degenerate.
-    let far = select(lo, hi, all(lo < hi));
-    let corners = array<vec2<f32>, 6>(lo, vec2<f32>(far.x, lo.y), far, lo, far, vec2<f32>(lo.x, far.y));
-    let pixel = corners[min(v, 5u)];
-    let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
-    return vec4<f32>(ndc, part_depth(part.id), 1.0);
+    let b = DRAW_ARGS_BOUND;
+    let bound = vec4<u32>(part_draw_args[b], part_draw_args[b + 1u], part_draw_args[b + 2u], part_draw_args[b + 3u]);
+    return bound_corner(bound, v, part_depth(part.id));
 }
 
 @fragment

@@ -9,26 +9,15 @@
 // of split triangles (split_footprint), taken in turn by draw_args[DRAW_ARGS_PIECES_TAKEN]. Each footprint names its
 // triangle, so the LRT pass draws all of them in one draw.
 @group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
-// The part's screen bound, the union of its footprints' rectangles in whole pixels, for the LRT
-// shading pass: (!min x, !min y, max x, max y) so that all four grow by atomicMax from the
-// cleared value 0 (which reads as empty: min > max).
-@group(3) @binding(1) var<storage, read_write> part_bound: array<atomic<u32>, 4>;
-// The arguments of the part's two indirect draws, each (vertex count, instance count, first
-// vertex, first instance); the CPU writes (0, 1, 0, 0) to both before the pass. [0..4] is the
-// footprint draw of the LRT visibility pass: its vertex count grows to the end of the last
-// triangle with a footprint on screen (FOOTPRINT_VERTICES per triangle). [4..8] is the LRT
-// shading pass's rectangle: 6 vertices once any footprint is on screen. So a part wholly off
-// screen or behind the camera draws nothing in either pass. [8] counts the piece slots taken
-// (the CPU writes 0). The indices are named below (twins of srt_gpu::types::DRAW_ARGS_*).
+// The frame's screen bound, the union of every footprint's rectangle in whole pixels (of every
+// part the pass is run over), for the LRT part-depth pass: (!min x, !min y, max x, max y) as
+// draw_args[DRAW_ARGS_BOUND..] holds the part's. One buffer for the whole frame, cleared to 0
+// (empty) before the pass.
+@group(3) @binding(1) var<storage, read_write> frame_bound: array<atomic<u32>, 4>;
+// The part's draw arguments and screen bound (types.wgsl's DRAW_ARGS_* say which word is
+// what); the CPU writes both draws as (0, 1, 0, 0), no piece taken and an empty bound before the
+// pass.
 @group(3) @binding(2) var<storage, read_write> draw_args: array<atomic<u32>, DRAW_ARGS_WORDS>;
-// draw_args[DRAW_ARGS_FOOTPRINT_VERTICES]: the footprint draw's vertex count.
-const DRAW_ARGS_FOOTPRINT_VERTICES: u32 = 0u;
-// draw_args[DRAW_ARGS_SHADE_VERTICES]: the shading draw's vertex count.
-const DRAW_ARGS_SHADE_VERTICES: u32 = 4u;
-// draw_args[DRAW_ARGS_PIECES_TAKEN]: piece slots taken (or asked for, once they run out).
-const DRAW_ARGS_PIECES_TAKEN: u32 = 8u;
-// Words in draw_args.
-const DRAW_ARGS_WORDS: u32 = 9u;
 
 // Invocations per workgroup: set at pipeline creation from srt_gpu::shaders::WORKGROUP_SIZE.
 override WORKGROUP_SIZE: u32;
@@ -400,9 +389,9 @@ fn bisect(piece: array<vec3<f32>, 3>) -> array<array<vec3<f32>, 3>, 2> {
     return array<array<vec3<f32>, 3>, 2>(array<vec3<f32>, 3>(a, middle, c), array<vec3<f32>, 3>(middle, b, c));
 }
 
-// Stores footprint `f` of triangle `triangle` in slot `slot`, grows the part's screen bound by
-// its rectangle clamped to the screen and the draw's vertex count past `slot` (an empty
-// footprint adds nothing).
+// Stores footprint `f` of triangle `triangle` in slot `slot`, grows the part's and the frame's
+// screen bounds by its rectangle clamped to the screen and the draw's vertex count past `slot`
+// (an empty footprint adds nothing).
 fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
     var named = f;
     named.triangle = triangle;
@@ -415,10 +404,11 @@ fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
     }
     atomicMax(&draw_args[DRAW_ARGS_FOOTPRINT_VERTICES], (slot + 1u) * FOOTPRINT_VERTICES);
     atomicMax(&draw_args[DRAW_ARGS_SHADE_VERTICES], 6u);
-    atomicMax(&part_bound[0], ~u32(lo.x));
-    atomicMax(&part_bound[1], ~u32(lo.y));
-    atomicMax(&part_bound[2], u32(hi.x));
-    atomicMax(&part_bound[3], u32(hi.y));
+    let bound = vec4<u32>(~u32(lo.x), ~u32(lo.y), u32(hi.x), u32(hi.y));
+    for (var k = 0u; k < 4u; k++) {
+        atomicMax(&draw_args[DRAW_ARGS_BOUND + k], bound[k]);
+        atomicMax(&frame_bound[k], bound[k]);
+    }
 }
 
 // Stores `f` as a piece of triangle `t` in the next free piece slot; false when none is left.

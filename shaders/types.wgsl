@@ -36,6 +36,22 @@ const FOOTPRINT_VERTICES: u32 = 3u * (FOOTPRINT_HULL_POINTS - 2u);
 // The same vertices cover a rectangle footprint with two triangles (corners 0 to 5).
 const_assert FOOTPRINT_VERTICES >= 6u;
 
+// A part's draw_args (proxy.wgsl writes it, lrt.wgsl reads it; twins of
+// srt_gpu::types::DRAW_ARGS_*): two indirect draws, each (vertex count, instance count, first
+// vertex, first instance). [DRAW_ARGS_FOOTPRINT_VERTICES] is the LRT visibility pass's footprint
+// draw: its vertex count grows to the end of the last triangle with a footprint on screen.
+// [DRAW_ARGS_SHADE_VERTICES] is the LRT shading pass's rectangle: 6 vertices once any footprint
+// is on screen. So a part wholly off screen or behind the camera draws nothing in either pass.
+// [DRAW_ARGS_PIECES_TAKEN] counts the piece slots taken (or asked for, once they run out).
+// [DRAW_ARGS_BOUND..+4] is the part's screen bound, the union of its footprints' rectangles in
+// whole pixels: (!min x, !min y, max x, max y), so that all four grow by atomicMax from 0,
+// which reads as empty (min > max).
+const DRAW_ARGS_FOOTPRINT_VERTICES: u32 = 0u;
+const DRAW_ARGS_SHADE_VERTICES: u32 = 4u;
+const DRAW_ARGS_PIECES_TAKEN: u32 = 8u;
+const DRAW_ARGS_BOUND: u32 = 9u;
+const DRAW_ARGS_WORDS: u32 = 13u;
+
 // Per image: camera, observer, light, shading and colour-table parameters.
 struct FrameUniforms {
     // S → clip space (NDC depth in [0, 1], y up).

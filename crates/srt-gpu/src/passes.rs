@@ -1,5 +1,16 @@
 //! Small helpers for recording passes that several modules (and the viewer) share.
 
+/// The frame-wide buffers that every batch's (and every traced object's box's) proxy and LRT
+/// bind groups bind.
+#[derive(Clone, Copy)]
+pub(crate) struct FrameShared<'a> {
+    /// The LRT passes' fragment counter (WGSL `fragment_count`).
+    pub(crate) fragment_count: &'a wgpu::Buffer,
+    /// The frame's screen bound (WGSL `frame_bound`, [`crate::types::FRAME_BOUND_BYTES`]), grown by the
+    /// proxy pass and drawn by the part-depth pass.
+    pub(crate) frame_bound: &'a wgpu::Buffer,
+}
+
 /// Begins a render pass into the colour target `target` (loaded as `load` says, stored) and the
 /// optional `depth` attachment, with the optional timestamp writes.
 pub fn begin_pass<'a>(

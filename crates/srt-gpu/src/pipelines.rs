@@ -180,24 +180,35 @@ pub mod slots {
         visibility: ShaderStages::COMPUTE,
         ty: storage(false),
     };
-    /// Group 3 of the proxy pass: `part_bound`, grown by every footprint.
-    pub const PROXY_PART_BOUND: Slot = Slot {
-        wgsl_name: "part_bound",
+    /// Group 3 of the proxy pass: `frame_bound`, the frame's screen bound, grown by every
+    /// footprint (one buffer for every part).
+    pub const PROXY_FRAME_BOUND: Slot = Slot {
+        wgsl_name: "frame_bound",
         binding: 1,
         visibility: ShaderStages::COMPUTE,
         ty: storage(false),
     };
-    /// Group 3 of the proxy pass: `draw_args`, the part's indirect draw arguments.
+    /// Group 3 of the proxy pass: `draw_args`, the part's indirect draw arguments and screen
+    /// bound.
     pub const PROXY_DRAW_ARGS: Slot = Slot {
         wgsl_name: "draw_args",
         binding: 2,
         visibility: ShaderStages::COMPUTE,
         ty: storage(false),
     };
-    /// Group 3 of the LRT pass: `part_bound`, read by the shading pass.
-    pub const LRT_PART_BOUND: Slot = Slot {
-        wgsl_name: "part_bound",
+    /// Group 3 of the LRT pass: `part_draw_args`, the proxy pass's `draw_args`, whose screen
+    /// bound the shading pass draws.
+    pub const LRT_DRAW_ARGS: Slot = Slot {
+        wgsl_name: "part_draw_args",
         binding: 2,
+        visibility: ShaderStages::VERTEX,
+        ty: storage(true),
+    };
+    /// Group 0 of the LRT part-depth and shading passes: `frame_bound`, the proxy pass's frame
+    /// screen bound, which the part-depth pass draws.
+    pub const FRAME_BOUND: Slot = Slot {
+        wgsl_name: "frame_bound",
+        binding: 13,
         visibility: ShaderStages::VERTEX,
         ty: storage(true),
     };
@@ -300,9 +311,9 @@ pub const FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     index: 0,
     slots: &[slots::FRAME_UNIFORMS, slots::LUT_TABLE],
 };
-/// Group 0 of the LRT shading pass: the frame group, the visibility pass's ids (a separate
-/// layout, because the visibility pass renders into the ids while group 0 is bound), the
-/// spectral tables and the lights with the shadow casters.
+/// Group 0 of the LRT part-depth and shading passes: the frame group, the visibility pass's ids
+/// (a separate layout, because the visibility pass renders into the ids while group 0 is
+/// bound), the spectral tables, the lights with the shadow casters and the frame's screen bound.
 pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt frame (shading)",
     index: 0,
@@ -312,6 +323,7 @@ pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
         slots::VISIBLE_IDS,
         slots::SPECTRAL_TABLES,
         slots::SHADOW_SCENE,
+        slots::FRAME_BOUND,
     ],
 };
 /// Group 0 of the polygon pass: the frame group, the spectral tables and the lights with the
@@ -353,25 +365,26 @@ pub const PART_GROUP: BindGroupSpec = BindGroupSpec {
         slots::PART_TEXTURE,
     ],
 };
-/// Group 3 of the proxy pass: footprints, the part's screen bound and its draw arguments, written.
+/// Group 3 of the proxy pass: footprints, the frame's screen bound and the part's draw arguments
+/// with its screen bound, written.
 pub const PROXY_OUTPUT_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt proxy output",
     index: 3,
     slots: &[
         slots::PROXY_FOOTPRINTS,
-        slots::PROXY_PART_BOUND,
+        slots::PROXY_FRAME_BOUND,
         slots::PROXY_DRAW_ARGS,
     ],
 };
-/// Group 3 of the LRT passes: footprints (read), the fragment counter and the part's screen
-/// bound (read).
+/// Group 3 of the LRT passes: footprints (read), the fragment counter and the part's draw
+/// arguments with its screen bound (read).
 pub const LRT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
     label: "srt lrt input",
     index: 3,
     slots: &[
         slots::LRT_FOOTPRINTS,
         slots::FRAGMENT_COUNT,
-        slots::LRT_PART_BOUND,
+        slots::LRT_DRAW_ARGS,
     ],
 };
 /// Group 3 of the ray tracer's visibility pass: the footprints of the object's box (read), the

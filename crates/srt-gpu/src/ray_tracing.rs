@@ -25,11 +25,11 @@ use crate::context::GpuContext;
 use crate::culling::box_near_faces_cullable;
 use crate::error::GpuError;
 use crate::limits::DeviceLimits;
+use crate::passes::FrameShared;
 use crate::pipelines::{Pipelines, slots};
 use crate::textures::part_texture;
 use crate::types::{
-    DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PART_BOUND_BYTES, PartFlags, PartUniforms,
-    footprint_slots,
+    DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PartFlags, PartUniforms, footprint_slots,
 };
 
 /// Above this many layers of triangles (an object's surface over its box's surface,
@@ -57,17 +57,16 @@ pub(crate) struct ObjectRayTracing {
     /// Group 2 of the proxy pass for the box (its uniforms, corners and triangles); also bound
     /// in the visibility pass, which reads nothing of it.
     pub box_part_group: wgpu::BindGroup,
-    /// Group 3 of the proxy pass for the box: its footprints, screen bound and draw arguments.
+    /// Group 3 of the proxy pass for the box: its footprints, the frame's screen bound and the
+    /// box's draw arguments.
     pub box_proxy_group: wgpu::BindGroup,
-    /// The box's screen bound, cleared before every proxy pass.
-    pub box_bound: wgpu::Buffer,
-    /// The box's two draws (its footprints, then the bound's rectangle), reset before every
-    /// proxy pass.
+    /// The box's two draws (its footprints, then the bound's rectangle) and its screen bound,
+    /// reset before every proxy pass.
     pub box_draw_args: wgpu::Buffer,
     /// Group 3 of the ray tracer's visibility pass: the box's footprints, counter, BVH.
     pub visibility_group: wgpu::BindGroup,
     /// Group 3 of the shading pass after the ray tracer: the box's footprints, the counter and
-    /// the box's bound.
+    /// the box's draw arguments with its bound.
     pub shade_group: wgpu::BindGroup,
 }
 
@@ -93,13 +92,12 @@ fn storage_buffer(device: &wgpu::Device, label: &str, contents: &[u8]) -> wgpu::
 }
 
 /// The buffers of an object's box as the proxy pass's input (uniforms, corners, triangles) and
-/// output (footprints, screen bound, draw arguments).
+/// output (footprints, draw arguments with the screen bound).
 struct BoxBuffers {
     uniforms: wgpu::Buffer,
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     footprints: wgpu::Buffer,
-    bound: wgpu::Buffer,
     draw_args: wgpu::Buffer,
 }
 
@@ -132,11 +130,6 @@ impl BoxBuffers {
                 "srt box footprints",
                 footprint_slots(u64::from(BOX_TRIANGLES)) * size_of::<GpuFootprint>() as u64,
                 wgpu::BufferUsages::empty(),
-            ),
-            bound: zeroed(
-                "srt box bound",
-                PART_BOUND_BYTES,
-                wgpu::BufferUsages::COPY_DST,
             ),
             draw_args: zeroed(
                 "srt box draw",
@@ -182,11 +175,11 @@ fn triangle_corners(triangles: &[GpuRtTriangle]) -> Vec<[[f32; 3]; 3]> {
 
 impl ObjectRayTracing {
     /// Uploads the BVH `bvh` ([`object_bvh`]) over `triangles` and the BVH's box, and makes the
-    /// bind groups; `counter` is the fragment counter.
-    pub fn new(
+    /// bind groups, which bind the frame-wide buffers `shared`.
+    pub(crate) fn new(
         ctx: &GpuContext,
         pipelines: &Pipelines,
-        counter: &wgpu::Buffer,
+        shared: FrameShared<'_>,
         triangles: &[GpuRtTriangle],
         bvh: &ObjectBvh,
     ) -> Self {
@@ -226,7 +219,7 @@ impl ObjectRayTracing {
                 &pipelines.proxy_output_layout,
                 &[
                     slots::PROXY_FOOTPRINTS.entry(boxed.footprints.as_entire_binding()),
-                    slots::PROXY_PART_BOUND.entry(boxed.bound.as_entire_binding()),
+                    slots::PROXY_FRAME_BOUND.entry(shared.frame_bound.as_entire_binding()),
                     slots::PROXY_DRAW_ARGS.entry(boxed.draw_args.as_entire_binding()),
                 ],
             ),
@@ -235,7 +228,7 @@ impl ObjectRayTracing {
                 &pipelines.rt_input_layout,
                 &[
                     slots::LRT_FOOTPRINTS.entry(boxed.footprints.as_entire_binding()),
-                    slots::FRAGMENT_COUNT.entry(counter.as_entire_binding()),
+                    slots::FRAGMENT_COUNT.entry(shared.fragment_count.as_entire_binding()),
                     slots::BVH_NODES.entry(nodes.as_entire_binding()),
                     slots::BVH_TRIANGLES.entry(ordered.as_entire_binding()),
                 ],
@@ -245,15 +238,14 @@ impl ObjectRayTracing {
                 &pipelines.lrt_input_layout,
                 &[
                     slots::LRT_FOOTPRINTS.entry(boxed.footprints.as_entire_binding()),
-                    slots::FRAGMENT_COUNT.entry(counter.as_entire_binding()),
-                    slots::LRT_PART_BOUND.entry(boxed.bound.as_entire_binding()),
+                    slots::FRAGMENT_COUNT.entry(shared.fragment_count.as_entire_binding()),
+                    slots::LRT_DRAW_ARGS.entry(boxed.draw_args.as_entire_binding()),
                 ],
             ),
             box_uniforms: boxed.uniforms,
             box_vertices: boxed.vertices,
             bounds,
             layers,
-            box_bound: boxed.bound,
             box_draw_args: boxed.draw_args,
         }
     }

@@ -474,8 +474,9 @@ pub const FOOTPRINT_VERTICES: u32 = 3 * (FOOTPRINT_HULL_POINTS as u32 - 2);
 /// fragments shaded), which the renderer clears and reads back.
 pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
 
-/// Size of WGSL `part_bound` (`array<u32, 4>`: a part's screen bound), one buffer per part.
-pub const PART_BOUND_BYTES: u64 = 16;
+/// Size of WGSL `frame_bound` (`array<u32, 4>`: the union of every footprint's screen
+/// rectangle in the frame), one buffer per renderer, cleared before every proxy pass.
+pub const FRAME_BOUND_BYTES: u64 = 16;
 
 /// Footprint slots for the pieces of split triangles in every batch, beyond
 /// [`footprint_slots`]'s share per triangle.
@@ -496,8 +497,12 @@ pub const DRAW_ARGS_FOOTPRINT_VERTICES: u32 = 0;
 pub const DRAW_ARGS_SHADE_VERTICES: u32 = 4;
 /// Index in WGSL `draw_args` of the count of piece slots taken (and asked for once they ran out).
 pub const DRAW_ARGS_PIECES_TAKEN: u32 = 8;
+/// Index in WGSL `draw_args` of the part's screen bound, the union of its footprints'
+/// rectangles in whole pixels: four words (!min x, !min y, max x, max y), all grown by
+/// `atomicMax` from 0, which reads as empty (min > max).
+pub const DRAW_ARGS_BOUND: u32 = 9;
 /// Words (u32) in WGSL `draw_args`, one buffer per part.
-pub const DRAW_ARGS_WORDS: u32 = 9;
+pub const DRAW_ARGS_WORDS: u32 = 13;
 
 /// Size of WGSL `draw_args` in bytes.
 pub const DRAW_ARGS_BYTES: u64 = 4 * DRAW_ARGS_WORDS as u64;

@@ -255,18 +255,21 @@ fn rust_twins_match_naga_layouts() {
 }
 
 /// Buffers the renderer sizes in Rust have the size of their WGSL globals: the fragment counter,
-/// the part bound and the indirect draw arguments (in every shader that declares them).
+/// the frame's screen bound and the indirect draw arguments with the part's bound (in every
+/// shader that declares them).
 #[test]
 fn buffers_sized_in_rust_match_their_wgsl_globals() {
     let expected = [
         ("fragment_count", srt_gpu::types::FRAGMENT_COUNTER_BYTES),
-        ("part_bound", srt_gpu::types::PART_BOUND_BYTES),
+        ("frame_bound", srt_gpu::types::FRAME_BOUND_BYTES),
         ("draw_args", srt_gpu::types::DRAW_ARGS_BYTES),
+        ("part_draw_args", srt_gpu::types::DRAW_ARGS_BYTES),
     ];
     let draw = size_of::<wgpu::util::DrawIndirectArgs>() as u64;
     assert_eq!(srt_gpu::types::SHADE_DRAW_OFFSET, draw);
-    // Two draws, then the piece counter.
-    assert_eq!(srt_gpu::types::DRAW_ARGS_BYTES, 2 * draw + 4);
+    // Two draws, the piece counter, then the part's bound.
+    assert_eq!(srt_gpu::types::DRAW_ARGS_BYTES, 2 * draw + 4 + 16);
+    assert_eq!(4 * u64::from(srt_gpu::types::DRAW_ARGS_BOUND), 2 * draw + 4);
     for (name, bytes) in expected {
         let mut declared_in = Vec::new();
         for shader in srt_gpu::shaders::all() {

@@ -15,10 +15,10 @@ use srt_gpu::motion::MotionCode;
 use srt_gpu::pipelines::{BindGroupSpec, PipelineSpec, Slot};
 use srt_gpu::shaders::{self, ObjectVariant, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
-    BVH_STACK_SIZE, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN, DRAW_ARGS_SHADE_VERTICES,
-    DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS, FOOTPRINT_VERTICES, FootprintCode,
-    MAX_MOVING_LIGHTS, OutputCode, PartFlags, SHADOW_NODE_ROWS, SHADOW_OBJECT_ROWS,
-    SHADOW_TRIANGLE_ROWS, SurfaceColourCode, ToneMapCode,
+    BVH_STACK_SIZE, DRAW_ARGS_BOUND, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN,
+    DRAW_ARGS_SHADE_VERTICES, DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS,
+    FOOTPRINT_VERTICES, FootprintCode, MAX_MOVING_LIGHTS, OutputCode, PartFlags, SHADOW_NODE_ROWS,
+    SHADOW_OBJECT_ROWS, SHADOW_TRIANGLE_ROWS, SurfaceColourCode, ToneMapCode,
 };
 
 /// Every WGSL const with a Rust twin, and the twin's value.
@@ -43,6 +43,7 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("DRAW_ARGS_FOOTPRINT_VERTICES", DRAW_ARGS_FOOTPRINT_VERTICES),
         ("DRAW_ARGS_SHADE_VERTICES", DRAW_ARGS_SHADE_VERTICES),
         ("DRAW_ARGS_PIECES_TAKEN", DRAW_ARGS_PIECES_TAKEN),
+        ("DRAW_ARGS_BOUND", DRAW_ARGS_BOUND),
         ("DRAW_ARGS_WORDS", DRAW_ARGS_WORDS),
         ("OUTPUT_DISPLAY", OutputCode::DISPLAY.0),
         ("OUTPUT_RADIANCE", OutputCode::RADIANCE.0),

@@ -169,20 +169,20 @@ impl super::GpuRenderer {
                 first_vertex: 0,
                 first_instance: 0,
             };
-            // Both draws empty, no piece slot taken.
-            let both = [no_draw.as_bytes(), no_draw.as_bytes(), &[0; 4]].concat();
-            debug_assert_eq!(both.len() as u64, DRAW_ARGS_BYTES);
-            let mut outputs: Vec<(&wgpu::Buffer, &wgpu::Buffer)> = Vec::new();
+            // Both draws empty, no piece slot taken, the bound empty (all four words 0).
+            let reset = [no_draw.as_bytes(), no_draw.as_bytes(), &[0; 4], &[0; 16]].concat();
+            debug_assert_eq!(reset.len() as u64, DRAW_ARGS_BYTES);
             for (object, traced) in self.objects.iter().zip(&traced) {
                 match traced {
-                    Some(rt) => outputs.push((&rt.box_bound, &rt.box_draw_args)),
-                    None => outputs.extend(object.parts.iter().map(|p| (&p.bound, &p.draw_args))),
+                    Some(rt) => ctx.queue.write_buffer(&rt.box_draw_args, 0, &reset),
+                    None => {
+                        for part in &object.parts {
+                            ctx.queue.write_buffer(&part.draw_args, 0, &reset);
+                        }
+                    }
                 }
             }
-            for (bound, draw_args) in outputs {
-                encoder.clear_buffer(bound, 0, None);
-                ctx.queue.write_buffer(draw_args, 0, &both);
-            }
+            encoder.clear_buffer(&self.frame.frame_bound, 0, None);
             self.encode_proxy_pass(encoder, tone, &traced);
         }
         let background = background_as(output, scene.background);
@@ -397,7 +397,8 @@ impl super::GpuRenderer {
             &self.targets.shade_frame_groups[tone],
             &[],
         );
-        pass.draw(0..3, 0..1);
+        // The frame's screen bound as two triangles (`id_depth_vertex`).
+        pass.draw(0..6, 0..1);
         drop(pass);
         let tested = wgpu::RenderPassDepthStencilAttachment {
             view: &part_depth_view,

@@ -23,6 +23,7 @@ use crate::error::GpuError;
 use crate::formats::{DEPTH_FORMAT, VISIBLE_ID_FORMAT, largest_value};
 use crate::limits::DeviceLimits;
 use crate::lut::{lut_params, lut_texture};
+use crate::passes::FrameShared;
 use crate::pipelines::{
     FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
     PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, SKY_FRAME_GROUP, slots,
@@ -37,8 +38,8 @@ use crate::spectral::SpectralTables;
 use crate::textures::part_texture;
 use crate::types::{
     ClockUniforms, DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
-    FRAGMENT_COUNTER_BYTES, FootprintCode, FrameUniforms, GpuFootprint, GpuFrame, GpuRtTriangle,
-    GpuVertex, ObjectUniforms, OutputCode, PART_BOUND_BYTES, PartFlags, PartUniforms,
+    FRAGMENT_COUNTER_BYTES, FRAME_BOUND_BYTES, FootprintCode, FrameUniforms, GpuFootprint,
+    GpuFrame, GpuRtTriangle, GpuVertex, ObjectUniforms, OutputCode, PartFlags, PartUniforms,
     SHADE_DRAW_OFFSET, SurfaceColourCode, ToneMapCode, blink4, footprint_slots, mat4, object_time,
     optics4, radiance_params, vec4,
 };
@@ -261,6 +262,16 @@ impl GpuRenderer {
         let lit = !scene.lights.is_empty();
         let pipelines = Pipelines::new(device, ctx.color_format, lit);
         let counter = FragmentCounter::new(device);
+        let frame_bound = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("srt frame bound"),
+            size: FRAME_BOUND_BYTES,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let shared = FrameShared {
+            fragment_count: &counter.counter,
+            frame_bound: &frame_bound,
+        };
         // Batches are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
         let mut first_id = 1u32;
         let (objects, sources): (Vec<ObjectResources>, Vec<Option<ShadowSource>>) = scene
@@ -270,7 +281,7 @@ impl GpuRenderer {
             .map(|(object, sizes)| {
                 let id = first_id;
                 first_id += sizes.1.len() as u32;
-                upload_object(ctx, &pipelines, &counter, object, id, sizes, lit)
+                upload_object(ctx, &pipelines, shared, object, id, sizes, lit)
             })
             .unzip();
         let shadows = if lit {
@@ -284,6 +295,7 @@ impl GpuRenderer {
             &shadows
                 .as_ref()
                 .map_or_else(|| empty_shadow_buffer(device), |s| s.buffer().clone()),
+            frame_bound,
         )?;
         let renderer = Self {
             timestamps: ctx.timestamps.then(|| Timestamps::new(device)),

@@ -66,6 +66,7 @@ impl Targets {
                         slots::VISIBLE_IDS.entry(wgpu::BindingResource::TextureView(&ids_view)),
                         frame.spectral.entry(),
                         slots::SHADOW_SCENE.entry(frame.shadow_scene.as_entire_binding()),
+                        slots::FRAME_BOUND.entry(frame.frame_bound.as_entire_binding()),
                     ],
                 })
             })
@@ -104,6 +105,10 @@ pub(super) struct FrameResources {
     pub(super) uniforms: wgpu::Buffer,
     /// WGSL `shadow_scene` ([`crate::shadows::ShadowScene`], or one unread row).
     pub(super) shadow_scene: wgpu::Buffer,
+    /// WGSL `frame_bound`: the union of the frame's footprints on screen, which the proxy pass
+    /// grows (every part's and box's proxy group binds it) and the part-depth pass draws;
+    /// cleared before every proxy pass.
+    pub(super) frame_bound: wgpu::Buffer,
     /// One bind group per tone map, indexed as [`ToneMap::ALL`] (the colour tables differ).
     pub(super) bind_groups: Vec<wgpu::BindGroup>,
     /// [`POLYGON_FRAME_GROUP`] per tone map, indexed as [`ToneMap::ALL`].
@@ -119,11 +124,13 @@ pub(super) struct FrameResources {
 }
 
 impl FrameResources {
-    /// The frame's resources, binding `shadow_scene` as WGSL `shadow_scene`.
+    /// The frame's resources, binding `shadow_scene` as WGSL `shadow_scene`, and keeping
+    /// `frame_bound` (WGSL `frame_bound`, which the objects' proxy groups bind already).
     pub(super) fn new(
         ctx: &GpuContext,
         pipelines: &Pipelines,
         shadow_scene: &wgpu::Buffer,
+        frame_bound: wgpu::Buffer,
     ) -> Result<Self, GpuError> {
         let written_per_frame = |label, size| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -176,6 +183,7 @@ impl FrameResources {
         Ok(Self {
             uniforms,
             shadow_scene: shadow_scene.clone(),
+            frame_bound,
             bind_groups,
             polygon_groups,
             sky_groups,

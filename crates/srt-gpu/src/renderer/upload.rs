@@ -134,9 +134,8 @@ pub(super) struct PartResources {
     pub(super) proxy_bind_group: wgpu::BindGroup,
     pub(super) lrt_bind_group: wgpu::BindGroup,
     pub(super) footprints: wgpu::Buffer,
-    /// The part's screen bound (WGSL `part_bound`), cleared before every proxy pass.
-    pub(super) bound: wgpu::Buffer,
-    /// The arguments of its footprint draw (WGSL `draw_args`), reset before every proxy pass.
+    /// The arguments of its footprint and shading draws and its screen bound (WGSL
+    /// `draw_args`), reset before every proxy pass.
     pub(super) draw_args: wgpu::Buffer,
     pub(super) sizes: PartSizes,
     pub(super) material: PartUniforms,
@@ -188,7 +187,7 @@ pub(super) fn batch_geometry(parts: &[&Part]) -> (Vec<GpuVertex>, Vec<[u32; 3]>)
 pub(super) fn upload_batch(
     ctx: &GpuContext,
     pipelines: &Pipelines,
-    counter: &FragmentCounter,
+    shared: FrameShared<'_>,
     object: &Object,
     (batch, id): (Batch, u32),
     (vertices, triangles): &(Vec<GpuVertex>, Vec<[u32; 3]>),
@@ -233,12 +232,6 @@ pub(super) fn upload_batch(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let bound = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("srt part bound"),
-        size: PART_BOUND_BYTES,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
     let draw_args = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("srt footprint draw"),
         size: DRAW_ARGS_BYTES,
@@ -264,7 +257,7 @@ pub(super) fn upload_batch(
         layout: &pipelines.proxy_output_layout,
         entries: &[
             slots::PROXY_FOOTPRINTS.entry(footprints.as_entire_binding()),
-            slots::PROXY_PART_BOUND.entry(bound.as_entire_binding()),
+            slots::PROXY_FRAME_BOUND.entry(shared.frame_bound.as_entire_binding()),
             slots::PROXY_DRAW_ARGS.entry(draw_args.as_entire_binding()),
         ],
     });
@@ -273,8 +266,8 @@ pub(super) fn upload_batch(
         layout: &pipelines.lrt_input_layout,
         entries: &[
             slots::LRT_FOOTPRINTS.entry(footprints.as_entire_binding()),
-            slots::FRAGMENT_COUNT.entry(counter.counter.as_entire_binding()),
-            slots::LRT_PART_BOUND.entry(bound.as_entire_binding()),
+            slots::FRAGMENT_COUNT.entry(shared.fragment_count.as_entire_binding()),
+            slots::LRT_DRAW_ARGS.entry(draw_args.as_entire_binding()),
         ],
     });
     PartResources {
@@ -283,7 +276,6 @@ pub(super) fn upload_batch(
         proxy_bind_group,
         lrt_bind_group,
         footprints,
-        bound,
         draw_args,
         sizes,
         material,
@@ -305,7 +297,7 @@ pub(super) type ShadowSource = Result<(ObjectBvh, Vec<GpuRtTriangle>), GpuError>
 pub(super) fn upload_object(
     ctx: &GpuContext,
     pipelines: &Pipelines,
-    counter: &FragmentCounter,
+    shared: FrameShared<'_>,
     object: &Object,
     first_id: u32,
     (culling, batches): (Vec<BackFaceCulling>, Vec<Batch>),
@@ -341,14 +333,14 @@ pub(super) fn upload_object(
                     padding: 0,
                 }
             }));
-            upload_batch(ctx, pipelines, counter, object, (batch, id), &geometry)
+            upload_batch(ctx, pipelines, shared, object, (batch, id), &geometry)
         })
         .collect();
     let bvh = object_bvh(ctx, &rt_triangles, &format!("object {:?}", object.name));
     let ray_tracing = bvh
         .as_ref()
         .map_err(Clone::clone)
-        .map(|bvh| ObjectRayTracing::new(ctx, pipelines, &counter.counter, &rt_triangles, bvh));
+        .map(|bvh| ObjectRayTracing::new(ctx, pipelines, shared, &rt_triangles, bvh));
     // A spinning or thrusting body casts no late shadow on the GPU (the shadow walk treats
     // casters as static in their rest frames): excluded rather than drawn at rest. The CPU
     // reference does shadow with it (srt-trace's `blocks`), so such scenes with moving lights
