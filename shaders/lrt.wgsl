@@ -180,20 +180,22 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     if (writes_seen_events()) {
         return seen_pixel(emission, local);
     }
-    // Texture-coordinate differentials from the neighbouring pixels' rays (as the CPU does),
-    // on the triangle where it is at the event.
-    var uv_ddx = vec2<f32>(0.0);
-    var uv_ddy = vec2<f32>(0.0);
-    if ((part_is_textured() || has_clock()) && object.style.x <= 0.0) {
-        let uv = triangle_uv(t, hit.zeta, hit.xi);
-        let rx = backward_ray(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0)));
-        let ry = backward_ray(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0)));
-        let hx = plane_hit(rx.origin, rx.direction, corners);
-        let hy = plane_hit(ry.origin, ry.direction, corners);
-        uv_ddx = select(vec2<f32>(0.0), triangle_uv(t, hx.zeta, hx.xi) - uv, hx.found);
-        uv_ddy = select(vec2<f32>(0.0), triangle_uv(t, hy.zeta, hy.xi) - uv, hy.found);
+    // Texture coordinates, and their differentials from the neighbouring pixels' rays (as the
+    // CPU does), on the triangle where it is at the event.
+    var uv = SurfaceUv(vec2<f32>(0.0), vec2<f32>(0.0), vec2<f32>(0.0));
+    if (part_is_textured() || has_clock()) {
+        let uvs = triangle_uvs(t);
+        uv.uv = uv_at(uvs, hit.zeta, hit.xi);
+        if (object.style.x <= 0.0) {
+            // The neighbours' rays start where this pixel's does; only their directions differ.
+            let plane = plane_rays(h.ray.origin, corners);
+            let hx = plane_barycentric(plane, rest_propagation_unscaled(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0))));
+            let hy = plane_barycentric(plane, rest_propagation_unscaled(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0))));
+            uv.ddx = select(vec2<f32>(0.0), uv_at(uvs, hx.zeta, hx.xi) - uv.uv, hx.found);
+            uv.ddy = select(vec2<f32>(0.0), uv_at(uvs, hy.zeta, hy.xi) - uv.uv, hy.found);
+        }
     }
     let event = to_observer(object.frame, emission);
-    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv_ddx, uv_ddy, local.proper_time);
+    let albedo = surface_albedo(t, hit.zeta, hit.xi, uv, local.proper_time);
     return shade(t, hit.zeta, hit.xi, event.yzw, albedo, local, Receiver(event, emission));
 }

@@ -106,6 +106,17 @@ fn backward_ray(frame: Frame, view_direction: vec3<f32>) -> RestRay {
     return RestRay(frame.observer_rest.yzw, -propagation_rest, frame.observer_rest.x);
 }
 
+// A positive multiple of the direction in S′ in which light seen along `view_direction` (in S)
+// propagates, i.e. of −backward_ray(frame, view_direction).direction: aberrate's numerator
+// (Eq. 4) with the frame's γ, without its division and the normalisation. For what a ray's
+// length does not change (where it meets a plane, in barycentric coordinates).
+fn rest_propagation_unscaled(frame: Frame, view_direction: vec3<f32>) -> vec3<f32> {
+    let beta = -frame.beta_gamma.xyz;
+    let gamma = frame.beta_gamma.w;
+    let propagation = -normalize(view_direction);
+    return gamma * beta + propagation + (gamma * gamma / (gamma + 1.0)) * dot(beta, propagation) * beta;
+}
+
 // Apparent distance of the point at parameter s on `ray`: γ s (1 − β·d′).
 fn apparent_distance(frame: Frame, ray: RestRay, s: f32) -> f32 {
     return frame.beta_gamma.w * s * (1.0 - dot(frame.beta_gamma.xyz, ray.direction));

@@ -94,6 +94,12 @@ fn polygon_emission(in: PolygonVarying) -> vec4<f32> {
     return emission_event(object.frame, rest);
 }
 
+// The fragment's texture coordinates, interpolated, and their screen derivatives.
+fn polygon_uv(in: PolygonVarying) -> SurfaceUv {
+    let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
+    return SurfaceUv(uv, dpdx(uv), dpdy(uv));
+}
+
 @fragment
 fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     if (motion_kind() != MOTION_REST) {
@@ -115,10 +121,7 @@ fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
     if (timed) {
         proper_time = proper_time_at(emission);
     }
-    let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
-    let uv_ddx = dpdx(uv);
-    let uv_ddy = dpdy(uv);
-    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, uv_ddx, uv_ddy, proper_time);
+    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, polygon_uv(in), proper_time);
     // The event the fragment shows, where the method draws it: on the observer's past light
     // cone at the interpolated apparent position (the shadow test of the object itself starts
     // from the interpolated rest point, which lies on its surface).
@@ -143,8 +146,7 @@ fn polygon_moving_fragment(in: PolygonVarying) -> vec4<f32> {
     if (writes_seen_events()) {
         return seen_pixel(emission, local);
     }
-    let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
-    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, dpdx(uv), dpdy(uv), local.proper_time);
+    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, polygon_uv(in), local.proper_time);
     let event = to_observer(object.frame, emission);
     return shade(in.triangle, in.barycentric.x, in.barycentric.y, event.yzw, albedo, local, Receiver(event, emission));
 }

@@ -38,6 +38,31 @@ fn plane_hit(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) ->
     return TriangleHit(true, dot(tau, q2) / det, dot(b, q1) / det, dot(direction, q2) / det);
 }
 
+// Where rays from one origin meet the plane of a triangle, as plane_hit finds it: for a ray
+// along d, ζ = d·zeta / d·det and ξ = d·xi / d·det (the triple products of plane_hit, with d
+// factored out: σ·(d×τ) = d·(τ×σ), b·(d×τ) = d·(τ×b), d·(b×σ)), so the same coordinates for
+// any positive or negative multiple of d. For several rays from the origin `origin` (a pixel's
+// neighbours) at the cost of three dot products each.
+struct PlaneRays {
+    zeta: vec3<f32>,
+    xi: vec3<f32>,
+    det: vec3<f32>,
+}
+
+fn plane_rays(origin: vec3<f32>, p: array<vec3<f32>, 3>) -> PlaneRays {
+    let sigma = p[1] - p[0];
+    let tau = p[2] - p[0];
+    let b = origin - p[0];
+    return PlaneRays(cross(tau, b), cross(b, sigma), cross(tau, sigma));
+}
+
+// (ζ, ξ) where the ray from the PlaneRays' origin along a multiple of `direction` meets the
+// plane, and whether it does (not parallel).
+fn plane_barycentric(plane: PlaneRays, direction: vec3<f32>) -> TriangleHit {
+    let det = dot(direction, plane.det);
+    return TriangleHit(det != 0.0, 0.0, dot(direction, plane.zeta) / det, dot(direction, plane.xi) / det);
+}
+
 // The hit of the ray (ψ > 0) with the triangle, edges included, both faces (mirror of
 // srt_trace::intersect_triangle).
 fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
@@ -46,12 +71,32 @@ fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32
     return h;
 }
 
+// The texture coordinates of triangle `t`'s corners (read once where several points of the
+// triangle are wanted: on a software rasteriser every storage read is a bounds-checked gather).
+fn triangle_uvs(t: u32) -> array<vec2<f32>, 3> {
+    return array<vec2<f32>, 3>(
+        vertices[indices[3u * t]].uv.xy,
+        vertices[indices[3u * t + 1u]].uv.xy,
+        vertices[indices[3u * t + 2u]].uv.xy,
+    );
+}
+
+// Texture coordinates interpolated between the corners' `uvs` at barycentric (ζ, ξ).
+fn uv_at(uvs: array<vec2<f32>, 3>, zeta: f32, xi: f32) -> vec2<f32> {
+    return (1.0 - zeta - xi) * uvs[0] + zeta * uvs[1] + xi * uvs[2];
+}
+
 // Interpolated texture coordinates of triangle `t` at barycentric (ζ, ξ).
 fn triangle_uv(t: u32, zeta: f32, xi: f32) -> vec2<f32> {
-    let a = vertices[indices[3u * t]].uv.xy;
-    let b = vertices[indices[3u * t + 1u]].uv.xy;
-    let c = vertices[indices[3u * t + 2u]].uv.xy;
-    return (1.0 - zeta - xi) * a + zeta * b + xi * c;
+    return uv_at(triangle_uvs(t), zeta, xi);
+}
+
+// Where a surface point is in its texture: its coordinates and their differences to the
+// neighbouring pixels' points (x, then y), which choose the filter's footprint.
+struct SurfaceUv {
+    uv: vec2<f32>,
+    ddx: vec2<f32>,
+    ddy: vec2<f32>,
 }
 
 // Size of one frame in mip level `level` of the part's texture: the base frame size halved
@@ -128,9 +173,9 @@ fn sample_part_texture(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>, frame: u32
 }
 
 // Surface colour (texel or clock face × base × vertex colour, or the wireframe pattern) of
-// triangle `t` at (ζ, ξ), with texture-coordinate derivatives per pixel; a clock shows the
-// object's proper time `proper_time` there.
-fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f32>, proper_time: f32) -> vec4<f32> {
+// triangle `t` at (ζ, ξ), whose place in the texture is `uv` (read only where the part is
+// textured or wears a clock); a clock shows the object's proper time `proper_time` there.
+fn surface_albedo(t: u32, zeta: f32, xi: f32, uv: SurfaceUv, proper_time: f32) -> vec4<f32> {
     let w = vec3<f32>(1.0 - zeta - xi, zeta, xi);
     let wireframe = object.style.x;
     if (WIREFRAME_VARIANT && wireframe > 0.0) {
@@ -147,9 +192,9 @@ fn surface_albedo(t: u32, zeta: f32, xi: f32, uv_ddx: vec2<f32>, uv_ddy: vec2<f3
         albedo *= c;
     }
     if (has_clock()) {
-        albedo *= clock_albedo(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, proper_time);
+        albedo *= clock_albedo(uv.uv, uv.ddx, uv.ddy, proper_time);
     } else if (part_is_textured()) {
-        albedo *= sample_part_texture(triangle_uv(t, zeta, xi), uv_ddx, uv_ddy, part_frame(proper_time));
+        albedo *= sample_part_texture(uv.uv, uv.ddx, uv.ddy, part_frame(proper_time));
     }
     return albedo;
 }
