@@ -6,7 +6,8 @@
 //! block of its own: `picture` (rendering the panes, mouse navigation, the probe), `observer`
 //! (time, the camera and the flight: keys and their panel sections), `objects` (the object list
 //! and each object's controls), `panel` (the side panel's layout, readouts and the sections on
-//! how the scene is drawn) and `files` (opening, saving, file dialogs, recording).
+//! how the scene is drawn), `files` (opening, saving, file dialogs, recording) and `stats` (where
+//! a frame's time goes, `SRT_VIEW_STATS=1`).
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -32,6 +33,7 @@ mod objects;
 mod observer;
 mod panel;
 mod picture;
+mod stats;
 
 /// The egui renderer the display textures are registered with.
 pub type EguiRenderer = Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>;
@@ -124,8 +126,8 @@ pub struct ViewerApp {
     frame_ms: f64,
     /// Fraction of the window's pixels rendered (1, ½ or ¼ per axis).
     resolution: f32,
-    /// Print frame statistics to stderr once a second (`SRT_VIEW_STATS=1`).
-    stats: Option<Instant>,
+    /// Where the frames' time goes, printed to stderr once a second (`SRT_VIEW_STATS=1`).
+    stats: Option<stats::FrameStats>,
     gpu_failed: bool,
     /// The view on the left (or alone), and the one on its right, if the screen is split.
     left_view: View,
@@ -198,7 +200,7 @@ impl ViewerApp {
             last_fps: 0.0,
             frame_ms: 0.0,
             resolution: 1.0,
-            stats: std::env::var_os("SRT_VIEW_STATS").map(|_| Instant::now()),
+            stats: std::env::var_os("SRT_VIEW_STATS").map(|_| stats::FrameStats::default()),
             gpu_failed: false,
             left_view: View::Seen,
             right_view: None,
@@ -324,6 +326,9 @@ impl ViewerApp {
 
     /// Draws the whole viewer into `ui` and handles its input.
     pub fn show(&mut self, ui: &mut egui::Ui) {
+        if let Some(stats) = &mut self.stats {
+            stats.start(Instant::now());
+        }
         // While recording, the clock advances by exactly one video frame per drawn frame, however
         // long the frame took to draw.
         let dt = match &self.recorder {
@@ -351,6 +356,9 @@ impl ViewerApp {
         self.record_frame();
         if self.playing || self.recorder.is_some() {
             ui.ctx().request_repaint();
+        }
+        if let Some(split) = self.stats.as_mut().and_then(|s| s.end(Instant::now())) {
+            eprintln!("{}", split.line(self.last_size, self.method.label()));
         }
     }
 }

@@ -236,17 +236,8 @@ impl ViewerApp {
                     self.rendered.pop_front();
                 }
                 self.gpu_failed = false;
-                if let Some(last) = self.stats
-                    && now.duration_since(last) >= Duration::from_secs(1)
-                {
-                    self.stats = Some(now);
-                    eprintln!(
-                        "srt view: {:.1} frames/s, {ms:.0} ms to render the last frame ({}x{} px, {})",
-                        self.frames_per_second(),
-                        size.0,
-                        size.1,
-                        self.method.label()
-                    );
+                if let Some(stats) = &mut self.stats {
+                    stats.rendered(now.duration_since(start));
                 }
             }
             Err(error) => {
