@@ -111,12 +111,11 @@ fn crossing_closer(hit: TriangleHit, k: u32, best: BvhHit) -> bool {
 
 // The nearest crossing on one piece of a moving body's curve among the triangles whose BVH boxes
 // overlap the piece's padded box (mirror of the reference's traverse_iterator over the query box).
-fn piece_nearest_hit(ray: RestRay, piece: MotionPiece) -> BvhHit {
+fn piece_nearest_hit(ray: RestRay, piece: MotionPiece, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> BvhHit {
     var best = BvhHit(false, 3.4e38, 0u);
     if (!box_overlaps(0u, piece.lo, piece.hi)) {
         return best;
     }
-    var stack: array<u32, BVH_STACK_SIZE>;
     var top = 0u;
     var node = 0u;
     loop {
@@ -135,7 +134,7 @@ fn piece_nearest_hit(ray: RestRay, piece: MotionPiece) -> BvhHit {
             let a = box_overlaps(first, piece.lo, piece.hi);
             let b = box_overlaps(first + 1u, piece.lo, piece.hi);
             if (a && b) {
-                stack[top] = first + 1u;
+                (*stack)[top] = first + 1u;
                 top++;
                 node = first;
                 descend = true;
@@ -152,7 +151,7 @@ fn piece_nearest_hit(ray: RestRay, piece: MotionPiece) -> BvhHit {
                 break;
             }
             top--;
-            node = stack[top];
+            node = (*stack)[top];
         }
     }
     return best;
@@ -170,13 +169,14 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
         }
     }
     var start = motion_march_start(ray, plan);
+    var stack: array<u32, BVH_STACK_SIZE>;
     for (var k = 1u; k <= plan.pieces; k++) {
         let piece = motion_piece(ray, plan, k, start);
         start = piece.end;
         if (!piece.valid) {
             continue;
         }
-        let hit = piece_nearest_hit(ray, piece);
+        let hit = piece_nearest_hit(ray, piece, &stack);
         if (hit.found) {
             return hit;
         }

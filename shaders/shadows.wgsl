@@ -98,8 +98,9 @@ fn shadow_triangle(index: u32) -> array<vec3<f32>, 3> {
 // (rest coordinates of its object) strictly inside: more than SHADOW_MARGIN · (1 + length +
 // max|start|) from either end, which keeps the lit point's own surface and the light out of it
 // (mirror of PreparedObject::blocks, whose margin is 10⁻⁹ in f64). Any hit will do: the walk
-// stops at the first.
-fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
+// stops at the first. `stack` is the caller's traversal stack, one for all its walks (a local
+// array is zeroed wherever it is declared: on a software rasteriser 64 stores per walk).
+fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
     let delta = end - start;
     let span = length(delta);
     let magnitude = abs(start);
@@ -114,7 +115,6 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
     if (slab_entry(node.min, node.max, start, inverse, far) < 0.0) {
         return false;
     }
-    var stack: array<u32, BVH_STACK_SIZE>;
     var top = 0u;
     loop {
         var descend = false;
@@ -133,10 +133,10 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
             if (ea >= 0.0 && eb >= 0.0) {
                 // The nearer first: a blocker near the lit point is found sooner.
                 if (ea <= eb) {
-                    stack[top] = node.first + 1u;
+                    (*stack)[top] = node.first + 1u;
                     node = a;
                 } else {
-                    stack[top] = node.first;
+                    (*stack)[top] = node.first;
                     node = b;
                 }
                 top++;
@@ -154,7 +154,7 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
                 break;
             }
             top--;
-            node = shadow_node(stack[top]);
+            node = shadow_node((*stack)[top]);
         }
     }
     return false;
@@ -164,8 +164,9 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
 // segment from the event to the light's retarded event, taken into each non-emitting caster's
 // rest frame (emitters, the lamps' visible bulbs, cast no shadow). For the object being shaded
 // (scene index `own`) the event's rest coordinates `receiver_rest` are used as they are, rather
-// than rounded once more through S. Mirror of Tracer::shadowed.
-fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, receiver_rest: vec4<f32>) -> bool {
+// than rounded once more through S; `stack` is the caller's traversal stack. Mirror of
+// Tracer::shadowed.
+fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, receiver_rest: vec4<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
     for (var i = 0u; i < frame_uniforms.lights.counts.y; i++) {
         let caster = shadow_object(i);
         if (caster.bvh.y != 0u) {
@@ -177,7 +178,7 @@ fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, re
             start = receiver_rest.yzw;
         }
         let end = (caster.observer_to_rest * (light.source_event - offset)).yzw;
-        if (shadow_segment_blocked(caster.bvh.x, start, end)) {
+        if (shadow_segment_blocked(caster.bvh.x, start, end, stack)) {
             return true;
         }
     }
