@@ -29,6 +29,9 @@ override MOTION_THRUST_PIECES_PER_SIZE: f32;
 const MOTION_MAX_PIECES: u32 = 4096u;
 // Most bisection steps of one crossing (srt_gpu::motion::BISECTIONS).
 const MOTION_BISECTIONS: u32 = 48u;
+// Pieces of a spinning body's march taken together first (srt_gpu::motion::PIECES_PER_GROUP):
+// where the group's padded box meets nothing the search could find, its pieces are skipped.
+const MOTION_PIECES_PER_GROUP: u32 = 8u;
 
 // The MOTION_* code this variant of the shader draws (srt_gpu::shaders::lrt, ::polygon): one
 // variant per code, each object drawn by its own, so that the other kinds' code is compiled out.
@@ -299,6 +302,38 @@ fn motion_piece(ray: RestRay, plan: MotionPlan, k: u32, start: BodyPoint) -> Mot
     return piece;
 }
 
+// Pieces `first` to `last` of a spinning body's march taken together (motion_group): the box
+// [lo, hi] holds the curve over all of them (its chord's box padded by the sagitta bound for
+// their span, as motion_piece pads one piece), and `end` is the curve at the last one's end,
+// exactly as motion_piece computes it there.
+struct MotionGroup {
+    last: u32,
+    lo: vec3<f32>,
+    hi: vec3<f32>,
+    end: BodyPoint,
+}
+
+// The group of pieces starting at piece `first` (from 1; a multiple of MOTION_PIECES_PER_GROUP
+// plus one) of a spinning body's march, `start` the curve at its start. A search may skip the
+// group's pieces where nothing it looks for meets the box: every crossing on them is a point of
+// the curve inside it. Only for spin, whose padding is a bound (a thrust's is an estimate).
+fn motion_group(ray: RestRay, plan: MotionPlan, first: u32, start: BodyPoint) -> MotionGroup {
+    let last = min(first + MOTION_PIECES_PER_GROUP - 1u, plan.pieces);
+    let count = f32(plan.pieces);
+    let b = plan.lower + (plan.to - plan.lower) * f32(last) / count;
+    let end = motion_curve(ray, b);
+    let span = f32(last - first + 1u);
+    let scale = max(max(abs(ray.origin.x), abs(ray.origin.y)), abs(ray.origin.z)) + abs(b)
+        + max(max(abs(start.point.x), abs(start.point.y)), abs(start.point.z));
+    let margin = plan.pad * span * span + 1e-5 * (1.0 + scale);
+    return MotionGroup(last, min(start.point, end.point) - vec3<f32>(margin), max(start.point, end.point) + vec3<f32>(margin), end);
+}
+
+// Whether the march of `plan` takes its pieces in groups first (a spinning body's).
+fn motion_grouped(plan: MotionPlan) -> bool {
+    return motion_kind() == MOTION_SPIN && plan.pad >= 0.0;
+}
+
 // Where the curve crosses the triangle `corners` on the (valid) piece `piece`: the sign change
 // of the signed distance to its plane, bisected, if the point is in the triangle, edges
 // included (mirror of srt-trace's moving::crossing and barycentric).
@@ -369,7 +404,17 @@ fn moving_hit_on(ray: RestRay, corners: array<vec3<f32>, 3>) -> TriangleHit {
         }
     }
     var start = motion_march_start(ray, plan);
+    let low = min(min(corners[0], corners[1]), corners[2]);
+    let high = max(max(corners[0], corners[1]), corners[2]);
     for (var k = 1u; k <= plan.pieces; k++) {
+        if (motion_grouped(plan) && k % MOTION_PIECES_PER_GROUP == 1u) {
+            let group = motion_group(ray, plan, k, start);
+            if (!(all(low <= group.hi) && all(high >= group.lo))) {
+                start = group.end;
+                k = group.last;
+                continue;
+            }
+        }
         let piece = motion_piece(ray, plan, k, start);
         start = piece.end;
         if (!piece.valid) {

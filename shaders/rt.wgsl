@@ -109,6 +109,40 @@ fn crossing_closer(hit: TriangleHit, k: u32, best: BvhHit) -> bool {
     return a.part < b.part || (a.part == b.part && a.triangle < b.triangle);
 }
 
+// Whether the box [lo, hi] overlaps the box of some BVH leaf (the walk stops at the first);
+// `stack` is the caller's traversal stack.
+fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
+    if (!box_overlaps(0u, lo, hi)) {
+        return false;
+    }
+    var top = 0u;
+    var node = 0u;
+    loop {
+        if (bvh_nodes[node].primitive_count > 0u) {
+            return true;
+        }
+        let first = bvh_nodes[node].first;
+        let a = box_overlaps(first, lo, hi);
+        let b = box_overlaps(first + 1u, lo, hi);
+        if (a) {
+            if (b) {
+                (*stack)[top] = first + 1u;
+                top++;
+            }
+            node = first;
+        } else if (b) {
+            node = first + 1u;
+        } else {
+            if (top == 0u) {
+                break;
+            }
+            top--;
+            node = (*stack)[top];
+        }
+    }
+    return false;
+}
+
 // The nearest crossing on one piece of a moving body's curve among the triangles whose BVH boxes
 // overlap the piece's padded box (mirror of the reference's traverse_iterator over the query box).
 fn piece_nearest_hit(ray: RestRay, piece: MotionPiece, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> BvhHit {
@@ -171,6 +205,14 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
     var start = motion_march_start(ray, plan);
     var stack: array<u32, BVH_STACK_SIZE>;
     for (var k = 1u; k <= plan.pieces; k++) {
+        if (motion_grouped(plan) && k % MOTION_PIECES_PER_GROUP == 1u) {
+            let group = motion_group(ray, plan, k, start);
+            if (!box_meets_leaf(group.lo, group.hi, &stack)) {
+                start = group.end;
+                k = group.last;
+                continue;
+            }
+        }
         let piece = motion_piece(ray, plan, k, start);
         start = piece.end;
         if (!piece.valid) {

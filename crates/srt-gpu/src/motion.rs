@@ -28,6 +28,12 @@ pub const MAX_PIECES: u32 = 4096;
 /// Most bisection steps for one crossing in f32 (WGSL `MOTION_BISECTIONS`): more than the 24
 /// bits of an f32 mantissa need from any bracket.
 pub const BISECTIONS: u32 = 48;
+/// Pieces of a spinning body's march that the GPU takes together first (WGSL
+/// `MOTION_PIECES_PER_GROUP`): the group's chord box, padded by the sagitta bound for its span,
+/// holds the curve over all of them, so where it meets no BVH leaf (no box of the triangle the
+/// shading pass repeats the search on) none of its pieces is evaluated. The pieces searched,
+/// and so the crossing found, are those of the reference.
+pub const PIECES_PER_GROUP: u32 = 8;
 
 /// How a body moves in its rest frame (WGSL `MOTION_*`): the LRT and polygon shaders are
 /// compiled once per code (`MOTION_VARIANT`, [`crate::shaders::lrt`]) and each object is drawn
