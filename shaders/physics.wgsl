@@ -69,9 +69,13 @@ fn receiver_doppler(beta: vec3<f32>, propagation: vec3<f32>) -> f32 {
 // `direction_rest` in S′ moving with `beta`.
 fn aberrate(beta: vec3<f32>, direction_rest: vec3<f32>) -> vec3<f32> {
     let gamma = lorentz_factor(beta);
-    let b_dot_n = dot(beta, direction_rest);
-    let spatial = gamma * beta + direction_rest + (gamma * gamma / (gamma + 1.0)) * b_dot_n * beta;
-    return spatial / (gamma * (1.0 + b_dot_n));
+    return aberration_numerator(beta, gamma, direction_rest) / (gamma * (1.0 + dot(beta, direction_rest)));
+}
+
+// Eq. 4's numerator: the spatial part of the photon four-vector (1, n′) boosted by β (Lorentz
+// factor γ), a positive multiple of aberrate's direction.
+fn aberration_numerator(beta: vec3<f32>, gamma: f32, direction_rest: vec3<f32>) -> vec3<f32> {
+    return gamma * beta + direction_rest + (gamma * gamma / (gamma + 1.0)) * dot(beta, direction_rest) * beta;
 }
 
 // Where a star at infinity is seen from S and its Doppler factor: a source at rest in a frame
@@ -111,10 +115,7 @@ fn backward_ray(frame: Frame, view_direction: vec3<f32>) -> RestRay {
 // (Eq. 4) with the frame's γ, without its division and the normalisation. For what a ray's
 // length does not change (where it meets a plane, in barycentric coordinates).
 fn rest_propagation_unscaled(frame: Frame, view_direction: vec3<f32>) -> vec3<f32> {
-    let beta = -frame.beta_gamma.xyz;
-    let gamma = frame.beta_gamma.w;
-    let propagation = -normalize(view_direction);
-    return gamma * beta + propagation + (gamma * gamma / (gamma + 1.0)) * dot(beta, propagation) * beta;
+    return aberration_numerator(-frame.beta_gamma.xyz, frame.beta_gamma.w, -normalize(view_direction));
 }
 
 // Apparent distance of the point at parameter s on `ray`: γ s (1 − β·d′).
