@@ -95,7 +95,11 @@ impl ObjectBvh {
             .iter()
             .map(|t| TriangleBounds(Aabb::from_points(&t.map(Vec3A::from))))
             .collect();
-        let bvh = build_tree(&bounds, &BvhBuildParams::medium_build());
+        // obvhs's slow preset (a wider PLOC search and four times the reinsertion batch of the
+        // medium one; its pre-splitting is not used here): on lavapipe the walk dominates a
+        // deep model's ray-traced frame, and these trees took the 2CylinderEngine's from about
+        // 73 to 66 ms at 1920×1080, for about twice the build time (docs/performance-log.md).
+        let bvh = build_tree(&bounds, &BvhBuildParams::slow_build());
         // Rounding in the slab test is relative to the coordinates: widen every box by a few
         // thousand f32 units of the largest coordinate (and never by nothing).
         let largest = bounds
