@@ -25,6 +25,11 @@ override SHADOW_MARGIN: f32;
 // of a branch that no pixel takes).
 override MOVING_LIGHTS: bool;
 
+// Whether the pipeline tests the moving lights' light for late shadows
+// (srt_gpu::shaders::ObjectVariant's `shadowed`): false for a frame without shadow casters, so
+// that the test is compiled out instead of running once per light with no lane active.
+override MOVING_LIGHT_SHADOWS: bool;
+
 // The light of a moving light that reaches an event (srt_physics::RetardedLight).
 struct RetardedLight {
     // False where the event is on the light's worldline or the numbers are not finite.
@@ -167,6 +172,9 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: pt
 // than rounded once more through S; `stack` is the caller's traversal stack. Mirror of
 // Tracer::shadowed.
 fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, receiver_rest: vec4<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
+    if (!MOVING_LIGHT_SHADOWS) {
+        return false;
+    }
     for (var i = 0u; i < frame_uniforms.lights.counts.y; i++) {
         let caster = shadow_object(i);
         if (caster.bvh.y != 0u) {

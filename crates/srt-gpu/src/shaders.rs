@@ -103,12 +103,14 @@ const SPECTRAL_OVERRIDES: [Override; 6] = [
 ];
 
 /// The overrides of the shadow test (shadows.wgsl) and its slab test (bvh.wgsl), with the
-/// moving lights compiled in (1) or out (0): `MOVING_LIGHTS`.
-const fn shadow_overrides(moving_lights: f64) -> [Override; 3] {
+/// moving lights compiled in (1) or out (0), `MOVING_LIGHTS`, and their shadow test likewise,
+/// `MOVING_LIGHT_SHADOWS`.
+const fn shadow_overrides(moving_lights: f64, shadows: f64) -> [Override; 4] {
     [
         ("SLAB_TOLERANCE", crate::bvh::SLAB_TOLERANCE as f64),
         ("SHADOW_MARGIN", crate::shadows::SHADOW_MARGIN as f64),
         ("MOVING_LIGHTS", moving_lights),
+        ("MOVING_LIGHT_SHADOWS", shadows),
     ]
 }
 
@@ -125,6 +127,10 @@ pub struct ObjectVariant {
     /// The shading passes add the light of moving lights and their shadows (shadows.wgsl;
     /// `MOVING_LIGHTS`).
     pub lit: bool,
+    /// The moving lights' light is tested for late shadows (shadows.wgsl's
+    /// `MOVING_LIGHT_SHADOWS`): off where the frame has no shadow casters, whose test would
+    /// otherwise still run once per light, masked.
+    pub shadowed: bool,
     /// How the objects drawn move in their rest frame (motion.wgsl's `MOTION_VARIANT`).
     pub motion: MotionCode,
     /// How lit surfaces are coloured (surface.wgsl's `SURFACE_COLOUR_VARIANT`).
@@ -146,6 +152,7 @@ impl ObjectVariant {
     pub const PLAIN: Self = Self {
         counting: false,
         lit: false,
+        shadowed: false,
         motion: MotionCode::REST,
         colour: SurfaceColourCode::PAPER,
         textured: false,
@@ -155,7 +162,7 @@ impl ObjectVariant {
     };
 
     /// How many on/off switches a variant has.
-    const SWITCHES: usize = 6;
+    const SWITCHES: usize = 7;
 
     /// How many variants there are: the range of [`ObjectVariant::index`].
     pub const COUNT: usize =
@@ -166,6 +173,7 @@ impl ObjectVariant {
         [
             self.counting,
             self.lit,
+            self.shadowed,
             self.textured,
             self.clock,
             self.wireframe,
@@ -178,11 +186,12 @@ impl ObjectVariant {
     fn with_switches(
         motion: MotionCode,
         colour: SurfaceColourCode,
-        [counting, lit, textured, clock, wireframe, seen]: [bool; Self::SWITCHES],
+        [counting, lit, shadowed, textured, clock, wireframe, seen]: [bool; Self::SWITCHES],
     ) -> Self {
         Self {
             counting,
             lit,
+            shadowed,
             motion,
             colour,
             textured,
@@ -257,6 +266,7 @@ impl ObjectVariant {
         let words: Vec<&str> = [
             (self.counting, "counting"),
             (self.lit, "lit"),
+            (self.shadowed, "shadowed"),
             (self.motion == MotionCode::SPIN, "spin"),
             (self.motion == MotionCode::THRUST, "thrust"),
             (self.colour == SurfaceColourCode::SPECTRAL, "spectral"),
@@ -291,7 +301,10 @@ impl ObjectVariant {
             ("WIREFRAME_VARIANT", f64::from(u8::from(self.wireframe))),
             ("SEEN_VARIANT", f64::from(u8::from(self.seen))),
         ];
-        overrides.extend(shadow_overrides(f64::from(u8::from(self.lit))));
+        overrides.extend(shadow_overrides(
+            f64::from(u8::from(self.lit)),
+            f64::from(u8::from(self.shadowed)),
+        ));
         overrides.extend(SPECTRAL_OVERRIDES);
         overrides
     }
@@ -576,6 +589,7 @@ mod tests {
         let shaded = ObjectVariant {
             counting: true,
             lit: true,
+            shadowed: true,
             motion: MotionCode::SPIN,
             colour: SurfaceColourCode::SPECTRAL,
             textured: true,

@@ -62,14 +62,29 @@ pub fn light_uniforms(scene: &Scene, shadows: Option<&ShadowScene>) -> LightUnif
     for (slot, light) in moving.iter_mut().zip(&scene.lights) {
         *slot = GpuMovingLight::from(light);
     }
-    let (casters, node_row, triangle_row) = shadows
-        .filter(|_| scene.shadows)
+    let (casters, node_row, triangle_row) = frame_shadows(scene, shadows)
         .map_or((0, 0, 0), |s| (s.casters.len(), s.node_row, s.triangle_row));
     LightUniforms {
         lamp: [scene.light.strength as f32, 0.0, 0.0, 0.0],
         counts: [count as u32, casters as u32, node_row, triangle_row],
         moving,
     }
+}
+
+/// The shadow casters the frame of `scene` tests: `shadows`, unless the scene's objects cast no
+/// shadows ([`Scene::shadows`]).
+#[must_use]
+pub fn frame_shadows<'a>(
+    scene: &Scene,
+    shadows: Option<&'a ShadowScene>,
+) -> Option<&'a ShadowScene> {
+    shadows.filter(|_| scene.shadows)
+}
+
+/// Whether the frame of `scene` tests any shadow caster (the shading variant's `shadowed`).
+#[must_use]
+pub fn frame_has_casters(scene: &Scene, shadows: Option<&ShadowScene>) -> bool {
+    frame_shadows(scene, shadows).is_some_and(|s| !s.casters.is_empty())
 }
 
 /// One shadow caster: the object's index in scene order and its BVH's root among all nodes.

@@ -189,6 +189,7 @@ impl super::GpuRenderer {
         let frame = ObjectVariant {
             counting: self.count_fragments,
             lit: self.pipelines.lit(),
+            shadowed: frame_has_casters(scene, self.shadows.as_ref()),
             colour: SurfaceColourCode::from(scene.colour),
             seen: output == OutputCode::SEEN_EVENT || output == OutputCode::SEEN_OBJECT,
             ..ObjectVariant::PLAIN

@@ -32,7 +32,9 @@ use crate::projection::view_projection;
 use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing, object_bvh};
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::{BlockSpace, WORKGROUP_SIZE};
-use crate::shadows::{ShadowRows, ShadowScene, empty_shadow_buffer, light_uniforms};
+use crate::shadows::{
+    ShadowRows, ShadowScene, empty_shadow_buffer, frame_has_casters, light_uniforms,
+};
 use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
 use crate::textures::part_texture;
