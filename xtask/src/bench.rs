@@ -420,6 +420,11 @@ fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
             engine_sweep_times(),
         ),
         (
+            "engine-through",
+            model_case(ENGINE, 0.9)?.scene,
+            engine_sweep_times(),
+        ),
+        (
             "flythrough",
             builtin("flythrough")?.scene,
             flythrough_sweep_times(),
