@@ -412,18 +412,16 @@ fn wheel_sweep_times() -> Vec<f64> {
 /// The fly-by sweeps: name, scene and the observation times of their frames, timed at the first
 /// size of [`SIZES`].
 fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
+    // Loaded once for both engine sweeps.
+    let engine = model_case(ENGINE, 0.9)?.scene;
     Ok(vec![
         ("teaser", builtin("teaser")?.scene, teaser_sweep_times()),
         (
             "engine-beside",
-            shifted(&model_case(ENGINE, 0.9)?.scene, ENGINE_BESIDE),
+            shifted(&engine, ENGINE_BESIDE),
             engine_sweep_times(),
         ),
-        (
-            "engine-through",
-            model_case(ENGINE, 0.9)?.scene,
-            engine_sweep_times(),
-        ),
+        ("engine-through", engine, engine_sweep_times()),
         (
             "flythrough",
             builtin("flythrough")?.scene,
