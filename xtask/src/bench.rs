@@ -21,16 +21,19 @@
 //!   move in their rest frame: the spinning `rolling-wheel` and the thrusting `rocket` (traced
 //!   along each ray's body-space curve; the polygon method moves each vertex).
 //!
-//! `--throughput` measures instead how many frames per second each method sustains on the
-//! static cases at 1280×720 ([`throughput`]).
+//! `--size WxH` (repeatable) measures the static cases at other sizes instead, the sweeps at
+//! the first. `--throughput` measures instead how many frames per second each method sustains
+//! on the static cases, at 1280×720 or at each `--size` ([`throughput`]).
 //!
 //! Prints one line per case. A full run rewrites the generated blocks of `docs/performance.md`
 //! (the table and the summary sentences, [`document`]) and saves every measurement as
-//! `docs/performance-results.json` ([`results`]); `--results PATH` saves them elsewhere too, on
+//! `docs/performance-results.json` ([`results`]), or, on a hardware GPU, blocks and a results
+//! file of its own ([`report`]); `--results PATH` saves them elsewhere too, on
 //! any run, and `--compare OLD NEW` puts two saved runs side by side ([`compare`]).
 
 mod compare;
 mod document;
+mod report;
 mod results;
 mod summary;
 mod throughput;
@@ -52,8 +55,27 @@ use crate::cases::{
 };
 use results::{CaseResult, Machine, Measurement, Results, SweepFrame, SweepResult, median};
 
-/// Image sizes of the static cases; the first is also that of the sweeps.
-const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
+/// Image sizes of the static cases unless `--size` names others; the first is also that of the
+/// sweeps (and `--throughput` measures at the first alone).
+pub const DEFAULT_SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
+
+/// Parses an image size written `WIDTHxHEIGHT` (e.g. `3840x2160`), each from 1 to 16 384.
+///
+/// # Errors
+/// A message naming the text and what is wrong with it.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (width, height) = text
+        .split_once(['x', '×'])
+        .ok_or_else(|| format!("{text:?} is not a size: write WIDTHxHEIGHT, e.g. 1920x1080"))?;
+    let side = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|n| (1..=16_384).contains(n))
+            .ok_or_else(|| format!("{text:?}: {s:?} is not a side from 1 to 16384 pixels"))
+    };
+    Ok((side(width)?, side(height)?))
+}
 /// Frames rendered by every method before timing starts.
 const WARM_UP: u32 = 2;
 
@@ -288,9 +310,9 @@ fn sweep(
     name: &str,
     scene: &Scene,
     times: &[f64],
+    (width, height): (u32, u32),
     frames: u32,
 ) -> anyhow::Result<SweepResult> {
-    let (width, height) = SIZES[0];
     let mut renderer = GpuRenderer::new(ctx, scene, width, height)?;
     let mut measured = Vec::new();
     for &ct in times {
@@ -383,7 +405,7 @@ fn builtin(name: &str) -> anyhow::Result<Case> {
         .with_context(|| format!("{name} is a built-in scene"))
 }
 
-/// The static cases, each timed at every size of [`SIZES`].
+/// The static cases, each timed at every size the run measures.
 fn static_cases() -> anyhow::Result<Vec<Case>> {
     Ok(vec![
         builtin("fig10-cube50")?,
@@ -410,7 +432,7 @@ fn wheel_sweep_times() -> Vec<f64> {
 }
 
 /// The fly-by sweeps: name, scene and the observation times of their frames, timed at the first
-/// size of [`SIZES`].
+/// size the run measures.
 fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
     // Loaded once for both engine sweeps.
     let engine = model_case(ENGINE, 0.9)?.scene;
@@ -435,15 +457,16 @@ fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
     ])
 }
 
-/// Every frame the bench times, named as the bench prints it (`NAME@ct=T` for a sweep's
-/// frames), with its size: what `cargo xtask validate --bench-frames` checks.
+/// Every frame the bench times at `sizes` (the static cases at each, the sweeps at the first),
+/// named as the bench prints it (`NAME@ct=T` for a sweep's frames), with its size: what
+/// `cargo xtask validate --bench-frames` checks.
 ///
 /// # Errors
 /// Missing models.
-pub fn timed_frames() -> anyhow::Result<Vec<(Case, (u32, u32))>> {
+pub fn timed_frames(sizes: &[(u32, u32)]) -> anyhow::Result<Vec<(Case, (u32, u32))>> {
     let static_cases = static_cases()?;
     let mut frames = Vec::new();
-    for size in SIZES {
+    for &size in sizes {
         frames.extend(static_cases.iter().map(|case| {
             let case = Case {
                 name: case.name.clone(),
@@ -456,21 +479,22 @@ pub fn timed_frames() -> anyhow::Result<Vec<(Case, (u32, u32))>> {
         frames.extend(
             times
                 .iter()
-                .map(|&ct| (at_time(name, &scene, ct), SIZES[0])),
+                .map(|&ct| (at_time(name, &scene, ct), sizes[0])),
         );
     }
     Ok(frames)
 }
 
-/// Measures the static cases whose name `selected` accepts, at every size, printing each.
+/// Measures the static cases whose name `selected` accepts, at each of `sizes`, printing each.
 fn static_results(
     ctx: &GpuContext,
     frames: u32,
+    sizes: &[(u32, u32)],
     selected: impl Fn(&str) -> bool,
 ) -> anyhow::Result<Vec<CaseResult>> {
     let static_cases = static_cases()?;
     let mut measured = Vec::new();
-    for (width, height) in SIZES {
+    for &(width, height) in sizes {
         for case in static_cases.iter().filter(|c| selected(&c.name)) {
             let mut renderer = GpuRenderer::new(ctx, &case.scene, width, height)?;
             let result = measure_case(ctx, &mut renderer, case, frames)?;
@@ -487,16 +511,17 @@ fn static_results(
     Ok(measured)
 }
 
-/// Runs the benchmark with `frames` timed frames per measurement, rewrites the generated
-/// blocks of `docs/performance.md` and saves `docs/performance-results.json`; with `only`, runs
-/// the cases whose name contains it and leaves both alone. With `results`, also saves the
-/// results there (on any run).
+/// Runs the benchmark at `sizes` with `frames` timed frames per measurement, rewrites the
+/// adapter's generated blocks of `docs/performance.md` and saves its results file
+/// ([`report::Report`]); with `only`, runs the cases whose name contains it and leaves both
+/// alone. With `results`, also saves the results there (on any run).
 ///
 /// # Errors
 /// No GPU, missing models, or an unwritable file.
 pub fn run(
     workspace: &Path,
     frames: u32,
+    sizes: &[(u32, u32)],
     only: Option<&str>,
     results: Option<&Path>,
 ) -> anyhow::Result<()> {
@@ -505,11 +530,11 @@ pub fn run(
         GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
     let adapter = ctx.adapter_summary();
     println!("adapter: {adapter}");
-    let cases = static_results(&ctx, frames, selected)?;
+    let cases = static_results(&ctx, frames, sizes, selected)?;
     let mut swept = Vec::new();
     for (name, scene, times) in sweeps()? {
         if selected(name) {
-            let result = sweep(&ctx, name, &scene, &times, frames)?;
+            let result = sweep(&ctx, name, &scene, &times, sizes[0], frames)?;
             println!("{}", sweep_text(&result));
             swept.push(result);
         }
@@ -531,28 +556,36 @@ pub fn run(
         println!("wrote {}", path.display());
     }
     if only.is_none() {
-        document::write(workspace, &measured)?;
+        document::write(workspace, &measured, report::Report::for_adapter(&ctx))?;
     }
     Ok(())
 }
 
 /// Measures the sustained frame rate of every method on the static cases whose name contains
-/// `only` (all without it) at the first size of [`SIZES`], `frames` frames each, printing each;
-/// a full run rewrites the throughput block of docs/performance.md.
+/// `only` (all without it) at each of `sizes`, `frames` frames each, printing each; a full run
+/// rewrites the adapter's throughput block of docs/performance.md ([`report::Report`]).
 ///
 /// # Errors
 /// No GPU, missing models, or an unwritable file.
-pub fn run_throughput(workspace: &Path, frames: u32, only: Option<&str>) -> anyhow::Result<()> {
+pub fn run_throughput(
+    workspace: &Path,
+    frames: u32,
+    sizes: &[(u32, u32)],
+    only: Option<&str>,
+) -> anyhow::Result<()> {
     let ctx =
         GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
     let adapter = ctx.adapter_summary();
     println!("adapter: {adapter}");
-    let (width, height) = SIZES[0];
     let pictures = workspace.join("target/bench-throughput");
     let mut measured = Vec::new();
-    for case in static_cases()?
+    let cases = static_cases()?;
+    let selected = cases
         .iter()
-        .filter(|c| only.is_none_or(|o| c.name.contains(o)))
+        .filter(|c| only.is_none_or(|o| c.name.contains(o)));
+    for (&(width, height), case) in sizes
+        .iter()
+        .flat_map(|size| selected.clone().map(move |case| (size, case)))
     {
         let renderer = GpuRenderer::new(&ctx, &case.scene, width, height)?;
         throughput::save_first_frame(&ctx, &renderer, &case.scene, &case.name, &pictures)?;
@@ -570,13 +603,15 @@ pub fn run_throughput(workspace: &Path, frames: u32, only: Option<&str>) -> anyh
     }
     println!("first frames: {}", pictures.display());
     if only.is_none() {
+        let markers = report::Report::for_adapter(&ctx).throughput;
         let block = throughput::table(
             &measured,
             &adapter,
             &crate::provenance::today(),
             &crate::provenance::commit(workspace),
+            markers,
         );
-        throughput::write(&workspace.join(document::DOCUMENT), &block)?;
+        throughput::write(&workspace.join(document::DOCUMENT), &block, markers)?;
     }
     Ok(())
 }
@@ -591,4 +626,19 @@ pub fn run_compare(old: &Path, new: &Path) -> anyhow::Result<()> {
         compare::compare(&Results::load(old)?, &Results::load(new)?)
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_size;
+
+    #[test]
+    fn sizes_parse_and_bad_ones_are_named() {
+        assert_eq!(parse_size("3840x2160"), Ok((3840, 2160)));
+        assert_eq!(parse_size("1920×1080"), Ok((1920, 1080)));
+        for bad in ["1920", "0x10", "x10", "1920x", "20000x10", "axb", "-5x5"] {
+            let message = parse_size(bad).expect_err(bad);
+            assert!(message.contains(bad), "{message}");
+        }
+    }
 }

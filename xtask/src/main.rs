@@ -40,6 +40,10 @@ enum Command {
         /// every exact method, recorded for the bench's table.
         #[arg(long)]
         bench_frames: bool,
+        /// With --bench-frames: the bench's `--size`s (static cases at each, sweeps at the
+        /// first); 1280x720 and 1920x1080 when none is given.
+        #[arg(long = "size", value_name = "WxH", value_parser = bench::parse_size, requires = "bench_frames")]
+        sizes: Vec<(u32, u32)>,
     },
     /// Measure the paper's Table 1 and scenes in motion on the current adapter; a full run
     /// rewrites the generated blocks of docs/performance.md (table and summary) and saves every
@@ -56,6 +60,10 @@ enum Command {
         /// compare a subset before and after a change.
         #[arg(long, value_name = "PATH")]
         results: Option<PathBuf>,
+        /// Measure the static cases at this size, e.g. 3840x2160 (repeatable; the sweeps run at
+        /// the first): 1280x720 and 1920x1080 when none is given, 1280x720 with --throughput.
+        #[arg(long = "size", value_name = "WxH", value_parser = bench::parse_size)]
+        sizes: Vec<(u32, u32)>,
         /// Measure nothing: print a Markdown table comparing two saved results files (each
         /// method's old ms, new ms and new / old per case, matched by name and size; cases in
         /// only one file listed apart). Needs no GPU.
@@ -63,12 +71,12 @@ enum Command {
             long,
             num_args = 2,
             value_names = ["OLD", "NEW"],
-            conflicts_with_all = ["frames", "only", "results"]
+            conflicts_with_all = ["frames", "only", "results", "sizes"]
         )]
         compare: Option<Vec<PathBuf>>,
         /// Measure instead each method's sustained frames per second: FRAMES frames (default
-        /// 30) back to back at 1280×720, the scene moving on, frames in flight, no readback; a
-        /// full run rewrites the throughput block of docs/performance.md.
+        /// 30) back to back at each --size, the scene moving on, frames in flight, no readback;
+        /// a full run rewrites the throughput block of docs/performance.md.
         #[arg(
             long,
             value_name = "FRAMES",
@@ -112,6 +120,15 @@ fn workspace_root() -> PathBuf {
         .to_path_buf()
 }
 
+/// `sizes`, or `default` where none was given.
+fn sizes_or(sizes: Vec<(u32, u32)>, default: &[(u32, u32)]) -> Vec<(u32, u32)> {
+    if sizes.is_empty() {
+        default.to_vec()
+    } else {
+        sizes
+    }
+}
+
 fn main() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Figures { out } => {
@@ -120,9 +137,14 @@ fn main() -> anyhow::Result<()> {
                 println!("wrote {}", path.display());
             }
         }
-        Command::Validate { only, bench_frames } => {
+        Command::Validate {
+            only,
+            bench_frames,
+            sizes,
+        } => {
             if bench_frames {
-                validate::run_bench_frames(&workspace_root(), only.as_deref())?;
+                let sizes = sizes_or(sizes, &bench::DEFAULT_SIZES);
+                validate::run_bench_frames(&workspace_root(), &sizes, only.as_deref())?;
             } else {
                 validate::run(&workspace_root(), only.as_deref())?;
             }
@@ -134,17 +156,23 @@ fn main() -> anyhow::Result<()> {
         Command::Bench {
             throughput: Some(frames),
             only,
+            sizes,
             ..
-        } => bench::run_throughput(&workspace_root(), frames, only.as_deref())?,
+        } => {
+            let sizes = sizes_or(sizes, &bench::DEFAULT_SIZES[..1]);
+            bench::run_throughput(&workspace_root(), frames, &sizes, only.as_deref())?;
+        }
         Command::Bench {
             frames,
             only,
             results,
+            sizes,
             compare: None,
             throughput: None,
         } => bench::run(
             &workspace_root(),
             frames,
+            &sizes_or(sizes, &bench::DEFAULT_SIZES),
             only.as_deref(),
             results.as_deref(),
         )?,

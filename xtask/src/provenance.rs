@@ -5,7 +5,9 @@ use std::path::Path;
 use std::process::Command;
 
 /// The short hash of the checked-out commit, with `-dirty` when the working tree differs from
-/// it, or `unknown` outside a git checkout.
+/// it. Outside a git checkout (a copy of a clean checkout taken to a machine to measure there):
+/// the environment variable [`SOURCE_COMMIT_VARIABLE`] followed by ` (copy)` where it is set,
+/// else `unknown`.
 #[must_use]
 pub fn commit(workspace: &Path) -> String {
     let git = |args: &[&str]| {
@@ -23,9 +25,13 @@ pub fn commit(workspace: &Path) -> String {
                 .is_some_and(|status| !status.is_empty());
             if dirty { format!("{hash}-dirty") } else { hash }
         }
-        None => "unknown".to_owned(),
+        None => std::env::var(SOURCE_COMMIT_VARIABLE)
+            .map_or_else(|_| "unknown".to_owned(), |hash| format!("{hash} (copy)")),
     }
 }
+
+/// Names the commit a copy of the working tree without its `.git` was taken from.
+pub const SOURCE_COMMIT_VARIABLE: &str = "SRT_SOURCE_COMMIT";
 
 /// Today's date in UTC, `YYYY-MM-DD`.
 #[must_use]

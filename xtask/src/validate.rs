@@ -145,7 +145,11 @@ fn fastest(scene: &Scene) -> f64 {
 ///
 /// # Errors
 /// When no GPU is available, a model is missing, or a frame disagrees.
-pub fn run_bench_frames(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
+pub fn run_bench_frames(
+    workspace: &Path,
+    sizes: &[(u32, u32)],
+    only: Option<&str>,
+) -> anyhow::Result<()> {
     let ctx = GpuContext::new()
         .context("cargo xtask validate needs a GPU adapter (software ones count)")?;
     println!("adapter: {}", ctx.adapter_summary());
@@ -157,7 +161,7 @@ pub fn run_bench_frames(workspace: &Path, only: Option<&str>) -> anyhow::Result<
         crate::provenance::commit(workspace),
         crate::provenance::today()
     );
-    let frames = crate::bench::timed_frames()?;
+    let frames = crate::bench::timed_frames(sizes)?;
     let frames: Vec<_> = frames
         .into_iter()
         .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))

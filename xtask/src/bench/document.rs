@@ -7,21 +7,12 @@ use std::path::Path;
 use anyhow::Context as _;
 use srt_gpu::Method;
 
+use super::report::{Markers, Report};
 use super::results::{CaseResult, METHODS, Results, SweepResult};
 use super::summary::summary;
 
 /// The document the bench updates, relative to the workspace.
 pub const DOCUMENT: &str = "docs/performance.md";
-/// The raw results saved beside it, relative to the workspace.
-pub const RESULTS: &str = "docs/performance-results.json";
-/// First line of the table block.
-const TABLE_START: &str = "<!-- table1:start (written by cargo xtask bench) -->";
-/// Last line of the table block.
-const TABLE_END: &str = "<!-- table1:end -->";
-/// First line of the summary block.
-const SUMMARY_START: &str = "<!-- summary:start (written by cargo xtask bench) -->";
-/// Last line of the summary block.
-const SUMMARY_END: &str = "<!-- summary:end -->";
 
 /// What the last `cargo xtask validate --bench-frames` recorded
 /// ([`crate::validate::BENCH_FRAMES_RECORD`]) and the commit the bench measures.
@@ -139,12 +130,12 @@ fn sweep_row(sweep: &SweepResult) -> Option<String> {
     ))
 }
 
-/// The table block, markers included.
-fn table(results: &Results, validation: &Validation) -> String {
+/// The table block between `markers`.
+fn table(results: &Results, validation: &Validation, markers: Markers) -> String {
     let mut table = format!(
-        "{TABLE_START}\nAdapter: {}. Median of {} frames after {} warm-up frames per measurement, timed by {}.\n\n\
+        "{}\nAdapter: {}. Median of {} frames after {} warm-up frames per measurement, timed by {}.\n\n\
          | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
-        results.adapter, results.frames, results.warm_up, results.timing
+        markers.start, results.adapter, results.frames, results.warm_up, results.timing
     );
     for case in &results.cases {
         table += &format!("{} {} |\n", case_row(case), validation.cell([case]));
@@ -155,40 +146,51 @@ fn table(results: &Results, validation: &Validation) -> String {
             table += &format!("{row} {} |\n", validation.cell(frames));
         }
     }
-    table + TABLE_END
+    table + markers.end
 }
 
-/// `text` with the block from `start` to `end` (markers included) replaced by `block`, or with
+/// `text` with the block between `markers` (included) replaced by `block`, or with
 /// `block` appended where the markers are missing.
-pub(super) fn replace_block(text: &str, start: &str, end: &str, block: &str) -> String {
-    match (text.find(start), text.find(end)) {
+pub(super) fn replace_block(text: &str, markers: Markers, block: &str) -> String {
+    match (text.find(markers.start), text.find(markers.end)) {
         (Some(a), Some(b)) if a < b => {
-            format!("{}{block}{}", &text[..a], &text[b + end.len()..])
+            format!("{}{block}{}", &text[..a], &text[b + markers.end.len()..])
         }
         _ => format!("{text}\n{block}\n"),
     }
 }
 
-/// The document `text` with its generated blocks (table and summary) rewritten from `results`.
+/// The document `text` with `report`'s generated blocks (table and summary) rewritten from
+/// `results`.
 #[must_use]
-pub fn update(text: &str, results: &Results, validation: &Validation) -> String {
-    let summary = format!("{SUMMARY_START}\n{}{SUMMARY_END}", summary(results));
-    let text = replace_block(text, SUMMARY_START, SUMMARY_END, &summary);
-    replace_block(&text, TABLE_START, TABLE_END, &table(results, validation))
+pub fn update(text: &str, results: &Results, validation: &Validation, report: Report) -> String {
+    let summary = format!(
+        "{}\n{}{}",
+        report.summary.start,
+        summary(results),
+        report.summary.end
+    );
+    let text = replace_block(text, report.summary, &summary);
+    replace_block(
+        &text,
+        report.table,
+        &table(results, validation, report.table),
+    )
 }
 
-/// Rewrites the generated blocks of [`DOCUMENT`] and saves the results as [`RESULTS`].
+/// Rewrites `report`'s generated blocks of [`DOCUMENT`] and saves the results as its
+/// results file.
 ///
 /// # Errors
 /// An unreadable or unwritable file.
-pub fn write(workspace: &Path, results: &Results) -> anyhow::Result<()> {
+pub fn write(workspace: &Path, results: &Results, report: Report) -> anyhow::Result<()> {
     let doc = workspace.join(DOCUMENT);
     let text =
         std::fs::read_to_string(&doc).with_context(|| format!("cannot read {}", doc.display()))?;
-    let updated = update(&text, results, &Validation::read(workspace));
+    let updated = update(&text, results, &Validation::read(workspace), report);
     std::fs::write(&doc, updated).with_context(|| format!("cannot write {}", doc.display()))?;
     println!("updated {}", doc.display());
-    let json = workspace.join(RESULTS);
+    let json = workspace.join(report.results);
     results.save(&json)?;
     println!("wrote {}", json.display());
     Ok(())
@@ -196,13 +198,16 @@ pub fn write(workspace: &Path, results: &Results) -> anyhow::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::{SUMMARY_END, SUMMARY_START, TABLE_END, TABLE_START, Validation, update};
+    use super::{Validation, update};
+    use crate::bench::report::{HARDWARE, SOFTWARE};
     use crate::bench::results::tests::results;
 
-    /// A document with both blocks holding stale text between hand-written prose.
+    /// A document with both software blocks holding stale text between hand-written prose.
     fn document() -> String {
+        let (summary, table) = (SOFTWARE.summary, SOFTWARE.table);
         format!(
-            "# Performance\n\nProse.\n\n{SUMMARY_START}\nstale summary\n{SUMMARY_END}\n\nMore prose.\n\n{TABLE_START}\nstale table\n{TABLE_END}\n\nEnd.\n"
+            "# Performance\n\nProse.\n\n{}\nstale summary\n{}\n\nMore prose.\n\n{}\nstale table\n{}\n\nEnd.\n",
+            summary.start, summary.end, table.start, table.end
         )
     }
 
@@ -212,9 +217,15 @@ mod tests {
             "# commit=abc date=2026-01-01\ncube\t1280x720\tpass\nspider\t1280x720\tfail\nfly@ct=0\t1280x720\tpass\nfly@ct=6\t1280x720\tpass\n",
             "abc".to_owned(),
         );
-        let text = update(&document(), &results(), &validation);
+        let text = update(&document(), &results(), &validation, SOFTWARE);
         assert!(!text.contains("stale"));
-        for kept in ["Prose.", "More prose.", "End.", SUMMARY_END, TABLE_END] {
+        for kept in [
+            "Prose.",
+            "More prose.",
+            "End.",
+            SOFTWARE.summary.end,
+            SOFTWARE.table.end,
+        ] {
             assert_eq!(text.matches(kept).count(), 1, "{kept}");
         }
         assert!(text.contains("every sweep frame: missed** at spider 1280×720 (1.50)"));
@@ -226,15 +237,26 @@ mod tests {
         assert!(text.contains(
             "| fly (sweep, 2 frames) | 1280×720 | 300 | ≤ 25.00 | ≤ 20.00 | ≤ 40.00 | | worst 2.50 | worst 2.00 | worst 4.00 | | | | | yes, 2026-01-01 (abc) |"
         ));
-        assert_eq!(update(&text, &results(), &validation), text);
+        assert_eq!(update(&text, &results(), &validation, SOFTWARE), text);
+    }
+
+    /// A hardware GPU's run adds its own blocks and leaves the software run's as they were.
+    #[test]
+    fn a_hardware_run_keeps_the_software_blocks() {
+        let validation = Validation::parse("", "abc".to_owned());
+        let text = update(&document(), &results(), &validation, HARDWARE);
+        assert!(text.starts_with(&document()));
+        assert!(text.contains(HARDWARE.summary.start) && text.contains(HARDWARE.table.end));
+        let again = update(&text, &results(), &validation, HARDWARE);
+        assert_eq!(again, text);
     }
 
     #[test]
     fn missing_blocks_are_appended() {
         let validation = Validation::parse("", "abc".to_owned());
-        let text = update("# Performance\n", &results(), &validation);
+        let text = update("# Performance\n", &results(), &validation, SOFTWARE);
         assert!(text.starts_with("# Performance\n"));
-        assert!(text.contains(SUMMARY_START) && text.contains(TABLE_START));
+        assert!(text.contains(SOFTWARE.summary.start) && text.contains(SOFTWARE.table.start));
         assert!(text.contains("no (run `cargo xtask validate --bench-frames`)"));
     }
 }

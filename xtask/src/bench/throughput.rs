@@ -15,17 +15,15 @@ use srt_scene::Scene;
 
 use super::WARM_UP;
 use super::document::replace_block;
+use super::report::Markers;
 use super::results::{METHODS, method_name};
 
 /// Frames a method may have queued on the GPU while the next is encoded.
 pub const IN_FLIGHT: usize = 2;
-/// How far the observation time moves per frame, in scene units of ct (30 frames: 1.5 units).
-pub const CT_STEP: f64 = 0.05;
-/// First line of the throughput block of docs/performance.md.
-pub const THROUGHPUT_START: &str =
-    "<!-- throughput:start (written by cargo xtask bench --throughput) -->";
-/// Last line of the throughput block.
-pub const THROUGHPUT_END: &str = "<!-- throughput:end -->";
+/// How far the observation time moves over a measurement's frames, in scene units of ct, however
+/// many frames it has (more frames sample the same motion more finely, so that a fast GPU's
+/// longer runs time the same scenes as a software adapter's 30 frames).
+pub const CT_SPAN: f64 = 1.5;
 
 /// One case's sustained frame rates.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -82,7 +80,7 @@ fn submit(
 }
 
 /// Sustained frames per second of each of [`METHODS`] on `scene` with `renderer`: `frames`
-/// frames each, from the scene's own time on by [`CT_STEP`] per frame, after [`WARM_UP`]
+/// frames each, from the scene's own time on over [`CT_SPAN`] in equal steps, after [`WARM_UP`]
 /// frames.
 ///
 /// # Errors
@@ -96,6 +94,7 @@ pub fn measure(
     let mut moving = scene.clone();
     let start_ct = scene.observer.ct;
     let mut fps = [0.0; 4];
+    let step = CT_SPAN / f64::from(frames.max(1));
     for (rate, method) in fps.iter_mut().zip(METHODS) {
         for _ in 0..WARM_UP {
             submit(ctx, renderer, scene, method)?;
@@ -104,7 +103,7 @@ pub fn measure(
         let start = Instant::now();
         let mut queued = VecDeque::new();
         for frame in 0..frames {
-            moving.observer.ct = start_ct + CT_STEP * f64::from(frame);
+            moving.observer.ct = start_ct + step * f64::from(frame);
             queued.push_back(submit(ctx, renderer, &moving, method)?);
             if queued.len() > IN_FLIGHT
                 && let Some(oldest) = queued.pop_front()
@@ -150,16 +149,23 @@ pub fn save_first_frame(
     Ok(())
 }
 
-/// The Markdown table of `measured` on `adapter`, between the block's markers.
+/// The Markdown table of `measured` on `adapter`, between `markers`.
 #[must_use]
-pub fn table(measured: &[Throughput], adapter: &str, date: &str, commit: &str) -> String {
+pub fn table(
+    measured: &[Throughput],
+    adapter: &str,
+    date: &str,
+    commit: &str,
+    markers: Markers,
+) -> String {
     let mut table = format!(
-        "{THROUGHPUT_START}\nAdapter: {adapter}. {date}, commit {commit}. Frames per second, \
+        "{}\nAdapter: {adapter}. {date}, commit {commit}. Frames per second, \
          sustained: each method renders the case's frames back to back (the observation time \
-         moving by {CT_STEP} per frame), up to {IN_FLIGHT} frames queued, no readback; timed \
+         moving on by {CT_SPAN} over the frames, in equal steps), up to {IN_FLIGHT} frames queued, no readback; timed \
          from the first frame's encoding to the GPU's idle after the last.\n\n\
          | case | size | triangles | frames | auto fps | LRT fps | RT fps | polygon fps | auto / polygon time |\n\
-         |---|---|---|---|---|---|---|---|---|\n"
+         |---|---|---|---|---|---|---|---|---|\n",
+        markers.start
     );
     for line in measured {
         let [auto, lrt, rt, polygon] = line.fps;
@@ -173,17 +179,18 @@ pub fn table(measured: &[Throughput], adapter: &str, date: &str, commit: &str) -
             polygon / auto
         ));
     }
-    table + THROUGHPUT_END
+    table + markers.end
 }
 
-/// Rewrites the throughput block of `document` (appended where it is missing).
+/// Rewrites the throughput block between `markers` of `document` (appended where it is
+/// missing).
 ///
 /// # Errors
 /// An unreadable or unwritable document.
-pub fn write(document: &Path, block: &str) -> anyhow::Result<()> {
+pub fn write(document: &Path, block: &str, markers: Markers) -> anyhow::Result<()> {
     let text = std::fs::read_to_string(document)
         .with_context(|| format!("cannot read {}", document.display()))?;
-    let updated = replace_block(&text, THROUGHPUT_START, THROUGHPUT_END, block);
+    let updated = replace_block(&text, markers, block);
     std::fs::write(document, updated)
         .with_context(|| format!("cannot write {}", document.display()))?;
     println!("updated {}", document.display());
