@@ -485,15 +485,16 @@ pub fn timed_frames(sizes: &[(u32, u32)]) -> anyhow::Result<Vec<(Case, (u32, u32
     Ok(frames)
 }
 
-/// Measures the static cases whose name `selected` accepts, at each of `sizes`, printing each.
+/// Measures the static cases whose name `selected` accepts, at each of `sizes`, printing each
+/// and handing it to `measured` as soon as it is measured.
 fn static_results(
     ctx: &GpuContext,
     frames: u32,
     sizes: &[(u32, u32)],
     selected: impl Fn(&str) -> bool,
-) -> anyhow::Result<Vec<CaseResult>> {
+    mut measured: impl FnMut(CaseResult) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
     let static_cases = static_cases()?;
-    let mut measured = Vec::new();
     for &(width, height) in sizes {
         for case in static_cases.iter().filter(|c| selected(&c.name)) {
             let mut renderer = GpuRenderer::new(ctx, &case.scene, width, height)?;
@@ -505,16 +506,17 @@ fn static_results(
                 .collect();
             println!("  layers per object: {}", layers.join(" "));
             println!("{}", case_text(&result));
-            measured.push(result);
+            measured(result)?;
         }
     }
-    Ok(measured)
+    Ok(())
 }
 
 /// Runs the benchmark at `sizes` with `frames` timed frames per measurement, rewrites the
 /// adapter's generated blocks of `docs/performance.md` and saves its results file
 /// ([`report::Report`]); with `only`, runs the cases whose name contains it and leaves both
-/// alone. With `results`, also saves the results there (on any run).
+/// alone. With `results`, also saves the results there (on any run), rewritten after every
+/// case, so that a run cut short keeps what it measured.
 ///
 /// # Errors
 /// No GPU, missing models, or an unwritable file.
@@ -530,27 +532,30 @@ pub fn run(
         GpuContext::new().context("cargo xtask bench needs a GPU adapter (software ones count)")?;
     let adapter = ctx.adapter_summary();
     println!("adapter: {adapter}");
-    let cases = static_results(&ctx, frames, sizes, selected)?;
-    let mut swept = Vec::new();
-    for (name, scene, times) in sweeps()? {
-        if selected(name) {
-            let result = sweep(&ctx, name, &scene, &times, sizes[0], frames)?;
-            println!("{}", sweep_text(&result));
-            swept.push(result);
-        }
-    }
-    let timing = Timing::for_adapter(&ctx).describe();
-    let measured = Results {
+    let mut measured = Results {
         machine: Machine::this(),
         adapter,
-        timing: timing.to_owned(),
+        timing: Timing::for_adapter(&ctx).describe().to_owned(),
         commit: crate::provenance::commit(workspace),
         date: crate::provenance::today(),
         frames,
         warm_up: WARM_UP,
-        cases,
-        sweeps: swept,
+        cases: Vec::new(),
+        sweeps: Vec::new(),
     };
+    let save = |measured: &Results| results.map_or(Ok(()), |path| measured.save(path));
+    static_results(&ctx, frames, sizes, selected, |case| {
+        measured.cases.push(case);
+        save(&measured)
+    })?;
+    for (name, scene, times) in sweeps()? {
+        if selected(name) {
+            let result = sweep(&ctx, name, &scene, &times, sizes[0], frames)?;
+            println!("{}", sweep_text(&result));
+            measured.sweeps.push(result);
+            save(&measured)?;
+        }
+    }
     if let Some(path) = results {
         measured.save(path)?;
         println!("wrote {}", path.display());

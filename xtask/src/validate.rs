@@ -141,7 +141,8 @@ fn fastest(scene: &Scene) -> f64 {
 /// `cargo xtask validate --bench-frames`: every frame `cargo xtask bench` times, at its size,
 /// rendered by every exact method and compared with the CPU reference under the rules of the
 /// image cases. Records each frame's verdict, with the commit and the date, in
-/// [`BENCH_FRAMES_RECORD`], from which the bench's table says which lines were validated.
+/// [`BENCH_FRAMES_RECORD`] (rewritten after every frame, so that a run cut short keeps its
+/// verdicts), from which the bench's table says which lines were validated.
 ///
 /// # Errors
 /// When no GPU is available, a model is missing, or a frame disagrees.
@@ -166,6 +167,7 @@ pub fn run_bench_frames(
         .into_iter()
         .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))
         .collect();
+    let path = workspace.join(BENCH_FRAMES_RECORD);
     for (case, size) in &frames {
         let failed = validate_image(
             &ctx,
@@ -178,10 +180,11 @@ pub fn run_bench_frames(
         let verdict = if failed.is_empty() { "pass" } else { "FAIL" };
         record += &format!("{}\t{}x{}\t{verdict}\n", case.name, size.0, size.1);
         failures.extend(failed);
+        // After every frame, so that a run cut short keeps the verdicts it reached.
+        std::fs::write(&path, &record)
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     ctx.take_errors()?;
-    let path = workspace.join(BENCH_FRAMES_RECORD);
-    std::fs::write(&path, record).with_context(|| format!("cannot write {}", path.display()))?;
     if failures.is_empty() {
         println!(
             "validate --bench-frames: all {} frames the bench times agree (recorded in {})",
