@@ -42,7 +42,12 @@ enum Command {
         bench_frames: bool,
         /// With --bench-frames: the bench's `--size`s (static cases at each, sweeps at the
         /// first); 1280x720 and 1920x1080 when none is given.
-        #[arg(long = "size", value_name = "WxH", value_parser = bench::parse_size, requires = "bench_frames")]
+        #[arg(
+            long = "size",
+            value_name = "WxH",
+            value_parser = bench::parse_size,
+            requires = "bench_frames"
+        )]
         sizes: Vec<(u32, u32)>,
     },
     /// Measure the paper's Table 1 and scenes in motion on the current adapter; a full run

@@ -658,3 +658,60 @@ fn fragments_are_counted_only_when_measuring() {
     assert_eq!(render(&renderer).1.fragments, None);
     ctx.take_errors().unwrap();
 }
+
+/// Objects out of view are skipped (`GpuRenderer::objects_in_view`) and the picture is still
+/// the exact one: the teaser with two cubes of side 3, 8 units behind the camera, 110° from its
+/// viewing direction. One rests with the observer and is culled; the other recedes at 0.99c,
+/// and aberration brings it to about 12° from the viewing direction, into view: it is kept,
+/// drawn, and every exact method agrees with the CPU reference.
+#[test]
+fn objects_out_of_view_are_skipped_and_those_aberrated_into_view_are_drawn() {
+    let Some(ctx) =
+        context_or_skip("objects_out_of_view_are_skipped_and_those_aberrated_into_view_are_drawn")
+    else {
+        return;
+    };
+    let (mut scene, template) = teaser_and_object("behind", srt_scene::shapes::cube(1.0, 1));
+    let (forward, right, _) = scene.observer.basis();
+    let behind = 110f64.to_radians();
+    let direction = behind.cos() * forward + behind.sin() * right;
+    for beta in [DVec3::ZERO, -0.99 * forward] {
+        let frame = srt_physics::Frame::new(beta, DVec3::ZERO).unwrap();
+        let observer_rest = frame.to_rest(scene.observer.event()).position;
+        let at = glam::DMat4::from_translation(observer_rest + 8.0 * direction);
+        let mut object = template.clone();
+        object.frame = frame;
+        object.parts[0].mesh = srt_scene::shapes::cube(3.0, 1).transformed(at).unwrap();
+        scene.objects.push(object);
+    }
+    let (resting, receding) = (scene.objects.len() - 2, scene.objects.len() - 1);
+    let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+    let shown = renderer.objects_in_view(&scene);
+    assert!(!shown.contains(&resting), "{shown:?}");
+    assert!(shown.contains(&receding), "{shown:?}");
+    let reference = cpu_image(&scene);
+    for method in [Method::Lrt, Method::Rt, Method::Auto] {
+        let (image, _) = renderer
+            .render(&ctx, &scene, method, FootprintShape::Hull)
+            .unwrap();
+        let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
+        assert!(
+            mismatch.fraction() <= 0.001,
+            "{}: {mismatch:?}",
+            method.name()
+        );
+    }
+    // Not vacuous: the receding cube is on screen, the resting one is not.
+    let without = |index: usize| {
+        let mut fewer = scene.clone();
+        fewer.objects.remove(index);
+        compare(&reference, &cpu_image(&fewer).to_rgb8(), 2, 0).fraction()
+    };
+    assert!(
+        without(receding) > 0.001,
+        "the receding cube covers {}",
+        without(receding)
+    );
+    assert_eq!(without(resting), 0.0);
+    ctx.take_errors().unwrap();
+}

@@ -2,6 +2,7 @@
 //! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
 
 use super::*;
+use crate::culling::ball_out_of_view;
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
 
@@ -156,7 +157,34 @@ impl super::GpuRenderer {
         footprint: FootprintShape,
         output: impl Into<OutputCode>,
     ) -> Result<(), GpuError> {
-        let output = output.into();
+        let shown = self.objects_in_view(scene);
+        self.encode_objects(
+            ctx,
+            encoder,
+            scene,
+            method,
+            footprint,
+            output.into(),
+            &shown,
+        )
+    }
+
+    /// [`GpuRenderer::encode_as`] drawing the objects `shown` (indices) and skipping the others:
+    /// all of them where a test reads back every footprint, those in view otherwise.
+    ///
+    /// # Errors
+    /// As [`GpuRenderer::encode`].
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn encode_objects(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        method: Method,
+        footprint: FootprintShape,
+        output: OutputCode,
+        shown: &[usize],
+    ) -> Result<(), GpuError> {
         let tone = self.write_uniforms(ctx, scene, footprint, output)?;
         let traced = self.traced_objects(scene, method)?;
         if self.count_fragments {
@@ -172,8 +200,9 @@ impl super::GpuRenderer {
             // Both draws empty, no piece slot taken, the bound empty (all four words 0).
             let reset = [no_draw.as_bytes(), no_draw.as_bytes(), &[0; 4], &[0; 16]].concat();
             debug_assert_eq!(reset.len() as u64, DRAW_ARGS_BYTES);
-            for (object, traced) in self.objects.iter().zip(&traced) {
-                match traced {
+            for &index in shown {
+                let object = &self.objects[index];
+                match traced[index] {
                     Some(rt) => ctx.queue.write_buffer(&rt.box_draw_args, 0, &reset),
                     None => {
                         for part in &object.parts {
@@ -183,7 +212,7 @@ impl super::GpuRenderer {
                 }
             }
             encoder.clear_buffer(&self.frame.frame_bound, 0, None);
-            self.encode_proxy_pass(encoder, tone, &traced);
+            self.encode_proxy_pass(encoder, tone, &traced, shown);
         }
         let background = background_as(output, scene.background);
         let frame = ObjectVariant {
@@ -213,6 +242,7 @@ impl super::GpuRenderer {
             tone,
             &traced,
             &variants,
+            shown,
         );
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
@@ -266,13 +296,34 @@ impl super::GpuRenderer {
             .collect()
     }
 
-    /// The footprint compute pass (timestamps 0 and 1) over the triangles of every object drawn
-    /// by its footprints and the box of every object `traced`.
+    /// The indices of the objects of `scene` that may be seen in this frame: all but those
+    /// whose ball (around their box at rest, or swept by their motion, [`sweep_bounds`]) is out
+    /// of view ([`ball_out_of_view`]). The others' footprints and draws are skipped, whatever
+    /// the method.
+    pub fn objects_in_view(&self, scene: &Scene) -> Vec<usize> {
+        let (width, height) = self.size();
+        let aspect = f64::from(width) / f64::from(height);
+        let event = scene.observer.event();
+        // Zipped, not indexed: a scene of another structure is refused later (SceneChanged).
+        (scene.objects.iter().zip(&self.objects).enumerate())
+            .filter(|(_, (object, resources))| {
+                let (lo, hi) = sweep_bounds(object, &resources.extent, event)
+                    .unwrap_or(resources.extent.bounds);
+                let (centre, radius) = ((lo + hi) / 2.0, (hi - lo).length() / 2.0);
+                !ball_out_of_view(centre, radius, &object.frame, &scene.observer, aspect)
+            })
+            .map(|(index, _)| index)
+            .collect()
+    }
+
+    /// The footprint compute pass (timestamps 0 and 1) over the triangles of every object
+    /// `shown` drawn by its footprints and the box of every one `traced`.
     pub(super) fn encode_proxy_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         tone: usize,
         traced: &[Option<&ObjectRayTracing>],
+        shown: &[usize],
     ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("srt proxy"),
@@ -287,9 +338,10 @@ impl super::GpuRenderer {
         });
         pass.set_pipeline(&self.pipelines.proxy);
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-        for (object, traced) in self.objects.iter().zip(traced) {
+        for &index in shown {
+            let object = &self.objects[index];
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
-            if let Some(rt) = traced {
+            if let Some(rt) = traced[index] {
                 pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
                 pass.set_bind_group(PROXY_OUTPUT_GROUP.index, &rt.box_proxy_group, &[]);
                 pass.dispatch_workgroups(1, 1, 1);
@@ -308,7 +360,8 @@ impl super::GpuRenderer {
     /// pass into colour and depth; for the exact methods the visibility pass into ids and depth
     /// (each object by its triangles' footprints, or, where `traced`, by its box's footprints
     /// and its BVH), then the shading pass into colour. Each part is drawn by the pipelines of its
-    /// variant: its object's (`variants`, one per object) with its own texture.
+    /// variant: its object's (`variants`, one per object) with its own texture. Only the objects
+    /// `shown` are drawn.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn encode_render_pass(
         &self,
@@ -319,6 +372,7 @@ impl super::GpuRenderer {
         tone: usize,
         traced: &[Option<&ObjectRayTracing>],
         variants: &[ObjectVariant],
+        shown: &[usize],
     ) {
         let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
         let (color_view, depth_view, ids_view) = (
@@ -350,10 +404,11 @@ impl super::GpuRenderer {
                 &[],
             );
             let mut set = PipelineVariant::default();
-            for (object, &object_variant) in self.objects.iter().zip(variants) {
+            for &index in shown {
+                let object = &self.objects[index];
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 for part in &object.parts {
-                    let variant = variant_of_part(object_variant, part);
+                    let variant = variant_of_part(variants[index], part);
                     set.set(&mut pass, variant, || {
                         self.pipelines.polygon(device, variant)
                     });
@@ -362,6 +417,19 @@ impl super::GpuRenderer {
                     pass.draw(0..3 * part.sizes.triangles, 0..1);
                 }
             }
+            return;
+        }
+        if shown.is_empty() {
+            // Nothing in view: the colour target holds the sky or the background, as the
+            // shading pass would leave it, without the visibility and part-depth passes.
+            drop(self.begin_pass(
+                encoder,
+                "srt empty frame",
+                &color_view,
+                background,
+                None,
+                [Some(2), Some(3)],
+            ));
             return;
         }
         let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
@@ -374,7 +442,7 @@ impl super::GpuRenderer {
             [Some(2), None],
         );
         pass.set_bind_group(FRAME_GROUP.index, &self.frame.bind_groups[tone], &[]);
-        self.draw_visibility(device, &mut pass, traced, variants);
+        self.draw_visibility(device, &mut pass, traced, variants, shown);
         drop(pass);
         let part_depth_view = view(&self.targets.part_depth);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -422,7 +490,7 @@ impl super::GpuRenderer {
             &self.targets.shade_frame_groups[tone],
             &[],
         );
-        self.draw_shading(device, &mut pass, traced, variants);
+        self.draw_shading(device, &mut pass, traced, variants, shown);
     }
 
     /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
@@ -454,23 +522,25 @@ impl super::GpuRenderer {
         wgpu::LoadOp::Load
     }
 
-    /// The visibility pass's draws: objects drawn by their footprints, then those traced
-    /// through their BVH, each by the visibility pipelines of its variant (`variants`); the
-    /// depth test keeps the nearest hit across both.
+    /// The visibility pass's draws: the objects `shown` drawn by their footprints, then those
+    /// traced through their BVH, each by the visibility pipelines of its variant (`variants`);
+    /// the depth test keeps the nearest hit across both.
     fn draw_visibility(
         &self,
         device: &wgpu::Device,
         pass: &mut wgpu::RenderPass<'_>,
         traced: &[Option<&ObjectRayTracing>],
         variants: &[ObjectVariant],
+        shown: &[usize],
     ) {
         let visibility = |variant| self.pipelines.visibility(device, variant);
         let mut set = PipelineVariant::default();
-        for ((object, rt), &variant) in self.objects.iter().zip(traced).zip(variants) {
-            if rt.is_some() {
+        for &index in shown {
+            if traced[index].is_some() {
                 continue;
             }
-            let variant = variant.for_visibility();
+            let object = &self.objects[index];
+            let variant = variants[index].for_visibility();
             set.set(pass, variant, || &visibility(variant).visibility);
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
@@ -479,9 +549,10 @@ impl super::GpuRenderer {
             }
         }
         let mut set = PipelineVariant::default();
-        for ((object, rt), &variant) in self.objects.iter().zip(traced).zip(variants) {
-            if let Some(rt) = rt {
-                let variant = variant.for_visibility();
+        for &index in shown {
+            if let Some(rt) = traced[index] {
+                let object = &self.objects[index];
+                let variant = variants[index].for_visibility();
                 set.set(pass, variant, || &visibility(variant).rt_visibility);
                 pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
                 pass.set_bind_group(PART_GROUP.index, &rt.box_part_group, &[]);
@@ -491,23 +562,25 @@ impl super::GpuRenderer {
         }
     }
 
-    /// The shading pass's draws: each part's screen bound (for a traced object its box's), by
-    /// the shading pipeline of the part's variant ([`variant_of_part`]).
+    /// The shading pass's draws: each part's screen bound (for a traced object its box's) of
+    /// the objects `shown`, by the shading pipeline of the part's variant ([`variant_of_part`]).
     fn draw_shading(
         &self,
         device: &wgpu::Device,
         pass: &mut wgpu::RenderPass<'_>,
         traced: &[Option<&ObjectRayTracing>],
         variants: &[ObjectVariant],
+        shown: &[usize],
     ) {
         let mut set = PipelineVariant::default();
-        for ((object, traced), &object_variant) in self.objects.iter().zip(traced).zip(variants) {
+        for &index in shown {
+            let object = &self.objects[index];
             pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
             for part in &object.parts {
-                let variant = variant_of_part(object_variant, part);
+                let variant = variant_of_part(variants[index], part);
                 set.set(pass, variant, || self.pipelines.shade(device, variant));
                 pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
-                let (group, draw_args) = match traced {
+                let (group, draw_args) = match traced[index] {
                     Some(rt) => (&rt.shade_group, &rt.box_draw_args),
                     None => (&part.lrt_bind_group, &part.draw_args),
                 };

@@ -489,7 +489,8 @@ impl GpuRenderer {
 
     /// Runs the proxy pass for `scene` and reads back every part's footprints (split out of the
     /// batches the parts are uploaded in), indexed `[object][part][triangle]`: each triangle's
-    /// own footprint and the pieces it was split into (for validation against srt-proxy).
+    /// own footprint and the pieces it was split into (for validation against srt-proxy). Every
+    /// object is run, those out of view too.
     ///
     /// # Errors
     /// wgpu or readback errors.
@@ -503,7 +504,16 @@ impl GpuRenderer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("srt footprints"),
             });
-        self.encode(ctx, &mut encoder, scene, Method::Lrt, FootprintShape::Hull)?;
+        let every_object: Vec<usize> = (0..self.objects.len()).collect();
+        self.encode_objects(
+            ctx,
+            &mut encoder,
+            scene,
+            Method::Lrt,
+            FootprintShape::Hull,
+            Output::Display.into(),
+            &every_object,
+        )?;
         let readback = |encoder: &mut wgpu::CommandEncoder, source: &wgpu::Buffer, size| {
             let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("srt footprint readback"),
