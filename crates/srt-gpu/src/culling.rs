@@ -2,8 +2,8 @@
 //! sets [`PartFlags::CULL_BACK_FACES`](crate::types::PartFlags::CULL_BACK_FACES) by it every
 //! frame, and `cargo xtask validate` checks every culled triangle against it), the ray tracer's
 //! box faces ([`box_near_faces_cullable`]), and whole objects out of view
-//! ([`ball_out_of_view`]; the renderer then skips the object's footprints and draws, whatever
-//! the method).
+//! ([`ball_out_of_view`]) or between pixel centres ([`ball_between_pixel_centres`]; the
+//! renderer then skips the object's footprints and draws, whatever the method).
 //!
 //! In S′ every viewing ray starts at the observer's rest-frame position, so the rest-frame
 //! picture is an ordinary pinhole view from there: for a closed solid with outward fronts and
@@ -86,10 +86,10 @@ pub fn box_near_faces_cullable(min: [f32; 3], max: [f32; 3], observer: glam::DVe
 /// it (the inverse of Eq. 3, [`aberrate`] with β) form a cap again: the Lorentz transformation
 /// acts on the sphere of directions as a Möbius transformation, which takes circles to
 /// circles. The image cap is the side of the plane through three images of the rim that holds
-/// the centre's image. The object is out of view when that cap lies wholly outside one of the
-/// four side planes of the view pyramid. The polygon method's triangles are the convex hulls
-/// (in homogeneous coordinates) of vertex images inside that cap, so they are clipped away too.
-/// An observer inside the ball, or non-finite input, is never culled.
+/// the centre's image ([`ImageCap`]). The object is out of view when that cap lies wholly
+/// outside one of the four side planes of the view pyramid. The polygon method's triangles are
+/// the convex hulls (in homogeneous coordinates) of vertex images inside that cap, so they are
+/// clipped away too. An observer inside the ball, or non-finite input, is never culled.
 #[must_use]
 pub fn ball_out_of_view(
     centre: DVec3,
@@ -98,34 +98,12 @@ pub fn ball_out_of_view(
     observer: &Observer,
     aspect: f64,
 ) -> bool {
-    let origin = frame.to_rest(observer.event()).position;
-    let towards = centre - origin;
-    let distance = towards.length();
-    let radius = radius * (1.0 + 1e-6) + 1e-9 * (1.0 + centre.length() + origin.length());
-    if !distance.is_finite() || !radius.is_finite() || !aspect.is_finite() || distance <= radius {
+    let Some(cap) = ImageCap::of_ball(centre, radius, frame, observer) else {
+        return false;
+    };
+    if !aspect.is_finite() {
         return false;
     }
-    let axis = towards / distance;
-    let sine = (radius / distance).max(MIN_CAP_SINE);
-    let cosine = (1.0 - sine * sine).sqrt();
-    // The viewing direction in S whose backward ray runs along `rest` in S′.
-    let view_of = |rest: DVec3| -aberrate(frame.beta(), -rest).normalize();
-    let (e1, e2) = axis.any_orthonormal_pair();
-    let rim = [0.0, 1.0, 2.0].map(|k: f64| {
-        let phi = k * TAU / 3.0;
-        view_of(cosine * axis + sine * (phi.cos() * e1 + phi.sin() * e2))
-    });
-    let normal = (rim[1] - rim[0]).cross(rim[2] - rim[0]);
-    let Some(normal) = normal.try_normalize() else {
-        return false;
-    };
-    let offset = normal.dot(rim[0]);
-    // The image cap {x : m·x ≥ h}, on the side of the centre's image.
-    let (m, h) = if normal.dot(view_of(axis)) >= offset {
-        (normal, offset)
-    } else {
-        (-normal, -offset)
-    };
     let (forward, right, up) = observer.basis();
     let tan_y = (0.5 * observer.fov_y_deg.to_radians()).tan();
     let tan_x = tan_y * aspect;
@@ -136,10 +114,127 @@ pub fn ball_out_of_view(
         tan_y * forward - up,
         tan_y * forward + up,
     ];
-    sides.into_iter().any(|side| {
-        side.try_normalize()
-            .is_some_and(|n| highest_on_cap(n, m, h) < -VIEW_MARGIN)
-    })
+    sides.into_iter().any(|side| cap.below(side, VIEW_MARGIN))
+}
+
+/// Whether the ball of `radius` around `centre`, at rest in `frame`, is seen in an image of
+/// `width` × `height` pixels taken by `observer` but covers no pixel's centre: its image cap
+/// ([`ball_out_of_view`]) lies in front of the observer and strictly between two neighbouring
+/// columns, or two neighbouring rows, of pixel centres. Every method samples a pixel at its
+/// centre only (the exact methods' viewing ray, the rasteriser's coverage of the polygon
+/// method's triangles, whose vertex images lie in the cap), so such an object adds nothing to
+/// the image, however near its picture comes to a pixel. The planes through the observer and a
+/// column (row) of centres are moved towards the cap by [`PIXEL_CENTRE_MARGIN`] of a pixel, so
+/// that a rasteriser's sub-pixel snapping cannot bring a triangle over a centre.
+#[must_use]
+pub fn ball_between_pixel_centres(
+    centre: DVec3,
+    radius: f64,
+    frame: &Frame,
+    observer: &Observer,
+    width: u32,
+    height: u32,
+) -> bool {
+    let Some(cap) = ImageCap::of_ball(centre, radius, frame, observer) else {
+        return false;
+    };
+    if width == 0 || height == 0 {
+        return false;
+    }
+    let (forward, right, up) = observer.basis();
+    if !cap.below(-forward, VIEW_MARGIN) {
+        // Some of the cap is beside or behind the observer: the screen's tangents are unbounded.
+        return false;
+    }
+    let tan_y = (0.5 * observer.fov_y_deg.to_radians()).tan();
+    let tan_x = tan_y * f64::from(width) / f64::from(height);
+    let seen = cap.centre_image;
+    let depth = forward.dot(seen);
+    // Between two neighbouring lines of centres along one screen axis: `axis` (right or up),
+    // the half-extent `tan` of the field of view along it and `pixels` centres. A direction x
+    // in front has the coordinate w(x) = axis·x / forward·x there; the lines are at
+    // w = line(k) = −tan + (k + ½)·pitch, k = 0 … pixels − 1 (counted from the left, or from
+    // the bottom: the rows' lines are the same set).
+    let between = |axis: DVec3, tan: f64, pixels: u32| {
+        let pitch = 2.0 * tan / f64::from(pixels);
+        let line = |k: f64| -tan + (k + 0.5) * pitch;
+        // The centre image's position on the lines' count.
+        let at = (axis.dot(seen) / depth + tan) / pitch - 0.5;
+        if !at.is_finite() {
+            return false;
+        }
+        let before = at.floor();
+        let margin = PIXEL_CENTRE_MARGIN * pitch;
+        // line(before) + margin < w(x) < line(before + 1) − margin over the whole cap, i.e.
+        // n·x < 0 for the two planes' n (forward·x > 0 there); a missing line bounds nothing.
+        let after_before =
+            before < 0.0 || cap.below((line(before) + margin) * forward - axis, VIEW_MARGIN);
+        let before_after = before + 1.0 > f64::from(pixels - 1)
+            || cap.below(axis - (line(before + 1.0) - margin) * forward, VIEW_MARGIN);
+        after_before && before_after
+    };
+    between(right, tan_x, width) || between(up, tan_y, height)
+}
+
+/// Of a pixel's pitch, how far a ball's image must stay from a line of pixel centres to be
+/// culled by [`ball_between_pixel_centres`]: 1/64, four times the 1/256 of a pixel to which
+/// common rasterisers snap vertices.
+const PIXEL_CENTRE_MARGIN: f64 = 1.0 / 64.0;
+
+/// The viewing directions in S (unit vectors x with m·x ≥ h) whose backward rays reach a ball
+/// at rest in S′, as [`ball_out_of_view`] derives them.
+struct ImageCap {
+    /// The cap's axis m (unit).
+    axis: DVec3,
+    /// Its height h: the cosine of its angular radius.
+    height: f64,
+    /// The viewing direction (unit) of the ball's centre, a point of the cap.
+    centre_image: DVec3,
+}
+
+impl ImageCap {
+    /// The image cap of the ball of `radius` around `centre` at rest in `frame`, seen by
+    /// `observer`, slightly enlarged for rounding; none for an observer inside the ball or
+    /// non-finite input.
+    fn of_ball(centre: DVec3, radius: f64, frame: &Frame, observer: &Observer) -> Option<Self> {
+        let origin = frame.to_rest(observer.event()).position;
+        let towards = centre - origin;
+        let distance = towards.length();
+        let radius = radius * (1.0 + 1e-6) + 1e-9 * (1.0 + centre.length() + origin.length());
+        if !distance.is_finite() || !radius.is_finite() || distance <= radius {
+            return None;
+        }
+        let axis = towards / distance;
+        let sine = (radius / distance).max(MIN_CAP_SINE);
+        let cosine = (1.0 - sine * sine).sqrt();
+        // The viewing direction in S whose backward ray runs along `rest` in S′.
+        let view_of = |rest: DVec3| -aberrate(frame.beta(), -rest).normalize();
+        let (e1, e2) = axis.any_orthonormal_pair();
+        let rim = [0.0, 1.0, 2.0].map(|k: f64| {
+            let phi = k * TAU / 3.0;
+            view_of(cosine * axis + sine * (phi.cos() * e1 + phi.sin() * e2))
+        });
+        let normal = (rim[1] - rim[0]).cross(rim[2] - rim[0]).try_normalize()?;
+        let offset = normal.dot(rim[0]);
+        let centre_image = view_of(axis);
+        // The side of the rim's plane that holds the centre's image.
+        let (axis, height) = if normal.dot(centre_image) >= offset {
+            (normal, offset)
+        } else {
+            (-normal, -offset)
+        };
+        Some(Self {
+            axis,
+            height,
+            centre_image,
+        })
+    }
+
+    /// Whether n·x < −margin for every x of the cap (n normalised here; false for n = 0).
+    fn below(&self, n: DVec3, margin: f64) -> bool {
+        n.try_normalize()
+            .is_some_and(|n| highest_on_cap(n, self.axis, self.height) < -margin)
+    }
 }
 
 /// The largest n·x over the unit vectors x of the cap m·x ≥ h (n, m unit vectors).
@@ -154,7 +249,7 @@ fn highest_on_cap(n: DVec3, m: DVec3, h: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{ball_out_of_view, box_near_faces_cullable};
+    use super::{ball_between_pixel_centres, ball_out_of_view, box_near_faces_cullable};
     use glam::{DVec2, DVec3};
     use proptest::prelude::*;
     use srt_physics::Frame;
@@ -191,6 +286,78 @@ mod tests {
             let along = (centre - ray.origin).dot(ray.direction).max(0.0);
             (ray.origin + along * ray.direction - centre).length() <= radius
         })
+    }
+
+    /// The pixels of a `width` × `height` image whose viewing ray, through the pixel's centre
+    /// (the one sample of every method) and traced exactly in S′, hits the ball.
+    fn pixels_hit(
+        centre: DVec3,
+        radius: f64,
+        frame: &Frame,
+        observer: &Observer,
+        (width, height): (u32, u32),
+    ) -> usize {
+        let aspect = f64::from(width) / f64::from(height);
+        (0..width * height)
+            .filter(|k| {
+                let ndc = DVec2::new(
+                    2.0 * (f64::from(k % width) + 0.5) / f64::from(width) - 1.0,
+                    1.0 - 2.0 * (f64::from(k / width) + 0.5) / f64::from(height),
+                );
+                let direction = observer.view_direction(ndc, aspect);
+                let ray = frame.backward_ray(observer.event(), direction);
+                let along = (centre - ray.origin).dot(ray.direction).max(0.0);
+                (ray.origin + along * ray.direction - centre).length() <= radius
+            })
+            .count()
+    }
+
+    #[test]
+    fn a_ball_between_pixel_centres_is_culled_and_one_over_a_centre_is_kept() {
+        // A 4 × 4 image with a 90° field of view: the centres' tangents are ±0.25 and ±0.75.
+        let observer = Observer {
+            fov_y_deg: 90.0,
+            ..looking_along_z(0.0)
+        };
+        let at_rest = Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+        let size = (4, 4);
+        // At the image's centre, between the four middle pixels' centres, 0.05 across at 10.
+        let middle = DVec3::new(0.0, 0.0, 10.0);
+        assert_eq!(pixels_hit(middle, 0.05, &at_rest, &observer, size), 0);
+        assert!(ball_between_pixel_centres(
+            middle, 0.05, &at_rest, &observer, 4, 4
+        ));
+        // The same ball over the centre of pixel (2, 1), at tangents (0.25, 0.25).
+        let over = DVec3::new(2.5, 2.5, 10.0);
+        assert_eq!(pixels_hit(over, 0.05, &at_rest, &observer, size), 1);
+        assert!(!ball_between_pixel_centres(
+            over, 0.05, &at_rest, &observer, 4, 4
+        ));
+        // Between two columns but across a row of centres: culled; grown over a centre: kept.
+        let across_row = DVec3::new(0.0, 2.5, 10.0);
+        assert!(ball_between_pixel_centres(
+            across_row, 0.3, &at_rest, &observer, 4, 4
+        ));
+        assert!(!ball_between_pixel_centres(
+            across_row, 3.0, &at_rest, &observer, 4, 4
+        ));
+        // Beyond the last column's centres but still on the image: culled.
+        let edge = DVec3::new(9.0, 0.0, 10.0);
+        assert_eq!(pixels_hit(edge, 0.1, &at_rest, &observer, size), 0);
+        assert!(ball_between_pixel_centres(
+            edge, 0.1, &at_rest, &observer, 4, 4
+        ));
+        // Moving at 0.9c across the view, the same small ball's image is carried to another
+        // place (aberration): where it lands over a centre it is kept, whatever its rest place.
+        let crossing = Frame::new(DVec3::new(0.9, 0.0, 0.0), DVec3::ZERO).unwrap();
+        for x in [-8.0, -4.0, 0.0, 4.0, 8.0] {
+            let ball = DVec3::new(x, 0.0, 10.0);
+            if pixels_hit(ball, 0.05, &crossing, &observer, size) > 0 {
+                assert!(!ball_between_pixel_centres(
+                    ball, 0.05, &crossing, &observer, 4, 4
+                ));
+            }
+        }
     }
 
     #[test]
@@ -269,17 +436,21 @@ mod tests {
     }
 
     proptest! {
-        /// Culling is conservative: when a ball is culled, no viewing ray of the image
-        /// (traced exactly in S′) reaches it.
+        /// Culling is conservative: when a ball is culled out of view, no viewing ray of the
+        /// image (traced exactly in S′, over a grid that includes its edges) reaches it; when
+        /// it is culled between pixel centres, the ray through every pixel's centre misses it.
+        /// The images are small, so that every centre is traced and the balls often fall
+        /// between them.
         #[test]
         fn a_culled_ball_is_missed_by_every_viewing_ray(
             centre in prop::array::uniform3(-20.0f64..20.0),
-            radius in 0.01f64..5.0,
+            radius in 0.001f64..5.0,
             beta in prop::array::uniform3(-0.57f64..0.57),
             offset in prop::array::uniform3(-10.0f64..10.0),
             direction in prop::array::uniform3(-1.0f64..1.0),
             fov_y_deg in 20.0f64..120.0,
-            aspect in 0.5f64..2.5,
+            width in 1u32..24,
+            height in 1u32..24,
             ct in -20.0f64..20.0,
         ) {
             let direction = DVec3::from_array(direction);
@@ -287,8 +458,12 @@ mod tests {
             let frame = Frame::new(DVec3::from_array(beta), DVec3::from_array(offset)).unwrap();
             let observer = Observer { direction, fov_y_deg, ..looking_along_z(ct) };
             let centre = DVec3::from_array(centre);
+            let aspect = f64::from(width) / f64::from(height);
             if ball_out_of_view(centre, radius, &frame, &observer, aspect) {
                 prop_assert!(!some_ray_hits(centre, radius, &frame, &observer, aspect, 48));
+            }
+            if ball_between_pixel_centres(centre, radius, &frame, &observer, width, height) {
+                prop_assert_eq!(pixels_hit(centre, radius, &frame, &observer, (width, height)), 0);
             }
         }
     }

@@ -95,6 +95,9 @@ pub struct BodyExtent {
     pub axial: (f64, f64),
     /// The box around every vertex at rest.
     pub bounds: (DVec3, DVec3),
+    /// The ball around the box's centre holding every vertex at rest (centre, radius): for a
+    /// round body much smaller than the ball around its box (a sphere's is 1/√3 of it).
+    pub ball: (DVec3, f64),
 }
 
 impl BodyExtent {
@@ -109,6 +112,13 @@ impl BodyExtent {
             .map(|p| p.mesh.bounds())
             .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
             .unwrap_or((DVec3::ZERO, DVec3::ZERO));
+        let middle = (lo + hi) / 2.0;
+        let ball_radius = (object.parts.iter())
+            .filter(|p| !p.mesh.triangles().is_empty())
+            .flat_map(|p| p.mesh.positions().iter())
+            .map(|p| (*p - middle).length())
+            .fold(0.0, f64::max)
+            * (1.0 + 1e-12);
         let (reach, axial) = match object.motion {
             Motion::Spin(spin) => (
                 positions()
@@ -127,6 +137,7 @@ impl BodyExtent {
             reach,
             axial,
             bounds: (lo, hi),
+            ball: (middle, ball_radius),
         }
     }
 }

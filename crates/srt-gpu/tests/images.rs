@@ -249,6 +249,40 @@ fn teaser_and_object(name: &str, mesh: Mesh) -> (Scene, srt_scene::Object) {
     (scene, object)
 }
 
+/// Renders `scene` with each exact method (LRT, RT, auto) and asserts that each matches
+/// `reference` under validate's rule (2/255, 1 px edge margin, at most 0.1 % of pixels);
+/// returns the images in that order. `what` names the case in a failure.
+fn exact_methods_match(
+    ctx: &srt_gpu::GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    reference: &srt_trace::RenderedImage,
+    what: &str,
+) -> Vec<Vec<[u8; 3]>> {
+    [Method::Lrt, Method::Rt, Method::Auto]
+        .into_iter()
+        .map(|method| {
+            let (image, _) = renderer
+                .render(ctx, scene, method, FootprintShape::Hull)
+                .unwrap();
+            let rgb = image.to_rgb8();
+            let mismatch = compare(reference, &rgb, 2, 1);
+            println!(
+                "{what}, {}: mismatch={:.5} max={}",
+                method.name(),
+                mismatch.fraction(),
+                mismatch.max_difference
+            );
+            assert!(
+                mismatch.fraction() <= 0.001,
+                "{what}, {}: {mismatch:?}",
+                method.name()
+            );
+            rgb
+        })
+        .collect()
+}
+
 #[test]
 fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
     let Some(ctx) =
@@ -268,26 +302,7 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
         "{layers:?}"
     );
     let reference = cpu_image(&scene);
-    let mut images = Vec::new();
-    for method in [Method::Lrt, Method::Rt, Method::Auto] {
-        let (image, _) = renderer
-            .render(&ctx, &scene, method, FootprintShape::Hull)
-            .unwrap();
-        let rgb = image.to_rgb8();
-        let mismatch = compare(&reference, &rgb, 2, 1);
-        println!(
-            "{}: mismatch={:.5} max={}",
-            method.name(),
-            mismatch.fraction(),
-            mismatch.max_difference
-        );
-        assert!(
-            mismatch.fraction() <= 0.001,
-            "{}: {mismatch:?}",
-            method.name()
-        );
-        images.push(rgb);
-    }
+    let images = exact_methods_match(&ctx, &renderer, &scene, &reference, "the mix");
     // Not vacuous: the stack is on screen (removing it changes the picture).
     let without = cpu_image(&Scene {
         objects: scene.objects[..scene.objects.len() - 1].to_vec(),
@@ -659,6 +674,62 @@ fn fragments_are_counted_only_when_measuring() {
     ctx.take_errors().unwrap();
 }
 
+/// An object whose picture covers no pixel's centre is skipped
+/// (`culling::ball_between_pixel_centres`) and the picture is the CPU reference's, which does
+/// not see it either: a speck of radius 0.002 two units from the camera, centred on the corner
+/// between four pixels (about an eighth of a pixel across). Grown to 0.03 (about two pixels),
+/// the same speck is kept and drawn. Its ball is the one around its vertices
+/// (`BodyExtent::ball`), the sphere's own radius, not the ball around its box.
+#[test]
+fn objects_between_pixel_centres_are_skipped_and_larger_ones_are_drawn() {
+    let Some(ctx) =
+        context_or_skip("objects_between_pixel_centres_are_skipped_and_larger_ones_are_drawn")
+    else {
+        return;
+    };
+    let (base, template) = teaser_and_object("speck", srt_scene::shapes::uv_sphere(1.0, 16));
+    let corner = glam::DVec2::new(
+        2.0 * 40.0 / f64::from(WIDTH) - 1.0,
+        1.0 - 2.0 * 30.0 / f64::from(HEIGHT),
+    );
+    let aspect = f64::from(WIDTH) / f64::from(HEIGHT);
+    let direction = base.observer.view_direction(corner, aspect).normalize();
+    let with_speck = |radius: f64| {
+        let mut scene = base.clone();
+        let mut speck = template.clone();
+        speck.frame = srt_physics::Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+        let at = glam::DMat4::from_translation(base.observer.position + 2.0 * direction);
+        speck.parts[0].mesh = srt_scene::shapes::uv_sphere(radius, 16)
+            .transformed(at)
+            .unwrap();
+        scene.objects.push(speck);
+        scene
+    };
+    let without = cpu_image(&base);
+    for (radius, seen) in [(0.002, false), (0.03, true)] {
+        let scene = with_speck(radius);
+        let speck = scene.objects.len() - 1;
+        let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+        assert_eq!(
+            renderer.objects_in_view(&scene).contains(&speck),
+            seen,
+            "radius {radius}"
+        );
+        let reference = cpu_image(&scene);
+        // The reference sees the speck exactly where it is kept.
+        let changed = compare(&without, &reference.to_rgb8(), 0, 0).fraction();
+        assert_eq!(changed > 0.0, seen, "radius {radius}: {changed}");
+        exact_methods_match(
+            &ctx,
+            &renderer,
+            &scene,
+            &reference,
+            &format!("radius {radius}"),
+        );
+    }
+    ctx.take_errors().unwrap();
+}
+
 /// Objects out of view are skipped (`GpuRenderer::objects_in_view`) and the picture is still
 /// the exact one: the teaser with two cubes of side 3, 8 units behind the camera, 110° from its
 /// viewing direction. One rests with the observer and is culled; the other recedes at 0.99c,
@@ -690,17 +761,7 @@ fn objects_out_of_view_are_skipped_and_those_aberrated_into_view_are_drawn() {
     assert!(!shown.contains(&resting), "{shown:?}");
     assert!(shown.contains(&receding), "{shown:?}");
     let reference = cpu_image(&scene);
-    for method in [Method::Lrt, Method::Rt, Method::Auto] {
-        let (image, _) = renderer
-            .render(&ctx, &scene, method, FootprintShape::Hull)
-            .unwrap();
-        let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
-        assert!(
-            mismatch.fraction() <= 0.001,
-            "{}: {mismatch:?}",
-            method.name()
-        );
-    }
+    exact_methods_match(&ctx, &renderer, &scene, &reference, "out of view");
     // Not vacuous: the receding cube is on screen, the resting one is not.
     let without = |index: usize| {
         let mut fewer = scene.clone();

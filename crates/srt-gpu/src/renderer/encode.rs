@@ -2,7 +2,7 @@
 //! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
 
 use super::*;
-use crate::culling::ball_out_of_view;
+use crate::culling::{ball_between_pixel_centres, ball_out_of_view};
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
 
@@ -297,9 +297,10 @@ impl super::GpuRenderer {
     }
 
     /// The indices of the objects of `scene` that may be seen in this frame: all but those
-    /// whose ball (around their box at rest, or swept by their motion, [`sweep_bounds`]) is out
-    /// of view ([`ball_out_of_view`]). The others' footprints and draws are skipped, whatever
-    /// the method.
+    /// whose ball (around their vertices at rest, [`BodyExtent::ball`](crate::motion::BodyExtent::ball),
+    /// or around the box swept by their motion, [`sweep_bounds`]) is out of view
+    /// ([`ball_out_of_view`]) or covers no pixel's centre ([`ball_between_pixel_centres`]). The
+    /// others' footprints and draws are skipped, whatever the method.
     pub fn objects_in_view(&self, scene: &Scene) -> Vec<usize> {
         let (width, height) = self.size();
         let aspect = f64::from(width) / f64::from(height);
@@ -307,10 +308,13 @@ impl super::GpuRenderer {
         // Zipped, not indexed: a scene of another structure is refused later (SceneChanged).
         (scene.objects.iter().zip(&self.objects).enumerate())
             .filter(|(_, (object, resources))| {
-                let (lo, hi) = sweep_bounds(object, &resources.extent, event)
-                    .unwrap_or(resources.extent.bounds);
-                let (centre, radius) = ((lo + hi) / 2.0, (hi - lo).length() / 2.0);
-                !ball_out_of_view(centre, radius, &object.frame, &scene.observer, aspect)
+                let (centre, radius) = sweep_bounds(object, &resources.extent, event)
+                    .map_or(resources.extent.ball, |(lo, hi)| {
+                        ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
+                    });
+                let (frame, observer) = (&object.frame, &scene.observer);
+                !(ball_out_of_view(centre, radius, frame, observer, aspect)
+                    || ball_between_pixel_centres(centre, radius, frame, observer, width, height))
             })
             .map(|(index, _)| index)
             .collect()
