@@ -10,10 +10,12 @@
 //    and commute, so the sum does not depend on the order in which invocations run, and a pixel
 //    keeps 24 bits of precision whatever the range of light across the image (radiance spans
 //    many orders of magnitude).
-// 2. `sky_compose_vertex`, `sky_compose` (a full-screen triangle): background + the sky image
-//    (looked up along the pixel's viewing ray taken back into the sky's frame, its light
-//    Doppler-shifted like a surface's) + star light, as output_pixel writes it, into the colour
-//    target; the object passes then draw over it.
+// 2. `sky_compose` (a full-screen triangle): background + the sky image (looked up along the
+//    pixel's viewing ray taken back into the sky's frame, its light Doppler-shifted like a
+//    surface's) + star light, as output_pixel writes it, into the colour target: in a pass of
+//    its own (`sky_compose_vertex`), or in the object pass after the objects, only where none is
+//    seen (`sky_behind_polygons_vertex`, `sky_where_unseen_vertex`), so that the pixels the
+//    objects cover are not composed for nothing.
 
 // Read-only storage, not uniform, as in render_bindings.wgsl (which says why).
 @group(0) @binding(0) var<storage, read> frame_uniforms: FrameUniforms;
@@ -172,11 +174,32 @@ fn star_light_at(pixel: u32) -> vec3<f32> {
     return sums * exp2(f32(peak_exponent(peak) - STAR_LIGHT_BITS));
 }
 
+// Corner `v` (0 to 2) of one triangle covering the viewport, at depth `depth`.
+fn viewport_triangle(v: u32, depth: f32) -> vec4<f32> {
+    let corner = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
+    return vec4<f32>(2.0 * corner - vec2<f32>(1.0), depth, 1.0);
+}
+
+// The compose triangle in a pass of its own (srt_gpu::sky::SkyPlacement::OwnPass).
 @vertex
 fn sky_compose_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
-    // One triangle covering the viewport.
-    let corner = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
-    return vec4<f32>(2.0 * corner - vec2<f32>(1.0), 0.5, 1.0);
+    return viewport_triangle(v, 0.5);
+}
+
+// The compose triangle in the polygon pass, after the objects (SkyPlacement::BehindPolygons):
+// at the far plane, the depth the pass clears to, under the depth test "equal", so that only
+// the pixels no triangle was drawn over are composed.
+@vertex
+fn sky_behind_polygons_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+    return viewport_triangle(v, 1.0);
+}
+
+// The compose triangle in the exact methods' shading pass (SkyPlacement::WhereUnseen): at
+// depth 0, lrt.wgsl's part_depth of "no part", under the depth test "equal", so that only the
+// pixels where the visibility pass kept nothing are composed.
+@vertex
+fn sky_where_unseen_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+    return viewport_triangle(v, 0.0);
 }
 
 // Texture coordinates of the unit direction `d` in W (mirror of SkyImage::uv):

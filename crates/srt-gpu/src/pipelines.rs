@@ -419,6 +419,11 @@ pub const SKY_COMPOSE_GROUP: BindGroupSpec = BindGroupSpec {
 pub const SKY_STARS_ENTRIES: [&str; 2] = ["sky_star_peaks", "sky_stars"];
 /// Entry points of the sky's compose pass (vertex, fragment).
 pub const SKY_COMPOSE_ENTRIES: [&str; 2] = ["sky_compose_vertex", "sky_compose"];
+/// Entry points of the sky's compose triangle drawn in the polygon pass, behind its objects.
+pub const SKY_BEHIND_POLYGONS_ENTRIES: [&str; 2] = ["sky_behind_polygons_vertex", "sky_compose"];
+/// Entry points of the sky's compose triangle drawn in the exact shading pass, where no part is
+/// seen.
+pub const SKY_WHERE_UNSEEN_ENTRIES: [&str; 2] = ["sky_where_unseen_vertex", "sky_compose"];
 
 /// The sky's two pipelines as their bindings see them: the stars' compute pass and the
 /// background pass (whose group 0 carries the spectral tables).

@@ -15,8 +15,9 @@ use crate::error::GpuError;
 use crate::limits::DeviceLimits;
 use crate::passes::begin_pass;
 use crate::pipelines::{
-    DepthTest, FRAME_GROUP, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP, SKY_STARS_ENTRIES,
-    SKY_STARS_GROUP, pipeline_layout, render_pipeline, sky_specs, slots,
+    DepthTest, FRAME_GROUP, SKY_BEHIND_POLYGONS_ENTRIES, SKY_COMPOSE_ENTRIES, SKY_COMPOSE_GROUP,
+    SKY_FRAME_GROUP, SKY_STARS_ENTRIES, SKY_STARS_GROUP, SKY_WHERE_UNSEEN_ENTRIES, pipeline_layout,
+    render_pipeline, sky_specs, slots,
 };
 use crate::shaders::WORKGROUP_SIZE;
 use crate::textures::{Texture2d, upload_2d};
@@ -53,9 +54,37 @@ pub struct SkyResources {
     image_size: Option<(u32, u32)>,
     /// The star passes, in [`SKY_STARS_ENTRIES`]' order.
     stars_pipelines: Vec<wgpu::ComputePipeline>,
-    compose_pipeline: wgpu::RenderPipeline,
+    /// The compose pipeline of each [`SkyPlacement`] (in its order), each made on first use.
+    compose_pipelines: [std::sync::OnceLock<wgpu::RenderPipeline>; 3],
+    /// The colour target's format, for the compose pipelines.
+    color_format: wgpu::TextureFormat,
     workgroups: (u32, u32),
     light: StarLight,
+}
+
+/// Where the sky's compose triangle is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SkyPlacement {
+    /// In a pass of its own, over the whole colour target, before the objects' passes (which
+    /// then draw over it): for a frame whose objects are all out of view.
+    OwnPass,
+    /// In the polygon pass after its objects, at the far plane with the depth test "equal":
+    /// only where no triangle was drawn.
+    BehindPolygons,
+    /// In the exact methods' shading pass, at the part depth of "no part" with the depth test
+    /// "equal": only where the visibility pass kept nothing.
+    WhereUnseen,
+}
+
+impl SkyPlacement {
+    /// The compose pipeline's entry points and depth test for this placement.
+    fn pipeline(self) -> ([&'static str; 2], DepthTest) {
+        match self {
+            Self::OwnPass => (SKY_COMPOSE_ENTRIES, DepthTest::None),
+            Self::BehindPolygons => (SKY_BEHIND_POLYGONS_ENTRIES, DepthTest::Equal),
+            Self::WhereUnseen => (SKY_WHERE_UNSEEN_ENTRIES, DepthTest::Equal),
+        }
+    }
 }
 
 /// The shape of a sky as the GPU holds it: star count and image size. A scene whose sky has
@@ -110,7 +139,7 @@ impl SkyResources {
             )?;
         }
         let device = &ctx.device;
-        let [stars_spec, compose_spec] = sky_specs();
+        let [stars_spec, _] = sky_specs();
         let stars_module = stars_spec.shader.module(device);
         let stars_layout = pipeline_layout(device, &stars_spec);
         let stars_pipelines = SKY_STARS_ENTRIES
@@ -126,13 +155,6 @@ impl SkyResources {
                 })
             })
             .collect();
-        let compose_pipeline = render_pipeline(
-            device,
-            &compose_spec,
-            SKY_COMPOSE_ENTRIES,
-            Some(ctx.color_format),
-            DepthTest::None,
-        );
         let uploaded = Uploaded {
             stars: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("srt sky stars"),
@@ -155,7 +177,8 @@ impl SkyResources {
             star_count,
             image_size: sky_shape(&scene.sky).1,
             stars_pipelines,
-            compose_pipeline,
+            compose_pipelines: Default::default(),
+            color_format: ctx.color_format,
             workgroups,
             light,
         }))
@@ -199,31 +222,28 @@ impl SkyResources {
             .write_buffer(&self.uploaded.uniforms, 0, bytemuck::bytes_of(&uniforms));
     }
 
-    /// Records the star pass and the background pass into `encoder`: `color` then holds
-    /// background + sky image + star light. `stars_frame` is the frame's group 0 for the star
-    /// pass (uniforms and colour table of the tone map in use), `compose_frame` the same with the
-    /// spectral tables, for the compose pass. `first_timestamp` (query set, index), when given,
-    /// is written at the beginning of the first of the two passes.
-    pub fn encode(
+    /// Records the star pass into `encoder`: the star light of every pixel, which the compose
+    /// triangle ([`Self::draw_compose`]) adds. `stars_frame` is the frame's group 0 for it
+    /// (uniforms and colour table of the tone map in use); `timestamp` (query set, index), when
+    /// given, is written at its beginning (the pass is begun, and so timed, without stars too).
+    pub fn encode_stars(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         stars_frame: &wgpu::BindGroup,
-        compose_frame: &wgpu::BindGroup,
-        color: &wgpu::TextureView,
-        mut first_timestamp: Option<(&wgpu::QuerySet, u32)>,
+        timestamp: Option<(&wgpu::QuerySet, u32)>,
     ) {
         encoder.clear_buffer(&self.light.buffer, 0, None);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(SKY_STARS_GROUP.label),
+            timestamp_writes: timestamp.map(|(query_set, index)| {
+                wgpu::ComputePassTimestampWrites {
+                    query_set,
+                    beginning_of_pass_write_index: Some(index),
+                    end_of_pass_write_index: None,
+                }
+            }),
+        });
         if self.star_count > 0 {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(SKY_STARS_GROUP.label),
-                timestamp_writes: first_timestamp.take().map(|(query_set, index)| {
-                    wgpu::ComputePassTimestampWrites {
-                        query_set,
-                        beginning_of_pass_write_index: Some(index),
-                        end_of_pass_write_index: None,
-                    }
-                }),
-            });
             pass.set_bind_group(FRAME_GROUP.index, stars_frame, &[]);
             pass.set_bind_group(SKY_STARS_GROUP.index, &self.light.stars_group, &[]);
             for pipeline in &self.stars_pipelines {
@@ -231,20 +251,56 @@ impl SkyResources {
                 pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
             }
         }
+    }
+
+    /// Records the star pass and a compose pass of its own ([`SkyPlacement::OwnPass`]) into
+    /// `encoder`: `color` then holds background + sky image + star light everywhere.
+    /// `compose_frame` is the frame's group for the compose triangle (with the spectral
+    /// tables); the rest as [`Self::encode_stars`].
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        stars_frame: &wgpu::BindGroup,
+        compose_frame: &wgpu::BindGroup,
+        color: &wgpu::TextureView,
+        timestamp: Option<(&wgpu::QuerySet, u32)>,
+    ) {
+        self.encode_stars(encoder, stars_frame, timestamp);
         let mut pass = begin_pass(
             encoder,
             SKY_COMPOSE_GROUP.label,
             color,
             wgpu::LoadOp::Clear(wgpu::Color::BLACK),
             None,
-            first_timestamp.map(|(query_set, index)| wgpu::RenderPassTimestampWrites {
-                query_set,
-                beginning_of_pass_write_index: Some(index),
-                end_of_pass_write_index: None,
-            }),
+            None,
         );
-        pass.set_pipeline(&self.compose_pipeline);
-        pass.set_bind_group(FRAME_GROUP.index, compose_frame, &[]);
+        self.draw_compose(device, &mut pass, compose_frame, SkyPlacement::OwnPass);
+    }
+
+    /// Draws the compose triangle into `pass` as `placement` says (after [`Self::encode_stars`]
+    /// in the same frame): background + sky image + star light, as the frame's output holds it.
+    /// The pass's bind groups 0 and 1 are replaced.
+    pub fn draw_compose(
+        &self,
+        device: &wgpu::Device,
+        pass: &mut wgpu::RenderPass<'_>,
+        compose_frame: &wgpu::BindGroup,
+        placement: SkyPlacement,
+    ) {
+        let (entries, depth) = placement.pipeline();
+        let pipeline = self.compose_pipelines[placement as usize].get_or_init(|| {
+            let [_, compose_spec] = sky_specs();
+            render_pipeline(
+                device,
+                &compose_spec,
+                entries,
+                Some(self.color_format),
+                depth,
+            )
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(SKY_FRAME_GROUP.index, compose_frame, &[]);
         pass.set_bind_group(SKY_COMPOSE_GROUP.index, &self.light.compose_group, &[]);
         pass.draw(0..3, 0..1);
     }

@@ -5,6 +5,7 @@ use super::*;
 use crate::culling::{ball_between_pixel_centres, ball_out_of_view};
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
+use crate::sky::SkyPlacement;
 
 impl super::GpuRenderer {
     /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities) and
@@ -384,7 +385,6 @@ impl super::GpuRenderer {
             view(&self.targets.depth),
             view(&self.targets.ids),
         );
-        let background = self.encode_background(encoder, background, tone, &color_view);
         let depth = wgpu::RenderPassDepthStencilAttachment {
             view: &depth_view,
             depth_ops: Some(wgpu::Operations {
@@ -394,6 +394,9 @@ impl super::GpuRenderer {
             stencil_ops: None,
         };
         if method == Method::Polygon {
+            let placement = SkyPlacement::BehindPolygons;
+            let background =
+                self.encode_background(device, encoder, background, tone, &color_view, placement);
             let mut pass = self.begin_pass(
                 encoder,
                 "srt polygon",
@@ -421,9 +424,18 @@ impl super::GpuRenderer {
                     pass.draw(0..3 * part.sizes.triangles, 0..1);
                 }
             }
+            self.draw_sky(device, &mut pass, tone, placement);
             return;
         }
         if shown.is_empty() {
+            let background = self.encode_background(
+                device,
+                encoder,
+                background,
+                tone,
+                &color_view,
+                SkyPlacement::OwnPass,
+            );
             // Nothing in view: the colour target holds the sky or the background, as the
             // shading pass would leave it, without the visibility and part-depth passes.
             drop(self.begin_pass(
@@ -436,6 +448,9 @@ impl super::GpuRenderer {
             ));
             return;
         }
+        let placement = SkyPlacement::WhereUnseen;
+        let background =
+            self.encode_background(device, encoder, background, tone, &color_view, placement);
         let none = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
         let mut pass = self.begin_pass(
             encoder,
@@ -495,35 +510,63 @@ impl super::GpuRenderer {
             &[],
         );
         self.draw_shading(device, &mut pass, traced, variants, shown);
+        self.draw_sky(device, &mut pass, tone, placement);
     }
 
-    /// Encodes the sky's passes if the scene has stars; returns how the object passes load the
-    /// colour target: over the sky, or cleared to `background` (the scene's, as the output
-    /// holds it).
+    /// Encodes the sky's passes that precede the object passes, if the scene has a sky, for
+    /// its compose triangle at `placement`: the star pass, and for [`SkyPlacement::OwnPass`]
+    /// the compose pass. Returns how the object passes load the colour target: over the sky
+    /// (own pass), or cleared to `background` (the scene's, as the output holds it; with a
+    /// sky drawn in the object pass, [`Self::draw_sky`] then covers every pixel no object does).
     fn encode_background(
         &self,
+        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         background: DVec4,
         tone: usize,
         color_view: &wgpu::TextureView,
+        placement: SkyPlacement,
     ) -> wgpu::LoadOp<wgpu::Color> {
+        let b = background;
+        let clear = wgpu::LoadOp::Clear(wgpu::Color {
+            r: b.x,
+            g: b.y,
+            b: b.z,
+            a: b.w,
+        });
         let Some(sky) = &self.sky else {
-            let b = background;
-            return wgpu::LoadOp::Clear(wgpu::Color {
-                r: b.x,
-                g: b.y,
-                b: b.z,
-                a: b.w,
-            });
+            return clear;
         };
-        sky.encode(
-            encoder,
-            &self.frame.bind_groups[tone],
-            &self.frame.sky_groups[tone],
-            color_view,
-            self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP)),
-        );
-        wgpu::LoadOp::Load
+        let stars_frame = &self.frame.bind_groups[tone];
+        let timestamp = self.timestamps.as_ref().map(|t| (&t.set, SKY_TIMESTAMP));
+        if placement == SkyPlacement::OwnPass {
+            let compose_frame = &self.frame.sky_groups[tone];
+            sky.encode(
+                device,
+                encoder,
+                stars_frame,
+                compose_frame,
+                color_view,
+                timestamp,
+            );
+            return wgpu::LoadOp::Load;
+        }
+        sky.encode_stars(encoder, stars_frame, timestamp);
+        clear
+    }
+
+    /// Draws the sky's compose triangle into the object pass `pass` at `placement` (after
+    /// [`Self::encode_background`] for the same placement), if the scene has a sky.
+    fn draw_sky(
+        &self,
+        device: &wgpu::Device,
+        pass: &mut wgpu::RenderPass<'_>,
+        tone: usize,
+        placement: SkyPlacement,
+    ) {
+        if let Some(sky) = &self.sky {
+            sky.draw_compose(device, pass, &self.frame.sky_groups[tone], placement);
+        }
     }
 
     /// The visibility pass's draws: the objects `shown` drawn by their footprints, then those
