@@ -1,8 +1,9 @@
 //! The sky's GPU passes (`shaders/sky.wgsl`, mirror of srt-trace's `sky.rs`): the stars and the
 //! sky image are uploaded once; per frame a compute pass splats each star's light into a
-//! per-pixel buffer and a full-screen pass writes background + sky image + star light into the
-//! colour target, which the object passes then draw over. A scene without a sky has none of
-//! this: its passes clear to the background as before. Like meshes, the stars and the image are
+//! per-pixel buffer, and a full-screen compose triangle writes background + sky image + star
+//! light into the colour target: last in the object pass, only where no object is seen
+//! ([`SkyPlacement`]), or in a pass of its own when nothing is in view. A scene without a sky
+//! has none of this: its passes clear to the background as before. Like meshes, the stars and the image are
 //! uploaded with the scene; per frame only the sky's velocity, direction map and brightness
 //! change.
 
