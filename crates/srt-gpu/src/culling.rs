@@ -86,7 +86,7 @@ pub fn box_near_faces_cullable(min: [f32; 3], max: [f32; 3], observer: glam::DVe
 /// it (the inverse of Eq. 3, [`aberrate`] with β) form a cap again: the Lorentz transformation
 /// acts on the sphere of directions as a Möbius transformation, which takes circles to
 /// circles. The image cap is the side of the plane through three images of the rim that holds
-/// the centre's image ([`ImageCap`]). The object is out of view when that cap lies wholly
+/// the centre's image (`ImageCap`). The object is out of view when that cap lies wholly
 /// outside one of the four side planes of the view pyramid. The polygon method's triangles are
 /// the convex hulls (in homogeneous coordinates) of vertex images inside that cap, so they are
 /// clipped away too. An observer inside the ball, or non-finite input, is never culled.
@@ -124,7 +124,7 @@ pub fn ball_out_of_view(
 /// centre only (the exact methods' viewing ray, the rasteriser's coverage of the polygon
 /// method's triangles, whose vertex images lie in the cap), so such an object adds nothing to
 /// the image, however near its picture comes to a pixel. The planes through the observer and a
-/// column (row) of centres are moved towards the cap by [`PIXEL_CENTRE_MARGIN`] of a pixel, so
+/// column (row) of centres are moved towards the cap by `PIXEL_CENTRE_MARGIN` of a pixel, so
 /// that a rasteriser's sub-pixel snapping cannot bring a triangle over a centre.
 #[must_use]
 pub fn ball_between_pixel_centres(
