@@ -8,44 +8,42 @@
 // Composed into the shaders that shade (lrt, polygon) and the probe. The tables are the CPU's,
 // uploaded once per renderer (srt_gpu::spectral), bound in group 0 of those passes.
 
-// One row of the CIE 1931 2° table (twin of srt_gpu::types::GpuCieSample, as spectral_tables
-// holds it).
-struct CieSample {
-    // x̄, ȳ, z̄ at this wavelength.
-    xyz_bar: vec3<f32>,
-    // The wavelength in nm.
-    wavelength_nm: f32,
-}
-
-// The spectral tables in one array (srt_gpu::spectral::spectral_words; one binding, not three,
+// The Jakob–Hanika table in one array (srt_gpu::spectral::spectral_words; one binding, not two,
 // to stay within eight storage buffers per stage): a header of SPECTRAL_HEADER_WORDS words (n,
-// the coefficient table's brightness scale entries, and c, the CIE 1931 2° table's rows, as f32),
-// the scale z₀ … z_{n−1} (CoefficientTable::scale), the CIE rows 360–830 nm at 1 nm (CieSample,
-// four words each: srt_color::cie_1931), then the 3 · n³ texels of (c₀, c₁, c₂), three words
-// each, in CoefficientTable::texels' layout. Read only through the accessors below.
+// the coefficient table's brightness scale entries, then the CIE table's first and last
+// wavelengths in nm, as f32), the scale z₀ … z_{n−1} (CoefficientTable::scale), then the 3 · n³
+// texels of (c₀, c₁, c₂), three words each, in CoefficientTable::texels' layout. Read only
+// through the accessors below.
 @group(0) @binding(8) var<storage, read> spectral_tables: array<f32>;
 // Words before the scale (srt_gpu::spectral::SPECTRAL_HEADER_WORDS).
-const SPECTRAL_HEADER_WORDS: u32 = 2u;
+const SPECTRAL_HEADER_WORDS: u32 = 3u;
 
-// Where each part of spectral_tables starts, read from its header once per shading call rather
-// than once per CIE sample.
+// The CIE 1931 2° table, rows 360–830 nm at 1 nm (srt_color::cie_1931), one texel per row:
+// (x̄, ȳ, z̄, 1/λ in nm⁻¹) (srt_gpu::spectral::cie_texels). A texture, not part of
+// spectral_tables: every spectral sum reads all its rows, and llvmpipe reads a storage buffer in
+// a fragment shader one lane at a time but fetches a texel for all lanes at once.
+@group(0) @binding(9) var spectral_cie: texture_2d<f32>;
+
+// Where each part of spectral_tables starts, and the CIE table's grid, read once per shading
+// call rather than once per CIE row.
 struct SpectralLayout {
     // n, the brightness scale's entries (the coefficient table's resolution).
     resolution: u32,
-    // c, the CIE table's rows.
-    rows: u32,
-    // The word of the CIE table's first row.
-    cie_at: u32,
     // The word of the coefficient table's first texel.
     texels_at: u32,
+    // c, the CIE table's rows.
+    rows: u32,
+    // The CIE table's first and last wavelengths (nm): the domain the reflectance model was
+    // fitted on.
+    domain: vec2<f32>,
 }
 
-// The layout of spectral_tables from its header.
+// The layout of spectral_tables from its header and the CIE texture's width.
 fn spectral_layout() -> SpectralLayout {
     let resolution = u32(spectral_tables[0]);
-    let rows = u32(spectral_tables[1]);
-    let cie_at = SPECTRAL_HEADER_WORDS + resolution;
-    return SpectralLayout(resolution, rows, cie_at, cie_at + 4u * rows);
+    let domain = vec2<f32>(spectral_tables[1], spectral_tables[2]);
+    let rows = textureDimensions(spectral_cie).x;
+    return SpectralLayout(resolution, SPECTRAL_HEADER_WORDS + resolution, rows, domain);
 }
 
 // z_k of the brightness scale.
@@ -53,16 +51,9 @@ fn coefficient_scale(k: u32) -> f32 {
     return spectral_tables[SPECTRAL_HEADER_WORDS + k];
 }
 
-// x̄, ȳ, z̄ of row `s` of the CIE table laid out as `tables`.
-fn cie_tristimulus(tables: SpectralLayout, s: u32) -> vec3<f32> {
-    let at = tables.cie_at + 4u * s;
-    return vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]);
-}
-
-// Row `s` of the CIE table laid out as `tables`.
-fn cie_sample(tables: SpectralLayout, s: u32) -> CieSample {
-    let at = tables.cie_at + 4u * s;
-    return CieSample(vec3<f32>(spectral_tables[at], spectral_tables[at + 1u], spectral_tables[at + 2u]), spectral_tables[at + 3u]);
+// Row `s` of the CIE table: x̄, ȳ, z̄ and 1/λ (nm⁻¹).
+fn cie_row(s: u32) -> vec4<f32> {
+    return textureLoad(spectral_cie, vec2<u32>(s, 0u), 0);
 }
 
 // Values Rust owns, set at pipeline creation (srt_gpu::shaders): c₂ = hc/k in m·K and 2hc²
@@ -176,12 +167,6 @@ fn spectral_sigmoid(x: f32) -> f32 {
     return 0.5 + 0.5 * c * inverseSqrt(1.0 + c * c);
 }
 
-// The CIE table's wavelengths, first and last (nm): the domain the reflectance model was fitted
-// on.
-fn cie_domain(tables: SpectralLayout) -> vec2<f32> {
-    return vec2<f32>(cie_sample(tables, 0u).wavelength_nm, cie_sample(tables, tables.rows - 1u).wavelength_nm);
-}
-
 // R(λ) under the policy of reflect.rs: the band constant where one applies, else the model at λ
 // held to `domain`, the CIE table's (the fitted) one (mirror of Reflectance::evaluate).
 fn reflectance_evaluate(r: Reflectance, wavelength_nm: f32, domain: vec2<f32>) -> f32 {
@@ -270,10 +255,9 @@ fn planck_weights(temperature_k: f32, domain: vec2<f32>) -> PlanckWeights {
     );
 }
 
-// L(λ, T) / L_max at `wavelength_nm` (Eq. 10): (λₗ/λ)⁵ · e^(−(x − xₗ)) · g(xₗ)/g(x) · L(λₗ)/L_max,
-// one exponential.
-fn planck_weight(weights: PlanckWeights, wavelength_nm: f32) -> f32 {
-    let inverse = 1.0 / wavelength_nm;
+// L(λ, T) / L_max at the wavelength whose reciprocal (nm⁻¹) is `inverse` (Eq. 10): (λₗ/λ)⁵ ·
+// e^(−(x − xₗ)) · g(xₗ)/g(x) · L(λₗ)/L_max, one exponential.
+fn planck_weight(weights: PlanckWeights, inverse: f32) -> f32 {
     let x = weights.x_per_inverse_nm * inverse;
     let beyond = exp(-(weights.x_per_inverse_nm * (inverse - weights.inverse_longest_nm)));
     let ratio = weights.longest_nm * inverse;
@@ -297,17 +281,16 @@ fn reflected_light(r: Reflectance, temperature_k: f32, d_in: f32, d_out: f32) ->
         return SpectralLight(vec3<f32>(0.0), vec3<f32>(0.0), 0.0, false);
     }
     let tables = spectral_layout();
-    let domain = cie_domain(tables);
+    let domain = tables.domain;
     let weights = planck_weights(apparent, domain);
-    // The rows are evenly spaced (srt_gpu::spectral's tests), so a row's wavelength is computed,
-    // not read: on a software rasteriser each storage read in this loop costs about as much as
-    // the Planck weight.
+    // The rows are evenly spaced (srt_gpu::spectral's tests), so a row's wavelength is computed.
     let step_nm = (domain.y - domain.x) / f32(tables.rows - 1u);
     var light = vec3<f32>(0.0);
     var white = vec3<f32>(0.0);
     for (var s = 0u; s < tables.rows; s++) {
         let wavelength_nm = domain.x + f32(s) * step_nm;
-        let radiance = planck_weight(weights, wavelength_nm) * cie_tristimulus(tables, s);
+        let row = cie_row(s);
+        let radiance = planck_weight(weights, row.w) * row.xyz;
         light += reflectance_evaluate(r, d_out * wavelength_nm, domain) * radiance;
         white += radiance;
     }

@@ -265,13 +265,21 @@ pub mod slots {
         visibility: ShaderStages::FRAGMENT,
         ty: storage(true),
     };
-    /// Group 0 of the shading passes: `spectral_tables`, the CIE 1931 and Jakob–Hanika tables of
-    /// spectral colour in one array ([`crate::spectral::spectral_words`]).
+    /// Group 0 of the shading passes: `spectral_tables`, the Jakob–Hanika table of spectral
+    /// colour ([`crate::spectral::spectral_words`]).
     pub const SPECTRAL_TABLES: Slot = Slot {
         wgsl_name: "spectral_tables",
         binding: 8,
         visibility: ShaderStages::FRAGMENT,
         ty: storage(true),
+    };
+    /// Group 0 of the shading passes: `spectral_cie`, the CIE 1931 table of spectral colour
+    /// ([`crate::spectral::cie_texels`]).
+    pub const SPECTRAL_CIE: Slot = Slot {
+        wgsl_name: "spectral_cie",
+        binding: 9,
+        visibility: ShaderStages::FRAGMENT,
+        ty: TEXTURE_2D,
     };
     /// Group 0 of the shading passes: `shadow_scene`, every object's BVH for the shadows of
     /// moving lights ([`crate::shadows`]).
@@ -322,6 +330,7 @@ pub const SHADE_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
         slots::LUT_TABLE,
         slots::VISIBLE_IDS,
         slots::SPECTRAL_TABLES,
+        slots::SPECTRAL_CIE,
         slots::SHADOW_SCENE,
         slots::FRAME_BOUND,
     ],
@@ -335,6 +344,7 @@ pub const POLYGON_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
         slots::FRAME_UNIFORMS,
         slots::LUT_TABLE,
         slots::SPECTRAL_TABLES,
+        slots::SPECTRAL_CIE,
         slots::SHADOW_SCENE,
     ],
 };
@@ -346,6 +356,7 @@ pub const SKY_FRAME_GROUP: BindGroupSpec = BindGroupSpec {
         slots::FRAME_UNIFORMS,
         slots::LUT_TABLE,
         slots::SPECTRAL_TABLES,
+        slots::SPECTRAL_CIE,
     ],
 };
 /// Group 1: object uniforms.

@@ -681,6 +681,11 @@ pub mod slots {
         visibility: ShaderStages::COMPUTE,
         ..crate::pipelines::slots::SPECTRAL_TABLES
     };
+    /// `spectral_cie`, as the render passes bind it, for the compute stage.
+    pub const SPECTRAL_CIE: Slot = Slot {
+        visibility: ShaderStages::COMPUTE,
+        ..crate::pipelines::slots::SPECTRAL_CIE
+    };
 }
 
 /// The bind group of the `physics_probe` entry point.
@@ -710,6 +715,7 @@ pub const SPECTRAL_PROBE_GROUP: BindGroupSpec = BindGroupSpec {
         slots::SPECTRAL_INPUTS,
         slots::SPECTRAL_OUTPUTS,
         slots::SPECTRAL_TABLES,
+        slots::SPECTRAL_CIE,
         slots::SPECTRAL_PARAMS,
     ],
 };
@@ -1110,6 +1116,7 @@ pub fn run_spectral_probe(
         mapped_at_creation: false,
     });
     let [_, _, spectral] = specs();
+    let [spectral_words, spectral_cie] = tables.entries();
     let bytes = dispatch(
         ctx,
         &spectral,
@@ -1117,7 +1124,8 @@ pub fn run_spectral_probe(
         &[
             slots::SPECTRAL_INPUTS.entry(input.as_entire_binding()),
             slots::SPECTRAL_OUTPUTS.entry(output.as_entire_binding()),
-            tables.entry(),
+            spectral_words,
+            spectral_cie,
             slots::SPECTRAL_PARAMS.entry(params.as_entire_binding()),
         ],
         cases.len(),

@@ -409,17 +409,6 @@ pub struct GpuVertex {
     pub uv: [f32; 4],
 }
 
-/// Twin of WGSL `CieSample` (spectral.wgsl): one row of the CIE 1931 2° table
-/// ([`crate::spectral::cie_rows`]).
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct GpuCieSample {
-    /// x̄, ȳ, z̄ at this wavelength.
-    pub xyz_bar: [f32; 3],
-    /// The wavelength in nm.
-    pub wavelength_nm: f32,
-}
-
 /// Twin of WGSL `Star` (types.wgsl): one star of the sky.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

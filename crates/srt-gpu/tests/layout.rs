@@ -9,8 +9,8 @@ use std::mem::{offset_of, size_of};
 use naga::proc::Layouter;
 use naga::{Module, ScalarKind, TypeInner};
 use srt_gpu::types::{
-    EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuCieSample, GpuFootprint, GpuFrame,
-    GpuMovingLight, GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuShadowObject,
+    EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuFootprint, GpuFrame, GpuMovingLight,
+    GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuShadowObject,
     GpuSpectralProbeInput, GpuSpectralProbeOutput, GpuStar, GpuVertex, LightUniforms,
     ObjectUniforms, OutputCode, PartFlags, PartUniforms, SkyUniforms, SurfaceColourCode,
     ToneMapCode,
@@ -124,7 +124,6 @@ fn table() -> Vec<Twin> {
         twin!(LightUniforms => "LightUniforms" { lamp, counts, moving }),
         twin!(GpuShadowObject => "ShadowObject" { observer_to_rest, offset, bvh }),
         twin!(GpuStar => "Star" { direction_temperature, magnitude }),
-        twin!(GpuCieSample => "CieSample" { xyz_bar, wavelength_nm }),
         twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts, direction_map, direction_unmap, image }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
         twin!(GpuPhysicsProbeOutput => "PhysicsProbeOutput" { to_observer, to_rest, emission_event, apparent_position, apparent_tangent, aberrate, ray_origin, ray_direction, scalars }),

@@ -53,6 +53,7 @@ impl Targets {
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         let ids_view = ids.create_view(&wgpu::TextureViewDescriptor::default());
+        let [spectral_words, spectral_cie] = frame.spectral.entries();
         let shade_frame_groups = frame
             .lut_views
             .iter()
@@ -64,7 +65,8 @@ impl Targets {
                         slots::FRAME_UNIFORMS.entry(frame.uniforms.as_entire_binding()),
                         slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(lut)),
                         slots::VISIBLE_IDS.entry(wgpu::BindingResource::TextureView(&ids_view)),
-                        frame.spectral.entry(),
+                        spectral_words.clone(),
+                        spectral_cie.clone(),
                         slots::SHADOW_SCENE.entry(frame.shadow_scene.as_entire_binding()),
                         slots::FRAME_BOUND.entry(frame.frame_bound.as_entire_binding()),
                     ],
@@ -142,6 +144,7 @@ impl FrameResources {
         };
         let uniforms = written_per_frame("srt frame uniforms", size_of::<FrameUniforms>() as u64);
         let spectral = SpectralTables::new(ctx)?;
+        let [spectral_words, spectral_cie] = spectral.entries();
         let mut bind_groups = Vec::new();
         let mut polygon_groups = Vec::new();
         let mut sky_groups = Vec::new();
@@ -165,7 +168,8 @@ impl FrameResources {
                 entries: &[
                     slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
-                    spectral.entry(),
+                    spectral_words.clone(),
+                    spectral_cie.clone(),
                     slots::SHADOW_SCENE.entry(shadow_scene.as_entire_binding()),
                 ],
             }));
@@ -175,7 +179,8 @@ impl FrameResources {
                 entries: &[
                     slots::FRAME_UNIFORMS.entry(uniforms.as_entire_binding()),
                     slots::LUT_TABLE.entry(wgpu::BindingResource::TextureView(&view)),
-                    spectral.entry(),
+                    spectral_words.clone(),
+                    spectral_cie.clone(),
                 ],
             }));
             lut_views.push(view);
