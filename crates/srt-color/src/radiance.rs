@@ -119,7 +119,7 @@ pub enum Output {
     /// Display colours through the tone map, in [0, 1].
     #[default]
     Display,
-    /// Radiance ([module documentation](self)), unclamped.
+    /// Radiance (the `radiance` module's documentation), unclamped.
     Radiance,
 }
 

@@ -33,7 +33,7 @@ use crate::types::{
 };
 
 /// Above this many layers of triangles (an object's surface over its box's surface,
-/// [`ObjectRayTracing::preferred`]) `auto` traces an object through its BVH. Chosen from
+/// `ObjectRayTracing::preferred`) `auto` traces an object through its BVH. Chosen from
 /// `cargo xtask bench` on lavapipe, whose LRT and RT columns show the choice per scene
 /// (docs/performance.md; the measurements it was chosen from are in docs/performance-log.md):
 /// deep models such as the 2CylinderEngine (2.80 layers) render faster traced, the fig10 cubes

@@ -16,8 +16,8 @@
 //! 2. every BVH's nodes ([`GpuBvhNode`], [`SHADOW_NODE_ROWS`] rows each), an inner node's
 //!    `first` its first child's index among all nodes, a leaf's `first` its first triangle's
 //!    index among all triangles;
-//! 3. every triangle in its BVH's leaf order ([`GpuRtTriangle`], [`SHADOW_TRIANGLE_ROWS`] rows
-//!    each).
+//! 3. every triangle in its BVH's leaf order ([`GpuRtTriangle`],
+//!    [`SHADOW_TRIANGLE_ROWS`](crate::types::SHADOW_TRIANGLE_ROWS) rows each).
 //!
 //! One buffer rather than three: the LRT shading pass's fragment stage already reads six storage
 //! buffers, and srt asks for at most eight per stage (`context::device_descriptor`; WebGPU's

@@ -500,10 +500,10 @@ pub const DRAW_ARGS_BYTES: u64 = 4 * DRAW_ARGS_WORDS as u64;
 pub const SHADE_DRAW_OFFSET: u64 = 4 * DRAW_ARGS_SHADE_VERTICES as u64;
 
 /// Entries of the GPU ray tracer's traversal stack (WGSL `BVH_STACK_SIZE` in types.wgsl): a
-/// batch's BVH may be at most this deep less one ([`crate::bvh::PartBvh::build`] checks).
+/// batch's BVH may be at most this deep less one ([`crate::bvh::ObjectBvh::build`] checks).
 pub const BVH_STACK_SIZE: u32 = 64;
 
-/// Twin of WGSL `BvhNode`: one node of a batch's BVH in S′ ([`crate::bvh::PartBvh`]).
+/// Twin of WGSL `BvhNode`: one node of a batch's BVH in S′ ([`crate::bvh::ObjectBvh`]).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuBvhNode {
