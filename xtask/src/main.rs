@@ -30,6 +30,9 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Fit the sRGB coefficient table of spectral colour afresh and write it where srt-color
+    /// embeds it (crates/srt-color/data/coefficients_32.bin); run after any change to the fit.
+    CoefficientTable,
     /// Check every GPU pass against its CPU mirror on the current adapter (kernels, footprints,
     /// images); exits non-zero on any disagreement.
     Validate {
@@ -134,6 +137,20 @@ fn sizes_or(sizes: Vec<(u32, u32)>, default: &[(u32, u32)]) -> Vec<(u32, u32)> {
     }
 }
 
+/// Builds srt-color's coefficient table at its default resolution and writes its texels where
+/// the crate embeds them, through a temporary file renamed into place.
+fn write_coefficient_table(root: &std::path::Path) -> anyhow::Result<PathBuf> {
+    use anyhow::Context as _;
+    use srt_color::spectral::CoefficientTable;
+    let table = CoefficientTable::build(CoefficientTable::DEFAULT_RESOLUTION)?;
+    let path = root.join("crates/srt-color/data/coefficients_32.bin");
+    let partial = path.with_extension("bin.partial");
+    std::fs::write(&partial, table.texel_bytes())
+        .with_context(|| format!("writing {}", partial.display()))?;
+    std::fs::rename(&partial, &path).with_context(|| format!("writing {}", path.display()))?;
+    Ok(path)
+}
+
 fn main() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Figures { out } => {
@@ -141,6 +158,10 @@ fn main() -> anyhow::Result<()> {
             for path in figures::write_all(&out)? {
                 println!("wrote {}", path.display());
             }
+        }
+        Command::CoefficientTable => {
+            let path = write_coefficient_table(&workspace_root())?;
+            println!("wrote {}", path.display());
         }
         Command::Validate {
             only,

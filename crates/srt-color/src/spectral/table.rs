@@ -63,9 +63,7 @@ impl CoefficientTable {
             return Err(ColourError::InvalidResolution(resolution));
         }
         let n = resolution;
-        let scale: Vec<f64> = (0..n)
-            .map(|k| smoothstep(smoothstep(k as f64 / (n - 1) as f64)))
-            .collect();
+        let scale = brightness_scale(n);
         // One task per (m, j) row; each returns its n × n (i, k) coefficients.
         let tasks = 3 * n;
         let next = AtomicUsize::new(0);
@@ -112,6 +110,36 @@ impl CoefficientTable {
             scale,
             texels,
         })
+    }
+
+    /// The table of resolution `resolution` whose texels are `bytes`, as [`Self::texel_bytes`]
+    /// wrote them; `None` unless the resolution is supported and `bytes` holds 3 · n³ texels.
+    fn from_texel_bytes(resolution: usize, bytes: &[u8]) -> Option<Self> {
+        let count = 3 * resolution.pow(3);
+        if !RESOLUTION_RANGE.contains(&resolution) || bytes.len() != count * TEXEL_BYTES {
+            return None;
+        }
+        let word = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let texels = bytes
+            .chunks_exact(TEXEL_BYTES)
+            .map(|t| [word(&t[0..4]), word(&t[4..8]), word(&t[8..12])])
+            .collect();
+        Some(Self {
+            resolution,
+            scale: brightness_scale(resolution),
+            texels,
+        })
+    }
+
+    /// The texels as little-endian `f32` bytes, c₀, c₁, c₂ per texel in [`Self::texels`]' order:
+    /// the form of the table embedded in the crate (`data/coefficients_32.bin`).
+    #[must_use]
+    pub fn texel_bytes(&self) -> Vec<u8> {
+        self.texels
+            .iter()
+            .flatten()
+            .flat_map(|c| c.to_le_bytes())
+            .collect()
     }
 
     /// Index of texel (m, k, j, i) in a table of resolution `n`.
@@ -207,6 +235,16 @@ impl CoefficientTable {
     }
 }
 
+/// Bytes of one texel in [`CoefficientTable::texel_bytes`]: three `f32`.
+const TEXEL_BYTES: usize = 12;
+
+/// The brightness scale zₖ = smoothstep(smoothstep(k/(n − 1))) of a table of resolution `n`.
+fn brightness_scale(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|k| smoothstep(smoothstep(k as f64 / (n - 1) as f64)))
+        .collect()
+}
+
 /// The linear sRGB colour of texel (m, k, j, i) on the brightness scale `scale`.
 fn texel_rgb(scale: &[f64], m: usize, k: usize, j: usize, i: usize) -> DVec3 {
     let last = (scale.len() - 1) as f64;
@@ -240,17 +278,23 @@ fn fit_row(m: usize, j: usize, scale: &[f64]) -> Vec<[f64; 3]> {
     row
 }
 
-/// The sRGB coefficient table at [`CoefficientTable::DEFAULT_RESOLUTION`], built on first use
-/// (well under a second in release builds on two cores; see docs/colour.md).
+/// [`CoefficientTable::build`] at [`CoefficientTable::DEFAULT_RESOLUTION`], as
+/// [`CoefficientTable::texel_bytes`] (`cargo xtask coefficient-table` writes it; a test checks
+/// it against a fresh build).
+const EMBEDDED_TABLE: &[u8] = include_bytes!("../../data/coefficients_32.bin");
+
+/// The sRGB coefficient table at [`CoefficientTable::DEFAULT_RESOLUTION`]: the build embedded in
+/// the crate, read on first use (fitting it takes about 0.36 s on two cores, which every
+/// renderer paid at start-up; see docs/colour.md).
 ///
 /// # Panics
 ///
-/// Never: the default resolution is valid.
+/// Never: the embedded table has the default resolution's size (tested).
 #[must_use]
 pub fn srgb_coefficient_table() -> &'static CoefficientTable {
     static TABLE: LazyLock<CoefficientTable> = LazyLock::new(|| {
-        CoefficientTable::build(CoefficientTable::DEFAULT_RESOLUTION)
-            .expect("the default resolution is in range")
+        CoefficientTable::from_texel_bytes(CoefficientTable::DEFAULT_RESOLUTION, EMBEDDED_TABLE)
+            .expect("the embedded table has the default resolution's size")
     });
     &TABLE
 }
@@ -266,6 +310,35 @@ mod tests {
         let table = CoefficientTable::build(4).unwrap();
         assert!(table.lookup(DVec3::new(0.2, 1.5, 0.1)).is_err());
         assert!(table.lookup(DVec3::new(0.2, f64::NAN, 0.1)).is_err());
+    }
+
+    #[test]
+    fn texel_bytes_read_back_and_wrong_sizes_are_refused() {
+        let table = CoefficientTable::build(4).unwrap();
+        let bytes = table.texel_bytes();
+        assert_eq!(CoefficientTable::from_texel_bytes(4, &bytes), Some(table));
+        assert_eq!(CoefficientTable::from_texel_bytes(5, &bytes), None);
+        assert_eq!(CoefficientTable::from_texel_bytes(4, &bytes[1..]), None);
+        assert_eq!(CoefficientTable::from_texel_bytes(2, &[]), None);
+    }
+
+    #[test]
+    fn the_embedded_table_is_a_fresh_build() {
+        // Regenerate with `cargo xtask coefficient-table` after any change to the fit. The fit
+        // runs on libm's functions, which may differ in their last bits between platforms, so
+        // the coefficients are compared to a relative 10⁻⁵ (a changed fit moves them by far more).
+        let fresh = CoefficientTable::build(CoefficientTable::DEFAULT_RESOLUTION).unwrap();
+        let embedded = srgb_coefficient_table();
+        assert_eq!(embedded.resolution(), fresh.resolution());
+        assert_eq!(embedded.scale(), fresh.scale());
+        for (index, (e, f)) in embedded.texels().iter().zip(fresh.texels()).enumerate() {
+            for (a, b) in e.iter().zip(f) {
+                assert!(
+                    (a - b).abs() <= 1e-5 * b.abs().max(1.0),
+                    "texel {index}: embedded {e:?}, fresh {f:?}"
+                );
+            }
+        }
     }
 
     #[test]
