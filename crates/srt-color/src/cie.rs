@@ -50,6 +50,39 @@ impl CmfSample {
 
 static CIE_1931: LazyLock<Vec<CmfSample>> = LazyLock::new(|| parse_cmf_csv(CIE_1931_CSV));
 
+/// A row of the CIE table with what Planck's law needs of its wavelength at every temperature,
+/// computed once rather than in every spectral sum ([`PlanckWeights::weight`]).
+pub(crate) struct SpectralRow {
+    /// The table's row.
+    pub(crate) sample: CmfSample,
+    /// 1/λ in nm⁻¹.
+    inverse_nm: f64,
+    /// (λₗ/λ)⁵, λₗ the table's longest wavelength.
+    longest_ratio_pow5: f64,
+}
+
+static SPECTRAL_ROWS: LazyLock<Vec<SpectralRow>> = LazyLock::new(|| {
+    let table = cie_1931();
+    let longest_nm = table[table.len() - 1].wavelength_nm;
+    table
+        .iter()
+        .map(|&sample| {
+            let inverse_nm = 1.0 / sample.wavelength_nm;
+            SpectralRow {
+                sample,
+                inverse_nm,
+                longest_ratio_pow5: (longest_nm * inverse_nm).powi(5),
+            }
+        })
+        .collect()
+});
+
+/// The CIE table's rows with their wavelength terms of Planck's law: what a spectral sum
+/// iterates over.
+pub(crate) fn spectral_rows() -> &'static [SpectralRow] {
+    &SPECTRAL_ROWS
+}
+
 /// Parses the embedded table: `#` comment lines, one header line, then `λ,x̄,ȳ,z̄` rows.
 ///
 /// The input is compiled in and checked by tests, so a malformed line is a build defect and
@@ -168,9 +201,7 @@ pub(crate) struct PlanckWeights {
     ln_max: f64,
     /// c₂/T in nm: x = c₂/(λT) = `x_per_inverse_nm` / λ with λ in nm.
     x_per_inverse_nm: f64,
-    /// λₗ, the table's longest wavelength, in nm.
-    longest_nm: f64,
-    /// 1/λₗ in nm⁻¹.
+    /// 1/λₗ in nm⁻¹, λₗ the table's longest wavelength.
     inverse_longest_nm: f64,
     /// e^(−xₗ).
     exp_minus_x_longest: f64,
@@ -217,7 +248,6 @@ impl PlanckWeights {
         Some(Self {
             ln_max,
             x_per_inverse_nm,
-            longest_nm: longest.wavelength_nm,
             inverse_longest_nm: 1.0 / longest.wavelength_nm,
             exp_minus_x_longest,
             longest_factor: longest_weight * one_minus_exp_minus(x_longest, exp_minus_x_longest),
@@ -229,14 +259,13 @@ impl PlanckWeights {
         self.ln_max
     }
 
-    /// L(λ, T) / L_max at the table's row `sample` (Eq. 10, in the form of the type's
+    /// L(λ, T) / L_max at the table's row `row` (Eq. 10, in the form of the type's
     /// documentation).
-    pub(crate) fn weight(&self, sample: &CmfSample) -> f64 {
-        let inverse = 1.0 / sample.wavelength_nm;
+    pub(crate) fn weight(&self, row: &SpectralRow) -> f64 {
+        let inverse = row.inverse_nm;
         let x = self.x_per_inverse_nm * inverse;
         let beyond = (-(self.x_per_inverse_nm * (inverse - self.inverse_longest_nm))).exp();
-        let ratio = self.longest_nm * inverse;
-        self.longest_factor * ratio.powi(5) * beyond
+        self.longest_factor * row.longest_ratio_pow5 * beyond
             / one_minus_exp_minus(x, self.exp_minus_x_longest * beyond)
     }
 }
@@ -257,9 +286,9 @@ pub(crate) fn blackbody_xyz_relative(temperature_k: f64) -> (DVec3, f64) {
     let Some(weights) = PlanckWeights::new(temperature_k) else {
         return (DVec3::ZERO, f64::NEG_INFINITY);
     };
-    let relative = cie_1931()
+    let relative = spectral_rows()
         .iter()
-        .map(|s| weights.weight(s) * s.tristimulus())
+        .map(|row| weights.weight(row) * row.sample.tristimulus())
         .sum::<DVec3>();
     (relative, weights.ln_max() + CIE_1931_STEP_M.ln())
 }
@@ -369,12 +398,12 @@ mod tests {
                 (weights.ln_max() - ln_max).abs() <= 1e-12 * ln_max.abs().max(1.0),
                 "T {t}"
             );
-            for (sample, want) in cie_1931().iter().zip(want) {
-                let got = weights.weight(sample);
+            for (row, want) in spectral_rows().iter().zip(want) {
+                let got = weights.weight(row);
                 assert!(
                     (got - want).abs() <= 1e-12,
                     "T {t}, λ {}: {got} vs {want}",
-                    sample.wavelength_nm
+                    row.sample.wavelength_nm
                 );
             }
         }
@@ -386,7 +415,7 @@ mod tests {
         #[test]
         fn planck_weights_peak_at_one(log_t in 0.0_f64..12.0) {
             let weights = PlanckWeights::new(10f64.powf(log_t)).expect("positive finite");
-            let largest = cie_1931().iter().map(|s| weights.weight(s)).fold(0.0, f64::max);
+            let largest = spectral_rows().iter().map(|row| weights.weight(row)).fold(0.0, f64::max);
             proptest::prop_assert!((largest - 1.0).abs() <= 1e-12, "largest weight {}", largest);
         }
     }

@@ -32,7 +32,7 @@
 use glam::DVec3;
 
 use super::sigmoid::{MODEL_MAX_NM, MODEL_MIN_NM, SigmoidPolynomial};
-use crate::cie::{CIE_1931_STEP_M, PlanckWeights, ScaledXyz, blackbody_xyz_scaled, cie_1931};
+use crate::cie::{CIE_1931_STEP_M, PlanckWeights, ScaledXyz, blackbody_xyz_scaled, spectral_rows};
 use crate::error::{ColourError, positive_finite, unit_interval};
 use crate::tonemap::ToneMap;
 
@@ -162,9 +162,9 @@ pub fn reflected_light(
     let weights =
         PlanckWeights::new(apparent).ok_or(ColourError::ApparentTemperatureOutOfRange(apparent))?;
     let (mut light, mut white) = (DVec3::ZERO, DVec3::ZERO);
-    for sample in cie_1931() {
-        let radiance = weights.weight(sample) * sample.tristimulus();
-        light += reflectance.evaluate(d_out * sample.wavelength_nm) * radiance;
+    for row in spectral_rows() {
+        let radiance = weights.weight(row) * row.sample.tristimulus();
+        light += reflectance.evaluate(d_out * row.sample.wavelength_nm) * radiance;
         white += radiance;
     }
     let ln_scale = weights.ln_max() + CIE_1931_STEP_M.ln();
