@@ -16,9 +16,9 @@ pub const MODEL_MAX_NM: f64 = crate::cie::CIE_1931_MAX_NM;
 ///
 /// Exact at the limits: S(+∞) = 1, S(−∞) = 0. Beyond |x| = [`SIGMOID_SATURATES_ABOVE`],
 /// x / √(1 + x²) is ±1 in f64 (it differs by 1/(2x²)) and S is 0 or 1, so `1 + x²` is only
-/// formed where it cannot overflow — with a square root, not `hypot`, which costs several times
-/// as much in the spectral sums' inner loop. NaN stays NaN (the checked types below never
-/// produce it).
+/// formed where it cannot overflow — with a square root, not `hypot` (which took 6.6 % of the
+/// CPU reference's spectral teaser in a profile, docs/performance-log.md). NaN stays NaN (the
+/// checked types below never produce it).
 #[must_use]
 pub fn sigmoid(x: f64) -> f64 {
     if x.abs() > SIGMOID_SATURATES_ABOVE {
