@@ -32,7 +32,7 @@
 use glam::DVec3;
 
 use super::sigmoid::{MODEL_MAX_NM, MODEL_MIN_NM, SigmoidPolynomial};
-use crate::cie::{CIE_1931_STEP_M, PlanckWeights, ScaledXyz, blackbody_xyz_scaled, spectral_rows};
+use crate::cie::{CIE_1931_STEP_M, PlanckWeights, ScaledXyz, blackbody_xyz_scaled, planck_sums};
 use crate::error::{ColourError, positive_finite, unit_interval};
 use crate::tonemap::ToneMap;
 
@@ -113,12 +113,30 @@ impl Reflectance {
     /// override where one applies, else the model at λ clamped to 360–830 nm.
     #[must_use]
     pub fn evaluate(&self, wavelength_nm: f64) -> f64 {
-        match (self.ultraviolet, self.infrared) {
-            (Some(uv), _) if wavelength_nm < ULTRAVIOLET_BELOW_NM => uv,
-            (_, Some(ir)) if wavelength_nm > INFRARED_ABOVE_NM => ir,
-            _ => self
-                .polynomial
-                .evaluate(wavelength_nm.clamp(MODEL_MIN_NM, MODEL_MAX_NM)),
+        let (numerator, denominator) = self.evaluate_fraction(wavelength_nm);
+        numerator / denominator
+    }
+
+    /// [`Reflectance::evaluate`] as a fraction (numerator, denominator), for a sum that divides
+    /// once per wavelength; selects rather than branches, so that a loop over wavelengths
+    /// vectorises.
+    #[inline(always)]
+    fn evaluate_fraction(&self, wavelength_nm: f64) -> (f64, f64) {
+        let (ultraviolet_below, ultraviolet) = self
+            .ultraviolet
+            .map_or((f64::NEG_INFINITY, 0.0), |uv| (ULTRAVIOLET_BELOW_NM, uv));
+        let (infrared_above, infrared) = self
+            .infrared
+            .map_or((f64::INFINITY, 0.0), |ir| (INFRARED_ABOVE_NM, ir));
+        let model = self
+            .polynomial
+            .evaluate_fraction(wavelength_nm.clamp(MODEL_MIN_NM, MODEL_MAX_NM));
+        if wavelength_nm < ultraviolet_below {
+            (ultraviolet, 1.0)
+        } else if wavelength_nm > infrared_above {
+            (infrared, 1.0)
+        } else {
+            model
         }
     }
 }
@@ -161,12 +179,16 @@ pub fn reflected_light(
     let apparent = apparent_temperature(light_temperature_k, &[d_in, d_out])?;
     let weights =
         PlanckWeights::new(apparent).ok_or(ColourError::ApparentTemperatureOutOfRange(apparent))?;
-    let (mut light, mut white) = (DVec3::ZERO, DVec3::ZERO);
-    for row in spectral_rows() {
-        let radiance = weights.weight(row) * row.sample.tristimulus();
-        light += reflectance.evaluate(d_out * row.sample.wavelength_nm) * radiance;
-        white += radiance;
-    }
+    let (light, white) = planck_sums(
+        &weights,
+        #[inline(always)]
+        |wavelengths_nm, numerators, denominators| {
+            let rows = numerators.iter_mut().zip(denominators).zip(wavelengths_nm);
+            for ((numerator, denominator), &wavelength_nm) in rows {
+                (*numerator, *denominator) = reflectance.evaluate_fraction(d_out * wavelength_nm);
+            }
+        },
+    );
     let ln_scale = weights.ln_max() + CIE_1931_STEP_M.ln();
     Ok(ReflectedLight {
         light: ScaledXyz {
