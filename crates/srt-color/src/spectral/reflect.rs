@@ -283,3 +283,60 @@ pub fn emitted_display_rgb(
     let (light, white) = emitter(temperature_k, brightness, doppler)?;
     tone_map.display_rgb_xyz(light, white, exposure)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cie::cie_1931;
+    use crate::planck::ln_planck_radiance;
+    use crate::spectral::srgb_coefficient_table;
+
+    /// The sums of [`reflected_light`] by their definition, one row at a time: R(D_out · λ) ·
+    /// L(λ, D_in · D_out · T) · σ(λ) with L from Planck's law in logarithms, relative to the
+    /// largest L over the table; `(light, white, ln L_max)`.
+    fn by_definition(
+        reflectance: &Reflectance,
+        temperature_k: f64,
+        d_out: f64,
+    ) -> (DVec3, DVec3, f64) {
+        let ln: Vec<f64> = cie_1931()
+            .iter()
+            .map(|s| ln_planck_radiance(s.wavelength_m(), temperature_k))
+            .collect();
+        let ln_max = ln.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let (mut light, mut white) = (DVec3::ZERO, DVec3::ZERO);
+        for (sample, ln) in cie_1931().iter().zip(ln) {
+            let radiance = (ln - ln_max).exp() * sample.tristimulus();
+            light += reflectance.evaluate(d_out * sample.wavelength_nm) * radiance;
+            white += radiance;
+        }
+        (light, white, ln_max)
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_lane_wise_sum_is_the_sum_by_definition(
+            rgb in proptest::array::uniform3(0.0_f64..=1.0),
+            temperature_k in 500.0_f64..40_000.0,
+            ln_d_in in -2.65_f64..2.65,
+            ln_d_out in -2.65_f64..2.65,
+            ultraviolet in proptest::option::of(0.0_f64..=1.0),
+            infrared in proptest::option::of(0.0_f64..=1.0),
+        ) {
+            // Every colour of the table, 500–40 000 K, |β| up to 0.99 each way (D within 1/14 …
+            // 14, so apparent temperatures from 2.5 K to 8 · 10⁶ K: both forms of g), with and
+            // without band constants.
+            let polynomial = srgb_coefficient_table().lookup(DVec3::from_array(rgb)).expect("rgb in [0, 1]");
+            let reflectance = Reflectance::with_bands(polynomial, ultraviolet, infrared).expect("bands in [0, 1]");
+            let (d_in, d_out) = (ln_d_in.exp(), ln_d_out.exp());
+            let got = reflected_light(&reflectance, temperature_k, d_in, d_out).expect("valid input");
+            let (light, white, ln_max) = by_definition(&reflectance, temperature_k * d_in * d_out, d_out);
+            let scale = (got.light.ln_scale - ln_max - CIE_1931_STEP_M.ln()).exp();
+            let tolerance = 1e-12 * white.y;
+            proptest::prop_assert!((got.white.relative * scale - white).abs().max_element() <= tolerance,
+                "white {:?} vs {:?}", got.white.relative * scale, white);
+            proptest::prop_assert!((got.light.relative * scale - light).abs().max_element() <= tolerance,
+                "light {:?} vs {:?}", got.light.relative * scale, light);
+        }
+    }
+}
