@@ -1,15 +1,42 @@
 // camera.wgsl — the pinhole camera of frame_uniforms (declared by the module that binds it:
 // render_bindings.wgsl or sky.wgsl): the viewing direction through a pixel and its inverse.
 
+// The pinhole camera as view_direction uses it, from frame_uniforms or carried to a fragment
+// shader in flat varyings (lrt.wgsl: llvmpipe reads a storage buffer in a fragment shader one
+// lane at a time).
+struct ViewCamera {
+    forward: vec3<f32>,
+    // Scaled by tan(fov/2)·aspect.
+    right: vec3<f32>,
+    // Scaled by tan(fov/2).
+    up: vec3<f32>,
+    // 1/width and 1/height in pixels⁻¹ (frame_uniforms.viewport.zw).
+    inverse_size: vec2<f32>,
+}
+
+// The frame's camera.
+fn frame_camera() -> ViewCamera {
+    return ViewCamera(
+        frame_uniforms.camera_forward.xyz,
+        frame_uniforms.camera_right.xyz,
+        frame_uniforms.camera_up.xyz,
+        frame_uniforms.viewport.zw,
+    );
+}
+
 // Viewing direction in S through the framebuffer position `pixel` (x right, y down, pixel
 // centres at half-integers); mirrors srt_scene::Observer::view_direction.
 fn view_direction(pixel: vec2<f32>) -> vec3<f32> {
+    return camera_view_direction(frame_camera(), pixel);
+}
+
+// view_direction for `camera`.
+fn camera_view_direction(camera: ViewCamera, pixel: vec2<f32>) -> vec3<f32> {
     let ndc = vec2<f32>(
-        2.0 * pixel.x * frame_uniforms.viewport.z - 1.0,
-        1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w,
+        2.0 * pixel.x * camera.inverse_size.x - 1.0,
+        1.0 - 2.0 * pixel.y * camera.inverse_size.y,
     );
-    return frame_uniforms.camera_forward.xyz + ndc.x * frame_uniforms.camera_right.xyz
-        + ndc.y * frame_uniforms.camera_up.xyz;
+    return camera.forward + ndc.x * camera.right + ndc.y * camera.up;
 }
 
 // Pixel position (x right, y down, pixel centres at half-integers) of the direction `d` in S in

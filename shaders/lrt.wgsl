@@ -35,9 +35,26 @@ override COUNT_FRAGMENTS: bool;
 // draws it. Bound only for the part-depth and shading passes.
 @group(0) @binding(13) var<storage, read> frame_bound: array<u32, 4>;
 
+// What a visibility fragment needs of its draw, read once per vertex and carried flat rather
+// than read per fragment: Mesa's llvmpipe reads a storage buffer in a fragment shader one lane
+// at a time, and these reads were about two thirds of an LRT visibility fragment's cost
+// (docs/performance-log.md, 2026-11-27, fourth entry). Flat varyings carry the values bit for bit,
+// so every fragment computes what it did from the buffers.
 struct LrtVarying {
     @builtin(position) position: vec4<f32>,
-    @location(0) @interpolate(flat) triangle: u32,
+    // The footprint's triangle and the part's id.
+    @location(0) @interpolate(flat) triangle_part: vec2<u32>,
+    // The triangle's corners in S′ (LRT's footprints; zero for the ray tracer's boxes).
+    @location(1) @interpolate(flat) corner0: vec3<f32>,
+    @location(2) @interpolate(flat) corner1: vec3<f32>,
+    @location(3) @interpolate(flat) corner2: vec3<f32>,
+    // The camera (ViewCamera): forward and the depth scale, right and 1/width, up and 1/height.
+    @location(4) @interpolate(flat) forward_depth_scale: vec4<f32>,
+    @location(5) @interpolate(flat) right_inverse_width: vec4<f32>,
+    @location(6) @interpolate(flat) up_inverse_height: vec4<f32>,
+    // The object's frame as the ray and the depth need it: β and γ, the observation event in S′.
+    @location(7) @interpolate(flat) beta_gamma: vec4<f32>,
+    @location(8) @interpolate(flat) observer_rest: vec4<f32>,
 }
 
 struct VisibilityOutput {
@@ -62,26 +79,71 @@ fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
     return f.hull[select(0u, triangle + corner, corner > 0u)];
 }
 
-@vertex
-fn lrt_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
+// Vertex `index` of the footprints, with the draw's flat data; the triangle's corners where
+// `with_corners` (LRT; the ray tracer's box names no triangle).
+fn footprint_vertex(index: u32, with_corners: bool) -> LrtVarying {
     // A triangle's own slot or a piece of a split triangle: the footprint names the triangle.
     let f = footprints[index / FOOTPRINT_VERTICES];
     let pixel = footprint_corner(f, index % FOOTPRINT_VERTICES);
     let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
-    return LrtVarying(vec4<f32>(ndc, 0.5, 1.0), f.triangle);
+    var corners = array<vec3<f32>, 3>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+    if (with_corners) {
+        corners = triangle_corners(f.triangle);
+    }
+    return draw_varying(vec4<f32>(ndc, 0.5, 1.0), f.triangle, corners);
 }
 
-// The backward viewing ray through `pixel` in S′, the rest-frame corners of triangle `t` and the
-// ray's hit with it.
+// The varyings of a vertex at `position` of a draw for triangle `triangle` with corners
+// `corners`: the part's id, the camera and the object's frame.
+fn draw_varying(position: vec4<f32>, triangle: u32, corners: array<vec3<f32>, 3>) -> LrtVarying {
+    let camera = frame_camera();
+    return LrtVarying(
+        position,
+        vec2<u32>(triangle, part.id),
+        corners[0],
+        corners[1],
+        corners[2],
+        vec4<f32>(camera.forward, frame_uniforms.depth_scale),
+        vec4<f32>(camera.right, camera.inverse_size.x),
+        vec4<f32>(camera.up, camera.inverse_size.y),
+        object.frame.beta_gamma,
+        object.frame.observer_rest,
+    );
+}
+
+// The LRT visibility pass's vertices: footprints of triangles.
+@vertex
+fn lrt_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
+    return footprint_vertex(index, true);
+}
+
+// The ray tracer's visibility pass's vertices: the footprints of objects' boxes.
+@vertex
+fn box_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
+    return footprint_vertex(index, false);
+}
+
+// The backward viewing ray through the fragment's pixel in S′ (backward_ray with view_direction),
+// from the draw's flat data.
+fn varying_ray(in: LrtVarying) -> RestRay {
+    let camera = ViewCamera(
+        in.forward_depth_scale.xyz,
+        in.right_inverse_width.xyz,
+        in.up_inverse_height.xyz,
+        vec2<f32>(in.right_inverse_width.w, in.up_inverse_height.w),
+    );
+    return backward_ray_of(in.beta_gamma, in.observer_rest, camera_view_direction(camera, in.position.xy));
+}
+
+// A backward viewing ray in S′, the rest-frame corners of a triangle and the ray's hit with it.
 struct LrtHit {
     ray: RestRay,
     corners: array<vec3<f32>, 3>,
     hit: TriangleHit,
 }
 
-fn lrt_hit(t: u32, pixel: vec2<f32>) -> LrtHit {
-    let ray = backward_ray(object.frame, view_direction(pixel));
-    let corners = triangle_corners(t);
+// `ray`'s hit with the triangle `corners`, with both.
+fn ray_hit(ray: RestRay, corners: array<vec3<f32>, 3>) -> LrtHit {
     return LrtHit(ray, corners, intersect_triangle(ray.origin, ray.direction, corners));
 }
 
@@ -90,19 +152,19 @@ fn lrt_visibility(in: LrtVarying) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }
-    let h = lrt_hit(in.triangle, in.position.xy);
+    let h = ray_hit(varying_ray(in), array<vec3<f32>, 3>(in.corner0, in.corner1, in.corner2));
     if (!h.hit.found) {
         discard;
     }
-    return visible(vec2<u32>(part.id, in.triangle), h.ray, h.hit.distance);
+    return visible(in, vec2<u32>(in.triangle_part.y, in.triangle_part.x), h.ray, h.hit.distance);
 }
 
 // What the visibility passes (this one and rt.wgsl's) write for the triangle `id` (part id,
 // triangle) hit at `distance` along `ray`: the id, and its apparent distance (Eq. 7–8) as depth.
-fn visible(id: vec2<u32>, ray: RestRay, distance: f32) -> VisibilityOutput {
+fn visible(in: LrtVarying, id: vec2<u32>, ray: RestRay, distance: f32) -> VisibilityOutput {
     var out: VisibilityOutput;
     out.id = id;
-    out.depth = clamp(apparent_distance(object.frame, ray, distance) * frame_uniforms.depth_scale, 0.0, 1.0);
+    out.depth = clamp(apparent_distance_of(in.beta_gamma, ray, distance) * in.forward_depth_scale.w, 0.0, 1.0);
     return out;
 }
 
@@ -142,15 +204,16 @@ fn id_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 
 // The part's screen bound as two triangles, drawn by the shading pass (after the ray tracer:
 // the bound of the object's box).
 @vertex
-fn part_bound_vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+fn part_bound_vertex(@builtin(vertex_index) v: u32) -> LrtVarying {
     let b = DRAW_ARGS_BOUND;
     let bound = vec4<u32>(part_draw_args[b], part_draw_args[b + 1u], part_draw_args[b + 2u], part_draw_args[b + 3u]);
-    return bound_corner(bound, v, part_depth(part.id));
+    let none = array<vec3<f32>, 3>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+    return draw_varying(bound_corner(bound, v, part_depth(part.id)), 0u, none);
 }
 
 @fragment
-fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let pixel = position.xy;
+fn lrt_shade(in: LrtVarying) -> @location(0) vec4<f32> {
+    let pixel = in.position.xy;
     // The depth test let only this part's pixels through (the header's step 3). The counting
     // variant's atomic is a side effect, which makes the test run after the shader: there the id
     // decides (and only there: a discard would keep the test late in the normal variant too).
@@ -164,7 +227,7 @@ fn lrt_shade(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let t = kept.y;
     // The same computation as in the visibility pass, so the same hit; for a spinning or
     // thrusting body the same march (motion.wgsl), on the kept triangle alone.
-    let h = lrt_hit(t, pixel);
+    let h = ray_hit(varying_ray(in), triangle_corners(t));
     var corners = h.corners;
     var hit = h.hit;
     let moving = motion_kind() != MOTION_REST;

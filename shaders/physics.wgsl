@@ -105,9 +105,15 @@ struct RestRay {
 
 // The backward viewing ray in S′ for the observer looking along `view_direction` (in S).
 fn backward_ray(frame: Frame, view_direction: vec3<f32>) -> RestRay {
+    return backward_ray_of(frame.beta_gamma, frame.observer_rest, view_direction);
+}
+
+// backward_ray given the only parts of the frame it needs: β and γ (`beta_gamma`) and the
+// observation event in S′ (`observer_rest`).
+fn backward_ray_of(beta_gamma: vec4<f32>, observer_rest: vec4<f32>, view_direction: vec3<f32>) -> RestRay {
     let propagation = -normalize(view_direction);
-    let propagation_rest = normalize(aberrate(-frame.beta_gamma.xyz, propagation));
-    return RestRay(frame.observer_rest.yzw, -propagation_rest, frame.observer_rest.x);
+    let propagation_rest = normalize(aberrate(-beta_gamma.xyz, propagation));
+    return RestRay(observer_rest.yzw, -propagation_rest, observer_rest.x);
 }
 
 // A positive multiple of the direction in S′ in which light seen along `view_direction` (in S)
@@ -120,5 +126,10 @@ fn rest_propagation_unscaled(frame: Frame, view_direction: vec3<f32>) -> vec3<f3
 
 // Apparent distance of the point at parameter s on `ray`: γ s (1 − β·d′).
 fn apparent_distance(frame: Frame, ray: RestRay, s: f32) -> f32 {
-    return frame.beta_gamma.w * s * (1.0 - dot(frame.beta_gamma.xyz, ray.direction));
+    return apparent_distance_of(frame.beta_gamma, ray, s);
+}
+
+// apparent_distance given the frame's β and γ (`beta_gamma`) only.
+fn apparent_distance_of(beta_gamma: vec4<f32>, ray: RestRay, s: f32) -> f32 {
+    return beta_gamma.w * s * (1.0 - dot(beta_gamma.xyz, ray.direction));
 }

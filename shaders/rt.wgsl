@@ -19,7 +19,8 @@
 //
 // Mirror: srt_gpu::bvh::ObjectBvh::nearest_hit (the traversal, tested against a test of every
 // triangle) and crates/srt-trace (the image, compared by `cargo xtask validate`).
-// Composed after lrt.wgsl (it uses `fragment_count`, `lrt_vertex`, `VisibilityOutput`, `visible`),
+// Composed after lrt.wgsl (it uses `fragment_count`, `box_vertex`, `LrtVarying`, `varying_ray`,
+// `VisibilityOutput`, `visible`),
 // bvh.wgsl (the slab test) and motion.wgsl (the moving bodies' curves and pieces).
 
 // The object's BVH nodes (srt_gpu::bvh::ObjectBvh::nodes), root first.
@@ -230,11 +231,11 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
 }
 
 @fragment
-fn rt_visibility(@builtin(position) position: vec4<f32>) -> VisibilityOutput {
+fn rt_visibility(in: LrtVarying) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }
-    let ray = backward_ray(object.frame, view_direction(position.xy));
+    let ray = varying_ray(in);
     var hit: BvhHit;
     if (motion_kind() == MOTION_REST) {
         hit = bvh_nearest_hit(ray.origin, ray.direction, 0.0, 3.4e38);
@@ -245,5 +246,5 @@ fn rt_visibility(@builtin(position) position: vec4<f32>) -> VisibilityOutput {
         discard;
     }
     let t = bvh_triangles[hit.triangle];
-    return visible(vec2<u32>(t.part, t.triangle), ray, hit.distance);
+    return visible(in, vec2<u32>(t.part, t.triangle), ray, hit.distance);
 }

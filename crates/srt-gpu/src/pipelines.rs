@@ -465,7 +465,7 @@ const LRT_SHADE_ENTRIES: [&str; 2] = ["part_bound_vertex", "lrt_shade"];
 /// Entry points of the LRT part-depth pass (vertex, fragment).
 const PART_DEPTH_ENTRIES: [&str; 2] = ["id_depth_vertex", "id_depth"];
 /// Entry points of the ray tracer's visibility pass (vertex, fragment).
-const RT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "rt_visibility"];
+const RT_VISIBILITY_ENTRIES: [&str; 2] = ["box_vertex", "rt_visibility"];
 /// Entry points of the polygon pass (vertex, fragment).
 const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
