@@ -35,11 +35,12 @@ override COUNT_FRAGMENTS: bool;
 // draws it. Bound only for the part-depth and shading passes.
 @group(0) @binding(13) var<storage, read> frame_bound: array<u32, 4>;
 
-// What a visibility fragment needs of its draw, read once per vertex and carried flat rather
-// than read per fragment: Mesa's llvmpipe reads a storage buffer in a fragment shader one lane
-// at a time, and these reads were about two thirds of an LRT visibility fragment's cost
-// (docs/performance-log.md, 2026-11-27, fourth entry). Flat varyings carry the values bit for bit,
-// so every fragment computes what it did from the buffers.
+// What a fragment of the visibility passes (LRT's and the ray tracer's) or of LRT's shading pass
+// needs of its draw, read once per vertex and carried flat rather than read per fragment: Mesa's
+// llvmpipe reads a storage buffer in a fragment shader one lane at a time, and these reads were
+// most of an LRT visibility fragment's cost (docs/performance-log.md, 2026-11-27, fourth entry).
+// Flat varyings carry the values bit for bit, so every fragment computes what it did from the
+// buffers.
 struct LrtVarying {
     @builtin(position) position: vec4<f32>,
     // The footprint's triangle and the part's id.
@@ -86,12 +87,15 @@ fn footprint_vertex(index: u32, with_corners: bool) -> LrtVarying {
     let f = footprints[index / FOOTPRINT_VERTICES];
     let pixel = footprint_corner(f, index % FOOTPRINT_VERTICES);
     let ndc = vec2<f32>(2.0 * pixel.x * frame_uniforms.viewport.z - 1.0, 1.0 - 2.0 * pixel.y * frame_uniforms.viewport.w);
-    var corners = array<vec3<f32>, 3>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+    var corners = NO_CORNERS;
     if (with_corners) {
         corners = triangle_corners(f.triangle);
     }
     return draw_varying(vec4<f32>(ndc, 0.5, 1.0), f.triangle, corners);
 }
+
+// The corners a draw that names no triangle carries.
+const NO_CORNERS = array<vec3<f32>, 3>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
 
 // The varyings of a vertex at `position` of a draw for triangle `triangle` with corners
 // `corners`: the part's id, the camera and the object's frame.
@@ -207,8 +211,7 @@ fn id_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 
 fn part_bound_vertex(@builtin(vertex_index) v: u32) -> LrtVarying {
     let b = DRAW_ARGS_BOUND;
     let bound = vec4<u32>(part_draw_args[b], part_draw_args[b + 1u], part_draw_args[b + 2u], part_draw_args[b + 3u]);
-    let none = array<vec3<f32>, 3>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
-    return draw_varying(bound_corner(bound, v, part_depth(part.id)), 0u, none);
+    return draw_varying(bound_corner(bound, v, part_depth(part.id)), 0u, NO_CORNERS);
 }
 
 @fragment
