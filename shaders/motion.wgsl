@@ -4,17 +4,17 @@
 //
 // In the object's rest coordinates the backward ray is x(s) = o + s·d at S′ time ct′₀ − s
 // (ct′₀ the object's S′ time at the observation event). The body point found on it,
-// b(s) (`motion_curve`), is a curve in body space met with the body's static triangles:
+// b(s) (`spin_curve`, `arc_point`), is a curve in body space met with the body's static triangles:
 // - spin: the curve is cut into pieces of at most MOTION_SPIN_PIECE_ANGLE of rotation within
 //   the ball the body sweeps and the slab of its heights along the axis; each piece is bounded
 //   by its chord's box padded by (2|ω| + ω²R)·Δs²/8;
 // - thrust: after the end (coasting) the curve is a straight line (an exact ray test), during
-//   the thrust it is marched as above (pieces of 1/MOTION_THRUST_PIECES_PER_SIZE of the body's
-//   size, padded by four times the midpoint's deviation from the chord), only where the box
+//   the thrust a hyperbola arc (ThrustArc) searched in pieces (MOTION_THRUST_PIECES_PER_SIZE per
+//   body size of its extent, each bounded exactly by its parallelogram), only where the box
 //   swept by the body meets the ray, and before the start it is the ray itself.
-// On a piece, a triangle is crossed where the signed distance of b(s) to its plane changes sign,
-// bisected (MOTION_BISECTIONS steps at most). The nearest crossing of the first piece that has one
-// wins.
+// On a spinning body's piece, a triangle is crossed where the signed distance of b(s) to its plane
+// changes sign, bisected (MOTION_BISECTIONS steps at most); on a thrust's arc, where a quadratic
+// vanishes (arc_crossing). The nearest crossing of the first piece that has one wins.
 //
 // rt.wgsl's visibility pass takes each piece's candidates from the BVH (moving_nearest_hit);
 // the shading pass, which knows the triangle the visibility pass kept, repeats the same pieces
@@ -29,6 +29,8 @@ override MOTION_THRUST_PIECES_PER_SIZE: f32;
 const MOTION_MAX_PIECES: u32 = 4096u;
 // Most bisection steps of one crossing (srt_gpu::motion::BISECTIONS).
 const MOTION_BISECTIONS: u32 = 48u;
+// Newton steps polishing each root of a thrust's crossing (srt_gpu::motion::NEWTON_STEPS).
+const MOTION_NEWTON_STEPS: u32 = 2u;
 // Pieces of a spinning body's march taken together first (srt_gpu::motion::PIECES_PER_GROUP):
 // where the group's padded box meets nothing the search could find, its pieces are skipped.
 const MOTION_PIECES_PER_GROUP: u32 = 8u;
@@ -58,39 +60,6 @@ fn spin_angle(s: f32) -> f32 {
     return object.motion.z - object.motion.y * s;
 }
 
-// A body point, or none (`found` false: beyond a thrust's Rindler horizon).
-struct BodyPoint {
-    found: bool,
-    point: vec3<f32>,
-}
-
-// The body point of a thrusting body at `position` when `elapsed` = ct′ − ct₀ has passed since
-// the start (mirror of srt_physics::motion::Thrust::body_point).
-fn thrust_body_point(elapsed: f32, position: vec3<f32>) -> BodyPoint {
-    let direction = object.motion_axis.xyz;
-    let alpha = object.motion.y;
-    let end = object.motion.w;
-    if (elapsed <= 0.0) {
-        return BodyPoint(true, position);
-    }
-    let along = dot(position, direction);
-    let across = position - along * direction;
-    let u = along + 1.0 / alpha;
-    let v = elapsed;
-    var x = 0.0;
-    if (end >= 0.0 && v * cosh(end) - u * sinh(end) >= 0.0) {
-        x = u * cosh(end) - v * sinh(end);
-    } else if (u > v) {
-        x = sqrt((u - v) * (u + v));
-    } else {
-        return BodyPoint(false, position);
-    }
-    if (!(x > 0.0)) {
-        return BodyPoint(false, position);
-    }
-    return BodyPoint(true, across + (x - 1.0 / alpha) * direction);
-}
-
 // Where the body point `body` of a thrusting body is when `elapsed` has passed since the start
 // (mirror of srt_physics::motion::Thrust::position).
 fn thrust_position(body: vec3<f32>, elapsed: f32) -> vec3<f32> {
@@ -109,15 +78,12 @@ fn thrust_position(body: vec3<f32>, elapsed: f32) -> vec3<f32> {
     return body + ((x * cosh(end) - 1.0 / alpha - height) + (elapsed - x * sinh(end)) * tanh(end)) * direction;
 }
 
-// b(s): the body point on the backward ray at parameter s (mirror of Motion::body_point at the
-// ray's event).
-fn motion_curve(ray: RestRay, s: f32) -> BodyPoint {
+// b(s) of a spinning body: the body point on the backward ray at parameter s (mirror of
+// Spin::body_point at the ray's event; a thrust's is arc_point).
+fn spin_curve(ray: RestRay, s: f32) -> vec3<f32> {
     let x = ray.origin + s * ray.direction;
-    if (motion_kind() == MOTION_SPIN) {
-        let centre = object.motion_centre.xyz;
-        return BodyPoint(true, centre + spin_turn(x - centre, -spin_angle(s)));
-    }
-    return thrust_body_point(object.motion.z - s, x);
+    let centre = object.motion_centre.xyz;
+    return centre + spin_turn(x - centre, -spin_angle(s));
 }
 
 // Where a ray meets a moving body, stretch by stretch (see the header), nearest first.
@@ -128,8 +94,8 @@ struct MotionPlan {
     line_origin: vec3<f32>,
     line_direction: vec3<f32>,
     speed: f32,
-    // The marched stretch [lower, to] in `pieces` pieces (0: none), padded by `pad` (spin) or,
-    // where pad < 0, by four times each piece's midpoint deviation (thrust).
+    // The marched stretch [lower, to] in `pieces` pieces (0: none), padded by `pad` (spin; −1
+    // for a thrust, whose pieces are bounded exactly).
     lower: f32,
     to: f32,
     pieces: u32,
@@ -222,7 +188,9 @@ fn motion_plan(ray: RestRay) -> MotionPlan {
             plan.coast_end = end_at;
         }
     }
-    let lower = max(end_at, 0.0);
+    let arc = thrust_arc(ray);
+    // Beyond the horizon (u ≤ v) no body point is met.
+    let lower = max(max(end_at, 0.0), arc_horizon(arc));
     let to = start;
     // No point moves faster than light: during the thrust the body stays in its box swept by
     // the elapsed time along â.
@@ -231,75 +199,56 @@ fn motion_plan(ray: RestRay) -> MotionPlan {
     let hi = max(object.motion_high.xyz, object.motion_high.xyz + sweep);
     let span = motion_slab(ray, lo, hi);
     if (lower < to && span.x <= span.y && span.x <= to && span.y >= lower) {
-        // The curve's length from 64 chords, as the reference measures it.
-        var length_sum = 0.0;
-        var previous = motion_curve(ray, lower);
-        for (var k = 1; k <= 64; k++) {
-            let next = motion_curve(ray, lower + (to - lower) * f32(k) / 64.0);
-            if (next.found) {
-                if (previous.found) {
-                    length_sum += length(next.point - previous.point);
-                }
-                previous = next;
-            }
-        }
-        let size = max(reach, 1e-9);
+        let whole = arc_box(ray, arc, lower, to);
+        let extent = length(whole.hi - whole.lo);
         plan.lower = lower;
         plan.to = to;
-        plan.pieces = u32(clamp(ceil(length_sum / size * MOTION_THRUST_PIECES_PER_SIZE), 16.0, f32(MOTION_MAX_PIECES)));
+        plan.pieces = u32(clamp(ceil(extent / max(reach, 1e-9) * MOTION_THRUST_PIECES_PER_SIZE), 1.0, f32(MOTION_MAX_PIECES)));
         plan.pad = -1.0;
     }
     plan.rest_from = max(start, 0.0);
     return plan;
 }
 
-// One piece [a, b] of the marched stretch and the padded box of its chord, if the curve is
-// defined at its ends (and, for a thrust, its middle); `end` is b(b), the next piece's start.
+// One piece [a, b] of the marched stretch and a box [lo, hi] that holds the curve there;
+// a spinning body's `begin` and `end` are b(a) and b(b), `end` the next piece's start.
 struct MotionPiece {
-    valid: bool,
     a: f32,
     b: f32,
     lo: vec3<f32>,
     hi: vec3<f32>,
-    // b(a), where the piece starts.
     begin: vec3<f32>,
-    end: BodyPoint,
+    end: vec3<f32>,
 }
 
-// The curve where the plan's march starts (piece 1's start).
-fn motion_march_start(ray: RestRay, plan: MotionPlan) -> BodyPoint {
-    return motion_curve(ray, plan.lower);
+// The curve where the plan's march starts (piece 1's start; a spinning body's, which its pieces
+// carry on).
+fn motion_march_start(ray: RestRay, plan: MotionPlan) -> vec3<f32> {
+    if (motion_kind() == MOTION_SPIN) {
+        return spin_curve(ray, plan.lower);
+    }
+    return vec3<f32>(0.0);
 }
 
 // Piece `k` (from 1) of the plan's march, `start` the curve at its start (the previous piece's
-// `end`; mirror of PreparedObject::march).
-fn motion_piece(ray: RestRay, plan: MotionPlan, k: u32, start: BodyPoint) -> MotionPiece {
+// `end`; mirror of PreparedObject::march with Helix::piece_box or ThrustArc::piece_box). A
+// thrust's pieces are bounded by its arc alone: their `begin` and `end` are not evaluated.
+fn motion_piece(ray: RestRay, plan: MotionPlan, k: u32, start: vec3<f32>) -> MotionPiece {
     let width = plan.to - plan.lower;
     let count = f32(plan.pieces);
     let a = plan.lower + width * f32(k - 1u) / count;
     let b = plan.lower + width * f32(k) / count;
-    let pb = motion_curve(ray, b);
+    if (motion_kind() == MOTION_THRUST) {
+        let bounds = arc_box(ray, thrust_arc(ray), a, b);
+        return MotionPiece(a, b, bounds.lo, bounds.hi, start, start);
+    }
+    let pb = spin_curve(ray, b);
     let pa = start;
-    var piece = MotionPiece(false, a, b, vec3<f32>(0.0), vec3<f32>(0.0), pa.point, pb);
-    if (!pa.found || !pb.found) {
-        return piece;
-    }
-    var pad = plan.pad;
-    if (pad < 0.0) {
-        let middle = motion_curve(ray, 0.5 * (a + b));
-        if (!middle.found) {
-            return piece;
-        }
-        pad = 4.0 * length(middle.point - 0.5 * (pa.point + pb.point));
-    }
     // f32 rounding of the curve: a few units in the last place of the ray's coordinates.
     let scale = max(max(abs(ray.origin.x), abs(ray.origin.y)), abs(ray.origin.z)) + abs(b)
-        + max(max(abs(pa.point.x), abs(pa.point.y)), abs(pa.point.z));
-    let margin = pad + 1e-5 * (1.0 + scale);
-    piece.valid = true;
-    piece.lo = min(pa.point, pb.point) - vec3<f32>(margin);
-    piece.hi = max(pa.point, pb.point) + vec3<f32>(margin);
-    return piece;
+        + max(max(abs(pa.x), abs(pa.y)), abs(pa.z));
+    let margin = plan.pad + 1e-5 * (1.0 + scale);
+    return MotionPiece(a, b, min(pa, pb) - vec3<f32>(margin), max(pa, pb) + vec3<f32>(margin), pa, pb);
 }
 
 // Pieces `first` to `last` of a spinning body's march taken together (motion_group): the box
@@ -310,23 +259,23 @@ struct MotionGroup {
     last: u32,
     lo: vec3<f32>,
     hi: vec3<f32>,
-    end: BodyPoint,
+    end: vec3<f32>,
 }
 
 // The group of pieces starting at piece `first` (from 1; a multiple of MOTION_PIECES_PER_GROUP
 // plus one) of a spinning body's march, `start` the curve at its start. A search may skip the
 // group's pieces where nothing it looks for meets the box: every crossing on them is a point of
-// the curve inside it. Only for spin, whose padding is a bound (a thrust's is an estimate).
-fn motion_group(ray: RestRay, plan: MotionPlan, first: u32, start: BodyPoint) -> MotionGroup {
+// the curve inside it. Only for spin (a thrust's few pieces are each bounded exactly).
+fn motion_group(ray: RestRay, plan: MotionPlan, first: u32, start: vec3<f32>) -> MotionGroup {
     let last = min(first + MOTION_PIECES_PER_GROUP - 1u, plan.pieces);
     let count = f32(plan.pieces);
     let b = plan.lower + (plan.to - plan.lower) * f32(last) / count;
-    let end = motion_curve(ray, b);
+    let end = spin_curve(ray, b);
     let span = f32(last - first + 1u);
     let scale = max(max(abs(ray.origin.x), abs(ray.origin.y)), abs(ray.origin.z)) + abs(b)
-        + max(max(abs(start.point.x), abs(start.point.y)), abs(start.point.z));
+        + max(max(abs(start.x), abs(start.y)), abs(start.z));
     let margin = plan.pad * span * span + 1e-5 * (1.0 + scale);
-    return MotionGroup(last, min(start.point, end.point) - vec3<f32>(margin), max(start.point, end.point) + vec3<f32>(margin), end);
+    return MotionGroup(last, min(start, end) - vec3<f32>(margin), max(start, end) + vec3<f32>(margin), end);
 }
 
 // Whether the march of `plan` takes its pieces in groups first (a spinning body's).
@@ -334,14 +283,17 @@ fn motion_grouped(plan: MotionPlan) -> bool {
     return motion_kind() == MOTION_SPIN && plan.pad >= 0.0;
 }
 
-// Where the curve crosses the triangle `corners` on the (valid) piece `piece`: the sign change
-// of the signed distance to its plane, bisected, if the point is in the triangle, edges
-// included (mirror of srt-trace's moving::crossing and barycentric).
+// Where the curve crosses the triangle `corners` on the (valid) piece `piece`. A spinning body:
+// the sign change of the signed distance to its plane, bisected, if the point is in the
+// triangle, edges included (mirror of srt-trace's moving::crossing); a thrust: arc_crossing.
 fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3>) -> TriangleHit {
     let none = TriangleHit(false, 0.0, 0.0, 0.0);
+    if (motion_kind() == MOTION_THRUST) {
+        return arc_crossing(ray, thrust_arc(ray), piece.a, piece.b, corners);
+    }
     let normal = cross(corners[1] - corners[0], corners[2] - corners[0]);
     var at_lo = dot(normal, piece.begin - corners[0]);
-    let at_hi = dot(normal, piece.end.point - corners[0]);
+    let at_hi = dot(normal, piece.end - corners[0]);
     if ((at_lo > 0.0 && at_hi > 0.0) || (at_lo < 0.0 && at_hi < 0.0)) {
         return none;
     }
@@ -353,11 +305,7 @@ fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3
             if (mid <= lo || mid >= hi) {
                 break;
             }
-            let p = motion_curve(ray, mid);
-            if (!p.found) {
-                return none;
-            }
-            let at_mid = dot(normal, p.point - corners[0]);
+            let at_mid = dot(normal, spin_curve(ray, mid) - corners[0]);
             if ((at_mid < 0.0) == (at_lo < 0.0) && at_mid != 0.0) {
                 lo = mid;
                 at_lo = at_mid;
@@ -369,13 +317,15 @@ fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3
         hi = lo;
     }
     let distance = select(hi, lo, at_lo == 0.0);
-    let point = motion_curve(ray, distance);
-    if (!point.found) {
-        return none;
-    }
+    return triangle_point_hit(spin_curve(ray, distance), corners, distance);
+}
+
+// The hit at `distance` where `point` (in the triangle's plane) lies in the triangle `corners`,
+// edges included, with its barycentric weights (mirror of srt-trace's moving::barycentric).
+fn triangle_point_hit(point: vec3<f32>, corners: array<vec3<f32>, 3>, distance: f32) -> TriangleHit {
     let e1 = corners[1] - corners[0];
     let e2 = corners[2] - corners[0];
-    let v = point.point - corners[0];
+    let v = point - corners[0];
     let d00 = dot(e1, e1);
     let d01 = dot(e1, e2);
     let d11 = dot(e2, e2);
@@ -383,12 +333,163 @@ fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3
     let d21 = dot(v, e2);
     let denominator = d00 * d11 - d01 * d01;
     if (denominator <= 0.0) {
-        return none;
+        return TriangleHit(false, 0.0, 0.0, 0.0);
     }
     let zeta = (d11 * d20 - d01 * d21) / denominator;
     let xi = (d00 * d21 - d01 * d20) / denominator;
     let inside = zeta >= 0.0 && xi >= 0.0 && zeta + xi <= 1.0;
     return TriangleHit(inside, distance, zeta, xi);
+}
+
+// A thrusting body's curve while it accelerates (mirror of srt-trace's moving::ThrustArc): with
+// u(s) = x(s)·â + 1/α = u0 + w·s and v(s) = ct′(s) − ct₀ = v0 − s, the body point is
+// b(s) = x(s) + (X(s) − u(s))·â, X = √(u² − v²), this side of the horizon (u > v); its part
+// x(s) − u(s)·â is linear and X is concave.
+struct ThrustArc {
+    u0: f32,
+    w: f32,
+    v0: f32,
+}
+
+// The arc of the backward ray `ray` of the current (thrusting) object.
+fn thrust_arc(ray: RestRay) -> ThrustArc {
+    let axis = object.motion_axis.xyz;
+    return ThrustArc(dot(ray.origin, axis) + 1.0 / object.motion.y, dot(ray.direction, axis), object.motion.z);
+}
+
+// u(s) − v(s), positive this side of the horizon.
+fn arc_above_horizon(arc: ThrustArc, s: f32) -> f32 {
+    return (arc.u0 - arc.v0) + (arc.w + 1.0) * s;
+}
+
+// X(s), 0 at and beyond the horizon.
+fn arc_rindler(arc: ThrustArc, s: f32) -> f32 {
+    return sqrt(max(arc_above_horizon(arc, s) * ((arc.u0 + arc.v0) + (arc.w - 1.0) * s), 0.0));
+}
+
+// The ray parameter where the ray reaches the horizon (u = v), ∓3e38 where it never is below it /
+// never leaves it.
+fn arc_horizon(arc: ThrustArc) -> f32 {
+    if (arc.w > -1.0) {
+        return (arc.v0 - arc.u0) / (arc.w + 1.0);
+    }
+    return select(3.0e38, -3.0e38, arc.u0 > arc.v0);
+}
+
+// The linear part of b(s): x(s) − u(s)·â.
+fn arc_linear_part(ray: RestRay, arc: ThrustArc, s: f32) -> vec3<f32> {
+    return ray.origin + s * ray.direction - (arc.u0 + arc.w * s) * object.motion_axis.xyz;
+}
+
+// The body point at `s` (this side of the horizon).
+fn arc_point(ray: RestRay, arc: ThrustArc, s: f32) -> vec3<f32> {
+    return arc_linear_part(ray, arc, s) + arc_rindler(arc, s) * object.motion_axis.xyz;
+}
+
+// A box [lo, hi] in body space.
+struct BoxBounds {
+    lo: vec3<f32>,
+    hi: vec3<f32>,
+}
+
+// The box of the parallelogram that holds the arc for s in [a, b] (its linear part's ends shifted
+// along â by X's least and greatest values there), widened by f32 rounding.
+fn arc_box(ray: RestRay, arc: ThrustArc, a: f32, b: f32) -> BoxBounds {
+    let axis = object.motion_axis.xyz;
+    let xa = arc_rindler(arc, a);
+    let xb = arc_rindler(arc, b);
+    var high = max(xa, xb);
+    let curvature = arc.w * arc.w - 1.0;
+    if (curvature < 0.0) {
+        let apex = (arc.u0 * arc.w + arc.v0) / -curvature;
+        if (apex > a && apex < b) {
+            high = max(high, arc_rindler(arc, apex));
+        }
+    }
+    let low = min(xa, xb);
+    let la = arc_linear_part(ray, arc, a);
+    let lb = arc_linear_part(ray, arc, b);
+    let lo = min(min(la, lb) + low * axis, min(la, lb) + high * axis);
+    let hi = max(max(la, lb) + low * axis, max(la, lb) + high * axis);
+    let scale = max(max(abs(ray.origin.x), abs(ray.origin.y)), abs(ray.origin.z)) + abs(b)
+        + max(max(max(abs(lo.x), abs(lo.y)), abs(lo.z)), max(max(abs(hi.x), abs(hi.y)), abs(hi.z)));
+    let margin = 1e-5 * (1.0 + scale);
+    return BoxBounds(lo - vec3<f32>(margin), hi + vec3<f32>(margin));
+}
+
+// The real roots of a·s² + b·s + c (the linear root where a = 0), `count` of them, in the
+// cancellation-free form (mirror of srt-trace's moving::quadratic_roots).
+struct Roots {
+    count: u32,
+    values: vec2<f32>,
+}
+
+fn quadratic_roots(a: f32, b: f32, c: f32) -> Roots {
+    if (a == 0.0) {
+        return Roots(select(0u, 1u, b != 0.0), vec2<f32>(-c / b, 0.0));
+    }
+    let discriminant = b * b - 4.0 * a * c;
+    if (discriminant < 0.0) {
+        return Roots(0u, vec2<f32>(0.0));
+    }
+    let root = sqrt(discriminant);
+    let q = -0.5 * (b + select(root, -root, b < 0.0));
+    if (q == 0.0) {
+        return Roots(1u, vec2<f32>(0.0));
+    }
+    return Roots(2u, vec2<f32>(q / a, c / q));
+}
+
+// The nearest crossing of the arc with the triangle `corners` for s in [a, b] (mirror of
+// ThrustArc::crossing): the distance to the plane L(s) + m·X(s) (m = n·â, L linear) vanishes
+// where m²·X² = L² and −m·L ≥ 0, a quadratic's roots that keep the sign, each polished by Newton
+// steps on L + m·X; the nearest this side of the horizon whose point is in the triangle.
+fn arc_crossing(ray: RestRay, arc: ThrustArc, a: f32, b: f32, corners: array<vec3<f32>, 3>) -> TriangleHit {
+    let none = TriangleHit(false, 0.0, 0.0, 0.0);
+    let normal = cross(corners[1] - corners[0], corners[2] - corners[0]);
+    let m = dot(normal, object.motion_axis.xyz);
+    let l0 = dot(normal, ray.origin - corners[0]) - m * arc.u0;
+    let l1 = dot(normal, ray.direction) - m * arc.w;
+    var roots = Roots(0u, vec2<f32>(0.0));
+    if (m == 0.0) {
+        roots = Roots(select(0u, 1u, l1 != 0.0), vec2<f32>(-l0 / l1, 0.0));
+    } else {
+        let mm = m * m;
+        roots = quadratic_roots(
+            mm * (arc.w * arc.w - 1.0) - l1 * l1,
+            2.0 * (mm * (arc.u0 * arc.w + arc.v0) - l0 * l1),
+            mm * (arc.u0 - arc.v0) * (arc.u0 + arc.v0) - l0 * l0,
+        );
+    }
+    if (roots.count == 2u && roots.values.y < roots.values.x) {
+        roots.values = roots.values.yx;
+    }
+    for (var i = 0u; i < roots.count; i++) {
+        let root = roots.values[i];
+        // A root of the squared equation with m·X = +L is not a crossing.
+        if (!(root >= a && root <= b) || m * (l0 + l1 * root) > 0.0) {
+            continue;
+        }
+        var s = root;
+        for (var k = 0u; k < MOTION_NEWTON_STEPS; k++) {
+            let x = arc_rindler(arc, s);
+            let u = arc.u0 + arc.w * s;
+            let slope = l1 + m * (u * arc.w + (arc.v0 - s)) / x;
+            let next = s - (l0 + l1 * s + m * x) / slope;
+            if (!(x > 0.0 && next >= a && next <= b)) {
+                break;
+            }
+            s = next;
+        }
+        if (arc_above_horizon(arc, s) <= 0.0) {
+            continue;
+        }
+        let hit = triangle_point_hit(arc_point(ray, arc, s), corners, s);
+        if (hit.found) {
+            return hit;
+        }
+    }
+    return none;
 }
 
 // The crossing of the backward ray `ray` with the triangle `corners` of the moving body that the
@@ -417,9 +518,6 @@ fn moving_hit_on(ray: RestRay, corners: array<vec3<f32>, 3>) -> TriangleHit {
         }
         let piece = motion_piece(ray, plan, k, start);
         start = piece.end;
-        if (!piece.valid) {
-            continue;
-        }
         let h = motion_crossing(ray, piece, corners);
         if (h.found) {
             return h;

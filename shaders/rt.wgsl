@@ -216,9 +216,6 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
         }
         let piece = motion_piece(ray, plan, k, start);
         start = piece.end;
-        if (!piece.valid) {
-            continue;
-        }
         let hit = piece_nearest_hit(ray, piece, &stack);
         if (hit.found) {
             return hit;

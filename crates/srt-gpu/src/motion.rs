@@ -7,9 +7,10 @@
 //! The WGSL mirrors crates/srt-trace/src/moving.rs in f32: the backward ray's body-space curve
 //! cut into pieces (≤ [`SPIN_PIECE_ANGLE`] of rotation, or [`THRUST_PIECES_PER_SIZE`] per body
 //! size of a thrust's accelerating stretch; at most [`MAX_PIECES`], where the reference allows
-//! 2¹⁶), each piece's chord box padded by the curve's sagitta bound and met with the BVH, the
-//! sign change of the distance to each candidate triangle's plane bisected ([`BISECTIONS`]
-//! steps at most). What the f64 reference computes exactly — the spin phase ω·ct′₀ reduced mod
+//! 2¹⁶), each piece's box (a spinning body's chord box padded by the curve's sagitta bound, a
+//! thrust's exact box of its arc) met with the BVH; on a spinning body the sign change of the
+//! distance to each candidate triangle's plane bisected ([`BISECTIONS`] steps at most), on a
+//! thrust's arc the roots of a quadratic polished by [`NEWTON_STEPS`] Newton steps. What the f64 reference computes exactly — the spin phase ω·ct′₀ reduced mod
 //! 2π, the elapsed thrust time — is computed here in f64, so that the shaders see small numbers.
 
 use glam::DVec3;
@@ -21,13 +22,18 @@ use crate::types::ObjectUniforms;
 
 /// Most rotation of a spinning body per piece of a curved ray, in radians (srt-trace's).
 pub const SPIN_PIECE_ANGLE: f64 = 0.05;
-/// Pieces of a thrusting body's curved stretch of ray per its size (srt-trace's).
-pub const THRUST_PIECES_PER_SIZE: f64 = 48.0;
+/// Pieces of a thrusting body's accelerating stretch of ray per its size (srt-trace's): the
+/// extent of the arc in body space over the body's reach. Only how finely the BVH is asked for
+/// candidates; each piece's box is exact.
+pub const THRUST_PIECES_PER_SIZE: f64 = 4.0;
 /// Most pieces of one curved stretch of ray on the GPU (WGSL `MOTION_MAX_PIECES`).
 pub const MAX_PIECES: u32 = 4096;
 /// Most bisection steps for one crossing in f32 (WGSL `MOTION_BISECTIONS`): more than the 24
 /// bits of an f32 mantissa need from any bracket.
 pub const BISECTIONS: u32 = 48;
+/// Newton steps polishing each root of a thrust's crossing in f32 (WGSL `MOTION_NEWTON_STEPS`;
+/// srt-trace's `THRUST_NEWTON_STEPS`).
+pub const NEWTON_STEPS: u32 = 2;
 /// Pieces of a spinning body's march that the GPU takes together first (WGSL
 /// `MOTION_PIECES_PER_GROUP`): the group's chord box, padded by the sagitta bound for its span,
 /// holds the curve over all of them, so where it meets no BVH leaf (no box of the triangle the

@@ -12,11 +12,16 @@
 //!   and bisected to the f64 limit;
 //! - **thrust**: before the start (s ≥ s₁) and after the end (s ≤ s₂, coasting: the body is at
 //!   rest in its final frame) the curve is a straight line, met by the exact BVH ray test; in
-//!   between it is marched in pieces as above, each padded by four times its midpoint's
-//!   deviation from the chord.
+//!   between it is a hyperbola arc in a plane ([`ThrustArc`]): b(s) = x(s) + (X(s) − u(s))·â with
+//!   X = √(u² − v²), so the signed distance to a triangle's plane is L(s) + (n·â)·X(s), L linear,
+//!   and its zeros are the roots of a quadratic (squared, the spurious roots dropped by sign,
+//!   then polished by Newton's method on the unsquared distance). Pieces serve only to take
+//!   candidates from the BVH: each piece's box is exact (the arc lies in the parallelogram of
+//!   its linear part and the range of X, which is concave), not an estimate.
 //!
-//! The nearest crossing wins. A piece crossing one triangle's plane twice (a tangential graze
-//! within one piece) is missed; the pieces keep that to grazing incidence.
+//! The nearest crossing wins. On a spinning body's piece a triangle's plane crossed twice (a
+//! tangential graze within one piece) is missed; the pieces keep that to grazing incidence. A
+//! thrust's crossings are all found.
 
 use bvh::aabb::Aabb;
 use glam::{DMat4, DVec3, DVec4};
@@ -29,8 +34,11 @@ use crate::render::PreparedObject;
 
 /// Most rotation of a spinning body per piece of a curved ray, in radians.
 const SPIN_PIECE_ANGLE: f64 = 0.05;
-/// Pieces of a thrusting body's curved stretch of ray per its size.
-const THRUST_PIECES_PER_SIZE: f64 = 48.0;
+/// Pieces of a thrusting body's accelerating stretch of ray per its size (the extent of the
+/// arc in body space over the body's reach): only how finely the BVH is asked for candidates.
+const THRUST_PIECES_PER_SIZE: f64 = 4.0;
+/// Newton steps polishing each root of a thrust's crossing on the unsquared distance.
+const THRUST_NEWTON_STEPS: usize = 2;
 /// Most pieces of one curved stretch of ray.
 const MAX_PIECES: usize = 1 << 16;
 
@@ -93,9 +101,13 @@ impl PreparedObject<'_> {
         };
         let step = (to - from) / pieces;
         let pad = (2.0 * omega + omega * omega * radius) * step * step / 8.0;
-        let curve =
-            |s: f64| Some(spin.body_point(ray.origin + s * ray.direction, ct_at(ray, shift, s)));
-        self.march(&curve, from, to, pieces as usize, |_, _, _| pad)
+        let helix = Helix {
+            spin,
+            ray,
+            shift,
+            pad,
+        };
+        self.march(&helix, from, to, pieces as usize)
     }
 
     /// A thrusting body: coasting (a straight line in body space), accelerating (marched),
@@ -142,7 +154,9 @@ impl PreparedObject<'_> {
                 return Some((part, triangle, hit));
             }
         }
-        let (from, to) = (end_at.max(0.0), start.min(limit));
+        let arc = ThrustArc::new(thrust, ray, start);
+        // Beyond the horizon (u ≤ v) no body point is met.
+        let (from, to) = (end_at.max(0.0).max(arc.horizon()), start.min(limit));
         // Every point has moved at most v = ct′ − ct₀ along â by S′ time ct′ (its speed is
         // below 1): the ray can only meet the body during the thrust inside the body's box
         // swept that far along â.
@@ -152,21 +166,12 @@ impl PreparedObject<'_> {
         lo = lo.min(lo + sweep);
         hi = hi.max(hi + sweep);
         if from < to && slab(ray, lo, hi).is_some_and(|(near, far)| near <= to && far >= from) {
-            let curve =
-                |s: f64| thrust.body_point(ct_at(ray, shift, s), ray.origin + s * ray.direction);
-            let size = self.reach.max(1e-9);
-            let length = (0..=64)
-                .filter_map(|k| curve(from + (to - from) * f64::from(k) / 64.0))
-                .collect::<Vec<_>>()
-                .windows(2)
-                .map(|w| (w[1] - w[0]).length())
-                .sum::<f64>();
-            let pieces = (length / size * THRUST_PIECES_PER_SIZE)
+            let (whole_lo, whole_hi) = arc.piece_box(from, to);
+            let extent = (whole_hi - whole_lo).length();
+            let pieces = (extent / self.reach.max(1e-9) * THRUST_PIECES_PER_SIZE)
                 .ceil()
-                .clamp(16.0, MAX_PIECES as f64);
-            let found = self.march(&curve, from, to, pieces as usize, |a, m, b| {
-                4.0 * (m - 0.5 * (a + b)).length()
-            });
+                .clamp(1.0, MAX_PIECES as f64);
+            let found = self.march(&arc, from, to, pieces as usize);
             if found.is_some() {
                 return found;
             }
@@ -175,39 +180,29 @@ impl PreparedObject<'_> {
         self.closest_hit_between(ray, start.max(0.0), limit)
     }
 
-    /// The nearest crossing of the body-space curve `curve` (defined where it returns `Some`)
-    /// with the body's triangles for s in [`from`, `to`], cut into `pieces` pieces, each
-    /// bounded by its chord's box padded by `pad(start, middle, end)`.
+    /// The nearest crossing of the body-space curve `curve` with the body's triangles for s in
+    /// [`from`, `to`], cut into `pieces` pieces met with the BVH one by one, nearest first.
     fn march(
         &self,
-        curve: &dyn Fn(f64) -> Option<DVec3>,
+        curve: &dyn MarchedCurve,
         from: f64,
         to: f64,
         pieces: usize,
-        pad: impl Fn(DVec3, DVec3, DVec3) -> f64,
     ) -> Option<Crossing> {
         let bvh = self.bvh.as_ref()?;
         let at = |k: usize| from + (to - from) * (k as f64) / (pieces as f64);
-        let mut previous = (at(0), curve(at(0)));
         for k in 1..=pieces {
-            let next = (at(k), curve(at(k)));
-            let ((a, pa), (b, pb)) = (previous, next);
-            previous = next;
-            let (Some(pa), Some(pb)) = (pa, pb) else {
+            let (a, b) = (at(k - 1), at(k));
+            let Some((lo, hi)) = curve.piece_box(a, b) else {
                 continue;
             };
-            let Some(middle) = curve(0.5 * (a + b)) else {
-                continue;
-            };
-            let margin = pad(pa, middle, pb) + 1e-12 * (1.0 + pa.abs().max_element());
-            let (lo, hi) = (pa.min(pb) - margin, pa.max(pb) + margin);
             let query =
                 Aabb::with_bounds(Point3::new(lo.x, lo.y, lo.z), Point3::new(hi.x, hi.y, hi.z));
             let mut best: Option<Crossing> = None;
             for leaf in bvh.traverse_iterator(&query, &self.boxes) {
                 let mesh = &self.parts[leaf.part as usize].part.mesh;
                 let corners = mesh.triangle_positions(leaf.triangle as usize);
-                let Some(hit) = crossing(curve, a, b, corners) else {
+                let Some(hit) = curve.crossing(a, b, corners) else {
                     continue;
                 };
                 let closer = best.is_none_or(|(part, triangle, h)| {
@@ -223,6 +218,219 @@ impl PreparedObject<'_> {
         }
         None
     }
+}
+
+/// A moving body's curve b(s) in body space, as [`PreparedObject::march`] meets it piece by
+/// piece.
+trait MarchedCurve {
+    /// A box holding the curve for s in [`a`, `b`], if the curve is defined there.
+    fn piece_box(&self, a: f64, b: f64) -> Option<(DVec3, DVec3)>;
+    /// The nearest crossing of the curve with the triangle `corners` for s in [`a`, `b`].
+    fn crossing(&self, a: f64, b: f64, corners: [DVec3; 3]) -> Option<TriangleHit>;
+}
+
+/// A spinning body's curve (a helix about the axis): each piece bounded by its chord's box
+/// padded by `pad`, the sagitta bound of a piece's length (see the module documentation).
+struct Helix<'a> {
+    spin: &'a Spin,
+    ray: &'a RestRay,
+    shift: f64,
+    pad: f64,
+}
+
+impl Helix<'_> {
+    /// The body point on the backward ray at parameter `s`.
+    fn point(&self, s: f64) -> DVec3 {
+        let ray = self.ray;
+        self.spin
+            .body_point(ray.origin + s * ray.direction, ct_at(ray, self.shift, s))
+    }
+}
+
+impl MarchedCurve for Helix<'_> {
+    fn piece_box(&self, a: f64, b: f64) -> Option<(DVec3, DVec3)> {
+        let (pa, pb) = (self.point(a), self.point(b));
+        let margin = self.pad + 1e-12 * (1.0 + pa.abs().max_element());
+        Some((pa.min(pb) - margin, pa.max(pb) + margin))
+    }
+
+    fn crossing(&self, a: f64, b: f64, corners: [DVec3; 3]) -> Option<TriangleHit> {
+        crossing(&|s| Some(self.point(s)), a, b, corners)
+    }
+}
+
+/// A thrusting body's curve while it accelerates: with u(s) = x(s)·â + 1/α = u₀ + w·s and
+/// v(s) = ct′(s) − ct₀ = v₀ − s, the body point is b(s) = x(s) + (X(s) − u(s))·â, X = √(u² − v²)
+/// (`Thrust::body_point` with x(s) = o + s·d), defined where u > v (this side of the horizon).
+/// Its part x(s) − u(s)·â is linear in s and X is concave (u² − v² is a quadratic with leading
+/// coefficient w² − 1 ≤ 0), so the arc is a plane convex curve.
+struct ThrustArc {
+    /// The ray's origin o and unit direction d in the rest coordinates.
+    origin: DVec3,
+    direction: DVec3,
+    /// The thrust's direction â.
+    axis: DVec3,
+    /// u₀ = o·â + 1/α, w = d·â, v₀ = ct′(0) − ct₀.
+    u0: f64,
+    w: f64,
+    v0: f64,
+}
+
+impl ThrustArc {
+    /// The arc of `ray` (whose S′ time at s = 0 is `start` after the thrust's start).
+    fn new(thrust: &Thrust, ray: &RestRay, start: f64) -> Self {
+        let axis = thrust.direction();
+        Self {
+            origin: ray.origin,
+            direction: ray.direction,
+            axis,
+            u0: ray.origin.dot(axis) + 1.0 / thrust.alpha(),
+            w: ray.direction.dot(axis),
+            v0: start,
+        }
+    }
+
+    /// u(s) − v(s), positive this side of the horizon.
+    fn above_horizon(&self, s: f64) -> f64 {
+        (self.u0 - self.v0) + (self.w + 1.0) * s
+    }
+
+    /// u(s)² − v(s)² = X(s)².
+    fn rindler_square(&self, s: f64) -> f64 {
+        self.above_horizon(s) * ((self.u0 + self.v0) + (self.w - 1.0) * s)
+    }
+
+    /// X(s), 0 at and beyond the horizon.
+    fn rindler(&self, s: f64) -> f64 {
+        self.rindler_square(s).max(0.0).sqrt()
+    }
+
+    /// The parameter where the ray reaches the horizon (u = v; u − v grows with s), −∞ where it
+    /// is never below it, +∞ where it never leaves it.
+    fn horizon(&self) -> f64 {
+        if self.w > -1.0 {
+            (self.v0 - self.u0) / (self.w + 1.0)
+        } else if self.u0 > self.v0 {
+            f64::NEG_INFINITY
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The linear part of b(s): x(s) − u(s)·â.
+    fn linear_part(&self, s: f64) -> DVec3 {
+        self.origin + s * self.direction - (self.u0 + self.w * s) * self.axis
+    }
+
+    /// The body point at `s` (this side of the horizon).
+    fn point(&self, s: f64) -> DVec3 {
+        self.linear_part(s) + self.rindler(s) * self.axis
+    }
+
+    /// The box of the parallelogram that holds the arc for s in [`a`, `b`]: its linear part's
+    /// ends, each shifted along â by X's least and greatest values there (the ends, and the
+    /// vertex of u² − v² where it lies between them).
+    fn piece_box(&self, a: f64, b: f64) -> (DVec3, DVec3) {
+        let (xa, xb) = (self.rindler(a), self.rindler(b));
+        let mut high = xa.max(xb);
+        let curvature = self.w * self.w - 1.0;
+        if curvature < 0.0 {
+            let vertex = (self.u0 * self.w + self.v0) / -curvature;
+            if vertex > a && vertex < b {
+                high = high.max(self.rindler(vertex));
+            }
+        }
+        let low = xa.min(xb);
+        let (la, lb) = (self.linear_part(a), self.linear_part(b));
+        let corners = [
+            la + low * self.axis,
+            la + high * self.axis,
+            lb + low * self.axis,
+            lb + high * self.axis,
+        ];
+        let (lo, hi) = corners[1..]
+            .iter()
+            .fold((corners[0], corners[0]), |(lo, hi), &c| {
+                (lo.min(c), hi.max(c))
+            });
+        let margin = 1e-12 * (1.0 + lo.abs().max(hi.abs()).max_element());
+        (lo - margin, hi + margin)
+    }
+}
+
+impl MarchedCurve for ThrustArc {
+    fn piece_box(&self, a: f64, b: f64) -> Option<(DVec3, DVec3)> {
+        Some(ThrustArc::piece_box(self, a, b))
+    }
+
+    /// The distance of b(s) to the triangle's plane, n·(b(s) − p₀) = L(s) + m·X(s) with
+    /// m = n·â and L(s) = l₀ + l₁·s, vanishes where m²·X² = L² and −m·L ≥ 0: the roots of
+    /// m²(u² − v²) − L² = 0, a quadratic, that keep the sign, each polished by Newton's method
+    /// on L + m·X; the nearest in [a, b] this side of the horizon whose point lies in the
+    /// triangle is the crossing.
+    fn crossing(&self, a: f64, b: f64, corners: [DVec3; 3]) -> Option<TriangleHit> {
+        let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        let m = normal.dot(self.axis);
+        let l0 = normal.dot(self.origin - corners[0]) - m * self.u0;
+        let l1 = normal.dot(self.direction) - m * self.w;
+        let mut roots = if m == 0.0 {
+            [(l1 != 0.0).then(|| -l0 / l1), None]
+        } else {
+            let mm = m * m;
+            quadratic_roots(
+                mm * (self.w * self.w - 1.0) - l1 * l1,
+                2.0 * (mm * (self.u0 * self.w + self.v0) - l0 * l1),
+                mm * (self.u0 - self.v0) * (self.u0 + self.v0) - l0 * l0,
+            )
+        };
+        if let [Some(r0), Some(r1)] = roots
+            && r1 < r0
+        {
+            roots = [Some(r1), Some(r0)];
+        }
+        roots.into_iter().flatten().find_map(|root| {
+            // A root of the squared equation with m·X = +L is not a crossing.
+            if !(root >= a && root <= b) || m * (l0 + l1 * root) > 0.0 {
+                return None;
+            }
+            let mut s = root;
+            for _ in 0..THRUST_NEWTON_STEPS {
+                let x = self.rindler(s);
+                let u = self.u0 + self.w * s;
+                let slope = l1 + m * (u * self.w + (self.v0 - s)) / x;
+                let next = s - (l0 + l1 * s + m * x) / slope;
+                if !(x > 0.0 && next >= a && next <= b) {
+                    break;
+                }
+                s = next;
+            }
+            if self.above_horizon(s) <= 0.0 {
+                return None;
+            }
+            let (zeta, xi) = barycentric(self.point(s), corners)?;
+            Some(TriangleHit {
+                distance: s,
+                zeta,
+                xi,
+            })
+        })
+    }
+}
+
+/// The real roots of a·s² + b·s + c (the linear root where a = 0), in the cancellation-free form.
+fn quadratic_roots(a: f64, b: f64, c: f64) -> [Option<f64>; 2] {
+    if a == 0.0 {
+        return [(b != 0.0).then(|| -c / b), None];
+    }
+    let discriminant = b * b - 4.0 * a * c;
+    if discriminant < 0.0 {
+        return [None, None];
+    }
+    let q = -0.5 * (b + discriminant.sqrt().copysign(b));
+    if q == 0.0 {
+        return [Some(0.0), None];
+    }
+    [Some(q / a), Some(c / q)]
 }
 
 /// The ray parameters (near, far) between which the whole line `ray` is inside the box
@@ -340,6 +548,136 @@ pub(crate) fn moving_normal(motion: &Motion, body: DVec3, ct: f64, normal: DVec3
         Motion::Thrust(thrust) => {
             lorentz_matrix(thrust.velocity(body, ct))
                 * DVec4::new(0.0, normal.x, normal.y, normal.z)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A unit vector from three components in [−1, 1] (None if too short to normalise).
+    fn unit(v: [f64; 3]) -> Option<DVec3> {
+        let v = DVec3::from(v);
+        (v.length() > 0.1).then(|| v.normalize())
+    }
+
+    /// A thrust without end along `axis` with proper acceleration `alpha` from S′ time 0, the
+    /// backward ray from `origin` along `direction` observed at S′ time `ct`, and its arc with
+    /// the stretch where it is this side of the horizon and the thrust has begun.
+    fn arc_case(
+        axis: DVec3,
+        alpha: f64,
+        origin: [f64; 3],
+        direction: DVec3,
+        ct: f64,
+    ) -> (Thrust, RestRay, ThrustArc, f64, f64) {
+        let thrust = Thrust::new(alpha * axis, 0.0, f64::INFINITY).unwrap();
+        let ray = RestRay {
+            origin: DVec3::from(origin),
+            direction,
+            ct_origin: ct,
+        };
+        let arc = ThrustArc::new(&thrust, &ray, ct - thrust.start());
+        let (from, to) = (arc.horizon().max(0.0), ct);
+        (thrust, ray, arc, from, to)
+    }
+
+    /// The body point at `s` by its definition (`Thrust::body_point` at the ray's event).
+    fn defined_point(thrust: &Thrust, ray: &RestRay, s: f64) -> Option<DVec3> {
+        thrust.body_point(ray.ct_origin - s, ray.origin + s * ray.direction)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// Every body point of a piece, by its definition, lies in the piece's box.
+        #[test]
+        fn a_piece_box_holds_its_arc(
+            axis in prop::array::uniform3(-1.0f64..1.0),
+            alpha in 0.05f64..2.0,
+            origin in prop::array::uniform3(-5.0f64..5.0),
+            direction in prop::array::uniform3(-1.0f64..1.0),
+            ct in 0.0f64..20.0,
+            ends in (0.0f64..1.0, 0.0f64..1.0),
+        ) {
+            let (Some(axis), Some(direction)) = (unit(axis), unit(direction)) else {
+                return Ok(());
+            };
+            let (thrust, ray, arc, from, to) = arc_case(axis, alpha, origin, direction, ct);
+            prop_assume!(from < to);
+            let (a, b) = (from + (to - from) * ends.0.min(ends.1), from + (to - from) * ends.0.max(ends.1));
+            let (lo, hi) = arc.piece_box(a, b);
+            for k in 0..=200 {
+                let s = a + (b - a) * f64::from(k) / 200.0;
+                let Some(point) = defined_point(&thrust, &ray, s) else {
+                    continue;
+                };
+                let slack = 1e-9 * (1.0 + point.abs().max_element());
+                prop_assert!(
+                    point.cmpge(lo - slack).all() && point.cmple(hi + slack).all(),
+                    "b({s}) = {point} outside [{lo}, {hi}]"
+                );
+            }
+        }
+
+        /// The crossing found with a triangle around a point of the arc is on the triangle by
+        /// the definition of the body point, no later than that point, and no sampled crossing
+        /// of the definition's signed distance comes before it.
+        #[test]
+        fn a_crossing_is_the_first_where_the_defined_body_point_meets_the_triangle(
+            axis in prop::array::uniform3(-1.0f64..1.0),
+            alpha in 0.05f64..2.0,
+            origin in prop::array::uniform3(-5.0f64..5.0),
+            direction in prop::array::uniform3(-1.0f64..1.0),
+            ct in 0.0f64..20.0,
+            at in 0.05f64..0.95,
+            normal in prop::array::uniform3(-1.0f64..1.0),
+            size in 0.05f64..2.0,
+        ) {
+            let (Some(axis), Some(direction), Some(normal)) = (unit(axis), unit(direction), unit(normal)) else {
+                return Ok(());
+            };
+            let (thrust, ray, arc, from, to) = arc_case(axis, alpha, origin, direction, ct);
+            prop_assume!(from < to);
+            let known = from + (to - from) * at;
+            let centre = defined_point(&thrust, &ray, known).unwrap();
+            // A triangle in the plane through b(known) with normal `normal`, centred there.
+            let tangent = normal.any_orthonormal_vector();
+            let other = normal.cross(tangent);
+            let corners = [0.0f64, 2.1, 4.2].map(|angle| {
+                centre + size * (angle.cos() * tangent + angle.sin() * other)
+            });
+            let plane = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+            let height = |s: f64| defined_point(&thrust, &ray, s).map(|p| plane.dot(p - corners[0]));
+            // Transversal at the known point (a graze may be missed, as a piece of spin may).
+            let step = 1e-6 * (to - from);
+            let slope = (height(known + step).unwrap() - height(known - step).unwrap()) / (2.0 * step);
+            prop_assume!(slope.abs() > 1e-3 * plane.length());
+            let hit = arc.crossing(from, to, corners);
+            prop_assert!(hit.is_some(), "no crossing, though b({known}) is inside the triangle");
+            let hit = hit.unwrap();
+            let scale = plane.length() * (1.0 + centre.abs().max_element() + to);
+            prop_assert!(hit.distance <= known + 1e-9 * (1.0 + known), "{} after {known}", hit.distance);
+            prop_assert!(height(hit.distance).unwrap().abs() <= 1e-9 * scale, "off the plane");
+            let point = defined_point(&thrust, &ray, hit.distance).unwrap();
+            prop_assert!(barycentric(point, corners).is_some(), "the defined point is not in the triangle");
+            // No earlier sign change inside the triangle, sampled.
+            let samples = 2000;
+            let mut previous = None;
+            for k in 0..=samples {
+                let s = from + (hit.distance - from) * f64::from(k) / f64::from(samples) * (1.0 - 1e-7);
+                // None at the horizon, where the stretch may begin.
+                let now = height(s);
+                if let (Some(before), Some(now)) = (previous, now)
+                    && before * now < 0.0
+                {
+                    let inside = defined_point(&thrust, &ray, s).and_then(|p| barycentric(p, corners));
+                    prop_assert!(inside.is_none(), "an earlier crossing near s = {s} was missed");
+                }
+                previous = now;
+            }
         }
     }
 }
