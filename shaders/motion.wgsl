@@ -283,11 +283,19 @@ fn motion_grouped(plan: MotionPlan) -> bool {
     return motion_kind() == MOTION_SPIN && plan.pad >= 0.0;
 }
 
-// Where the curve crosses the triangle `corners` on the (valid) piece `piece`. A spinning body:
+// Where the curve crosses the triangle `corners` on the piece `piece`, if the triangle's box
+// meets the piece's (mirror of PreparedObject::march's candidate test). A spinning body:
 // the sign change of the signed distance to its plane, bisected, if the point is in the
 // triangle, edges included (mirror of srt-trace's moving::crossing); a thrust: arc_crossing.
 fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3>) -> TriangleHit {
     let none = TriangleHit(false, 0.0, 0.0, 0.0);
+    // The crossing is a point of the piece's curve, in its box, and of the triangle, in the
+    // triangle's box: where the two boxes are apart there is none to look for.
+    let low = min(min(corners[0], corners[1]), corners[2]);
+    let high = max(max(corners[0], corners[1]), corners[2]);
+    if (!(all(low <= piece.hi) && all(high >= piece.lo))) {
+        return none;
+    }
     if (motion_kind() == MOTION_THRUST) {
         return arc_crossing(ray, thrust_arc(ray), piece.a, piece.b, corners);
     }

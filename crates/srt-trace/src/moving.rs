@@ -184,25 +184,33 @@ impl PreparedObject<'_> {
     /// [`from`, `to`], cut into `pieces` pieces met with the BVH one by one, nearest first.
     fn march(
         &self,
-        curve: &dyn MarchedCurve,
+        curve: &impl MarchedCurve,
         from: f64,
         to: f64,
         pieces: usize,
     ) -> Option<Crossing> {
         let bvh = self.bvh.as_ref()?;
         let at = |k: usize| from + (to - from) * (k as f64) / (pieces as f64);
+        let mut previous: Option<Piece> = None;
         for k in 1..=pieces {
-            let (a, b) = (at(k - 1), at(k));
-            let Some((lo, hi)) = curve.piece_box(a, b) else {
-                continue;
-            };
+            let piece = curve.piece(previous.as_ref(), at(k - 1), at(k));
+            let (lo, hi) = (piece.lo, piece.hi);
             let query =
                 Aabb::with_bounds(Point3::new(lo.x, lo.y, lo.z), Point3::new(hi.x, hi.y, hi.z));
             let mut best: Option<Crossing> = None;
             for leaf in bvh.traverse_iterator(&query, &self.boxes) {
                 let mesh = &self.parts[leaf.part as usize].part.mesh;
                 let corners = mesh.triangle_positions(leaf.triangle as usize);
-                let Some(hit) = curve.crossing(a, b, corners) else {
+                // The crossing is a point of the piece, in its box, and of the triangle, in
+                // the triangle's box: where the two are apart there is none to look for.
+                let (low, high) = (
+                    corners[0].min(corners[1]).min(corners[2]),
+                    corners[0].max(corners[1]).max(corners[2]),
+                );
+                if !(low.cmple(hi).all() && high.cmpge(lo).all()) {
+                    continue;
+                }
+                let Some(hit) = curve.crossing(&piece, corners) else {
                     continue;
                 };
                 let closer = best.is_none_or(|(part, triangle, h)| {
@@ -215,6 +223,7 @@ impl PreparedObject<'_> {
             if best.is_some() {
                 return best;
             }
+            previous = Some(piece);
         }
         None
     }
@@ -223,10 +232,22 @@ impl PreparedObject<'_> {
 /// A moving body's curve b(s) in body space, as [`PreparedObject::march`] meets it piece by
 /// piece.
 trait MarchedCurve {
-    /// A box holding the curve for s in [`a`, `b`], if the curve is defined there.
-    fn piece_box(&self, a: f64, b: f64) -> Option<(DVec3, DVec3)>;
-    /// The nearest crossing of the curve with the triangle `corners` for s in [`a`, `b`].
-    fn crossing(&self, a: f64, b: f64, corners: [DVec3; 3]) -> Option<TriangleHit>;
+    /// The piece of the curve for s in [`a`, `b`], with a box that holds it; `previous` is the
+    /// piece that ends at `a`, if any.
+    fn piece(&self, previous: Option<&Piece>, a: f64, b: f64) -> Piece;
+    /// The nearest crossing of the curve with the triangle `corners` on `piece`.
+    fn crossing(&self, piece: &Piece, corners: [DVec3; 3]) -> Option<TriangleHit>;
+}
+
+/// One piece s ∈ [a, b] of a curve: the box [lo, hi] that holds it, and (a helix's) its points
+/// at both ends.
+struct Piece {
+    a: f64,
+    b: f64,
+    lo: DVec3,
+    hi: DVec3,
+    begin: DVec3,
+    end: DVec3,
 }
 
 /// A spinning body's curve (a helix about the axis): each piece bounded by its chord's box
@@ -248,14 +269,50 @@ impl Helix<'_> {
 }
 
 impl MarchedCurve for Helix<'_> {
-    fn piece_box(&self, a: f64, b: f64) -> Option<(DVec3, DVec3)> {
-        let (pa, pb) = (self.point(a), self.point(b));
-        let margin = self.pad + 1e-12 * (1.0 + pa.abs().max_element());
-        Some((pa.min(pb) - margin, pa.max(pb) + margin))
+    fn piece(&self, previous: Option<&Piece>, a: f64, b: f64) -> Piece {
+        let begin = previous.map_or_else(|| self.point(a), |piece| piece.end);
+        let end = self.point(b);
+        let margin = self.pad + 1e-12 * (1.0 + begin.abs().max_element());
+        Piece {
+            a,
+            b,
+            lo: begin.min(end) - margin,
+            hi: begin.max(end) + margin,
+            begin,
+            end,
+        }
     }
 
-    fn crossing(&self, a: f64, b: f64, corners: [DVec3; 3]) -> Option<TriangleHit> {
-        crossing(&|s| Some(self.point(s)), a, b, corners)
+    /// The sign change of the signed distance to the triangle's plane over the piece,
+    /// bisected to the f64 limit, if the point is in the triangle (edges included).
+    fn crossing(&self, piece: &Piece, corners: [DVec3; 3]) -> Option<TriangleHit> {
+        let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        let height = |p: DVec3| normal.dot(p - corners[0]);
+        let (mut lo, mut hi) = (piece.a, piece.b);
+        let (mut at_lo, at_hi) = (height(piece.begin), height(piece.end));
+        if at_lo * at_hi > 0.0 {
+            return None;
+        }
+        if at_lo != 0.0 {
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                let at_mid = height(self.point(mid));
+                if (at_mid < 0.0) == (at_lo < 0.0) && at_mid != 0.0 {
+                    lo = mid;
+                    at_lo = at_mid;
+                } else {
+                    hi = mid;
+                }
+            }
+        } else {
+            hi = lo;
+        }
+        let distance = if at_lo == 0.0 { lo } else { hi };
+        let (zeta, xi) = barycentric(self.point(distance), corners)?;
+        Some(TriangleHit { distance, zeta, xi })
     }
 }
 
@@ -359,8 +416,16 @@ impl ThrustArc {
 }
 
 impl MarchedCurve for ThrustArc {
-    fn piece_box(&self, a: f64, b: f64) -> Option<(DVec3, DVec3)> {
-        Some(ThrustArc::piece_box(self, a, b))
+    fn piece(&self, _previous: Option<&Piece>, a: f64, b: f64) -> Piece {
+        let (lo, hi) = self.piece_box(a, b);
+        Piece {
+            a,
+            b,
+            lo,
+            hi,
+            begin: DVec3::ZERO,
+            end: DVec3::ZERO,
+        }
     }
 
     /// The distance of b(s) to the triangle's plane, n·(b(s) − p₀) = L(s) + m·X(s) with
@@ -368,7 +433,8 @@ impl MarchedCurve for ThrustArc {
     /// m²(u² − v²) − L² = 0, a quadratic, that keep the sign, each polished by Newton's method
     /// on L + m·X; the nearest in [a, b] this side of the horizon whose point lies in the
     /// triangle is the crossing.
-    fn crossing(&self, a: f64, b: f64, corners: [DVec3; 3]) -> Option<TriangleHit> {
+    fn crossing(&self, piece: &Piece, corners: [DVec3; 3]) -> Option<TriangleHit> {
+        let (a, b) = (piece.a, piece.b);
         let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
         let m = normal.dot(self.axis);
         let l0 = normal.dot(self.origin - corners[0]) - m * self.u0;
@@ -447,45 +513,6 @@ fn slab(ray: &RestRay, lo: DVec3, hi: DVec3) -> Option<(f64, f64)> {
 /// The object's S′ time at ray parameter `s`.
 fn ct_at(ray: &RestRay, shift: f64, s: f64) -> f64 {
     ray.ct_origin - s - shift
-}
-
-/// Where `curve` crosses the triangle `corners` for s in [`a`, `b`]: the sign change of the
-/// signed distance to its plane, bisected to the f64 limit, if the point is in the triangle
-/// (edges included).
-fn crossing(
-    curve: &dyn Fn(f64) -> Option<DVec3>,
-    a: f64,
-    b: f64,
-    corners: [DVec3; 3],
-) -> Option<TriangleHit> {
-    let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-    let height = |s: f64| curve(s).map(|p| normal.dot(p - corners[0]));
-    let (mut lo, mut hi) = (a, b);
-    let (mut at_lo, at_hi) = (height(lo)?, height(hi)?);
-    if at_lo * at_hi > 0.0 {
-        return None;
-    }
-    if at_lo != 0.0 {
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            let at_mid = height(mid)?;
-            if (at_mid < 0.0) == (at_lo < 0.0) && at_mid != 0.0 {
-                lo = mid;
-                at_lo = at_mid;
-            } else {
-                hi = mid;
-            }
-        }
-    } else {
-        hi = lo;
-    }
-    let distance = if at_lo == 0.0 { lo } else { hi };
-    let point = curve(distance)?;
-    let (zeta, xi) = barycentric(point, corners)?;
-    Some(TriangleHit { distance, zeta, xi })
 }
 
 /// The barycentric weights (ζ of corner 1, ξ of corner 2) of `point` projected on the
@@ -655,7 +682,7 @@ mod tests {
             let step = 1e-6 * (to - from);
             let slope = (height(known + step).unwrap() - height(known - step).unwrap()) / (2.0 * step);
             prop_assume!(slope.abs() > 1e-3 * plane.length());
-            let hit = arc.crossing(from, to, corners);
+            let hit = arc.crossing(&arc.piece(None, from, to), corners);
             prop_assert!(hit.is_some(), "no crossing, though b({known}) is inside the triangle");
             let hit = hit.unwrap();
             let scale = plane.length() * (1.0 + centre.abs().max_element() + to);
