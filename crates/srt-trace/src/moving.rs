@@ -321,6 +321,7 @@ impl MarchedCurve for Helix<'_> {
 /// (`Thrust::body_point` with x(s) = o + s·d), defined where u > v (this side of the horizon).
 /// Its part x(s) − u(s)·â is linear in s and X is concave (u² − v² is a quadratic with leading
 /// coefficient w² − 1 ≤ 0), so the arc is a plane convex curve.
+#[derive(Debug, Clone, Copy)]
 struct ThrustArc {
     /// The ray's origin o and unit direction d in the rest coordinates.
     origin: DVec3,
@@ -611,6 +612,22 @@ mod tests {
         (thrust, ray, arc, from, to)
     }
 
+    prop_compose! {
+        /// A thrust, a backward ray and its arc with the stretch of the arc (`arc_case`),
+        /// None where the ray's direction or the thrust's is degenerate or the stretch empty.
+        fn arc_cases()(
+            axis in prop::array::uniform3(-1.0f64..1.0),
+            alpha in 0.05f64..2.0,
+            origin in prop::array::uniform3(-5.0f64..5.0),
+            direction in prop::array::uniform3(-1.0f64..1.0),
+            ct in 0.0f64..20.0,
+        ) -> Option<(Thrust, RestRay, ThrustArc, f64, f64)> {
+            let (axis, direction) = (unit(axis)?, unit(direction)?);
+            let case = arc_case(axis, alpha, origin, direction, ct);
+            (case.3 < case.4).then_some(case)
+        }
+    }
+
     /// The body point at `s` by its definition (`Thrust::body_point` at the ray's event).
     fn defined_point(thrust: &Thrust, ray: &RestRay, s: f64) -> Option<DVec3> {
         thrust.body_point(ray.ct_origin - s, ray.origin + s * ray.direction)
@@ -621,19 +638,9 @@ mod tests {
 
         /// Every body point of a piece, by its definition, lies in the piece's box.
         #[test]
-        fn a_piece_box_holds_its_arc(
-            axis in prop::array::uniform3(-1.0f64..1.0),
-            alpha in 0.05f64..2.0,
-            origin in prop::array::uniform3(-5.0f64..5.0),
-            direction in prop::array::uniform3(-1.0f64..1.0),
-            ct in 0.0f64..20.0,
-            ends in (0.0f64..1.0, 0.0f64..1.0),
-        ) {
-            let (Some(axis), Some(direction)) = (unit(axis), unit(direction)) else {
-                return Ok(());
-            };
-            let (thrust, ray, arc, from, to) = arc_case(axis, alpha, origin, direction, ct);
-            prop_assume!(from < to);
+        fn a_piece_box_holds_its_arc(case in arc_cases(), ends in (0.0f64..1.0, 0.0f64..1.0)) {
+            prop_assume!(case.is_some());
+            let (thrust, ray, arc, from, to) = case.unwrap();
             let (a, b) = (from + (to - from) * ends.0.min(ends.1), from + (to - from) * ends.0.max(ends.1));
             let (lo, hi) = arc.piece_box(a, b);
             for k in 0..=200 {
@@ -654,20 +661,16 @@ mod tests {
         /// of the definition's signed distance comes before it.
         #[test]
         fn a_crossing_is_the_first_where_the_defined_body_point_meets_the_triangle(
-            axis in prop::array::uniform3(-1.0f64..1.0),
-            alpha in 0.05f64..2.0,
-            origin in prop::array::uniform3(-5.0f64..5.0),
-            direction in prop::array::uniform3(-1.0f64..1.0),
-            ct in 0.0f64..20.0,
+            case in arc_cases(),
             at in 0.05f64..0.95,
             normal in prop::array::uniform3(-1.0f64..1.0),
             size in 0.05f64..2.0,
         ) {
-            let (Some(axis), Some(direction), Some(normal)) = (unit(axis), unit(direction), unit(normal)) else {
+            prop_assume!(case.is_some());
+            let (thrust, ray, arc, from, to) = case.unwrap();
+            let Some(normal) = unit(normal) else {
                 return Ok(());
             };
-            let (thrust, ray, arc, from, to) = arc_case(axis, alpha, origin, direction, ct);
-            prop_assume!(from < to);
             let known = from + (to - from) * at;
             let centre = defined_point(&thrust, &ray, known).unwrap();
             // A triangle in the plane through b(known) with normal `normal`, centred there.
