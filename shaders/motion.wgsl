@@ -231,7 +231,7 @@ fn motion_march_start(ray: RestRay, plan: MotionPlan) -> vec3<f32> {
 }
 
 // Piece `k` (from 1) of the plan's march, `start` the curve at its start (the previous piece's
-// `end`; mirror of PreparedObject::march with Helix::piece_box or ThrustArc::piece_box). A
+// `end`; mirror of PreparedObject::march with Helix::piece or ThrustArc::piece). A
 // thrust's pieces are bounded by its arc alone: their `begin` and `end` are not evaluated.
 fn motion_piece(ray: RestRay, plan: MotionPlan, k: u32, start: vec3<f32>) -> MotionPiece {
     let width = plan.to - plan.lower;
@@ -286,7 +286,7 @@ fn motion_grouped(plan: MotionPlan) -> bool {
 // Where the curve crosses the triangle `corners` on the piece `piece`, if the triangle's box
 // meets the piece's (mirror of PreparedObject::march's candidate test). A spinning body:
 // the sign change of the signed distance to its plane, bisected, if the point is in the
-// triangle, edges included (mirror of srt-trace's moving::crossing); a thrust: arc_crossing.
+// triangle, edges included (mirror of srt-trace's Helix::crossing); a thrust: arc_crossing.
 fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3>) -> TriangleHit {
     let none = TriangleHit(false, 0.0, 0.0, 0.0);
     // The crossing is a point of the piece's curve, in its box, and of the triangle, in the

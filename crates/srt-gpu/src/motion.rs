@@ -10,8 +10,9 @@
 //! 2¹⁶), each piece's box (a spinning body's chord box padded by the curve's sagitta bound, a
 //! thrust's exact box of its arc) met with the BVH; on a spinning body the sign change of the
 //! distance to each candidate triangle's plane bisected ([`BISECTIONS`] steps at most), on a
-//! thrust's arc the roots of a quadratic polished by [`NEWTON_STEPS`] Newton steps. What the f64 reference computes exactly — the spin phase ω·ct′₀ reduced mod
-//! 2π, the elapsed thrust time — is computed here in f64, so that the shaders see small numbers.
+//! thrust's arc the roots of a quadratic polished by [`NEWTON_STEPS`] Newton steps. What the
+//! f64 reference computes exactly — the spin phase ω·ct′₀ reduced mod 2π, the elapsed thrust
+//! time — is computed here in f64, so that the shaders see small numbers.
 
 use glam::DVec3;
 use srt_physics::Event;
