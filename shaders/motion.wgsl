@@ -168,16 +168,15 @@ fn motion_plan(ray: RestRay) -> MotionPlan {
     let alpha = object.motion.y;
     let end = object.motion.w;
     let start = object.motion.z;
-    let u0 = dot(ray.origin, direction) + 1.0 / alpha;
-    let along = dot(ray.direction, direction);
+    let arc = thrust_arc(ray);
     var end_at = -3.0e38;
     if (end >= 0.0) {
         let c = cosh(end);
         let sh = sinh(end);
-        end_at = (start * c - u0 * sh) / (c + along * sh);
+        end_at = (start * c - arc.u0 * sh) / (c + arc.w * sh);
         if (end_at > 0.0) {
             // Coasting: b(s) = x⊥(s) + (u(s)·cosh η_e − v(s)·sinh η_e − 1/α)·â, linear in s.
-            let b0 = ray.origin - dot(ray.origin, direction) * direction + (u0 * c - start * sh - 1.0 / alpha) * direction;
+            let b0 = ray.origin - dot(ray.origin, direction) * direction + (arc.u0 * c - start * sh - 1.0 / alpha) * direction;
             let x1 = ray.origin + ray.direction;
             let u1 = dot(x1, direction) + 1.0 / alpha;
             let b1 = x1 - dot(x1, direction) * direction + (u1 * c - (start - 1.0) * sh - 1.0 / alpha) * direction;
@@ -188,7 +187,6 @@ fn motion_plan(ray: RestRay) -> MotionPlan {
             plan.coast_end = end_at;
         }
     }
-    let arc = thrust_arc(ray);
     // Beyond the horizon (u ≤ v) no body point is met.
     let lower = max(max(end_at, 0.0), arc_horizon(arc));
     let to = start;

@@ -122,12 +122,11 @@ impl PreparedObject<'_> {
         let (direction, alpha, end) = (thrust.direction(), thrust.alpha(), thrust.final_rapidity());
         // v(s) = ct′(s) − ct₀ = s₁ − s; u(s) = x_∥(s) + 1/α.
         let start = ct_at(ray, shift, 0.0) - thrust.start();
-        let u0 = ray.origin.dot(direction) + 1.0 / alpha;
-        let along = ray.direction.dot(direction);
+        let arc = ThrustArc::new(thrust, ray, start);
         // The end hyperplane v·cosh η_e = u·sinh η_e, crossed at s₂ (none without an end).
         let end_at = if end.is_finite() {
             let (c, s) = (end.cosh(), end.sinh());
-            (start * c - u0 * s) / (c + along * s)
+            (start * c - arc.u0 * s) / (c + arc.w * s)
         } else {
             f64::NEG_INFINITY
         };
@@ -154,7 +153,6 @@ impl PreparedObject<'_> {
                 return Some((part, triangle, hit));
             }
         }
-        let arc = ThrustArc::new(thrust, ray, start);
         // Beyond the horizon (u ≤ v) no body point is met.
         let (from, to) = (end_at.max(0.0).max(arc.horizon()), start.min(limit));
         // Every point has moved at most v = ct′ − ct₀ along â by S′ time ct′ (its speed is
