@@ -43,7 +43,6 @@ use std::time::Instant;
 
 use anyhow::Context as _;
 use glam::DVec3;
-use srt_gpu::ray_tracing::AUTO_LAYERS;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_physics::Frame;
 use srt_scene::{MovingLight, Scene, SurfaceColour};
@@ -136,15 +135,7 @@ fn frame_times<const N: usize>(
     for _ in 0..frames {
         for (method, (time, proxy)) in methods.iter().zip(&mut times) {
             let (frame_ms, proxy_ms) = match timing {
-                Timing::Timestamps => {
-                    let start = Instant::now();
-                    let (_, stats) = renderer.render(ctx, scene, *method, FootprintShape::Hull)?;
-                    let wall = start.elapsed().as_secs_f64() * 1e3;
-                    (
-                        stats.gpu_time_ms.unwrap_or(wall),
-                        stats.proxy_time_ms.unwrap_or(0.0),
-                    )
-                }
+                Timing::Timestamps => timestamped_ms(ctx, renderer, scene, *method)?,
                 Timing::Wall => (submit_to_idle_ms(ctx, renderer, scene, *method)?, 0.0),
             };
             time.push(frame_ms);
@@ -163,17 +154,33 @@ fn submit_to_idle_ms(
     method: Method,
 ) -> anyhow::Result<f64> {
     let start = Instant::now();
-    let mut encoder = ctx
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("xtask bench frame"),
-        });
-    renderer.encode(ctx, &mut encoder, scene, method, FootprintShape::Hull)?;
-    ctx.queue.submit([encoder.finish()]);
+    throughput::submit(ctx, renderer, scene, method)?;
     ctx.wait()?;
     let elapsed = start.elapsed().as_secs_f64() * 1e3;
     ctx.take_errors()?;
     Ok(elapsed)
+}
+
+/// GPU time in ms of one frame of `scene` with `method` and of its proxy pass, by timestamp
+/// queries, the frame queued behind an untimed one and nothing read back but its timestamps:
+/// the GPU stays busy between measurements. Waiting for each frame and reading its image back
+/// kept an H200's SM clock at its idle 345 MHz, so that only the methods' ratios meant
+/// anything (performance-log.md, 2026-11-26 sixth entry).
+fn timestamped_ms(
+    ctx: &GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    method: Method,
+) -> anyhow::Result<(f64, f64)> {
+    throughput::submit(ctx, renderer, scene, method)?;
+    throughput::submit(ctx, renderer, scene, method)?;
+    ctx.wait()?;
+    ctx.take_errors()?;
+    let (frame_ms, proxy_ms) = renderer.frame_times(ctx, method)?;
+    Ok((
+        frame_ms.context("the adapter has timestamp queries")?,
+        proxy_ms.unwrap_or(0.0),
+    ))
 }
 
 /// Times the methods on `scene` with `renderer` (made for this scene's structure), then counts
@@ -239,15 +246,6 @@ fn measure(
     })
 }
 
-/// The objects of `renderer`'s scene that `auto` draws by the ray tracer.
-fn traced_objects(renderer: &GpuRenderer) -> usize {
-    renderer
-        .object_layers()
-        .iter()
-        .filter(|layers| layers.is_some_and(|l| l > AUTO_LAYERS))
-        .count()
-}
-
 /// Measures `case` with `renderer` (made for its scene's structure) as a result.
 fn measure_case(
     ctx: &GpuContext,
@@ -262,7 +260,7 @@ fn measure_case(
         width,
         height,
         triangles: case.scene.triangle_count(),
-        traced_objects: traced_objects(renderer),
+        traced_objects: renderer.auto_traced_objects(),
         measurement,
     })
 }

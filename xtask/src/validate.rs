@@ -502,11 +502,7 @@ fn validate_image(
             further_mismatches.push((format!("{}_seen", method.name()), mismatch));
         }
     }
-    let traced = renderer
-        .object_layers()
-        .iter()
-        .filter(|l| l.is_some_and(|l| l > srt_gpu::ray_tracing::AUTO_LAYERS))
-        .count();
+    let traced = renderer.auto_traced_objects();
     let further_report: String = further_mismatches
         .iter()
         .map(|(what, m)| format!(" {what}_mismatch={:.6}", m.fraction()))

@@ -2,10 +2,11 @@
 //! Rust errors instead of panics.
 
 use std::io::Write as _;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use crate::error::GpuError;
 use crate::formats::{COLOR_FORMAT, FALLBACK_COLOR_FORMAT};
+use crate::pipelines::Pipelines;
 
 /// A device and queue, plus facts about the adapter.
 pub struct GpuContext {
@@ -23,6 +24,8 @@ pub struct GpuContext {
     /// Metal and DX12 adapter, OpenGL from 4.3 / ES 3.1, not WebGL 2).
     pub indirect_draws: bool,
     errors: Arc<Mutex<Vec<String>>>,
+    /// The device's pipelines without and with moving lights ([`GpuContext::pipelines`]).
+    pipelines: [OnceLock<Arc<Pipelines>>; 2],
 }
 
 impl GpuContext {
@@ -108,7 +111,19 @@ impl GpuContext {
             color_format,
             indirect_draws,
             errors,
+            pipelines: [OnceLock::new(), OnceLock::new()],
         }
+    }
+
+    /// The device's pipelines for scenes without or with (`lit`) moving lights, made by the
+    /// first renderer that asks and shared by every later renderer of this context, so that a
+    /// new scene (the viewer's reload, each case of `cargo xtask bench` and `validate`) does
+    /// not compile them again.
+    pub(crate) fn pipelines(&self, lit: bool) -> Arc<Pipelines> {
+        Arc::clone(
+            self.pipelines[usize::from(lit)]
+                .get_or_init(|| Arc::new(Pipelines::new(&self.device, self.color_format, lit))),
+        )
     }
 
     /// A one-line description of the adapter: name, backend and device type.

@@ -33,12 +33,31 @@ use crate::types::{
 };
 
 /// Above this many layers of triangles (an object's surface over its box's surface,
-/// `ObjectRayTracing::preferred`) `auto` traces an object through its BVH. Chosen from
-/// `cargo xtask bench` on lavapipe, whose LRT and RT columns show the choice per scene
-/// (docs/performance.md; the measurements it was chosen from are in docs/performance-log.md):
-/// deep models such as the 2CylinderEngine (2.80 layers) render faster traced, the fig10 cubes
-/// (1.00) and the spider (0.29) faster by LRT.
+/// `ObjectRayTracing::preferred`) `auto` traces an object through its BVH on a CPU adapter
+/// (lavapipe, llvmpipe). Chosen from `cargo xtask bench` on lavapipe, whose LRT and RT columns
+/// show the choice per scene (docs/performance.md; the measurements it was chosen from are in
+/// docs/performance-log.md): deep models such as the 2CylinderEngine (2.80 layers) render
+/// faster traced, the fig10 cubes (1.00) and the spider (0.29) faster by LRT.
 pub const AUTO_LAYERS: f64 = 2.0;
+
+/// [`AUTO_LAYERS`] on a hardware GPU: no static object is traced there. On the one hardware
+/// GPU measured (an NVIDIA H200, `cargo xtask bench --throughput`, docs/performance-log.md,
+/// 2026-11-26 sixth entry) LRT sustained more frames per second than the ray tracer on every
+/// scene, from the spider (0.29 layers) to the engines (2.80): 217 against 106 fps for the
+/// engine, 76.5 against 52.4 for the nine engines, at 1920×1080. A GPU runs LRT's many cheap
+/// fragments in parallel, where a CPU adapter pays for each.
+pub const AUTO_LAYERS_HARDWARE: f64 = f64::INFINITY;
+
+/// The layers above which `auto` traces an object on an adapter of `device_type`:
+/// [`AUTO_LAYERS`] on a CPU adapter, [`AUTO_LAYERS_HARDWARE`] on any other.
+#[must_use]
+pub fn auto_layers(device_type: wgpu::DeviceType) -> f64 {
+    if device_type == wgpu::DeviceType::Cpu {
+        AUTO_LAYERS
+    } else {
+        AUTO_LAYERS_HARDWARE
+    }
+}
 
 /// Triangles of an object's box.
 pub(crate) const BOX_TRIANGLES: u32 = 12;
@@ -251,13 +270,13 @@ impl ObjectRayTracing {
     }
 
     /// Whether the ray tracer is the faster exact method for this object: when its triangles
-    /// lie in more than [`AUTO_LAYERS`] layers. An LRT fragment tests one triangle and there are
-    /// about as many per pixel as layers; a traced fragment walks the BVH, which costs several
-    /// triangle tests but does not grow with the layers. Either is exact; this decides speed
-    /// only.
+    /// lie in more than `threshold` layers ([`auto_layers`] of the adapter). An LRT fragment
+    /// tests one triangle and there are about as many per pixel as layers; a traced fragment
+    /// walks the BVH, which costs several triangle tests but does not grow with the layers.
+    /// Either is exact; this decides speed only.
     #[must_use]
-    pub fn preferred(&self) -> bool {
-        self.layers > AUTO_LAYERS
+    pub fn preferred(&self, threshold: f64) -> bool {
+        self.layers > threshold
     }
 
     /// The object's surface over its box's ([`ObjectRayTracing::preferred`]).

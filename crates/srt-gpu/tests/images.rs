@@ -301,6 +301,10 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
         layers.iter().rev().skip(1).all(|l| l.unwrap() < 2.0),
         "{layers:?}"
     );
+    // A CPU adapter traces the deep stack; a hardware GPU draws every static object by LRT
+    // (`ray_tracing::auto_layers`).
+    let deep = usize::from(ctx.adapter_info.device_type == wgpu::DeviceType::Cpu);
+    assert_eq!(renderer.auto_traced_objects(), deep);
     let reference = cpu_image(&scene);
     let images = exact_methods_match(&ctx, &renderer, &scene, &reference, "the mix");
     // Not vacuous: the stack is on screen (removing it changes the picture).

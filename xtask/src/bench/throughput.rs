@@ -63,8 +63,9 @@ impl Throughput {
     }
 }
 
-/// Encodes and submits one frame of `scene` with `method`; returns its submission.
-fn submit(
+/// Encodes and submits one frame of `scene` with `method` (no readback); returns its
+/// submission.
+pub(super) fn submit(
     ctx: &GpuContext,
     renderer: &GpuRenderer,
     scene: &Scene,

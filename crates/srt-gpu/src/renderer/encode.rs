@@ -290,7 +290,7 @@ impl super::GpuRenderer {
                     (_, Ok(rt)) if moving => Ok(Some(rt)),
                     (Method::Rt, Err(error)) => Err(error.clone()),
                     (_, Err(error)) if moving => Err(error.clone()),
-                    (Method::Auto, Ok(rt)) => Ok(rt.preferred().then_some(rt)),
+                    (Method::Auto, Ok(rt)) => Ok(rt.preferred(self.auto_layers).then_some(rt)),
                     _ => Ok(None),
                 }
             })

@@ -72,7 +72,8 @@ pub const SEEN_CHANNELS: [&str; 5] = [
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
     /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is faster
-    /// for it (by the layers of its triangles, `ObjectRayTracing::preferred`); the two compose
+    /// for it on this adapter (by the layers of its triangles, `ObjectRayTracing::preferred`,
+    /// and the adapter's kind, [`crate::ray_tracing::auto_layers`]); the two compose
     /// through the depth test. A body that spins or thrusts in its rest frame is always traced.
     #[default]
     Auto,
@@ -199,7 +200,8 @@ pub struct FragmentCounts {
 
 /// A scene uploaded to the GPU, ready to render.
 pub struct GpuRenderer {
-    pipelines: Pipelines,
+    /// The context's pipelines, shared with its other renderers ([`GpuContext::pipelines`]).
+    pipelines: Arc<Pipelines>,
     frame: FrameResources,
     objects: Vec<ObjectResources>,
     counter: FragmentCounter,
@@ -216,6 +218,9 @@ pub struct GpuRenderer {
     /// Whether the LRT draws take their vertex counts from the proxy pass
     /// ([`GpuContext::indirect_draws`]).
     indirect_draws: bool,
+    /// The layers above which `auto` traces a static object on this adapter
+    /// ([`crate::ray_tracing::auto_layers`]).
+    auto_layers: f64,
 }
 
 /// Whether a renderer uploaded for `uploaded` ([`GpuRenderer::new`]) draws `scene` as one
@@ -262,7 +267,7 @@ impl GpuRenderer {
         // Only a scene with moving lights needs them compiled into the shading passes, and
         // every object's BVH there.
         let lit = !scene.lights.is_empty();
-        let pipelines = Pipelines::new(device, ctx.color_format, lit);
+        let pipelines = ctx.pipelines(lit);
         let counter = FragmentCounter::new(device);
         let frame_bound = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("srt frame bound"),
@@ -311,6 +316,7 @@ impl GpuRenderer {
             counter,
             count_fragments: false,
             indirect_draws: ctx.indirect_draws,
+            auto_layers: crate::ray_tracing::auto_layers(ctx.adapter_info.device_type),
         };
         ctx.take_errors()?;
         Ok(renderer)
@@ -339,6 +345,21 @@ impl GpuRenderer {
             .iter()
             .map(|o| o.ray_tracing.as_ref().ok().map(ObjectRayTracing::layers))
             .collect()
+    }
+
+    /// How many objects `auto` traces through their BVH on this adapter because they are deep
+    /// (over [`crate::ray_tracing::auto_layers`]; moving bodies are traced by every exact method
+    /// and not counted here unless deep).
+    #[must_use]
+    pub fn auto_traced_objects(&self) -> usize {
+        self.objects
+            .iter()
+            .filter(|o| {
+                o.ray_tracing
+                    .as_ref()
+                    .is_ok_and(|rt| rt.preferred(self.auto_layers))
+            })
+            .count()
     }
 
     /// Image width and height.
@@ -420,26 +441,7 @@ impl GpuRenderer {
         } else {
             None
         };
-        let (gpu_time_ms, proxy_time_ms) = match &self.timestamps {
-            Some(t) => {
-                let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&t.readback)?);
-                let ms = |from: usize, to: usize| {
-                    stamps[to].saturating_sub(stamps[from]) as f64
-                        * f64::from(ctx.queue.get_timestamp_period())
-                        * 1e-6
-                };
-                // From the first pass of the frame (the proxy pass, or else the sky's, or
-                // else the polygon pass) to the end of the last.
-                match method {
-                    Method::Lrt | Method::Rt | Method::Auto => (Some(ms(0, 3)), Some(ms(0, 1))),
-                    Method::Polygon => {
-                        let first = if self.sky.is_some() { SKY_TIMESTAMP } else { 2 };
-                        (Some(ms(first as usize, 3)), None)
-                    }
-                }
-            }
-            None => (None, None),
-        };
+        let (gpu_time_ms, proxy_time_ms) = self.frame_times(ctx, method)?;
         ctx.take_errors()?;
         Ok((
             GpuImage {
@@ -453,6 +455,38 @@ impl GpuRenderer {
                 fragments,
             },
         ))
+    }
+
+    /// GPU time in ms of the last frame encoded ([`GpuRenderer::encode`]) and finished, and of
+    /// its proxy pass (`None` for the polygon method), by timestamp queries; `(None, None)`
+    /// where the device has none ([`GpuContext::timestamps`]). Call it once the frame's
+    /// submission has finished (after [`GpuContext::wait`]).
+    ///
+    /// # Errors
+    /// A failed readback.
+    pub fn frame_times(
+        &self,
+        ctx: &GpuContext,
+        method: Method,
+    ) -> Result<(Option<f64>, Option<f64>), GpuError> {
+        let Some(t) = &self.timestamps else {
+            return Ok((None, None));
+        };
+        let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&t.readback)?);
+        let ms = |from: usize, to: usize| {
+            stamps[to].saturating_sub(stamps[from]) as f64
+                * f64::from(ctx.queue.get_timestamp_period())
+                * 1e-6
+        };
+        // From the first pass of the frame (the proxy pass, or else the sky's, or else the
+        // polygon pass) to the end of the last.
+        Ok(match method {
+            Method::Lrt | Method::Rt | Method::Auto => (Some(ms(0, 3)), Some(ms(0, 1))),
+            Method::Polygon => {
+                let first = if self.sky.is_some() { SKY_TIMESTAMP } else { 2 };
+                (Some(ms(first as usize, 3)), None)
+            }
+        })
     }
 
     /// What each pixel sees of time (the `--aov` channels), row-major from the top, as
