@@ -40,6 +40,9 @@ pub struct Throughput {
     pub frames: u32,
     /// Frames per second of each of [`METHODS`], in that order.
     pub fps: [f64; 4],
+    /// Mean CPU time per frame in ms spent encoding and submitting it, per method: where it
+    /// comes near a frame's share of the time (1000 / fps), the CPU bounds the rate.
+    pub encode_ms: [f64; 4],
 }
 
 impl Throughput {
@@ -48,8 +51,11 @@ impl Throughput {
     pub fn text(&self) -> String {
         let rates: Vec<String> = METHODS
             .iter()
-            .zip(self.fps)
-            .map(|(method, fps)| format!("{}_fps={fps:.2}", method_name(*method).to_lowercase()))
+            .zip(self.fps.iter().zip(self.encode_ms))
+            .map(|(method, (fps, encode))| {
+                let name = method_name(*method).to_lowercase();
+                format!("{name}_fps={fps:.2} {name}_encode_ms={encode:.3}")
+            })
             .collect();
         format!(
             "throughput scene={} size={}x{} tris={} frames={} in_flight={IN_FLIGHT} {}",
@@ -80,9 +86,9 @@ pub(super) fn submit(
     Ok(ctx.queue.submit([encoder.finish()]))
 }
 
-/// Sustained frames per second of each of [`METHODS`] on `scene` with `renderer`: `frames`
-/// frames each, from the scene's own time on over [`CT_SPAN`] in equal steps, after [`WARM_UP`]
-/// frames.
+/// Sustained frames per second of each of [`METHODS`] on `scene` with `renderer`, and the
+/// mean CPU time per frame in ms spent encoding and submitting: `frames` frames each, from
+/// the scene's own time on over [`CT_SPAN`] in equal steps, after [`WARM_UP`] frames.
 ///
 /// # Errors
 /// A GPU failure.
@@ -91,21 +97,24 @@ pub fn measure(
     renderer: &GpuRenderer,
     scene: &Scene,
     frames: u32,
-) -> anyhow::Result<[f64; 4]> {
+) -> anyhow::Result<([f64; 4], [f64; 4])> {
     let mut moving = scene.clone();
     let start_ct = scene.observer.ct;
-    let mut fps = [0.0; 4];
+    let (mut fps, mut encode_ms) = ([0.0; 4], [0.0; 4]);
     let step = CT_SPAN / f64::from(frames.max(1));
-    for (rate, method) in fps.iter_mut().zip(METHODS) {
+    for ((rate, encode), method) in fps.iter_mut().zip(&mut encode_ms).zip(METHODS) {
         for _ in 0..WARM_UP {
             submit(ctx, renderer, scene, method)?;
         }
         ctx.wait()?;
         let start = Instant::now();
+        let mut encoding = std::time::Duration::ZERO;
         let mut queued = VecDeque::new();
         for frame in 0..frames {
             moving.observer.ct = start_ct + step * f64::from(frame);
+            let encode_start = Instant::now();
             queued.push_back(submit(ctx, renderer, &moving, method)?);
+            encoding += encode_start.elapsed();
             if queued.len() > IN_FLIGHT
                 && let Some(oldest) = queued.pop_front()
             {
@@ -119,9 +128,10 @@ pub fn measure(
         }
         ctx.wait()?;
         *rate = f64::from(frames) / start.elapsed().as_secs_f64();
+        *encode = encoding.as_secs_f64() * 1e3 / f64::from(frames.max(1));
         ctx.take_errors()?;
     }
-    Ok(fps)
+    Ok((fps, encode_ms))
 }
 
 /// Saves `renderer`'s picture of `scene` (exact, display colours) as `folder/NAME_WxH.png`.
