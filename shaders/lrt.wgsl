@@ -40,7 +40,9 @@ override COUNT_FRAGMENTS: bool;
 // llvmpipe reads a storage buffer in a fragment shader one lane at a time, and these reads were
 // most of an LRT visibility fragment's cost (docs/performance-log.md, 2026-11-27, fourth entry).
 // Flat varyings carry the values bit for bit, so every fragment computes what it did from the
-// buffers.
+// buffers. A hardware GPU pays for these varyings on every footprint vertex instead: there the
+// entry points `*_lean` carry only LeanVarying and each fragment reads the rest (full_varying;
+// srt_gpu::pipelines::Varyings picks per adapter).
 struct LrtVarying {
     @builtin(position) position: vec4<f32>,
     // The footprint's triangle and the part's id.
@@ -56,6 +58,28 @@ struct LrtVarying {
     // The object's frame as the ray and the depth need it: β and γ, the observation event in S′.
     @location(7) @interpolate(flat) beta_gamma: vec4<f32>,
     @location(8) @interpolate(flat) observer_rest: vec4<f32>,
+}
+
+// What a fragment of the lean entry points receives: the position and (triangle, part id).
+struct LeanVarying {
+    @builtin(position) position: vec4<f32>,
+    @location(0) @interpolate(flat) triangle_part: vec2<u32>,
+}
+
+// The lean varyings of `v`.
+fn lean_varying(v: LrtVarying) -> LeanVarying {
+    return LeanVarying(v.position, v.triangle_part);
+}
+
+// The varyings the flat entry points would have received, read from the buffers: the triangle's
+// corners where `with_corners` (LRT's visibility; the ray tracer's boxes and the shading pass's
+// bounds name no triangle). The same values, bit for bit.
+fn full_varying(in: LeanVarying, with_corners: bool) -> LrtVarying {
+    var corners = NO_CORNERS;
+    if (with_corners) {
+        corners = triangle_corners(in.triangle_part.x);
+    }
+    return draw_varying(in.position, in.triangle_part.x, corners);
 }
 
 struct VisibilityOutput {
@@ -121,10 +145,22 @@ fn lrt_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
     return footprint_vertex(index, true);
 }
 
+// lrt_vertex with lean varyings (the fragment reads the corners).
+@vertex
+fn lrt_vertex_lean(@builtin(vertex_index) index: u32) -> LeanVarying {
+    return lean_varying(footprint_vertex(index, false));
+}
+
 // The ray tracer's visibility pass's vertices: the footprints of objects' boxes.
 @vertex
 fn box_vertex(@builtin(vertex_index) index: u32) -> LrtVarying {
     return footprint_vertex(index, false);
+}
+
+// box_vertex with lean varyings.
+@vertex
+fn box_vertex_lean(@builtin(vertex_index) index: u32) -> LeanVarying {
+    return lean_varying(footprint_vertex(index, false));
 }
 
 // The backward viewing ray through the fragment's pixel in S′ (backward_ray with view_direction),
@@ -153,6 +189,16 @@ fn ray_hit(ray: RestRay, corners: array<vec3<f32>, 3>) -> LrtHit {
 
 @fragment
 fn lrt_visibility(in: LrtVarying) -> VisibilityOutput {
+    return lrt_visible(in);
+}
+
+@fragment
+fn lrt_visibility_lean(in: LeanVarying) -> VisibilityOutput {
+    return lrt_visible(full_varying(in, true));
+}
+
+// The LRT visibility fragment: its ray's hit with the footprint's triangle, or a discard.
+fn lrt_visible(in: LrtVarying) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }
@@ -209,6 +255,17 @@ fn id_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 
 // the bound of the object's box).
 @vertex
 fn part_bound_vertex(@builtin(vertex_index) v: u32) -> LrtVarying {
+    return part_bound_varying(v);
+}
+
+// part_bound_vertex with lean varyings.
+@vertex
+fn part_bound_vertex_lean(@builtin(vertex_index) v: u32) -> LeanVarying {
+    return lean_varying(part_bound_varying(v));
+}
+
+// Corner `v` of the part's screen bound, with the draw's varyings.
+fn part_bound_varying(v: u32) -> LrtVarying {
     let b = DRAW_ARGS_BOUND;
     let bound = vec4<u32>(part_draw_args[b], part_draw_args[b + 1u], part_draw_args[b + 2u], part_draw_args[b + 3u]);
     return draw_varying(bound_corner(bound, v, part_depth(part.id)), 0u, NO_CORNERS);
@@ -216,6 +273,16 @@ fn part_bound_vertex(@builtin(vertex_index) v: u32) -> LrtVarying {
 
 @fragment
 fn lrt_shade(in: LrtVarying) -> @location(0) vec4<f32> {
+    return shaded(in);
+}
+
+@fragment
+fn lrt_shade_lean(in: LeanVarying) -> @location(0) vec4<f32> {
+    return shaded(full_varying(in, false));
+}
+
+// The colour of the shading pass's fragment: the kept triangle's, shaded.
+fn shaded(in: LrtVarying) -> vec4<f32> {
     let pixel = in.position.xy;
     // The depth test let only this part's pixels through (the header's step 3). The counting
     // variant's atomic is a side effect, which makes the test run after the shader: there the id

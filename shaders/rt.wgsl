@@ -19,8 +19,8 @@
 //
 // Mirror: srt_gpu::bvh::ObjectBvh::nearest_hit (the traversal, tested against a test of every
 // triangle) and crates/srt-trace (the image, compared by `cargo xtask validate`).
-// Composed after lrt.wgsl (it uses `fragment_count`, `box_vertex`, `LrtVarying`, `varying_ray`,
-// `VisibilityOutput`, `visible`),
+// Composed after lrt.wgsl (it uses `fragment_count`, `box_vertex`, `LrtVarying`, `LeanVarying`,
+// `full_varying`, `varying_ray`, `VisibilityOutput`, `visible`),
 // bvh.wgsl (the slab test) and motion.wgsl (the moving bodies' curves and pieces).
 
 // The object's BVH nodes (srt_gpu::bvh::ObjectBvh::nodes), root first.
@@ -229,6 +229,16 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
 
 @fragment
 fn rt_visibility(in: LrtVarying) -> VisibilityOutput {
+    return rt_visible(in);
+}
+
+@fragment
+fn rt_visibility_lean(in: LeanVarying) -> VisibilityOutput {
+    return rt_visible(full_varying(in, false));
+}
+
+// The ray tracer's visibility fragment: its ray's nearest hit in the object's BVH, or a discard.
+fn rt_visible(in: LrtVarying) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }

@@ -6,7 +6,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use crate::error::GpuError;
 use crate::formats::{COLOR_FORMAT, FALLBACK_COLOR_FORMAT};
-use crate::pipelines::Pipelines;
+use crate::pipelines::{Pipelines, Varyings};
 
 /// A device and queue, plus facts about the adapter.
 pub struct GpuContext {
@@ -23,9 +23,12 @@ pub struct GpuContext {
     /// Whether draws may take their counts from GPU buffers (`draw_indirect`; every Vulkan,
     /// Metal and DX12 adapter, OpenGL from 4.3 / ES 3.1, not WebGL 2).
     pub indirect_draws: bool,
+    /// How the object passes carry a draw's data to their fragments ([`Varyings::for_adapter`]
+    /// of the adapter; a test may choose the other, before the first renderer).
+    pub varyings: Varyings,
     errors: Arc<Mutex<Vec<String>>>,
-    /// The device's pipelines without and with moving lights ([`GpuContext::pipelines`]).
-    pipelines: [OnceLock<Arc<Pipelines>>; 2],
+    /// The device's pipelines by moving lights and varyings ([`GpuContext::pipelines`]).
+    pipelines: [OnceLock<Arc<Pipelines>>; 4],
 }
 
 impl GpuContext {
@@ -87,6 +90,7 @@ impl GpuContext {
         } else {
             COLOR_FORMAT
         };
+        let varyings = Varyings::for_adapter(adapter_info.device_type);
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = Arc::clone(&errors);
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
@@ -110,20 +114,27 @@ impl GpuContext {
             timestamps,
             color_format,
             indirect_draws,
+            varyings,
             errors,
-            pipelines: [OnceLock::new(), OnceLock::new()],
+            pipelines: [(); 4].map(|()| OnceLock::new()),
         }
     }
 
-    /// The device's pipelines for scenes without or with (`lit`) moving lights, made by the
-    /// first renderer that asks and shared by every later renderer of this context, so that a
-    /// new scene (the viewer's reload, each case of `cargo xtask bench` and `validate`) does
-    /// not compile them again.
+    /// The device's pipelines for scenes without or with (`lit`) moving lights, with the
+    /// context's [`GpuContext::varyings`], made by the first renderer that asks and shared by
+    /// every later renderer of this context, so that a new scene (the viewer's reload, each
+    /// case of `cargo xtask bench` and `validate`) does not compile them again.
     pub(crate) fn pipelines(&self, lit: bool) -> Arc<Pipelines> {
-        Arc::clone(
-            self.pipelines[usize::from(lit)]
-                .get_or_init(|| Arc::new(Pipelines::new(&self.device, self.color_format, lit))),
-        )
+        let varyings = self.varyings;
+        let index = usize::from(lit) + 2 * usize::from(varyings == Varyings::Lean);
+        Arc::clone(self.pipelines[index].get_or_init(|| {
+            Arc::new(Pipelines::new(
+                &self.device,
+                self.color_format,
+                lit,
+                varyings,
+            ))
+        }))
     }
 
     /// A one-line description of the adapter: name, backend and device type.

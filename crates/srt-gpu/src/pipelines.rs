@@ -458,14 +458,70 @@ pub fn sky_specs() -> [PipelineSpec; 2] {
 
 /// Entry point of the proxy pass.
 const PROXY_ENTRY: &str = "footprint_main";
-/// Entry points of the LRT visibility pass (vertex, fragment).
-const LRT_VISIBILITY_ENTRIES: [&str; 2] = ["lrt_vertex", "lrt_visibility"];
-/// Entry points of the LRT shading pass (vertex, fragment).
-const LRT_SHADE_ENTRIES: [&str; 2] = ["part_bound_vertex", "lrt_shade"];
+/// Entry points of the LRT visibility pass: vertex and fragment with flat varyings, then with
+/// lean ones ([`Varyings::pick`]).
+const LRT_VISIBILITY_ENTRIES: [&str; 4] = [
+    "lrt_vertex",
+    "lrt_visibility",
+    "lrt_vertex_lean",
+    "lrt_visibility_lean",
+];
+/// Entry points of the LRT shading pass, as [`LRT_VISIBILITY_ENTRIES`].
+const LRT_SHADE_ENTRIES: [&str; 4] = [
+    "part_bound_vertex",
+    "lrt_shade",
+    "part_bound_vertex_lean",
+    "lrt_shade_lean",
+];
 /// Entry points of the LRT part-depth pass (vertex, fragment).
 const PART_DEPTH_ENTRIES: [&str; 2] = ["id_depth_vertex", "id_depth"];
-/// Entry points of the ray tracer's visibility pass (vertex, fragment).
-const RT_VISIBILITY_ENTRIES: [&str; 2] = ["box_vertex", "rt_visibility"];
+/// Entry points of the ray tracer's visibility pass, as [`LRT_VISIBILITY_ENTRIES`].
+const RT_VISIBILITY_ENTRIES: [&str; 4] = [
+    "box_vertex",
+    "rt_visibility",
+    "box_vertex_lean",
+    "rt_visibility_lean",
+];
+
+/// How the object passes (LRT's visibility and shading, the ray tracer's visibility) hand a
+/// draw's data — the camera, the object's frame, the triangle's corners — from the vertex to
+/// the fragment stage (lrt.wgsl's `LrtVarying` and `LeanVarying`). The images are the same bit
+/// for bit; the speed is not.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Varyings {
+    /// As flat varyings, read once per vertex: Mesa's llvmpipe reads a storage buffer in a
+    /// fragment shader one lane at a time, and those reads were most of an LRT visibility
+    /// fragment (docs/performance-log.md, 2026-11-27, fourth entry).
+    Flat,
+    /// Only the triangle and the part's id; each fragment reads the rest. A hardware GPU pays
+    /// for every varying of every footprint vertex: on an H200 the flat varyings took LRT's
+    /// sustained rate on the nine engines at 1920×1080 from 77.5 to 33.8 frames per second
+    /// (docs/performance-log.md, 2026-11-27, sixth entry).
+    Lean,
+}
+
+impl Varyings {
+    /// What suits an adapter of `device_type`: flat on a CPU adapter, lean on any other.
+    #[must_use]
+    pub fn for_adapter(device_type: wgpu::DeviceType) -> Self {
+        if device_type == wgpu::DeviceType::Cpu {
+            Self::Flat
+        } else {
+            Self::Lean
+        }
+    }
+
+    /// The (vertex, fragment) pair of `entries` for these varyings.
+    const fn pick(
+        self,
+        [flat_vertex, flat_fragment, lean_vertex, lean_fragment]: [&'static str; 4],
+    ) -> [&'static str; 2] {
+        match self {
+            Self::Flat => [flat_vertex, flat_fragment],
+            Self::Lean => [lean_vertex, lean_fragment],
+        }
+    }
+}
 /// Entry points of the polygon pass (vertex, fragment).
 const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
@@ -532,19 +588,20 @@ impl VisibilityPipelines {
     fn new(
         device: &wgpu::Device,
         [_, visibility, _, rt_visibility, ..]: &[PipelineSpec; 6],
+        varyings: Varyings,
     ) -> Self {
         Self {
             visibility: render_pipeline(
                 device,
                 visibility,
-                LRT_VISIBILITY_ENTRIES,
+                varyings.pick(LRT_VISIBILITY_ENTRIES),
                 Some(VISIBLE_ID_FORMAT),
                 DepthTest::Nearest,
             ),
             rt_visibility: render_pipeline(
                 device,
                 rt_visibility,
-                RT_VISIBILITY_ENTRIES,
+                varyings.pick(RT_VISIBILITY_ENTRIES),
                 Some(VISIBLE_ID_FORMAT),
                 DepthTest::Nearest,
             ),
@@ -590,17 +647,24 @@ pub struct Pipelines {
     color_format: wgpu::TextureFormat,
     /// Whether the shading passes draw moving lights.
     lit: bool,
+    /// How the object passes carry a draw's data to their fragments.
+    varyings: Varyings,
 }
 
 impl Pipelines {
     /// Creates the layouts and the proxy and part-depth pipelines on `device` (the object passes'
     /// come on first use), rendering into `color_format`, the shading passes with moving lights
-    /// where `lit` ([`shaders::lrt`]).
+    /// where `lit` ([`shaders::lrt`]), the object passes with `varyings`.
     /// Each pipeline's layout is made from its [`PipelineSpec`]; bind group layouts with the same
     /// entries are interchangeable (WebGPU's group equivalence), so the bind groups made with
     /// the layouts kept here fit every pipeline.
     #[must_use]
-    pub fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat, lit: bool) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        color_format: wgpu::TextureFormat,
+        lit: bool,
+        varyings: Varyings,
+    ) -> Self {
         let plain = ObjectVariant {
             lit,
             ..ObjectVariant::PLAIN
@@ -639,6 +703,7 @@ impl Pipelines {
             ),
             color_format,
             lit,
+            varyings,
         }
     }
 
@@ -652,7 +717,7 @@ impl Pipelines {
         debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
         let variant = variant.for_visibility();
         self.visibility[variant.index()]
-            .get_or_init(|| VisibilityPipelines::new(device, &specs(variant)))
+            .get_or_init(|| VisibilityPipelines::new(device, &specs(variant), self.varyings))
     }
 
     /// The LRT shading pipeline for parts drawn as `variant` (whose `lit` must be the
@@ -664,7 +729,7 @@ impl Pipelines {
             render_pipeline(
                 device,
                 shade_spec,
-                LRT_SHADE_ENTRIES,
+                self.varyings.pick(LRT_SHADE_ENTRIES),
                 Some(self.color_format),
                 DepthTest::Equal,
             )

@@ -6,6 +6,7 @@
 use std::sync::atomic::AtomicBool;
 
 use glam::DVec3;
+use srt_gpu::pipelines::Varyings;
 use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip};
 use srt_scene::{
     Effects, Material, Mesh, Part, Scene, SceneDescription, SurfaceColour, builtin_scenes,
@@ -778,5 +779,43 @@ fn objects_out_of_view_are_skipped_and_those_aberrated_into_view_are_drawn() {
         without(receding)
     );
     assert_eq!(without(resting), 0.0);
+    ctx.take_errors().unwrap();
+}
+
+#[test]
+fn lean_varyings_draw_the_flat_varyings_images_bit_for_bit() {
+    let Some(mut ctx) = context_or_skip("lean_varyings_draw_the_flat_varyings_images_bit_for_bit")
+    else {
+        return;
+    };
+    for builtin in builtin_scenes() {
+        let (scene, _) = builtin.build().unwrap();
+        let reference = cpu_image(&scene);
+        let [flat, lean] = [Varyings::Flat, Varyings::Lean].map(|varyings| {
+            ctx.varyings = varyings;
+            let mut renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
+            // The counting variant is other code: one method counts.
+            [Method::Lrt, Method::Rt, Method::Auto].map(|method| {
+                renderer.set_fragment_counting(method == Method::Rt);
+                let (image, stats) = renderer
+                    .render(&ctx, &scene, method, FootprintShape::Hull)
+                    .unwrap();
+                (image.to_rgb8(), stats.fragments)
+            })
+        });
+        for ((method, (flat, flat_fragments)), (lean, lean_fragments)) in
+            [Method::Lrt, Method::Rt, Method::Auto]
+                .iter()
+                .zip(flat)
+                .zip(lean)
+        {
+            let what = format!("{}, {}", builtin.name, method.name());
+            assert!(flat == lean, "{what}: the lean varyings' image differs");
+            assert_eq!(flat_fragments, lean_fragments, "{what}");
+            let mismatch = compare(&reference, &lean, 2, 1);
+            assert!(mismatch.fraction() <= 0.001, "{what}: {mismatch:?}");
+        }
+        println!("scene={}: lean = flat for LRT, RT and auto", builtin.name);
+    }
     ctx.take_errors().unwrap();
 }
