@@ -41,11 +41,14 @@ use crate::types::{
 pub const AUTO_LAYERS: f64 = 2.0;
 
 /// [`AUTO_LAYERS`] on a hardware GPU: no static object is traced there. On the one hardware
-/// GPU measured (an NVIDIA H200, `cargo xtask bench --throughput`, docs/performance-log.md,
-/// 2026-11-26 sixth entry) LRT sustained more frames per second than the ray tracer on every
-/// scene, from the spider (0.29 layers) to the engines (2.80): 217 against 106 fps for the
-/// engine, 76.5 against 52.4 for the nine engines, at 1920×1080. A GPU runs LRT's many cheap
-/// fragments in parallel, where a CPU adapter pays for each.
+/// GPU measured (an NVIDIA H200, `cargo xtask bench --throughput` at 1920×1080,
+/// docs/performance-log.md, 2026-11-26 sixth entry and 2026-11-27 sixth entry) LRT with lean
+/// varyings ([`crate::pipelines::Varyings::Lean`]) sustained more frames per second than the ray
+/// tracer on every scene, from the spider (0.29 layers) to the engines (2.80): 217 against 106
+/// fps for the engine, 175 against 102 for three engines, 77.5 against 52.4 for the nine. A
+/// GPU runs LRT's many cheap fragments in parallel, where a CPU adapter pays for each. (Single
+/// frames differ: at the nine engines' first frame the ray tracer took 9.6 ms, LRT with the
+/// flat varyings 31.2.)
 pub const AUTO_LAYERS_HARDWARE: f64 = f64::INFINITY;
 
 /// The layers above which `auto` traces an object on an adapter of `device_type`:
