@@ -179,6 +179,19 @@ impl GpuContext {
     /// # Errors
     /// [`GpuError::Readback`] when mapping fails.
     pub fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+        self.read_buffer_with(buffer, <[u8]>::to_vec)
+    }
+
+    /// Maps `buffer` (whole) for reading once the GPU is idle and hands its bytes to `read`,
+    /// without copying them first (an image's readback is tens of megabytes).
+    ///
+    /// # Errors
+    /// [`GpuError::Readback`] when mapping fails.
+    pub fn read_buffer_with<T>(
+        &self,
+        buffer: &wgpu::Buffer,
+        read: impl FnOnce(&[u8]) -> T,
+    ) -> Result<T, GpuError> {
         let slice = buffer.slice(..);
         let (sender, receiver) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |result| {
@@ -189,12 +202,13 @@ impl GpuContext {
             .recv()
             .map_err(|e| GpuError::Readback(e.to_string()))?
             .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let bytes = slice
-            .get_mapped_range()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .to_vec();
+        let value = read(
+            &slice
+                .get_mapped_range()
+                .map_err(|e| GpuError::Readback(e.to_string()))?,
+        );
         buffer.unmap();
-        Ok(bytes)
+        Ok(value)
     }
 }
 

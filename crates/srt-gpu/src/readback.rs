@@ -94,22 +94,19 @@ impl TextureReadback {
     /// # Errors
     /// [`GpuError::Readback`] when mapping fails.
     pub fn read(&self, ctx: &GpuContext) -> Result<Vec<u8>, GpuError> {
-        let bytes = ctx.read_buffer(&self.buffer)?;
-        Ok(unpad_rows(
-            &bytes,
-            self.row_bytes as usize,
-            self.padded_row_bytes as usize,
-        ))
+        ctx.read_buffer_with(&self.buffer, |bytes| {
+            unpad_rows(bytes, self.row_bytes as usize, self.padded_row_bytes as usize)
+        })
     }
 }
 
 /// The first `row_bytes` of every `padded_row_bytes`-long row of `bytes`, concatenated.
 fn unpad_rows(bytes: &[u8], row_bytes: usize, padded_row_bytes: usize) -> Vec<u8> {
-    bytes
-        .chunks_exact(padded_row_bytes)
-        .flat_map(|row| &row[..row_bytes])
-        .copied()
-        .collect()
+    let mut rows = Vec::with_capacity(bytes.len() / padded_row_bytes * row_bytes);
+    for row in bytes.chunks_exact(padded_row_bytes) {
+        rows.extend_from_slice(&row[..row_bytes]);
+    }
+    rows
 }
 
 /// Copies `texture` (mip 0, whole) to memory: its texels row by row from the top, rows tightly
