@@ -106,13 +106,15 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
         cases.push((case, speed));
     }
     cases.retain(|(case, _)| only.is_none_or(|o| case.name.contains(o)));
+    let mut renderers = Renderers::default();
     for (case, speed) in &cases {
-        failures.extend(validate_footprints(&ctx, case)?);
+        let renderer = renderers.for_scene(&ctx, &case.scene, (WIDTH, HEIGHT))?;
+        failures.extend(validate_footprints(&ctx, renderer, case)?);
         failures.extend(validate_image(
             &ctx,
+            renderer,
             case,
             *speed,
-            (WIDTH, HEIGHT),
             &out,
             Compared::Everything,
         )?);
@@ -168,12 +170,13 @@ pub fn run_bench_frames(
         .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))
         .collect();
     let path = workspace.join(BENCH_FRAMES_RECORD);
+    let mut renderers = Renderers::default();
     for (case, size) in &frames {
         let failed = validate_image(
             &ctx,
+            renderers.for_scene(&ctx, &case.scene, *size)?,
             case,
             fastest(&case.scene),
-            *size,
             &out,
             Compared::Display,
         )?;
@@ -279,15 +282,49 @@ fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
     Ok(failures)
 }
 
-/// The GPU proxy pass against srt-proxy: each GPU footprint must contain the f64 one.
-fn validate_footprints(ctx: &GpuContext, case: &Case) -> anyhow::Result<Vec<String>> {
+/// The last renderer made, kept for the next case while its scene uploads alike
+/// ([`srt_gpu::same_upload`]: the same parts, another speed or time) at the same size, as a
+/// viewer keeps one while the scene moves: the image and bench cases come in such runs (a
+/// model at three speeds, a sweep's frames), and a new renderer builds its BVHs again.
+#[derive(Default)]
+struct Renderers {
+    kept: Option<(Scene, (u32, u32), GpuRenderer)>,
+}
+
+impl Renderers {
+    /// A renderer for `scene` at `size`: the kept one where it fits, else a new one.
+    fn for_scene(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        size: (u32, u32),
+    ) -> anyhow::Result<&GpuRenderer> {
+        let fits = self.kept.as_ref().is_some_and(|(uploaded, kept_size, _)| {
+            *kept_size == size && srt_gpu::same_upload(uploaded, scene)
+        });
+        if !fits {
+            self.kept = None;
+            let renderer = GpuRenderer::new(ctx, scene, size.0, size.1)?;
+            self.kept = Some((scene.clone(), size, renderer));
+        }
+        Ok(&self.kept.as_ref().context("a renderer was kept")?.2)
+    }
+}
+
+/// The GPU proxy pass (`renderer`'s, made for `case`'s scene) against srt-proxy: each GPU
+/// footprint must contain the f64 one.
+fn validate_footprints(
+    ctx: &GpuContext,
+    renderer: &GpuRenderer,
+    case: &Case,
+) -> anyhow::Result<Vec<String>> {
     let scene = &case.scene;
-    let renderer = GpuRenderer::new(ctx, scene, WIDTH, HEIGHT)?;
+    let (width, height) = renderer.size();
     let viewport = Viewport {
-        width: f64::from(WIDTH),
-        height: f64::from(HEIGHT),
+        width: f64::from(width),
+        height: f64::from(height),
     };
-    let view_projection = view_projection(&scene.observer, WIDTH, HEIGHT);
+    let view_projection = view_projection(&scene.observer, width, height);
     let observer = scene.observer.event();
     let (mut triangles, mut not_conservative, mut extra_whole, mut worst_excess) =
         (0, 0, 0, 0.0f64);
@@ -427,19 +464,20 @@ enum Compared {
     Everything,
 }
 
-/// GPU images of the exact methods (LRT, the ray tracer and `auto`, which picks one of them per
-/// object) and of the polygon method against the CPU reference; with
-/// [`Compared::Everything`], the exact methods' radiance (relative, [`compare_radiance`])
-/// and their `--aov` channels ([`compare_seen`]) too.
+/// `renderer`'s images (made for `case`'s scene, at its size) of the exact methods (LRT, the ray
+/// tracer and `auto`, which picks one of them per object) and of the polygon method against the
+/// CPU reference; with [`Compared::Everything`], the exact methods' radiance (relative,
+/// [`compare_radiance`]) and their `--aov` channels ([`compare_seen`]) too.
 fn validate_image(
     ctx: &GpuContext,
+    renderer: &GpuRenderer,
     case: &Case,
     speed: f64,
-    (width, height): (u32, u32),
     out: &Path,
     compared: Compared,
 ) -> anyhow::Result<Vec<String>> {
     let scene: &Scene = &case.scene;
+    let (width, height) = renderer.size();
     let settings = RenderSettings {
         width,
         height,
@@ -447,7 +485,6 @@ fn validate_image(
     };
     let tracer = Tracer::new(scene);
     let reference = tracer.render(settings, &|_| {});
-    let renderer = GpuRenderer::new(ctx, scene, width, height)?;
     let [lrt_rgb, rt_rgb, auto_rgb, polygon_rgb] =
         [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon]
             .map(|method| renderer.render(ctx, scene, method, FootprintShape::Hull))

@@ -95,7 +95,11 @@ impl TextureReadback {
     /// [`GpuError::Readback`] when mapping fails.
     pub fn read(&self, ctx: &GpuContext) -> Result<Vec<u8>, GpuError> {
         ctx.read_buffer_with(&self.buffer, |bytes| {
-            unpad_rows(bytes, self.row_bytes as usize, self.padded_row_bytes as usize)
+            unpad_rows(
+                bytes,
+                self.row_bytes as usize,
+                self.padded_row_bytes as usize,
+            )
         })
     }
 }
