@@ -256,3 +256,28 @@ pub fn context_or_skip(test: &str) -> Option<GpuContext> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn renderers_of_a_context_share_its_pipelines_by_lights_and_varyings() {
+        let Some(mut ctx) =
+            context_or_skip("renderers_of_a_context_share_its_pipelines_by_lights_and_varyings")
+        else {
+            return;
+        };
+        let plain = ctx.pipelines(false);
+        assert!(Arc::ptr_eq(&plain, &ctx.pipelines(false)));
+        assert!(!Arc::ptr_eq(&plain, &ctx.pipelines(true)));
+        let other = match ctx.varyings {
+            Varyings::Flat => Varyings::Lean,
+            Varyings::Lean => Varyings::Flat,
+        };
+        ctx.varyings = other;
+        let switched = ctx.pipelines(false);
+        assert!(!Arc::ptr_eq(&plain, &switched));
+        assert!(Arc::ptr_eq(&switched, &ctx.pipelines(false)));
+    }
+}
