@@ -476,10 +476,9 @@ fn sweeps() -> anyhow::Result<Vec<(&'static str, Scene, Vec<f64>)>> {
 /// # Errors
 /// Missing models.
 pub fn timed_frames(sizes: &[(u32, u32)]) -> anyhow::Result<Vec<(Case, (u32, u32))>> {
-    let static_cases = static_cases()?;
     let mut frames = Vec::new();
-    for &size in sizes {
-        frames.extend(static_cases.iter().map(|case| {
+    for case in static_cases()? {
+        frames.extend(sizes.iter().map(|&size| {
             let case = Case {
                 name: case.name.clone(),
                 scene: case.scene.clone(),
@@ -497,8 +496,8 @@ pub fn timed_frames(sizes: &[(u32, u32)]) -> anyhow::Result<Vec<(Case, (u32, u32
     Ok(frames)
 }
 
-/// Measures the static cases whose name `selected` accepts, at each of `sizes`, printing each
-/// and handing it to `measured` as soon as it is measured.
+/// Measures the static cases whose name `selected` accepts, each at each of `sizes` in turn,
+/// printing each and handing it to `measured` as soon as it is measured.
 fn static_results(
     ctx: &GpuContext,
     frames: u32,
@@ -507,10 +506,18 @@ fn static_results(
     mut measured: impl FnMut(CaseResult) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     let static_cases = static_cases()?;
-    for &(width, height) in sizes {
-        for case in static_cases.iter().filter(|c| selected(&c.name)) {
-            let mut renderer = GpuRenderer::new(ctx, &case.scene, width, height)?;
-            let result = measure_case(ctx, &mut renderer, case, frames)?;
+    for case in static_cases.iter().filter(|c| selected(&c.name)) {
+        // One renderer per case, resized for each size: its BVHs are built once.
+        let mut kept: Option<GpuRenderer> = None;
+        for &(width, height) in sizes {
+            let renderer = match &mut kept {
+                Some(renderer) => {
+                    renderer.resize(ctx, width, height)?;
+                    renderer
+                }
+                None => kept.insert(GpuRenderer::new(ctx, &case.scene, width, height)?),
+            };
+            let result = measure_case(ctx, renderer, case, frames)?;
             let layers: Vec<String> = renderer
                 .object_layers()
                 .iter()

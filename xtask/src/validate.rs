@@ -283,31 +283,35 @@ fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
 }
 
 /// The last renderer made, kept for the next case while its scene uploads alike
-/// ([`srt_gpu::same_upload`]: the same parts, another speed or time) at the same size, as a
-/// viewer keeps one while the scene moves: the image and bench cases come in such runs (a
-/// model at three speeds, a sweep's frames), and a new renderer builds its BVHs again.
+/// ([`srt_gpu::same_upload`]: the same parts, another speed or time) and resized to the next
+/// case's size, as a viewer keeps one while the scene moves or the window changes: the image and
+/// bench cases come in such runs (a model at three speeds, a static case at each size, a sweep's
+/// frames), and a new renderer builds its BVHs again.
 #[derive(Default)]
 struct Renderers {
-    kept: Option<(Scene, (u32, u32), GpuRenderer)>,
+    kept: Option<(Scene, GpuRenderer)>,
 }
 
 impl Renderers {
-    /// A renderer for `scene` at `size`: the kept one where it fits, else a new one.
+    /// A renderer for `scene` at `size`: the kept one where it fits (resized), else a new one.
     fn for_scene(
         &mut self,
         ctx: &GpuContext,
         scene: &Scene,
-        size: (u32, u32),
+        (width, height): (u32, u32),
     ) -> anyhow::Result<&GpuRenderer> {
-        let fits = self.kept.as_ref().is_some_and(|(uploaded, kept_size, _)| {
-            *kept_size == size && srt_gpu::same_upload(uploaded, scene)
-        });
+        let fits = self
+            .kept
+            .as_ref()
+            .is_some_and(|(uploaded, _)| srt_gpu::same_upload(uploaded, scene));
         if !fits {
             self.kept = None;
-            let renderer = GpuRenderer::new(ctx, scene, size.0, size.1)?;
-            self.kept = Some((scene.clone(), size, renderer));
+            let renderer = GpuRenderer::new(ctx, scene, width, height)?;
+            self.kept = Some((scene.clone(), renderer));
         }
-        Ok(&self.kept.as_ref().context("a renderer was kept")?.2)
+        let (_, renderer) = self.kept.as_mut().context("a renderer was kept")?;
+        renderer.resize(ctx, width, height)?;
+        Ok(renderer)
     }
 }
 
