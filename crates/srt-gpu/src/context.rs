@@ -24,7 +24,7 @@ pub struct GpuContext {
     /// Metal and DX12 adapter, OpenGL from 4.3 / ES 3.1, not WebGL 2).
     pub indirect_draws: bool,
     /// How the object passes carry a draw's data to their fragments ([`Varyings::for_adapter`]
-    /// of the adapter; a test may choose the other, before the first renderer).
+    /// of the adapter; a test may choose the other: renderers made afterwards use it).
     pub varyings: Varyings,
     errors: Arc<Mutex<Vec<String>>>,
     /// The device's pipelines by moving lights and varyings ([`GpuContext::pipelines`]).
