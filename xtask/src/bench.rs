@@ -52,6 +52,7 @@ use crate::cases::{
     Case, ENGINE, ENGINE_BESIDE, at_time, builtin_cases, engine_sweep_times,
     flythrough_sweep_times, model_case, shifted, teaser_sweep_times,
 };
+use crate::renderers::KeptRenderer;
 use results::{CaseResult, Machine, Measurement, Results, SweepFrame, SweepResult, median};
 
 /// Image sizes of the static cases unless `--size` names others; the first is also that of the
@@ -506,17 +507,11 @@ fn static_results(
     mut measured: impl FnMut(CaseResult) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     let static_cases = static_cases()?;
+    // One renderer per case, resized for each size: its BVHs are built once.
+    let mut kept = KeptRenderer::default();
     for case in static_cases.iter().filter(|c| selected(&c.name)) {
-        // One renderer per case, resized for each size: its BVHs are built once.
-        let mut kept: Option<GpuRenderer> = None;
-        for &(width, height) in sizes {
-            let renderer = match &mut kept {
-                Some(renderer) => {
-                    renderer.resize(ctx, width, height)?;
-                    renderer
-                }
-                None => kept.insert(GpuRenderer::new(ctx, &case.scene, width, height)?),
-            };
+        for &size in sizes {
+            let renderer = kept.for_scene(ctx, &case.scene, size)?;
             let result = measure_case(ctx, renderer, case, frames)?;
             let layers: Vec<String> = renderer
                 .object_layers()

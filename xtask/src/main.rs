@@ -5,6 +5,7 @@ mod cases;
 mod figures;
 mod plot;
 mod provenance;
+mod renderers;
 mod validate;
 mod web;
 

@@ -40,6 +40,7 @@ use srt_trace::compare::{compare, compare_radiance, compare_seen};
 use srt_trace::{Output, RenderSettings, Tracer};
 
 use crate::cases::{Case, ENGINE, builtin_cases, fly_by_cases, model_case, with_speed};
+use crate::renderers::KeptRenderer;
 
 /// Image size of the image comparisons.
 const WIDTH: u32 = 640;
@@ -106,7 +107,7 @@ pub fn run(workspace: &Path, only: Option<&str>) -> anyhow::Result<()> {
         cases.push((case, speed));
     }
     cases.retain(|(case, _)| only.is_none_or(|o| case.name.contains(o)));
-    let mut renderers = Renderers::default();
+    let mut renderers = KeptRenderer::default();
     for (case, speed) in &cases {
         let renderer = renderers.for_scene(&ctx, &case.scene, (WIDTH, HEIGHT))?;
         failures.extend(validate_footprints(&ctx, renderer, case)?);
@@ -170,7 +171,7 @@ pub fn run_bench_frames(
         .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))
         .collect();
     let path = workspace.join(BENCH_FRAMES_RECORD);
-    let mut renderers = Renderers::default();
+    let mut renderers = KeptRenderer::default();
     for (case, size) in &frames {
         let failed = validate_image(
             &ctx,
@@ -280,39 +281,6 @@ fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
         }
     }
     Ok(failures)
-}
-
-/// The last renderer made, kept for the next case while its scene uploads alike
-/// ([`srt_gpu::same_upload`]: the same parts, another speed or time) and resized to the next
-/// case's size, as a viewer keeps one while the scene moves or the window changes: the image and
-/// bench cases come in such runs (a model at three speeds, a static case at each size, a sweep's
-/// frames), and a new renderer builds its BVHs again.
-#[derive(Default)]
-struct Renderers {
-    kept: Option<(Scene, GpuRenderer)>,
-}
-
-impl Renderers {
-    /// A renderer for `scene` at `size`: the kept one where it fits (resized), else a new one.
-    fn for_scene(
-        &mut self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        (width, height): (u32, u32),
-    ) -> anyhow::Result<&GpuRenderer> {
-        let fits = self
-            .kept
-            .as_ref()
-            .is_some_and(|(uploaded, _)| srt_gpu::same_upload(uploaded, scene));
-        if !fits {
-            self.kept = None;
-            let renderer = GpuRenderer::new(ctx, scene, width, height)?;
-            self.kept = Some((scene.clone(), renderer));
-        }
-        let (_, renderer) = self.kept.as_mut().context("a renderer was kept")?;
-        renderer.resize(ctx, width, height)?;
-        Ok(renderer)
-    }
 }
 
 /// The GPU proxy pass (`renderer`'s, made for `case`'s scene) against srt-proxy: each GPU
