@@ -52,11 +52,13 @@
 //! y = (1 − y_ndc)/2 · height.
 
 mod hull;
+mod nearest;
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use srt_physics::{Event, Frame};
 
 pub use hull::{contains as hull_contains, convex_hull};
+pub use nearest::nearest_apparent_distance;
 
 /// The paper's ε for the chord points Q_ij of Eq. 14.
 pub const PAPER_EPSILON: f64 = 0.01;
