@@ -19,8 +19,10 @@
 // Mirror: crates/srt-trace (Tracer::trace and Tracer::shade for a single triangle).
 
 @group(3) @binding(0) var<storage, read> footprints: array<Footprint>;
-// Fragments run by the visibility pass ([0]) and fragments shaded by the shading pass ([1]).
-@group(3) @binding(1) var<storage, read_write> fragment_count: array<atomic<u32>, 2>;
+// Fragments run by the visibility pass ([0]), fragments shaded by the shading pass ([1]), and
+// visibility fragments whose hit came out nearer than the depth their footprint was drawn at
+// ([2]: Footprint.nearest_depth, which must bound it; a test requires none).
+@group(3) @binding(1) var<storage, read_write> fragment_count: array<atomic<u32>, 3>;
 // Whether fragments are counted in fragment_count: set at pipeline creation by
 // srt_gpu::shaders::lrt(counting), true only for measurements (global atomics per fragment
 // contend on a real GPU).
@@ -115,7 +117,7 @@ fn footprint_vertex(index: u32, with_corners: bool) -> LrtVarying {
     if (with_corners) {
         corners = triangle_corners(f.triangle);
     }
-    return draw_varying(vec4<f32>(ndc, 0.5, 1.0), f.triangle, corners);
+    return draw_varying(vec4<f32>(ndc, f.nearest_depth, 1.0), f.triangle, corners);
 }
 
 // The corners a draw that names no triangle carries.
@@ -215,6 +217,9 @@ fn visible(in: LrtVarying, id: vec2<u32>, ray: RestRay, distance: f32) -> Visibi
     var out: VisibilityOutput;
     out.id = id;
     out.depth = clamp(apparent_distance_of(in.beta_gamma, ray, distance) * in.forward_depth_scale.w, 0.0, 1.0);
+    if (COUNT_FRAGMENTS && out.depth < in.position.z) {
+        atomicAdd(&fragment_count[2], 1u);
+    }
     return out;
 }
 

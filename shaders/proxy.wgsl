@@ -395,6 +395,7 @@ fn bisect(piece: array<vec3<f32>, 3>) -> array<array<vec3<f32>, 3>, 2> {
 fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
     var named = f;
     named.triangle = triangle;
+    named.nearest_depth = footprint_depth;
     footprints[slot] = named;
     let screen = frame_uniforms.viewport.xy;
     let lo = max(floor(f.rect.xy), vec2<f32>(0.0));
@@ -409,6 +410,91 @@ fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
         atomicMax(&draw_args[DRAW_ARGS_BOUND + k], bound[k]);
         atomicMax(&frame_bound[k], bound[k]);
     }
+}
+
+// How far a footprint's nearest depth is lowered below the bound, as a fraction of
+// γ·|w′|·(1 + |β|): the size of the terms from which the visibility passes compute a hit's
+// depth γ s (1 − β·d′) in f32, so that their rounding (and the cancellation in 1 − β·d′ when
+// looking along β) cannot put a hit in front of its footprint.
+const NEAREST_MARGIN: f32 = 1e-4;
+// How much further, in depth units, for the rasteriser's own rounding of a footprint's depth:
+// the GL backend maps depth to [−1, 1] and back (about 10⁻⁸ seen on llvmpipe's GL).
+const RASTER_DEPTH_MARGIN: f32 = 1e-6;
+
+// The depth this invocation's footprints are drawn at (Footprint.nearest_depth), set by
+// footprint_main before any is stored.
+var<private> footprint_depth: f32;
+
+// The depth the footprints of the triangle with corners `rest` (in S′) are drawn at: a lower
+// bound of its apparent distance (of the whole part's for an enclosing box, whose fragments'
+// hits lie inside it), less the margins above, in depth units.
+fn nearest_depth(rest: array<vec3<f32>, 3>) -> f32 {
+    var distance: f32;
+    if (part_has(PART_ENCLOSING_BOX)) {
+        distance = box_nearest_distance();
+    } else {
+        distance = triangle_nearest_distance(rest);
+    }
+    return clamp(distance * frame_uniforms.depth_scale - RASTER_DEPTH_MARGIN, 0.0, 1.0);
+}
+
+// The bounds below, as srt_proxy::nearest_apparent_distance, which proves them: for |u| ≤ 1,
+// r(w′) = γ (|w′| − β·w′) ≥ γ (u − β)·w′, which is linear and so least over a convex hull at
+// one of its points; u runs over the directions to the points and to their centroid. Each is
+// lowered by NEAREST_MARGIN of γ·|w′|·(1 + |β|) and is at least 0.
+
+// w′ / |w′|, or 0 for w′ = 0 (|u| ≤ 1 is all the bound needs).
+fn bound_direction(w: vec3<f32>) -> vec3<f32> {
+    return w * inverseSqrt(max(dot(w, w), 1e-30));
+}
+
+// The bound's last step: γ·(best − margin), at least 0, for points within `reach` of the
+// observer.
+fn lowered_bound(best: f32, reach: f32) -> f32 {
+    let beta_gamma = object.frame.beta_gamma;
+    return max(beta_gamma.w * (best - NEAREST_MARGIN * reach * (1.0 + length(beta_gamma.xyz))), 0.0);
+}
+
+// The bound over the triangle with corners `corners` (in S′).
+fn triangle_nearest_distance(corners: array<vec3<f32>, 3>) -> f32 {
+    let origin = object.frame.observer_rest.yzw;
+    let beta = object.frame.beta_gamma.xyz;
+    let w0 = corners[0] - origin;
+    let w1 = corners[1] - origin;
+    let w2 = corners[2] - origin;
+    let axes = array<vec3<f32>, 4>(w0, w1, w2, w0 + w1 + w2);
+    var best = 0.0;
+    for (var i = 0u; i < 4u; i++) {
+        let u = bound_direction(axes[i]) - beta;
+        best = max(best, min(min(dot(u, w0), dot(u, w1)), dot(u, w2)));
+    }
+    return lowered_bound(best, max(max(length(w0), length(w1)), length(w2)));
+}
+
+// The bound over the part's corners (an enclosing box: its 8 vertices).
+fn box_nearest_distance() -> f32 {
+    let origin = object.frame.observer_rest.yzw;
+    let beta = object.frame.beta_gamma.xyz;
+    let count = min(arrayLength(&vertices), 8u);
+    var corners: array<vec3<f32>, 8>;
+    var centroid = vec3<f32>(0.0);
+    var reach = 0.0;
+    for (var k = 0u; k < count; k++) {
+        corners[k] = vertices[k].position.xyz - origin;
+        centroid += corners[k];
+        reach = max(reach, length(corners[k]));
+    }
+    var best = 0.0;
+    for (var i = 0u; i <= count; i++) {
+        let axis = select(centroid, corners[min(i, count - 1u)], i < count);
+        let u = bound_direction(axis) - beta;
+        var least = 3.0e38;
+        for (var k = 0u; k < count; k++) {
+            least = min(least, dot(u, corners[k]));
+        }
+        best = max(best, least);
+    }
+    return lowered_bound(best, reach);
 }
 
 // Stores `f` as a piece of triangle `t` in the next free piece slot; false when none is left.
@@ -525,6 +611,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         store_footprint(t, t, Footprint());
         return;
     }
+    footprint_depth = nearest_depth(rest);
     // Six points P1, G12, P2, G23, P3, G31, projected: the paper's footprint, unless it cannot
     // be made or is loose and large.
     var points: array<vec2<f32>, 6>;

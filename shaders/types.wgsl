@@ -25,6 +25,9 @@ const PART_VERTEX_COLOURS: u32 = 2u;
 // Back faces may be culled: the mesh is a closed solid with outward fronts and the observer is
 // outside it (decided per frame on the CPU, srt_gpu::culling).
 const PART_CULL_BACK_FACES: u32 = 4u;
+// The part is the box holding its object (the ray tracer's): its fragments' hits lie anywhere
+// inside it, so its footprints' nearest depth is bounded over all its corners.
+const PART_ENCLOSING_BOX: u32 = 8u;
 
 // Most points of a footprint's convex hull (srt_gpu::types::FOOTPRINT_HULL_POINTS).
 const FOOTPRINT_HULL_POINTS: u32 = 6u;
@@ -259,6 +262,11 @@ struct Footprint {
     // 1 in a triangle's own slot when the batch's piece slots ran out while storing its pieces:
     // the footprint is then the rectangle holding all of them (proxy.wgsl, split_footprint).
     pieces_overflowed: u32,
+    // The depth the footprint is drawn at: at most that of any hit its fragments can find
+    // (proxy.wgsl, nearest_depth), so that the visibility passes may declare the depth they
+    // write "greater or equal" (srt_gpu::shaders::ConservativeDepth).
+    nearest_depth: f32,
+    padding: array<u32, 3>,
 }
 
 // One star of the sky (srt_scene::Star), at rest in the world frame W.

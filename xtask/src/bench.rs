@@ -248,6 +248,17 @@ fn measure(
         count(Method::Auto)?,
     );
     renderer.set_fragment_counting(false);
+    // The depth the visibility passes declare (at least the footprint's) must hold, or a GPU
+    // that tests depth early may drop visible fragments: the timed images would be wrong.
+    let nearer = lrt.nearer_than_footprint + rt.nearer_than_footprint + auto.nearer_than_footprint;
+    anyhow::ensure!(
+        nearer == 0,
+        "{nearer} visibility fragments found hits nearer than their footprints' depth bound \
+         (LRT {}, RT {}, auto {})",
+        lrt.nearer_than_footprint,
+        rt.nearer_than_footprint,
+        auto.nearer_than_footprint
+    );
     Ok(Measurement {
         lrt_ms,
         proxy_ms,

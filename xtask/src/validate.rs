@@ -442,7 +442,7 @@ enum Compared {
 /// [`compare_radiance`]) and their `--aov` channels ([`compare_seen`]) too.
 fn validate_image(
     ctx: &GpuContext,
-    renderer: &GpuRenderer,
+    renderer: &mut GpuRenderer,
     case: &Case,
     speed: f64,
     out: &Path,
@@ -457,10 +457,21 @@ fn validate_image(
     };
     let tracer = Tracer::new(scene);
     let reference = tracer.render(settings, &|_| {});
+    // Counting fragments, to check the depth the visibility passes declare (a footprint's
+    // nearest_depth bounds its hits): a GPU that tests depth early would drop visible
+    // fragments otherwise, which only a hardware GPU's image could show.
+    renderer.set_fragment_counting(true);
+    let mut nearer_than_footprint = 0;
     let [lrt_rgb, rt_rgb, auto_rgb, polygon_rgb] =
         [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon]
             .map(|method| renderer.render(ctx, scene, method, FootprintShape::Hull))
-            .map(|result| result.map(|(image, _)| image.to_rgb8()));
+            .map(|result| {
+                result.map(|(image, stats)| {
+                    nearer_than_footprint += stats.fragments.map_or(0, |f| f.nearer_than_footprint);
+                    image.to_rgb8()
+                })
+            });
+    renderer.set_fragment_counting(false);
     // The GPU refuses what it cannot draw (`Method::cannot_draw`: late shadows cast by
     // spinning or thrusting bodies): no polygon image for such scenes.
     let polygon_rgb = match polygon_rgb {
@@ -517,7 +528,7 @@ fn validate_image(
         .map(|(what, m)| format!(" {what}_mismatch={:.6}", m.fraction()))
         .collect();
     println!(
-        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} polygon_mismatch={:.6}{further_report}",
+        "scene={} size={width}x{height} beta={speed} mismatch={:.6} rt_mismatch={:.6} auto_mismatch={:.6} auto_traced_objects={traced} nearer_than_footprint={nearer_than_footprint} polygon_mismatch={:.6}{further_report}",
         case.name,
         mismatch.fraction(),
         rt_mismatch.fraction(),
@@ -570,6 +581,13 @@ fn validate_image(
     let further = further_mismatches
         .iter()
         .map(|(what, m)| (what.replace('_', " "), m.fraction()));
+    let nearer = (nearer_than_footprint > 0).then(|| {
+        format!(
+            "{} at {width}x{height}, {speed}c: {nearer_than_footprint} visibility fragments found \
+             hits nearer than their footprint's depth bound",
+            case.name
+        )
+    });
     Ok(display
         .into_iter()
         .chain(further)
@@ -580,6 +598,7 @@ fn validate_image(
                 case.name,
             )
         })
+        .chain(nearer)
         .collect())
 }
 

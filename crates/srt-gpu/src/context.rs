@@ -213,14 +213,16 @@ impl GpuContext {
 }
 
 /// The device srt asks `adapter` for: the adapter's own buffer and texture limits (large
-/// models need them), and timestamp queries where available (for `cargo xtask bench`).
+/// models need them), timestamp queries where available (for `cargo xtask bench`), and early
+/// depth tests where available ([`crate::shaders::ConservativeDepth`]).
 #[must_use]
 pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
     let limits = adapter.limits();
-    let timestamps = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    let optional = adapter.features()
+        & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::SHADER_EARLY_DEPTH_TEST);
     wgpu::DeviceDescriptor {
         label: Some("srt"),
-        required_features: timestamps,
+        required_features: optional,
         required_limits: wgpu::Limits {
             max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
             max_buffer_size: limits.max_buffer_size,

@@ -462,9 +462,9 @@ const PROXY_ENTRY: &str = "footprint_main";
 /// lean ones ([`Varyings::pick`]).
 const LRT_VISIBILITY_ENTRIES: [&str; 4] = [
     "lrt_vertex",
-    "lrt_visibility",
+    shaders::VISIBILITY_FRAGMENT_ENTRIES[0],
     "lrt_vertex_lean",
-    "lrt_visibility_lean",
+    shaders::VISIBILITY_FRAGMENT_ENTRIES[1],
 ];
 /// Entry points of the LRT shading pass, as [`LRT_VISIBILITY_ENTRIES`].
 const LRT_SHADE_ENTRIES: [&str; 4] = [
@@ -478,9 +478,9 @@ const PART_DEPTH_ENTRIES: [&str; 2] = ["id_depth_vertex", "id_depth"];
 /// Entry points of the ray tracer's visibility pass, as [`LRT_VISIBILITY_ENTRIES`].
 const RT_VISIBILITY_ENTRIES: [&str; 4] = [
     "box_vertex",
-    "rt_visibility",
+    shaders::VISIBILITY_FRAGMENT_ENTRIES[2],
     "box_vertex_lean",
-    "rt_visibility_lean",
+    shaders::VISIBILITY_FRAGMENT_ENTRIES[3],
 ];
 
 /// How the object passes (LRT's visibility and shading, the ray tracer's visibility) hand a

@@ -315,7 +315,7 @@ impl ObjectRayTracing {
 fn box_uniforms(cull_back_faces: bool) -> PartUniforms {
     PartUniforms {
         base_color: [1.0; 4],
-        flags: PartFlags::default().with(PartFlags::CULL_BACK_FACES, cull_back_faces),
+        flags: PartFlags::ENCLOSING_BOX.with(PartFlags::CULL_BACK_FACES, cull_back_faces),
         triangle_count: BOX_TRIANGLES,
         id: 0,
         frames: 1,

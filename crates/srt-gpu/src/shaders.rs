@@ -398,6 +398,59 @@ impl BlockSpace {
     }
 }
 
+/// Whether the visibility passes' fragments declare the depth they write to be at least the
+/// rasterised depth (WGSL `@early_depth_test(greater_equal)`, SPIR-V `DepthGreater`), so that a
+/// GPU may test depth before running them and skip those behind what is already drawn. It holds
+/// because every footprint is drawn at its `nearest_depth` (proxy.wgsl), a lower bound of the
+/// apparent distance of any hit its fragments can find ([`srt_proxy::nearest_apparent_distance`]);
+/// the fragment counter's third word counts fragments that break it (a test requires none).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConservativeDepth {
+    /// Declared: the device has [`wgpu::Features::SHADER_EARLY_DEPTH_TEST`] (Vulkan, GLES 3.1+).
+    Declared,
+    /// Not declared (WebGPU has no such feature): depth is tested after each fragment.
+    Undeclared,
+}
+
+/// The fragment entry points of the visibility passes, LRT's (flat and lean varyings) and the
+/// ray tracer's: those [`ConservativeDepth::Declared`] marks.
+pub const VISIBILITY_FRAGMENT_ENTRIES: [&str; 4] = [
+    "lrt_visibility",
+    "lrt_visibility_lean",
+    "rt_visibility",
+    "rt_visibility_lean",
+];
+
+impl ConservativeDepth {
+    /// What `device` allows.
+    #[must_use]
+    pub fn of(device: &wgpu::Device) -> Self {
+        if device
+            .features()
+            .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
+        {
+            Self::Declared
+        } else {
+            Self::Undeclared
+        }
+    }
+
+    /// `source` with every [`VISIBILITY_FRAGMENT_ENTRIES`] entry point it defines declared so.
+    #[must_use]
+    pub fn declare(self, source: &str) -> String {
+        let mut declared = source.to_owned();
+        if self == Self::Declared {
+            for name in VISIBILITY_FRAGMENT_ENTRIES {
+                declared = declared.replace(
+                    &format!("@fragment\nfn {name}("),
+                    &format!("@fragment @early_depth_test(greater_equal)\nfn {name}("),
+                );
+            }
+        }
+        declared
+    }
+}
+
 /// A composed shader and the values of its pipeline-overridable constants.
 #[derive(Debug, Clone)]
 pub struct Shader {
@@ -410,12 +463,15 @@ pub struct Shader {
 }
 
 impl Shader {
-    /// The shader module on `device`, its blocks declared in the device's [`BlockSpace`].
+    /// The shader module on `device`, its blocks declared in the device's [`BlockSpace`] and
+    /// its visibility fragments' depth as the device's [`ConservativeDepth`] allows.
     #[must_use]
     pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
+        let source = BlockSpace::of(device).declare(&self.source);
+        let source = ConservativeDepth::of(device).declare(&source);
         device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&self.name),
-            source: wgpu::ShaderSource::Wgsl(BlockSpace::of(device).declare(&self.source).into()),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
         })
     }
 

@@ -354,6 +354,10 @@ impl PartFlags {
     /// ([`BackFaceCulling::applies`](crate::culling::BackFaceCulling::applies); WGSL
     /// `PART_CULL_BACK_FACES`).
     pub const CULL_BACK_FACES: Self = Self(4);
+    /// The part is the box that holds its object (the ray tracer's, [`crate::ray_tracing`]): a
+    /// hit its fragments find lies anywhere inside it, so its footprints' nearest depth is
+    /// bounded over all its corners, not over the face drawn (WGSL `PART_ENCLOSING_BOX`).
+    pub const ENCLOSING_BOX: Self = Self(8);
 
     /// These flags with `flag` set or cleared.
     #[must_use]
@@ -459,9 +463,10 @@ pub const FOOTPRINT_HULL_POINTS: usize = 6;
 /// `FOOTPRINT_VERTICES` in types.wgsl); spare triangles of smaller hulls are degenerate.
 pub const FOOTPRINT_VERTICES: u32 = 3 * (FOOTPRINT_HULL_POINTS as u32 - 2);
 
-/// Size of the LRT pass's WGSL `fragment_count` (`array<atomic<u32>, 2>`: fragments run, then
-/// fragments shaded), which the renderer clears and reads back.
-pub const FRAGMENT_COUNTER_BYTES: u64 = 8;
+/// Size of the LRT pass's WGSL `fragment_count` (`array<atomic<u32>, 3>`: fragments run,
+/// fragments shaded, and visibility fragments whose depth came out nearer than their
+/// footprint's `nearest_depth`), which the renderer clears and reads back.
+pub const FRAGMENT_COUNTER_BYTES: u64 = 12;
 
 /// Size of WGSL `frame_bound` (`array<u32, 4>`: the union of every footprint's screen
 /// rectangle in the frame), one buffer per renderer, cleared before every proxy pass.
@@ -626,6 +631,13 @@ pub struct GpuFootprint {
     /// 1 in a triangle's own slot when the batch's piece slots ran out while its pieces were
     /// stored: the footprint is then the rectangle holding all its pieces (0 otherwise).
     pub pieces_overflowed: u32,
+    /// The depth at which the footprint is drawn: at most the depth of any hit its fragments
+    /// can find (the apparent distance bound of [`srt_proxy::nearest_apparent_distance`], less
+    /// a margin for f32 rounding, times the frame's depth scale), so that the visibility passes
+    /// may declare the depth they write "greater or equal" ([`crate::shaders::ConservativeDepth`]).
+    pub nearest_depth: f32,
+    /// Pads the footprint to 16 bytes.
+    pub padding: [u32; 3],
 }
 
 /// Twin of WGSL `PhysicsProbeInput`: one set of arguments for every physics kernel

@@ -50,6 +50,11 @@ fn exact_methods_match_the_cpu_reference_on_every_builtin_scene() {
             );
             if method.is_exact() {
                 assert!(mismatch.fraction() <= 0.001, "{line}");
+                // Every footprint was drawn at or in front of every hit its fragments found:
+                // what the visibility passes declare to the GPU (shaders::ConservativeDepth).
+                let fragments = stats.fragments.expect("counting");
+                assert!(fragments.run > 0, "{line}");
+                assert_eq!(fragments.nearer_than_footprint, 0, "{line}");
             } else if moving {
                 // Spinning and thrusting bodies, vertex by vertex: drawn, not exactly.
                 let mut rest = scene.clone();

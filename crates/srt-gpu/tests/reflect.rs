@@ -36,6 +36,7 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("PART_TEXTURED", PartFlags::TEXTURED.0),
         ("PART_VERTEX_COLOURS", PartFlags::VERTEX_COLOURS.0),
         ("PART_CULL_BACK_FACES", PartFlags::CULL_BACK_FACES.0),
+        ("PART_ENCLOSING_BOX", PartFlags::ENCLOSING_BOX.0),
         ("FOOTPRINT_HULL_POINTS", FOOTPRINT_HULL_POINTS as u32),
         ("FOOTPRINT_VERTICES", FOOTPRINT_VERTICES),
         ("BVH_STACK_SIZE", BVH_STACK_SIZE),
@@ -731,4 +732,50 @@ fn blocks_declared_as_uniforms_for_gl_match_their_layouts() {
         failures.extend(check_bindings(&gl));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn only_the_visibility_fragments_declare_their_depth_at_least_the_footprints() {
+    // Where the device allows it (ConservativeDepth::Declared), the visibility passes' fragment
+    // entry points, and no other, promise the GPU a depth at or behind the rasterised one (the
+    // footprint's nearest_depth), so that it may test depth before running them.
+    let greater = Some(naga::EarlyDepthTest::Allow {
+        conservative: naga::ConservativeDepth::GreaterEqual,
+    });
+    let mut declared = Vec::new();
+    let mut failures = Vec::new();
+    for spec in all_specs() {
+        let source = shaders::ConservativeDepth::Declared.declare(&spec.shader.source);
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{}: {}", spec.label, e.emit_to_string(&source)));
+        Validator::new(ValidationFlags::all(), Capabilities::EARLY_DEPTH_TEST)
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{}: {}", spec.label, e.emit_to_string(&source)));
+        let undeclared = shaders::ConservativeDepth::Undeclared.declare(&spec.shader.source);
+        assert_eq!(undeclared, spec.shader.source, "{}", spec.label);
+        for entry in &module.entry_points {
+            let visibility = shaders::VISIBILITY_FRAGMENT_ENTRIES.contains(&entry.name.as_str());
+            let expected = if visibility { greater } else { None };
+            if entry.early_depth_test != expected {
+                failures.push(format!(
+                    "{}: {} has {:?}",
+                    spec.label, entry.name, entry.early_depth_test
+                ));
+            }
+            if visibility && spec.entry_points.contains(&entry.name.as_str()) {
+                declared.push(entry.name.clone());
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    declared.sort_unstable();
+    declared.dedup();
+    let mut expected = shaders::VISIBILITY_FRAGMENT_ENTRIES
+        .map(str::to_owned)
+        .to_vec();
+    expected.sort_unstable();
+    assert_eq!(
+        declared, expected,
+        "every visibility fragment is some pipeline's"
+    );
 }

@@ -196,6 +196,10 @@ pub struct FragmentCounts {
     pub run: u64,
     /// Those whose ray hit the triangle and were shaded (the rest discard).
     pub shaded: u64,
+    /// Visibility fragments whose hit came out nearer than the depth their footprint was drawn
+    /// at (`nearest_depth`, a bound that must hold for the visibility passes' "greater or
+    /// equal" depth): 0 unless that bound is wrong.
+    pub nearer_than_footprint: u64,
 }
 
 /// A scene uploaded to the GPU, ready to render.
@@ -432,11 +436,12 @@ impl GpuRenderer {
         let pixel_bytes = texel_bytes(ctx.color_format)? as usize;
         let pixels = bytes.chunks_exact(pixel_bytes).map(decode_pixel).collect();
         let fragments = if self.count_fragments {
-            let [run, shaded] =
-                bytemuck::pod_read_unaligned::<[u32; 2]>(&ctx.read_buffer(&self.counter.readback)?);
+            let [run, shaded, nearer] =
+                bytemuck::pod_read_unaligned::<[u32; 3]>(&ctx.read_buffer(&self.counter.readback)?);
             Some(FragmentCounts {
                 run: u64::from(run),
                 shaded: u64::from(shaded),
+                nearer_than_footprint: u64::from(nearer),
             })
         } else {
             None
