@@ -3,7 +3,8 @@
 //! frame, and `cargo xtask validate` checks every culled triangle against it), the ray tracer's
 //! box faces ([`box_near_faces_cullable`]), and whole objects out of view
 //! ([`ball_out_of_view`]) or between pixel centres ([`ball_between_pixel_centres`]; the
-//! renderer then skips the object's footprints and draws, whatever the method).
+//! renderer then skips the object's footprints and draws, whatever the method); and the
+//! order objects are drawn in, nearest first ([`ball_nearest_apparent_distance`]).
 //!
 //! In S′ every viewing ray starts at the observer's rest-frame position, so the rest-frame
 //! picture is an ordinary pinhole view from there: for a closed solid with outward fronts and
@@ -23,6 +24,24 @@ const VIEW_MARGIN: f64 = 1e-6;
 /// the circle through three points of its rim stays well conditioned; a larger cap only culls
 /// less.
 const MIN_CAP_SINE: f64 = 1e-6;
+
+/// A lower bound of the apparent distance of every point of the ball (`centre`, `radius`, in
+/// S′) seen from the observation event `observer`, the key by which the renderer draws objects
+/// nearest first (so that a GPU testing depth before a visibility fragment, `shaders::
+/// ConservativeDepth`, skips more of those behind). As in `srt_proxy::nearest_apparent_distance`:
+/// r(w′) = γ (|w′| − β·w′) ≥ γ (u − β)·w′ for a unit u, here the direction u to the centre
+/// (offset c), and over the ball (u − β)·w′ ≥ (u − β)·c − |u − β|·radius. At least 0.
+#[must_use]
+pub fn ball_nearest_apparent_distance(
+    centre: DVec3,
+    radius: f64,
+    frame: &Frame,
+    observer: Event,
+) -> f64 {
+    let offset = centre - frame.to_rest(observer).position;
+    let slope = offset.normalize_or_zero() - frame.beta();
+    (frame.gamma() * (slope.dot(offset) - slope.length() * radius)).max(0.0)
+}
 
 /// Whether a mesh may have its back faces culled at all (computed once per upload).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -249,10 +268,13 @@ fn highest_on_cap(n: DVec3, m: DVec3, h: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{ball_between_pixel_centres, ball_out_of_view, box_near_faces_cullable};
+    use super::{
+        ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view,
+        box_near_faces_cullable,
+    };
     use glam::{DVec2, DVec3};
     use proptest::prelude::*;
-    use srt_physics::Frame;
+    use srt_physics::{Event, Frame};
     use srt_scene::Observer;
 
     /// An observer at the origin looking along +z with a 60° vertical field of view.
@@ -436,6 +458,35 @@ mod tests {
     }
 
     proptest! {
+        /// No point of a ball is seen nearer than its bound, and a small far ball's bound is
+        /// within its diameter (times γ(1 + |β|)) of its centre's apparent distance.
+        #[test]
+        fn no_point_of_a_ball_is_nearer_than_its_bound(
+            centre in prop::array::uniform3(-20.0f64..20.0),
+            radius in 0.0f64..5.0,
+            beta in prop::array::uniform3(-0.57f64..0.57),
+            offset in prop::array::uniform3(-10.0f64..10.0),
+            ct in -20.0f64..20.0,
+            points in prop::collection::vec(prop::array::uniform3(-1.0f64..1.0), 16),
+        ) {
+            let frame = Frame::new(DVec3::from_array(beta), DVec3::from_array(offset)).unwrap();
+            let observer = Event::new(ct, DVec3::ZERO);
+            let centre = DVec3::from_array(centre);
+            let bound = ball_nearest_apparent_distance(centre, radius, &frame, observer);
+            let rest = frame.to_rest(observer);
+            let apparent = |p: DVec3| {
+                let w = p - rest.position;
+                frame.gamma() * (w.length() - frame.beta().dot(w))
+            };
+            prop_assert!(bound >= 0.0);
+            for p in points {
+                let p = centre + DVec3::from_array(p).clamp_length_max(1.0) * radius;
+                prop_assert!(bound <= apparent(p) * (1.0 + 1e-12) + 1e-12);
+            }
+            let gap = frame.gamma() * (1.0 + frame.beta().length()) * 2.0 * radius;
+            prop_assert!(apparent(centre) - bound <= gap * (1.0 + 1e-9) + 1e-12);
+        }
+
         /// Culling is conservative: when a ball is culled out of view, no viewing ray of the
         /// image (traced exactly in S′, over a grid that includes its edges) reaches it; when
         /// it is culled between pixel centres, the ray through every pixel's centre misses it.

@@ -2,7 +2,9 @@
 //! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
 
 use super::*;
-use crate::culling::{ball_between_pixel_centres, ball_out_of_view};
+use crate::culling::{
+    ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view,
+};
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
 use crate::sky::SkyPlacement;
@@ -297,8 +299,9 @@ impl super::GpuRenderer {
             .collect()
     }
 
-    /// The indices of the objects of `scene` that may be seen in this frame: all but those
-    /// whose ball (around their vertices at rest, [`BodyExtent::ball`](crate::motion::BodyExtent::ball),
+    /// The indices of the objects of `scene` that may be seen in this frame, nearest first
+    /// ([`ball_nearest_apparent_distance`]; objects as near keep the scene's order): all but
+    /// those whose ball (around their vertices at rest, [`BodyExtent::ball`](crate::motion::BodyExtent::ball),
     /// or around the box swept by their motion, [`sweep_bounds`]) is out of view
     /// ([`ball_out_of_view`]) or covers no pixel's centre ([`ball_between_pixel_centres`]). The
     /// others' footprints and draws are skipped, whatever the method.
@@ -307,18 +310,23 @@ impl super::GpuRenderer {
         let aspect = f64::from(width) / f64::from(height);
         let event = scene.observer.event();
         // Zipped, not indexed: a scene of another structure is refused later (SceneChanged).
-        (scene.objects.iter().zip(&self.objects).enumerate())
-            .filter(|(_, (object, resources))| {
+        let mut shown: Vec<(f64, usize)> = (scene.objects.iter().zip(&self.objects).enumerate())
+            .filter_map(|(index, (object, resources))| {
                 let (centre, radius) = sweep_bounds(object, &resources.extent, event)
                     .map_or(resources.extent.ball, |(lo, hi)| {
                         ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
                     });
                 let (frame, observer) = (&object.frame, &scene.observer);
-                !(ball_out_of_view(centre, radius, frame, observer, aspect)
-                    || ball_between_pixel_centres(centre, radius, frame, observer, width, height))
+                let unseen = ball_out_of_view(centre, radius, frame, observer, aspect)
+                    || ball_between_pixel_centres(centre, radius, frame, observer, width, height);
+                (!unseen).then(|| {
+                    let nearest = ball_nearest_apparent_distance(centre, radius, frame, event);
+                    (nearest, index)
+                })
             })
-            .map(|(index, _)| index)
-            .collect()
+            .collect();
+        shown.sort_by(|a, b| a.0.total_cmp(&b.0));
+        shown.into_iter().map(|(_, index)| index).collect()
     }
 
     /// The footprint compute pass (timestamps 0 and 1) over the triangles of every object
