@@ -13,7 +13,8 @@
 //   body size of its extent, each bounded exactly by its parallelogram), only where the box
 //   swept by the body meets the ray, and before the start it is the ray itself.
 // On a spinning body's piece, a triangle is crossed where the signed distance of b(s) to its plane
-// changes sign, bisected (MOTION_BISECTIONS steps at most); on a thrust's arc, where a quadratic
+// changes sign, narrowed by the Illinois method to f32 precision (MOTION_CROSSING_STEPS steps at
+// most; srt-trace bisects to the f64 limit); on a thrust's arc, where a quadratic
 // vanishes (arc_crossing). The nearest crossing of the first piece that has one wins.
 //
 // rt.wgsl's visibility pass takes each piece's candidates from the BVH (moving_nearest_hit);
@@ -27,8 +28,11 @@ override MOTION_SPIN_PIECE_ANGLE: f32;
 override MOTION_THRUST_PIECES_PER_SIZE: f32;
 // Most pieces of one curved stretch (srt_gpu::motion::MAX_PIECES).
 const MOTION_MAX_PIECES: u32 = 4096u;
-// Most bisection steps of one crossing (srt_gpu::motion::BISECTIONS).
-const MOTION_BISECTIONS: u32 = 48u;
+// Most steps of the search for one crossing (srt_gpu::motion::CROSSING_STEPS).
+const MOTION_CROSSING_STEPS: u32 = 48u;
+// Width, relative to the ray parameter, at which a crossing's bracket is taken as found: two
+// f32 rounding units (2 · 2⁻²³), where bisection would stop at neighbouring floats.
+const MOTION_CROSSING_WIDTH: f32 = 2.4e-7;
 // Newton steps polishing each root of a thrust's crossing (srt_gpu::motion::NEWTON_STEPS).
 const MOTION_NEWTON_STEPS: u32 = 2u;
 // Pieces of a spinning body's march taken together first (srt_gpu::motion::PIECES_PER_GROUP):
@@ -283,8 +287,9 @@ fn motion_grouped(plan: MotionPlan) -> bool {
 
 // Where the curve crosses the triangle `corners` on the piece `piece`, if the triangle's box
 // meets the piece's (mirror of PreparedObject::march's candidate test). A spinning body:
-// the sign change of the signed distance to its plane, bisected, if the point is in the
-// triangle, edges included (mirror of srt-trace's Helix::crossing); a thrust: arc_crossing.
+// the sign change of the signed distance to its plane, narrowed by the Illinois method (the
+// same bracket as srt-trace's Helix::crossing, which bisects in f64), if the point is in the
+// triangle, edges included; a thrust: arc_crossing.
 fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3>) -> TriangleHit {
     let none = TriangleHit(false, 0.0, 0.0, 0.0);
     // The crossing is a point of the piece's curve, in its box, and of the triangle, in the
@@ -306,17 +311,34 @@ fn motion_crossing(ray: RestRay, piece: MotionPiece, corners: array<vec3<f32>, 3
     var lo = piece.a;
     var hi = piece.b;
     if (at_lo != 0.0) {
-        for (var i = 0u; i < MOTION_BISECTIONS; i++) {
-            let mid = 0.5 * (lo + hi);
-            if (mid <= lo || mid >= hi) {
+        // The Illinois method: regula falsi on the bracket [lo, hi], the value at an end kept
+        // twice in a row halved, so that both ends close in on the crossing.
+        var f_lo = at_lo;
+        var f_hi = at_hi;
+        var kept = 0;
+        for (var i = 0u; i < MOTION_CROSSING_STEPS; i++) {
+            var mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+            if (!(mid > lo && mid < hi)) {
+                mid = 0.5 * (lo + hi);
+            }
+            if (mid <= lo || mid >= hi || hi - lo <= MOTION_CROSSING_WIDTH * max(abs(lo), abs(hi))) {
                 break;
             }
             let at_mid = dot(normal, spin_curve(ray, mid) - corners[0]);
             if ((at_mid < 0.0) == (at_lo < 0.0) && at_mid != 0.0) {
                 lo = mid;
-                at_lo = at_mid;
+                f_lo = at_mid;
+                if (kept == 1) {
+                    f_hi *= 0.5;
+                }
+                kept = 1;
             } else {
                 hi = mid;
+                f_hi = at_mid;
+                if (kept == -1) {
+                    f_lo *= 0.5;
+                }
+                kept = -1;
             }
         }
     } else {

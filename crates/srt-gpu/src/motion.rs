@@ -9,7 +9,8 @@
 //! size of a thrust's accelerating stretch; at most [`MAX_PIECES`], where the reference allows
 //! 2¹⁶), each piece's box (a spinning body's chord box padded by the curve's sagitta bound, a
 //! thrust's exact box of its arc) met with the BVH; on a spinning body the sign change of the
-//! distance to each candidate triangle's plane bisected ([`BISECTIONS`] steps at most), on a
+//! distance to each candidate triangle's plane narrowed to f32 precision by the Illinois method
+//! ([`CROSSING_STEPS`] steps at most; the reference bisects to the f64 limit), on a
 //! thrust's arc the roots of a quadratic polished by [`NEWTON_STEPS`] Newton steps. What the
 //! f64 reference computes exactly — the spin phase ω·ct′₀ reduced mod 2π, the elapsed thrust
 //! time — is computed here in f64, so that the shaders see small numbers.
@@ -29,9 +30,11 @@ pub const SPIN_PIECE_ANGLE: f64 = 0.05;
 pub const THRUST_PIECES_PER_SIZE: f64 = 4.0;
 /// Most pieces of one curved stretch of ray on the GPU (WGSL `MOTION_MAX_PIECES`).
 pub const MAX_PIECES: u32 = 4096;
-/// Most bisection steps for one crossing in f32 (WGSL `MOTION_BISECTIONS`): more than the 24
-/// bits of an f32 mantissa need from any bracket.
-pub const BISECTIONS: u32 = 48;
+/// Most steps of the search for one crossing of a spinning body's piece in f32 (WGSL
+/// `MOTION_CROSSING_STEPS`): the Illinois method (regula falsi, the value kept at one end twice
+/// in a row halved) ends in a few steps where the curve is smooth; the cap is more than
+/// bisection would take from any bracket to the 24 bits of an f32 mantissa.
+pub const CROSSING_STEPS: u32 = 48;
 /// Newton steps polishing each root of a thrust's crossing in f32 (WGSL `MOTION_NEWTON_STEPS`;
 /// srt-trace's `THRUST_NEWTON_STEPS`).
 pub const NEWTON_STEPS: u32 = 2;

@@ -62,7 +62,7 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("MOTION_SPIN", MotionCode::SPIN.0),
         ("MOTION_THRUST", MotionCode::THRUST.0),
         ("MOTION_MAX_PIECES", srt_gpu::motion::MAX_PIECES),
-        ("MOTION_BISECTIONS", srt_gpu::motion::BISECTIONS),
+        ("MOTION_CROSSING_STEPS", srt_gpu::motion::CROSSING_STEPS),
         ("MOTION_NEWTON_STEPS", srt_gpu::motion::NEWTON_STEPS),
         ("MOTION_PIECES_PER_GROUP", srt_gpu::motion::PIECES_PER_GROUP),
         (
