@@ -372,16 +372,15 @@ impl BlockSpace {
     /// `source` with the blocks declared in this space.
     #[must_use]
     pub fn declare(self, source: &str) -> String {
-        let mut declared = source.to_owned();
-        if self == Self::Uniform {
-            for name in BLOCKS {
-                declared = declared.replace(
-                    &format!("var<storage, read> {name}:"),
-                    &format!("var<uniform> {name}:"),
-                );
-            }
+        match self {
+            Self::Uniform => rewrite_each(source, &BLOCKS, |name| {
+                (
+                    format!("var<storage, read> {name}:"),
+                    format!("var<uniform> {name}:"),
+                )
+            }),
+            Self::Storage => source.to_owned(),
         }
-        declared
     }
 
     /// The binding type of `slot` (named `wgsl_name`) in this space.
@@ -438,17 +437,30 @@ impl ConservativeDepth {
     /// `source` with every [`VISIBILITY_FRAGMENT_ENTRIES`] entry point it defines declared so.
     #[must_use]
     pub fn declare(self, source: &str) -> String {
-        let mut declared = source.to_owned();
-        if self == Self::Declared {
-            for name in VISIBILITY_FRAGMENT_ENTRIES {
-                declared = declared.replace(
-                    &format!("@fragment\nfn {name}("),
-                    &format!("@fragment @early_depth_test(greater_equal)\nfn {name}("),
-                );
-            }
+        match self {
+            Self::Declared => rewrite_each(source, &VISIBILITY_FRAGMENT_ENTRIES, |name| {
+                (
+                    format!("@fragment\nfn {name}("),
+                    format!("@fragment @early_depth_test(greater_equal)\nfn {name}("),
+                )
+            }),
+            Self::Undeclared => source.to_owned(),
         }
-        declared
     }
+}
+
+/// `source` with, for each of `names`, every occurrence of the first text `rewrite` gives for
+/// it replaced by the second: how a device's declarations ([`BlockSpace`],
+/// [`ConservativeDepth`]) are written into the composed WGSL.
+fn rewrite_each(
+    source: &str,
+    names: &[&str],
+    rewrite: impl Fn(&str) -> (String, String),
+) -> String {
+    names.iter().fold(source.to_owned(), |text, name| {
+        let (from, to) = rewrite(name);
+        text.replace(&from, &to)
+    })
 }
 
 /// A composed shader and the values of its pipeline-overridable constants.
