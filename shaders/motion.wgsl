@@ -108,7 +108,8 @@ struct MotionPlan {
     rest_from: f32,
 }
 
-// The box [lo, hi] meets the line `ray` between near and far (a little late) if near ≤ far.
+// The box [lo, hi] meets the line `ray` between near (a little early) and far (a little late) if
+// near ≤ far: a point on a face is not cut off by rounding.
 fn motion_slab(ray: RestRay, lo: vec3<f32>, hi: vec3<f32>) -> vec2<f32> {
     let inverse = safe_inverse(ray.direction);
     let a = (lo - ray.origin) * inverse;
@@ -117,7 +118,7 @@ fn motion_slab(ray: RestRay, lo: vec3<f32>, hi: vec3<f32>) -> vec2<f32> {
     let h = max(a, b);
     let near = max(max(l.x, l.y), l.z);
     let far = min(min(h.x, h.y), h.z);
-    return vec2<f32>(near, far + 1e-5 * (1.0 + abs(far)));
+    return vec2<f32>(near - 1e-5 * (1.0 + abs(near)), far + 1e-5 * (1.0 + abs(far)));
 }
 
 // The stretches of `ray` on which the current (moving) object is searched (mirror of
@@ -199,12 +200,14 @@ fn motion_plan(ray: RestRay) -> MotionPlan {
     let sweep = max(start - lower, 0.0) * direction;
     let lo = min(object.motion_low.xyz, object.motion_low.xyz + sweep);
     let hi = max(object.motion_high.xyz, object.motion_high.xyz + sweep);
+    // Only the stretch of the ray inside that box is searched.
     let span = motion_slab(ray, lo, hi);
-    if (lower < to && span.x <= span.y && span.x <= to && span.y >= lower) {
-        let whole = arc_box(ray, arc, lower, to);
+    let inside = vec2<f32>(max(lower, span.x), min(to, span.y));
+    if (lower < to && inside.x <= inside.y) {
+        let whole = arc_box(ray, arc, inside.x, inside.y);
         let extent = length(whole.hi - whole.lo);
-        plan.lower = lower;
-        plan.to = to;
+        plan.lower = inside.x;
+        plan.to = inside.y;
         plan.pieces = u32(clamp(ceil(extent / max(reach, 1e-9) * MOTION_THRUST_PIECES_PER_SIZE), 1.0, f32(MOTION_MAX_PIECES)));
         plan.pad = -1.0;
     }

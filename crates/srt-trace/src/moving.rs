@@ -163,7 +163,11 @@ impl PreparedObject<'_> {
         let sweep = reach * direction;
         lo = lo.min(lo + sweep);
         hi = hi.max(hi + sweep);
-        if from < to && slab(ray, lo, hi).is_some_and(|(near, far)| near <= to && far >= from) {
+        // Only the stretch of the ray inside that box is searched.
+        let inside = slab(ray, lo, hi)
+            .map(|(near, far)| (from.max(near), to.min(far)))
+            .filter(|&(a, b)| from < to && a <= b);
+        if let Some((from, to)) = inside {
             let (whole_lo, whole_hi) = arc.piece_box(from, to);
             let extent = (whole_hi - whole_lo).length();
             let pieces = (extent / self.reach.max(1e-9) * THRUST_PIECES_PER_SIZE)
@@ -499,12 +503,14 @@ fn quadratic_roots(a: f64, b: f64, c: f64) -> [Option<f64>; 2] {
 }
 
 /// The ray parameters (near, far) between which the whole line `ray` is inside the box
-/// [`lo`, `hi`], if it meets it (far taken a little late; NaN from a parallel direction on a
-/// slab's plane counts as meeting).
+/// [`lo`, `hi`], if it meets it (near taken a little early and far a little late, so that a
+/// point on a face is not cut off by rounding; NaN from a parallel direction on a slab's plane
+/// counts as meeting).
 fn slab(ray: &RestRay, lo: DVec3, hi: DVec3) -> Option<(f64, f64)> {
     let inverse = ray.direction.recip();
     let (a, b) = ((lo - ray.origin) * inverse, (hi - ray.origin) * inverse);
     let near = a.min(b).max_element();
+    let near = near - (near.abs() * 1e-12 + 1e-12);
     let far = a.max(b).min_element() * (1.0 + 1e-12) + 1e-12;
     (near <= far || near.is_nan() || far.is_nan()).then_some((near, far))
 }
