@@ -510,7 +510,12 @@ fn slab(ray: &RestRay, lo: DVec3, hi: DVec3) -> Option<(f64, f64)> {
     let inverse = ray.direction.recip();
     let (a, b) = ((lo - ray.origin) * inverse, (hi - ray.origin) * inverse);
     let near = a.min(b).max_element();
-    let near = near - (near.abs() * 1e-12 + 1e-12);
+    // (An infinite near stays as it is: a parallel ray outside a slab meets nothing.)
+    let near = if near.is_finite() {
+        near - (near.abs() * 1e-12 + 1e-12)
+    } else {
+        near
+    };
     let far = a.max(b).min_element() * (1.0 + 1e-12) + 1e-12;
     (near <= far || near.is_nan() || far.is_nan()).then_some((near, far))
 }
@@ -634,6 +639,26 @@ mod tests {
                     (case.3 < case.4).then_some(case)
                 },
             )
+    }
+
+    /// The slab test's entry is taken a little early and its exit a little late; a ray
+    /// parallel to a slab meets the box if it lies on the slab's face (NaN, counted as meeting)
+    /// and not if it lies outside it, an infinite entry included.
+    #[test]
+    fn the_slab_is_wide_by_rounding_units_and_refuses_parallel_rays_outside() {
+        let (lo, hi) = (DVec3::splat(-1.0), DVec3::splat(1.0));
+        let ray = |origin: [f64; 3], direction: [f64; 3]| RestRay {
+            origin: DVec3::from(origin),
+            direction: DVec3::from(direction).normalize(),
+            ct_origin: 0.0,
+        };
+        let (near, far) = slab(&ray([3.0, 0.3, 0.0], [-1.0, 0.0, 0.0]), lo, hi).unwrap();
+        assert!(near < 2.0 && near > 2.0 - 1e-9, "{near}");
+        assert!(far > 4.0 && far < 4.0 + 1e-9, "{far}");
+        assert!(slab(&ray([3.0, 0.3, 1.0], [-1.0, 0.0, 0.0]), lo, hi).is_some());
+        assert_eq!(slab(&ray([3.0, 1.5, 0.0], [-1.0, 0.0, 0.0]), lo, hi), None);
+        assert_eq!(slab(&ray([3.0, -1.5, 0.0], [-1.0, 0.0, 0.0]), lo, hi), None);
+        assert_eq!(slab(&ray([0.0, 0.0, 2.0], [1.0, 0.0, 0.0]), lo, hi), None);
     }
 
     /// The body point at `s` by its definition (`Thrust::body_point` at the ray's event).
