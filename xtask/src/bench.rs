@@ -78,6 +78,14 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 }
 /// Frames rendered by every method before timing starts.
 const WARM_UP: u32 = 2;
+
+/// Least time each method's timed frames of one measurement add up to: a case whose frames
+/// are short takes more than the requested frames, so that one slow spell of the machine (a
+/// millisecond on a 3 ms frame) does not decide its median.
+const MIN_MEASURED_MS: u32 = 250;
+
+/// Most frames timed per method in one measurement, however short its frames.
+const MAX_FRAMES: u32 = 60;
 /// How long a hardware GPU renders the case's frames back to back before they are timed
 /// ([`Timing::Timestamps`]), so that its clock is up.
 const CLOCK_WARM_UP: std::time::Duration = std::time::Duration::from_millis(300);
@@ -121,7 +129,8 @@ impl Timing {
 /// Median frame time in ms of each of `methods` (timed as `timing` says) and median time of its
 /// proxy pass (0 where unknown: the wall clock cannot single it out). The methods take turns
 /// frame by frame, so that a slow spell of the machine (software adapters share its cores)
-/// falls on all of them alike.
+/// falls on all of them alike, for at least `frames` turns and on until every method's frames
+/// add up to [`MIN_MEASURED_MS`], at most [`MAX_FRAMES`] turns.
 fn frame_times<const N: usize>(
     ctx: &GpuContext,
     renderer: &GpuRenderer,
@@ -147,7 +156,14 @@ fn frame_times<const N: usize>(
         }
     }
     let mut times = [(); N].map(|()| (Vec::new(), Vec::new()));
-    for _ in 0..frames {
+    let enough = |times: &[(Vec<f64>, Vec<f64>); N]| {
+        let least_ms = times
+            .iter()
+            .map(|(time, _)| time.iter().sum::<f64>())
+            .fold(f64::INFINITY, f64::min);
+        timed_enough(times[0].0.len(), least_ms, frames)
+    };
+    while !enough(&times) {
         for (method, (time, proxy)) in methods.iter().zip(&mut times) {
             let (frame_ms, proxy_ms) = match timing {
                 Timing::Timestamps => timestamped_ms(ctx, renderer, scene, *method)?,
@@ -158,6 +174,14 @@ fn frame_times<const N: usize>(
         }
     }
     Ok(times.map(|(time, proxy)| (median(time), median(proxy))))
+}
+
+/// Whether `turns` turns of the methods are enough, the method whose timed frames add up to
+/// least having `least_ms`: at least `frames` turns, then on until [`MIN_MEASURED_MS`] or
+/// [`MAX_FRAMES`] turns.
+fn timed_enough(turns: usize, least_ms: f64, frames: u32) -> bool {
+    turns >= frames as usize
+        && (least_ms >= f64::from(MIN_MEASURED_MS) || turns >= MAX_FRAMES as usize)
 }
 
 /// Milliseconds from encoding one frame of `scene` with `method` to the GPU's idle, as the
@@ -565,6 +589,8 @@ pub fn run(
         date: crate::provenance::today(),
         frames,
         warm_up: WARM_UP,
+        min_measured_ms: MIN_MEASURED_MS,
+        max_frames: MAX_FRAMES,
         cases: Vec::new(),
         sweeps: Vec::new(),
     };
@@ -661,7 +687,22 @@ pub fn run_compare(old: &Path, new: &Path) -> anyhow::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::parse_size;
+    use super::{MAX_FRAMES, MIN_MEASURED_MS, parse_size, timed_enough};
+
+    #[test]
+    fn short_frames_are_timed_until_they_add_up_and_long_ones_the_frames_asked() {
+        // Long frames: the frames asked for, no more.
+        assert!(!timed_enough(4, 400.0, 5));
+        assert!(timed_enough(5, 400.0, 5));
+        // Short frames: on until the least-timed method has MIN_MEASURED_MS…
+        assert!(!timed_enough(5, 15.0, 5));
+        assert!(!timed_enough(40, f64::from(MIN_MEASURED_MS) - 1.0, 5));
+        assert!(timed_enough(40, f64::from(MIN_MEASURED_MS), 5));
+        // …or MAX_FRAMES turns, unless more frames were asked for.
+        assert!(timed_enough(MAX_FRAMES as usize, 1.0, 5));
+        assert!(!timed_enough(MAX_FRAMES as usize, 1.0, 100));
+        assert!(timed_enough(100, 1.0, 100));
+    }
 
     #[test]
     fn sizes_parse_and_bad_ones_are_named() {

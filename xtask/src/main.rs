@@ -58,7 +58,8 @@ enum Command {
     /// rewrites the generated blocks of docs/performance.md (table and summary) and saves every
     /// measurement as docs/performance-results.json.
     Bench {
-        /// Frames measured per scene and method (after warm-up).
+        /// Least frames timed per scene and method (after warm-up); short frames are timed
+        /// until each method's add up to 0.25 s, at most 60.
         #[arg(long, default_value_t = 5)]
         frames: u32,
         /// Only the cases whose name contains this text, printed without updating the document

@@ -133,9 +133,12 @@ fn sweep_row(sweep: &SweepResult) -> Option<String> {
 /// The table block between `markers`.
 fn table(results: &Results, validation: &Validation, markers: Markers) -> String {
     let mut table = format!(
-        "{}\nAdapter: {}. Median of {} frames after {} warm-up frames per measurement, timed by {}.\n\n\
+        "{}\nAdapter: {}; {}, timed by {}.\n\n\
          | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
-        markers.start, results.adapter, results.frames, results.warm_up, results.timing
+        markers.start,
+        results.adapter,
+        results.sampling(),
+        results.timing
     );
     for case in &results.cases {
         table += &format!("{} {} |\n", case_row(case), validation.cell([case]));

@@ -195,6 +195,11 @@ pub struct Machine {
     pub os: String,
     /// CPU architecture.
     pub arch: String,
+    /// The CPU's model name where the system gives it (empty otherwise): a software adapter's
+    /// figures depend on it as much as on the adapter (the same llvmpipe ran the teaser's frame
+    /// in 35 ms on one 2-core machine and in 83 ms on another).
+    #[serde(default)]
+    pub cpu_model: String,
 }
 
 impl Machine {
@@ -209,10 +214,20 @@ impl Machine {
                     .map(|name| name.trim_matches('"').to_owned())
             });
         let os = std::env::consts::OS;
+        let cpu_model = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|text| {
+                text.lines()
+                    .filter_map(|l| l.split_once(':'))
+                    .find(|(key, _)| key.trim() == "model name")
+                    .map(|(_, name)| name.trim().to_owned())
+            })
+            .unwrap_or_default();
         Self {
             cpus: std::thread::available_parallelism().map_or(0, std::num::NonZero::get),
             os: distribution.map_or_else(|| os.to_owned(), |d| format!("{os} ({d})")),
             arch: std::env::consts::ARCH.to_owned(),
+            cpu_model,
         }
     }
 }
@@ -234,6 +249,13 @@ pub struct Results {
     pub frames: u32,
     /// Warm-up frames per measurement before timing.
     pub warm_up: u32,
+    /// Least time in ms each method's timed frames of a measurement add up to, more than
+    /// `frames` frames being timed where they are short (0: exactly `frames`, as before).
+    #[serde(default)]
+    pub min_measured_ms: u32,
+    /// Most frames timed per method where `min_measured_ms` asks for more than `frames`.
+    #[serde(default)]
+    pub max_frames: u32,
     /// The static cases, every size.
     pub cases: Vec<CaseResult>,
     /// The fly-by sweeps.
@@ -247,6 +269,25 @@ impl Results {
             self.sweeps
                 .iter()
                 .flat_map(|s| s.frames.iter().map(|f| &f.case)),
+        )
+    }
+
+    /// How many frames each measurement timed, as the documents say it: "median of … frames
+    /// per measurement after … warm-up frames".
+    #[must_use]
+    pub fn sampling(&self) -> String {
+        let timed = if self.min_measured_ms == 0 {
+            format!("{} frames", self.frames)
+        } else {
+            format!(
+                "at least {} frames (more where they are short, until each method's add up to \
+                 {} ms, at most {})",
+                self.frames, self.min_measured_ms, self.max_frames
+            )
+        };
+        format!(
+            "median of {timed} per measurement after {} warm-up frames",
+            self.warm_up
         )
     }
 
@@ -326,6 +367,7 @@ pub mod tests {
                 cpus: 2,
                 os: "linux".to_owned(),
                 arch: "x86_64".to_owned(),
+                cpu_model: "test CPU".to_owned(),
             },
             adapter: "test adapter".to_owned(),
             timing: "wall clock".to_owned(),
@@ -333,6 +375,8 @@ pub mod tests {
             date: "2026-01-01".to_owned(),
             frames: 3,
             warm_up: 2,
+            min_measured_ms: 250,
+            max_frames: 60,
             cases: vec![
                 case("cube", measurement(10.0, 11.0, 10.0, 1.0)),
                 case("spider", measurement(15.0, 15.0, 10.0, 1.0)),
@@ -363,5 +407,34 @@ pub mod tests {
         assert!((sweep.median_ratio() - 2.5).abs() < 1e-12);
         assert!((sweep.worst_ratio_of(srt_gpu::Method::Lrt) - 2.0).abs() < 1e-12);
         assert_eq!(results.all_frames().count(), 4);
+    }
+
+    #[test]
+    fn the_sampling_is_said_as_it_was_run_and_older_files_still_load() {
+        let mut results = results();
+        assert_eq!(
+            results.sampling(),
+            "median of at least 3 frames (more where they are short, until each method's add \
+             up to 250 ms, at most 60) per measurement after 2 warm-up frames"
+        );
+        // A file written before the adaptive sampling and the CPU's model lacks their fields.
+        let mut json: serde_json::Value = serde_json::to_value(&results).unwrap();
+        let object = json.as_object_mut().unwrap();
+        object.remove("min_measured_ms");
+        object.remove("max_frames");
+        object["machine"]
+            .as_object_mut()
+            .unwrap()
+            .remove("cpu_model");
+        let old: Results = serde_json::from_value(json).unwrap();
+        assert_eq!(
+            old.sampling(),
+            "median of 3 frames per measurement after 2 warm-up frames"
+        );
+        assert_eq!(old.machine.cpu_model, "");
+        results.min_measured_ms = 0;
+        results.max_frames = 0;
+        results.machine.cpu_model.clear();
+        assert_eq!(old, results);
     }
 }

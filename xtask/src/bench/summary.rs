@@ -30,15 +30,19 @@ fn label(case: &CaseResult) -> String {
 pub fn summary(results: &Results) -> String {
     let machine = &results.machine;
     let mut text = format!(
-        "Run of {} at commit {} on {} ({} CPUs, {}, {}); median of {} frames per measurement after {} warm-up frames, timed by {}.\n\n",
+        "Run of {} at commit {} on {} ({} CPUs{}, {}, {}); {}, timed by {}.\n\n",
         results.date,
         results.commit,
         results.adapter,
         machine.cpus,
+        if machine.cpu_model.is_empty() {
+            String::new()
+        } else {
+            format!(": {}", machine.cpu_model)
+        },
         machine.os,
         machine.arch,
-        results.frames,
-        results.warm_up,
+        results.sampling(),
         results.timing
     );
     let items = size_items(results)
