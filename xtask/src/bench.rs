@@ -663,7 +663,7 @@ pub fn run_throughput(
         let markers = report::Report::for_adapter(&ctx).throughput;
         let block = throughput::table(
             &measured,
-            &adapter,
+            &format!("{adapter}, on {}", Machine::this().describe()),
             &crate::provenance::today(),
             &crate::provenance::commit(workspace),
             markers,

@@ -203,6 +203,17 @@ pub struct Machine {
 }
 
 impl Machine {
+    /// How the documents name it: "2 CPUs: MODEL, OS, ARCH".
+    #[must_use]
+    pub fn describe(&self) -> String {
+        let model = if self.cpu_model.is_empty() {
+            String::new()
+        } else {
+            format!(": {}", self.cpu_model)
+        };
+        format!("{} CPUs{model}, {}, {}", self.cpus, self.os, self.arch)
+    }
+
     /// The machine running this process.
     #[must_use]
     pub fn this() -> Self {

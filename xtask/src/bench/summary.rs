@@ -30,18 +30,11 @@ fn label(case: &CaseResult) -> String {
 pub fn summary(results: &Results) -> String {
     let machine = &results.machine;
     let mut text = format!(
-        "Run of {} at commit {} on {} ({} CPUs{}, {}, {}); {}, timed by {}.\n\n",
+        "Run of {} at commit {} on {} ({}); {}, timed by {}.\n\n",
         results.date,
         results.commit,
         results.adapter,
-        machine.cpus,
-        if machine.cpu_model.is_empty() {
-            String::new()
-        } else {
-            format!(": {}", machine.cpu_model)
-        },
-        machine.os,
-        machine.arch,
+        machine.describe(),
         results.sampling(),
         results.timing
     );
