@@ -2,7 +2,7 @@
 //! --observer-beta) edit the scene's description and are judged by the scene file's rules; a
 //! refused value is named by its option in one line, exit code 2, and nothing is written.
 
-mod common;
+use crate::common;
 
 use common::{assert_clean_failure, folder, srt, stderr};
 

@@ -2,7 +2,7 @@
 //! among machines (`--shard K/N`), and the record of how each image was made (`srt info`).
 //! Small pictures on the CPU backend, so each test runs in seconds.
 
-mod common;
+use crate::common;
 
 use std::fs::File;
 use std::io::Write as _;

@@ -6,7 +6,7 @@
 //! reflected light uses a perfect white reflector in the same place, i.e. the black body at
 //! D_in · D_out · T. ΔE00 is CIEDE2000 (`support/ciede2000.rs`, checked against colour-science).
 
-mod support;
+use crate::support;
 
 use glam::DVec3;
 use proptest::prelude::*;

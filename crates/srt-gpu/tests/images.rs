@@ -14,7 +14,7 @@ use srt_scene::{
 use srt_trace::compare::{compare, compare_radiance, compare_seen};
 use srt_trace::{Output, RenderSettings, Tracer};
 
-mod common;
+use crate::common;
 
 use common::{HEIGHT, WIDTH, cpu_image};
 

@@ -12,7 +12,7 @@ use srt_scene::{Scene, SceneDescription, builtin_scenes};
 use srt_trace::compare::compare;
 use srt_trace::{RenderSettings, Tracer};
 
-mod common;
+use crate::common;
 
 use common::{HEIGHT, WIDTH, cpu_image};
 

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use srt_physics::flight::Worldline;
 use srt_physics::{Event, Poincare, boost_and_rotation, lorentz_matrix};
 
-mod common;
+use crate::common;
 use common::{event, unit_vector, velocity};
 
 /// u·u with the signature (+, −, −, −).

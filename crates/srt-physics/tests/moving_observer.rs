@@ -10,7 +10,7 @@ use srt_physics::{
     lorentz_matrix,
 };
 
-mod common;
+use crate::common;
 use common::{event, point, unit_vector, velocity};
 
 /// Velocity composition written out (Einstein; e.g. Jackson, Classical Electrodynamics, 3rd

@@ -9,7 +9,7 @@ use srt_physics::{
     lorentz_matrix, minkowski_interval, rapidity, reflection_doppler,
 };
 
-mod common;
+use crate::common;
 use common::{event, point, unit_vector, velocity};
 
 /// Relative closeness of two scalars, with an absolute floor for values near zero.

@@ -4,8 +4,7 @@
 use proptest::prelude::*;
 use srt_physics::{distant_source_image, lorentz_factor};
 
-#[allow(dead_code)] // each test file uses its own share of the strategies
-mod common;
+use crate::common;
 
 proptest! {
     #[test]

@@ -1,0 +1,13 @@
+//! srt-trace's integration tests in one binary (one link, not one per file): each module
+//! below was a test binary of its own; `cargo test --test trace MODULE::` runs one.
+
+mod blink;
+mod clock;
+mod moving_bodies;
+mod moving_lights;
+mod physics_checks;
+mod principle_of_relativity;
+mod seen;
+mod sky;
+mod spectral;
+mod stop;
