@@ -2,9 +2,12 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
-use srt::engine::{MAX_IMAGE_SIDE, MAX_SAMPLES};
+use srt::engine::{Backend, MAX_IMAGE_SIDE, MAX_SAMPLES};
+use srt_gpu::Method;
+use srt_scene::{Choice, Effects, SurfaceColour, View, parse_vector};
 
 /// srt: see what an observer really sees of objects flying at near light speed.
 #[derive(Debug, Parser)]
@@ -45,64 +48,15 @@ impl Default for Command {
     }
 }
 
-/// Which renderer to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
-pub enum Backend {
-    /// The exact CPU ray tracer (srt-trace).
-    Cpu,
-    /// The GPU local ray tracer.
-    Gpu,
-    /// The GPU if an adapter exists, otherwise the CPU.
-    #[default]
-    Auto,
-}
-
-/// Rendering method on the command line (mirrors `srt_gpu::Method`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
-pub enum MethodArg {
-    /// Exact per pixel, each object by whichever of lrt and rt is faster for it in each frame.
-    #[default]
-    Auto,
-    /// Local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes).
-    Lrt,
-    /// Ray tracing through a BVH per object in its rest frame: exact per pixel like lrt, and
-    /// faster for deep models and objects passing the camera.
-    Rt,
-    /// Per-vertex polygon rendering (§3.2), the approximate baseline; GPU only.
-    Polygon,
-}
-
-/// Effect mode on the command line (mirrors `srt_scene::Effects`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum EffectsArg {
-    /// Geometry only: aberration and light travel time, no colour shift.
-    Geometry,
-    /// Doppler colour shift, brightness normalised (Fig. 6 left).
-    Doppler,
-    /// Doppler shift and searchlight effect (Fig. 6 right).
-    Searchlight,
-}
-
-/// How lit surfaces are coloured on the command line (mirrors `srt_scene::SurfaceColour`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ColourArg {
-    /// The paper's shortcut: the light's colour at D·T scaled by the surface's grey value.
-    Paper,
-    /// Reflectance spectra (Jakob & Hanika 2019) under the shifted black body: colours move.
-    Spectral,
-}
-
-/// Which picture `srt render` draws (mirrors `srt_scene::View`; docs/physics.md, "Three
-/// pictures").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
-pub enum ViewArg {
-    /// What a camera sees: light travel time, aberration, Doppler (the paper's picture).
-    #[default]
-    Seen,
-    /// What is measured: every point where it is at ct_obs in S, Lorentz-contracted, no Doppler.
-    Measured,
-    /// The Newtonian picture: the rest shape, uncontracted, where it is at ct_obs, no Doppler.
-    Newtonian,
+/// A clap parser for one of the library's named choices ([`Choice`]): its names, each with its
+/// help, are the possible values, so that the names and their meanings live in one place.
+fn choice<T: Choice + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(
+        T::all()
+            .iter()
+            .map(|value| PossibleValue::new(value.name()).help(value.help())),
+    )
+    .try_map(|name| T::parse(&name))
 }
 
 /// Options of `srt render`.
@@ -123,25 +77,25 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
     pub height: u32,
     /// Renderer.
-    #[arg(long, value_enum, default_value_t = Backend::Auto)]
+    #[arg(long, value_parser = choice::<Backend>(), default_value_t = Backend::Auto)]
     pub backend: Backend,
     /// Rendering method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
-    pub method: MethodArg,
+    #[arg(long, value_parser = choice::<Method>(), default_value_t = Method::Auto)]
+    pub method: Method,
     /// Effect mode (overrides the scene's).
-    #[arg(long, value_enum)]
-    pub effects: Option<EffectsArg>,
+    #[arg(long, value_parser = choice::<Effects>())]
+    pub effects: Option<Effects>,
     /// How lit surfaces are coloured (overrides the scene's `render.colour`).
-    #[arg(long, value_enum)]
-    pub colour: Option<ColourArg>,
+    #[arg(long, value_parser = choice::<SurfaceColour>())]
+    pub colour: Option<SurfaceColour>,
     /// Multiplier on the light before the tone map, > 0 (spectral colour only; overrides the
     /// scene's `render.exposure`).
     #[arg(long)]
     pub exposure: Option<f64>,
     /// Picture to draw: seen (apparent), measured (contracted, simultaneous in the observer's
     /// frame) or newtonian (rest shape where it is now); the last two are static, Doppler factor 1.
-    #[arg(long, value_enum, default_value_t = ViewArg::Seen)]
-    pub view: ViewArg,
+    #[arg(long, value_parser = choice::<View>(), default_value_t = View::Seen)]
+    pub view: View,
     /// Observation time ct_obs (overrides the scene's).
     #[arg(long, allow_hyphen_values = true)]
     pub time: Option<f64>,
@@ -229,11 +183,11 @@ impl Default for RenderArgs {
             width: 1280,
             height: 720,
             backend: Backend::Auto,
-            method: MethodArg::Auto,
+            method: Method::Auto,
             effects: None,
             colour: None,
             exposure: None,
-            view: ViewArg::Seen,
+            view: View::Seen,
             time: None,
             beta: None,
             observer_beta: None,
@@ -246,25 +200,6 @@ impl Default for RenderArgs {
             video: VideoArgs::default(),
         }
     }
-}
-
-/// Parses "X,Y,Z" into a vector of finite numbers.
-fn parse_vector(text: &str) -> Result<DVec3, String> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    let [x, y, z] = parts.as_slice() else {
-        return Err(format!(
-            "expected three comma-separated numbers X,Y,Z, got {text:?}"
-        ));
-    };
-    let number = |s: &str| -> Result<f64, String> {
-        let v: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(format!("{s:?} is not a finite number"))
-        }
-    };
-    Ok(DVec3::new(number(x)?, number(y)?, number(z)?))
 }
 
 /// Parses "K/N" into two whole numbers.
@@ -317,7 +252,7 @@ mod tests {
     /// A negative vector is ordinary input for `--beta`.
     #[test]
     fn negative_components_parse() {
-        let vector = super::parse_vector("-0.9, 0,-1e-3").expect("parses");
+        let vector = srt_scene::parse_vector("-0.9, 0,-1e-3").expect("parses");
         assert_eq!(vector, glam::DVec3::new(-0.9, 0.0, -1e-3));
     }
 

@@ -10,13 +10,12 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
-use srt::engine::{Backend, Engine, Frame};
-use srt_gpu::Method;
+use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
-use srt_scene::{Effects, OverrideNames, Overrides, Scene, SurfaceColour, ValueName, View};
+use srt_scene::{OverrideNames, Overrides, Scene, ValueName, View};
 use srt_trace::{Output, RenderSettings};
 
-use crate::cli::{Backend as BackendArg, ColourArg, EffectsArg, MethodArg, RenderArgs, ViewArg};
+use crate::cli::RenderArgs;
 use crate::output::{ExrLayers, OutputFormat, check_writable, display_rgb8, numbered, write_image};
 use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
@@ -62,7 +61,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         height: args.height,
         samples: args.samples,
     };
-    let view = view_of(args.view);
+    let view = args.view;
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
     let first = viewed(view, &scene)?;
@@ -273,15 +272,6 @@ fn details(settings: RenderSettings, engine: &Engine, start: Instant) -> String 
     )
 }
 
-/// The scene-model view for --view.
-const fn view_of(view: ViewArg) -> View {
-    match view {
-        ViewArg::Seen => View::Seen,
-        ViewArg::Measured => View::Measured,
-        ViewArg::Newtonian => View::Newtonian,
-    }
-}
-
 /// `scene` as `view` shows it at its current observation time (applied per frame, after the
 /// frame's time is set: the measured and Newtonian positions depend on ct_obs).
 fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
@@ -303,15 +293,8 @@ fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
 /// --observer-beta), for srt-scene's resolver to apply to the description.
 fn overrides(args: &RenderArgs) -> Overrides {
     Overrides {
-        effects: args.effects.map(|effects| match effects {
-            EffectsArg::Geometry => Effects::Geometry,
-            EffectsArg::Doppler => Effects::Doppler,
-            EffectsArg::Searchlight => Effects::Searchlight,
-        }),
-        colour: args.colour.map(|colour| match colour {
-            ColourArg::Paper => SurfaceColour::Paper,
-            ColourArg::Spectral => SurfaceColour::Spectral,
-        }),
+        effects: args.effects,
+        colour: args.colour,
         exposure: args.exposure,
         time: args.time,
         beta: args.beta,
@@ -346,18 +329,7 @@ fn choose_engine(
     scene: &Scene,
     settings: RenderSettings,
 ) -> anyhow::Result<Engine> {
-    let backend = match args.backend {
-        BackendArg::Cpu => Backend::Cpu,
-        BackendArg::Gpu => Backend::Gpu,
-        BackendArg::Auto => Backend::Auto,
-    };
-    let method = match args.method {
-        MethodArg::Auto => Method::Auto,
-        MethodArg::Lrt => Method::Lrt,
-        MethodArg::Rt => Method::Rt,
-        MethodArg::Polygon => Method::Polygon,
-    };
-    let chosen = Engine::choose(backend, method, settings, scene)?;
+    let chosen = Engine::choose(args.backend, args.method, settings, scene)?;
     if let Some(note) = chosen.note {
         eprintln!("note: {note}");
     }

@@ -6,7 +6,7 @@
 use pyo3::PyErr;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
-use srt_scene::{ResolveError, SceneErrorKind};
+use srt_scene::{Choice, ResolveError, SceneErrorKind};
 
 create_exception!(
     srt,
@@ -56,4 +56,10 @@ pub fn resolve(error: &ResolveError) -> PyErr {
 /// line as `srt` prints them.
 pub fn gpu(error: &anyhow::Error) -> PyErr {
     GpuError::new_err(format!("{error:#}"))
+}
+
+/// The choice called `name` (a method, an effect mode, a view, …), or [`SceneError`] with the
+/// library's message naming the choices there are (the command line's and the page's).
+pub fn chosen<T: Choice>(name: &str) -> Result<T, PyErr> {
+    T::parse(name).map_err(|unknown| value(unknown.to_string()))
 }

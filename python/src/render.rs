@@ -17,7 +17,7 @@ use srt::engine::{
 };
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
-use srt_scene::{Effects, LoadedScene, OverrideNames, Overrides, SceneSource, SurfaceColour, View};
+use srt_scene::{LoadedScene, OverrideNames, Overrides, SceneSource, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::errors;
@@ -105,22 +105,22 @@ pub fn render<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let settings = settings(width, height, samples)?;
     let overrides = Overrides {
-        effects: effects.map(parse_effects).transpose()?,
-        colour: colour.map(parse_colour).transpose()?,
+        effects: effects.map(errors::chosen).transpose()?,
+        colour: colour.map(errors::chosen).transpose()?,
         exposure,
         time,
         beta: beta.map(DVec3::from_array),
         observer_beta: observer_beta.map(DVec3::from_array),
         names: ARGUMENT_NAMES,
     };
-    let backend = parse_backend(backend)?;
-    let method = parse_method(method)?;
+    let backend = errors::chosen(backend)?;
+    let method = errors::chosen(method)?;
     if backend == Backend::Cpu && method == Method::Polygon {
         return Err(errors::value(
             "the polygon method runs on the GPU only; use backend=\"gpu\" or \"auto\"",
         ));
     }
-    let view = parse_view(view)?;
+    let view = errors::chosen(view)?;
     let loaded = match &scene {
         SceneArgument::Name(name) => SceneSource::resolve(name)
             .map_err(|e| errors::resolve(&e))
@@ -323,66 +323,5 @@ fn settings(width: u32, height: u32, samples: u32) -> PyResult<RenderSettings> {
         width,
         height,
         samples,
-    })
-}
-
-/// "one of "a", "b"": the names a value may take, for messages.
-fn one_of(names: &[&str]) -> String {
-    names
-        .iter()
-        .map(|n| format!("{n:?}"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// The effect mode called `name`.
-fn parse_effects(name: &str) -> PyResult<Effects> {
-    Effects::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = Effects::ALL.iter().map(|e| e.name()).collect();
-        errors::value(format!("effects {name:?} is none of {}", one_of(&names)))
-    })
-}
-
-/// The surface colour called `name`.
-fn parse_colour(name: &str) -> PyResult<SurfaceColour> {
-    SurfaceColour::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = SurfaceColour::ALL.iter().map(|c| c.name()).collect();
-        errors::value(format!("colour {name:?} is none of {}", one_of(&names)))
-    })
-}
-
-/// The backend called `name`.
-fn parse_backend(name: &str) -> PyResult<Backend> {
-    Ok(match name {
-        "auto" => Backend::Auto,
-        "cpu" => Backend::Cpu,
-        "gpu" => Backend::Gpu,
-        _ => {
-            return Err(errors::value(format!(
-                "backend {name:?} is none of {}",
-                one_of(&["auto", "cpu", "gpu"])
-            )));
-        }
-    })
-}
-
-/// The method called `name`.
-fn parse_method(name: &str) -> PyResult<Method> {
-    let methods = [Method::Auto, Method::Lrt, Method::Rt, Method::Polygon];
-    methods
-        .into_iter()
-        .find(|m| m.name() == name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
-            errors::value(format!("method {name:?} is none of {}", one_of(&names)))
-        })
-}
-
-/// The picture called `name`.
-fn parse_view(name: &str) -> PyResult<View> {
-    let views = [View::Seen, View::Measured, View::Newtonian];
-    views.into_iter().find(|v| v.name() == name).ok_or_else(|| {
-        let names: Vec<&str> = views.iter().map(|v| v.name()).collect();
-        errors::value(format!("view {name:?} is none of {}", one_of(&names)))
     })
 }

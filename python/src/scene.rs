@@ -157,11 +157,7 @@ impl Scene {
 
     #[setter]
     fn set_effects(&mut self, name: &str) -> PyResult<()> {
-        let effects = Effects::from_name(name).ok_or_else(|| {
-            errors::value(format!(
-                "effects {name:?} is none of \"geometry\", \"doppler\", \"searchlight\""
-            ))
-        })?;
+        let effects: Effects = errors::chosen(name)?;
         self.edit(|d| {
             d.render.effects = effects;
             d.render.tone_map = None;
@@ -176,11 +172,7 @@ impl Scene {
 
     #[setter]
     fn set_colour(&mut self, name: &str) -> PyResult<()> {
-        let colour = SurfaceColour::from_name(name).ok_or_else(|| {
-            errors::value(format!(
-                "colour {name:?} is neither \"paper\" nor \"spectral\""
-            ))
-        })?;
+        let colour: SurfaceColour = errors::chosen(name)?;
         self.edit(|d| d.render.colour = colour)
     }
 

@@ -164,13 +164,13 @@ def test_the_gpu_draws_the_display_the_radiance_and_the_time_near_the_cpu():
         ({"beta": (float("nan"), 0.0, 0.0)}, "beta NaN,0.0,0.0 is not a valid velocity"),
         ({"time": float("inf")}, "time must be a finite number"),
         ({"exposure": 2.0}, "exposure"),
-        ({"effects": "glow"}, 'effects "glow" is none of "geometry", "doppler", "searchlight"'),
-        ({"colour": "sepia"}, 'colour "sepia" is none of "paper", "spectral"'),
+        ({"effects": "glow"}, 'unknown effect mode "glow"; expected "geometry", "doppler" or "searchlight"'),
+        ({"colour": "sepia"}, 'unknown surface colour "sepia"; expected "paper" or "spectral"'),
         ({"width": 0}, "width must be 1 to 16384 pixels, got 0"),
         ({"samples": 5000}, "samples must be 1 to 1024, got 5000"),
-        ({"backend": "tpu"}, 'backend "tpu" is none of "auto", "cpu", "gpu"'),
+        ({"backend": "tpu"}, 'unknown backend "tpu"; expected "auto", "cpu" or "gpu"'),
         ({"method": "polygon", "backend": "cpu"}, "the polygon method runs on the GPU only"),
-        ({"view": "sideways"}, 'view "sideways" is none of "seen", "measured", "newtonian"'),
+        ({"view": "sideways"}, 'unknown view "sideways"; expected "seen", "measured" or "newtonian"'),
     ],
 )
 def test_bad_arguments_raise_value_errors_with_srts_message(arguments, message):

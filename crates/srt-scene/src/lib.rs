@@ -4,6 +4,7 @@
 
 pub mod assets;
 pub mod builtin;
+pub mod choice;
 pub mod description;
 pub mod import;
 pub mod input_file;
@@ -20,10 +21,11 @@ pub mod textures;
 pub mod view;
 
 pub use builtin::{BuiltinScene, builtin, builtin_scenes};
+pub use choice::{Choice, UnknownChoice};
 pub use description::{
     LightDescription, LightsDescription, ObjectDescription, ObserverDescription, OverrideNames,
     Overrides, RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind,
-    ShapeDescription, TextureDescription, ValueName, load_scene_file,
+    ShapeDescription, TextureDescription, ValueName, load_scene_file, parse_vector,
 };
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};

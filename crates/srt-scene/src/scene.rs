@@ -39,12 +39,6 @@ impl Effects {
         }
     }
 
-    /// The mode called `name`, if any.
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|e| e.name() == name)
-    }
-
     /// The colour table this mode uses unless the scene overrides it.
     #[must_use]
     pub const fn default_tone_map(self) -> ToneMap {
@@ -78,12 +72,6 @@ impl SurfaceColour {
             Self::Paper => "paper",
             Self::Spectral => "spectral",
         }
-    }
-
-    /// The way called `name`, if any.
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|c| c.name() == name)
     }
 }
 

@@ -3,9 +3,8 @@
 //! and the command draw the same picture; `ct` is `--time`. A key the page does not know, or a
 //! value it cannot read, is refused with a message naming the key.
 
-use glam::DVec3;
 use srt_gpu::Method;
-use srt_scene::{Effects, OverrideNames, Overrides, SurfaceColour};
+use srt_scene::{Choice, OverrideNames, Overrides, parse_vector};
 
 /// The largest canvas side the page draws, in pixels (WebGPU's guaranteed texture size).
 pub const MAX_CANVAS_SIDE: u32 = 8192;
@@ -30,6 +29,36 @@ pub enum BackendChoice {
     /// WebGPU, or an error.
     Webgpu,
 }
+
+impl BackendChoice {
+    /// Every choice, the default first.
+    pub const ALL: [Self; 3] = [Self::Auto, Self::Cpu, Self::Webgpu];
+}
+
+impl Choice for BackendChoice {
+    const WHAT: &'static str = "backend";
+
+    fn all() -> &'static [Self] {
+        &Self::ALL
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Cpu => "cpu",
+            Self::Webgpu => "webgpu",
+        }
+    }
+
+    fn help(self) -> &'static str {
+        match self {
+            Self::Auto => "WebGPU where the browser has it, else the CPU tracer",
+            Self::Cpu => "the exact CPU tracer in a Web Worker",
+            Self::Webgpu => "WebGPU, or an error",
+        }
+    }
+}
+srt_scene::choice_str_traits!(BackendChoice);
 
 /// The settings an address gives.
 #[derive(Debug, Clone, PartialEq)]
@@ -118,50 +147,31 @@ pub fn parse_query(query: &str) -> Result<PageQuery, QueryError> {
         let (key, value) = pair.split_once('=').unwrap_or((pair, ""));
         let key = decode(key);
         let value = decode(value);
-        let bad = |reason: &str| QueryError::Value {
+        let bad = |reason: String| QueryError::Value {
             key: key.clone(),
             value: value.clone(),
-            reason: reason.to_owned(),
+            reason,
         };
+        let rule = |reason: &str| bad(reason.to_owned());
         let overrides = &mut page.overrides;
         match key.as_str() {
             "scene" => page.scene = Some(value.clone()),
-            "width" => width = Some(side(&value).ok_or_else(|| bad(SIDE_RULE))?),
-            "height" => height = Some(side(&value).ok_or_else(|| bad(SIDE_RULE))?),
-            "embed" => page.embed = flag(&value).ok_or_else(|| bad(FLAG_RULE))?,
-            "split" => page.split = flag(&value).ok_or_else(|| bad(FLAG_RULE))?,
-            "backend" => {
-                page.backend = match value.as_str() {
-                    "auto" => BackendChoice::Auto,
-                    "cpu" => BackendChoice::Cpu,
-                    "webgpu" => BackendChoice::Webgpu,
-                    _ => return Err(bad("the backend is auto, cpu or webgpu")),
-                };
-            }
-            "method" => {
-                page.method = Method::from_name(&value)
-                    .ok_or_else(|| bad("the method is auto, lrt, rt or polygon"))?;
-            }
-            "ct" => overrides.time = Some(number(&value).ok_or_else(|| bad(NUMBER_RULE))?),
+            "width" => width = Some(side(&value).ok_or_else(|| rule(SIDE_RULE))?),
+            "height" => height = Some(side(&value).ok_or_else(|| rule(SIDE_RULE))?),
+            "embed" => page.embed = flag(&value).ok_or_else(|| rule(FLAG_RULE))?,
+            "split" => page.split = flag(&value).ok_or_else(|| rule(FLAG_RULE))?,
+            "backend" => page.backend = chosen(&value).map_err(bad)?,
+            "method" => page.method = chosen(&value).map_err(bad)?,
+            "ct" => overrides.time = Some(number(&value).ok_or_else(|| rule(NUMBER_RULE))?),
             "exposure" => {
-                overrides.exposure = Some(number(&value).ok_or_else(|| bad(NUMBER_RULE))?);
+                overrides.exposure = Some(number(&value).ok_or_else(|| rule(NUMBER_RULE))?);
             }
-            "beta" => overrides.beta = Some(vector(&value).ok_or_else(|| bad(VECTOR_RULE))?),
+            "beta" => overrides.beta = Some(parse_vector(&value).map_err(bad)?),
             "observer_beta" => {
-                overrides.observer_beta = Some(vector(&value).ok_or_else(|| bad(VECTOR_RULE))?);
+                overrides.observer_beta = Some(parse_vector(&value).map_err(bad)?);
             }
-            "effects" => {
-                overrides.effects = Some(
-                    Effects::from_name(&value)
-                        .ok_or_else(|| bad("the effects are geometry, doppler or searchlight"))?,
-                );
-            }
-            "colour" => {
-                overrides.colour = Some(
-                    SurfaceColour::from_name(&value)
-                        .ok_or_else(|| bad("the colour is paper or spectral"))?,
-                );
-            }
+            "effects" => overrides.effects = Some(chosen(&value).map_err(bad)?),
+            "colour" => overrides.colour = Some(chosen(&value).map_err(bad)?),
             _ => return Err(QueryError::UnknownKey(key)),
         }
     }
@@ -182,7 +192,6 @@ pub fn parse_query(query: &str) -> Result<PageQuery, QueryError> {
 const SIDE_RULE: &str = "a canvas side is a whole number of pixels from 1 to 8192";
 const FLAG_RULE: &str = "a switch is 1 or 0";
 const NUMBER_RULE: &str = "not a finite number";
-const VECTOR_RULE: &str = "a velocity is three numbers separated by commas, e.g. 0,0,0.9";
 
 fn decode(text: &str) -> String {
     percent_encoding::percent_decode_str(&text.replace('+', " "))
@@ -209,13 +218,16 @@ fn number(value: &str) -> Option<f64> {
     value.trim().parse::<f64>().ok().filter(|x| x.is_finite())
 }
 
-fn vector(value: &str) -> Option<DVec3> {
-    let parts: Vec<f64> = value.split(',').map(number).collect::<Option<_>>()?;
-    <[f64; 3]>::try_from(parts).ok().map(DVec3::from_array)
+/// The choice called `value`, or the message naming the choices there are.
+fn chosen<T: Choice>(value: &str) -> Result<T, String> {
+    T::parse(value).map_err(|unknown| unknown.to_string())
 }
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+    use srt_scene::{Effects, SurfaceColour};
+
     use super::*;
 
     #[test]

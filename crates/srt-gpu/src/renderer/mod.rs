@@ -116,12 +116,6 @@ impl Method {
     /// Every method, the default first.
     pub const ALL: [Self; 4] = [Self::Auto, Self::Lrt, Self::Rt, Self::Polygon];
 
-    /// The method called `name` ([`Method::name`]), if there is one.
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|method| method.name() == name)
-    }
-
     /// The name used on the command line.
     #[must_use]
     pub const fn name(self) -> &'static str {
@@ -133,6 +127,37 @@ impl Method {
         }
     }
 }
+
+impl srt_scene::Choice for Method {
+    const WHAT: &'static str = "method";
+
+    fn all() -> &'static [Self] {
+        &Self::ALL
+    }
+
+    fn name(self) -> &'static str {
+        Self::name(self)
+    }
+
+    fn help(self) -> &'static str {
+        match self {
+            Self::Auto => {
+                "exact per pixel, each object by whichever of lrt and rt is faster for it in each frame"
+            }
+            Self::Lrt => {
+                "local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes)"
+            }
+            Self::Rt => {
+                "ray tracing through a BVH per object in its rest frame: exact per pixel like lrt, \
+                 faster for deep models and objects passing the camera"
+            }
+            Self::Polygon => {
+                "per-vertex polygon rendering (§3.2), the approximate baseline; GPU only"
+            }
+        }
+    }
+}
+srt_scene::choice_str_traits!(Method);
 
 /// Which footprint the LRT pass rasterises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -35,7 +35,7 @@ pub use model::{
     ObserverDescription, RenderDescription, Scale, SceneDescription, ShapeDescription,
     SkyDescription, SpinDescription, TextureDescription, ThrustDescription,
 };
-pub use overrides::{OverrideNames, Overrides};
+pub use overrides::{OverrideNames, Overrides, parse_vector};
 pub use validate::{ValueName, observation_time, velocity};
 
 /// Up direction of the observer's camera when a scene file gives none: +z.

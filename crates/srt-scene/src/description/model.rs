@@ -232,13 +232,13 @@ impl<'de> Deserialize<'de> for LightsDescription {
 #[serde(deny_unknown_fields)]
 pub struct RenderDescription {
     /// Which relativistic effects the colours show.
-    #[serde(default, with = "effects_name")]
+    #[serde(default, with = "crate::choice::by_name")]
     pub effects: Effects,
     /// Colour table; `None` means the effect mode's ([`Effects::default_tone_map`]).
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
-        with = "tone_map_name"
+        with = "crate::choice::by_optional_name"
     )]
     pub tone_map: Option<ToneMap>,
     /// Display colour (sRGB, components in [0, 1]) where no object is seen.
@@ -257,7 +257,7 @@ pub struct RenderDescription {
     #[serde(default = "default_shininess")]
     pub shininess: f64,
     /// How lit surfaces are coloured: the paper's shortcut or spectral reflectance.
-    #[serde(default, with = "surface_colour_name")]
+    #[serde(default, with = "crate::choice::by_name")]
     pub colour: SurfaceColour,
     /// Multiplier on the light before the tone map (> 0; only with spectral colour).
     #[serde(default = "default_exposure")]
@@ -650,84 +650,6 @@ impl<'de> Deserialize<'de> for Scale {
             }
         }
         deserializer.deserialize_any(ScaleVisitor)
-    }
-}
-
-mod effects_name {
-    //! Serde for [`Effects`] by its scene-file name.
-    use serde::{Deserialize, Deserializer, Serializer, de};
-
-    use crate::scene::Effects;
-
-    pub(super) fn serialize<S: Serializer>(effects: &Effects, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(effects.name())
-    }
-
-    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Effects, D::Error> {
-        let name = String::deserialize(d)?;
-        Effects::from_name(&name).ok_or_else(|| {
-            de::Error::custom(format!(
-                "unknown effect mode \"{name}\"; expected \"geometry\", \"doppler\" or \"searchlight\""
-            ))
-        })
-    }
-}
-
-mod surface_colour_name {
-    //! Serde for [`SurfaceColour`] by its scene-file name.
-    use serde::{Deserialize, Deserializer, Serializer, de};
-
-    use crate::scene::SurfaceColour;
-
-    pub(super) fn serialize<S: Serializer>(
-        colour: &SurfaceColour,
-        s: S,
-    ) -> Result<S::Ok, S::Error> {
-        s.serialize_str(colour.name())
-    }
-
-    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<SurfaceColour, D::Error> {
-        let name = String::deserialize(d)?;
-        SurfaceColour::from_name(&name).ok_or_else(|| {
-            de::Error::custom(format!(
-                "unknown surface colour \"{name}\"; expected \"paper\" or \"spectral\""
-            ))
-        })
-    }
-}
-
-mod tone_map_name {
-    //! Serde for an optional [`ToneMap`] by its name.
-    use serde::{Deserialize, Deserializer, Serializer, de};
-    use srt_color::ToneMap;
-
-    #[expect(
-        clippy::ref_option,
-        reason = "serde's serialize_with passes a reference"
-    )]
-    pub(super) fn serialize<S: Serializer>(
-        tone_map: &Option<ToneMap>,
-        s: S,
-    ) -> Result<S::Ok, S::Error> {
-        match tone_map {
-            Some(t) => s.serialize_str(t.name()),
-            None => s.serialize_none(),
-        }
-    }
-
-    pub(super) fn deserialize<'de, D: Deserializer<'de>>(
-        d: D,
-    ) -> Result<Option<ToneMap>, D::Error> {
-        let name = String::deserialize(d)?;
-        ToneMap::ALL
-            .into_iter()
-            .find(|t| t.name() == name)
-            .map(Some)
-            .ok_or_else(|| {
-                de::Error::custom(format!(
-                    "unknown tone map \"{name}\"; expected \"luminance\" or \"searchlight\""
-                ))
-            })
     }
 }
 

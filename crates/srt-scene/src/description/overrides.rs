@@ -72,6 +72,29 @@ impl Default for OverrideNames {
     }
 }
 
+/// Reads "X,Y,Z" (spaces allowed around each number) as a vector of three finite numbers: a
+/// velocity as the command line's `--beta` and the page's `beta=` take it.
+///
+/// # Errors
+/// What is wrong with `text`: not three parts, or a part that is not a finite number.
+pub fn parse_vector(text: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(format!(
+            "expected three comma-separated numbers X,Y,Z, got {text:?}"
+        ));
+    };
+    let number = |s: &str| -> Result<f64, String> {
+        let v: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(format!("{s:?} is not a finite number"))
+        }
+    };
+    Ok(DVec3::new(number(x)?, number(y)?, number(z)?))
+}
+
 impl Overrides {
     /// Edits `description` with these values and validates the result
     /// ([`SceneDescription::validate`]'s rules), naming every overridden value by its option.
