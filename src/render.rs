@@ -56,11 +56,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             output
         }
     };
-    let settings = RenderSettings {
-        width: args.width,
-        height: args.height,
-        samples: args.samples,
-    };
+    let settings = settings_of(args);
     let view = args.view;
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
@@ -91,77 +87,137 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         args.t0.unwrap_or(scene.observer.ct),
     )?;
     let t1 = observation_time(ValueName::Option("--t1"), args.t1.unwrap_or(t0 + 10.0))?;
-    let time_of = |frame: u32| {
-        let fraction = if frames > 1 {
-            f64::from(frame) / f64::from(frames - 1)
+    let sweep = Sweep {
+        frames,
+        t0,
+        t1,
+        view,
+    };
+    match animation {
+        Animation::Images(shard) => render_numbered(
+            &mut engine,
+            &mut scene,
+            &sweep,
+            shard,
+            &output,
+            &record,
+            args,
+        ),
+        Animation::Video => render_video(&mut engine, &mut scene, &sweep, &output, args),
+    }
+}
+
+/// An animation's frames: `frames` observation times from `t0` to `t1`, in `view`.
+struct Sweep {
+    frames: u32,
+    t0: f64,
+    t1: f64,
+    view: View,
+}
+
+impl Sweep {
+    /// The observation time of frame `frame` (0-based): evenly spaced, the last at `t1`.
+    fn time_of(&self, frame: u32) -> f64 {
+        let fraction = if self.frames > 1 {
+            f64::from(frame) / f64::from(self.frames - 1)
         } else {
             0.0
         };
-        t0 + fraction * (t1 - t0)
-    };
-    let start = Instant::now();
-    match animation {
-        Animation::Images(shard) => {
-            let digits = frames.to_string().len().max(4);
-            let share: Vec<u32> = shard.frames(frames).collect();
-            if share.is_empty() {
-                println!(
-                    "share {}/{} gets none of the {frames} frames; nothing to render",
-                    shard.index(),
-                    shard.count()
-                );
-            }
-            let bar = DelayedBar::new(
-                share.len() as u64,
-                "frames",
-                format!("rendering {}", scene.name),
-            );
-            for frame in share {
-                let frame_start = Instant::now();
-                scene.observer.ct = time_of(frame);
-                let frame_scene = viewed(view, &scene)?;
-                let traced = Frame::new(&frame_scene);
-                let pixels = render_pixels(&mut engine, &traced, settings, false)?;
-                let record = record.with(&[
-                    ("time", format!("{:?}", scene.observer.ct)),
-                    ("frame", format!("{frame} of 0 to {}", frames - 1)),
-                ]);
-                let path = numbered(&output, frame, digits);
-                let layers = exr_layers_for(&mut engine, &path, &traced, settings, args.aov)?;
-                let (width, height) = (settings.width, settings.height);
-                write_image(width, height, &pixels, layers.as_ref(), &record, &path)?;
-                bar.println(&wrote(&path, settings, &engine, frame_start));
-                bar.inc();
-            }
-            bar.finish();
-        }
-        Animation::Video => {
-            let mut video =
-                VideoWriter::create(&output, settings.width, settings.height, args.video.fps)?;
-            let bar = DelayedBar::new(
-                u64::from(frames),
-                "frames",
-                format!("rendering {}", scene.name),
-            );
-            for frame in 0..frames {
-                scene.observer.ct = time_of(frame);
-                let frame_scene = viewed(view, &scene)?;
-                let pixels =
-                    render_pixels(&mut engine, &Frame::new(&frame_scene), settings, false)?;
-                video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
-                bar.inc();
-            }
-            bar.finish();
-            video.finish()?;
-            println!(
-                "wrote {} ({frames} frames at {} fps, ct {t0:?} to {t1:?}; {})",
-                output.display(),
-                args.video.fps,
-                details(settings, &engine, start)
-            );
-        }
+        self.t0 + fraction * (self.t1 - self.t0)
     }
+}
+
+/// Renders `shard`'s share of the sweep as numbered images beside `output`.
+fn render_numbered(
+    engine: &mut Engine,
+    scene: &mut Scene,
+    sweep: &Sweep,
+    shard: Shard,
+    output: &Path,
+    record: &Provenance,
+    args: &RenderArgs,
+) -> anyhow::Result<()> {
+    let settings = settings_of(args);
+    let frames = sweep.frames;
+    let digits = frames.to_string().len().max(4);
+    let share: Vec<u32> = shard.frames(frames).collect();
+    if share.is_empty() {
+        println!(
+            "share {}/{} gets none of the {frames} frames; nothing to render",
+            shard.index(),
+            shard.count()
+        );
+    }
+    let bar = DelayedBar::new(
+        share.len() as u64,
+        "frames",
+        format!("rendering {}", scene.name),
+    );
+    for frame in share {
+        let frame_start = Instant::now();
+        scene.observer.ct = sweep.time_of(frame);
+        let frame_scene = viewed(sweep.view, scene)?;
+        let traced = Frame::new(&frame_scene);
+        let pixels = render_pixels(engine, &traced, settings, false)?;
+        let record = record.with(&[
+            ("time", format!("{:?}", scene.observer.ct)),
+            ("frame", format!("{frame} of 0 to {}", frames - 1)),
+        ]);
+        let path = numbered(output, frame, digits);
+        let layers = exr_layers_for(engine, &path, &traced, settings, args.aov)?;
+        let (width, height) = (settings.width, settings.height);
+        write_image(width, height, &pixels, layers.as_ref(), &record, &path)?;
+        bar.println(&wrote(&path, settings, engine, frame_start));
+        bar.inc();
+    }
+    bar.finish();
     Ok(())
+}
+
+/// Renders the sweep as one video, `output`.
+fn render_video(
+    engine: &mut Engine,
+    scene: &mut Scene,
+    sweep: &Sweep,
+    output: &Path,
+    args: &RenderArgs,
+) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let settings = settings_of(args);
+    let mut video = VideoWriter::create(output, settings.width, settings.height, args.video.fps)?;
+    let bar = DelayedBar::new(
+        u64::from(sweep.frames),
+        "frames",
+        format!("rendering {}", scene.name),
+    );
+    for frame in 0..sweep.frames {
+        scene.observer.ct = sweep.time_of(frame);
+        let frame_scene = viewed(sweep.view, scene)?;
+        let pixels = render_pixels(engine, &Frame::new(&frame_scene), settings, false)?;
+        video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
+        bar.inc();
+    }
+    bar.finish();
+    video.finish()?;
+    println!(
+        "wrote {} ({} frames at {} fps, ct {:?} to {:?}; {})",
+        output.display(),
+        sweep.frames,
+        args.video.fps,
+        sweep.t0,
+        sweep.t1,
+        details(settings, engine, start)
+    );
+    Ok(())
+}
+
+/// The picture size and samples the options ask for.
+const fn settings_of(args: &RenderArgs) -> RenderSettings {
+    RenderSettings {
+        width: args.width,
+        height: args.height,
+        samples: args.samples,
+    }
 }
 
 /// Checks --frames, --shard and a video output against each other and the picture size, before

@@ -38,6 +38,8 @@ mod results;
 mod summary;
 mod throughput;
 
+pub use document::BENCH_FRAMES_RECORD;
+
 use std::path::Path;
 use std::time::Instant;
 

@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use anyhow::Context as _;
-use glam::{DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3};
 use image::RgbImage;
 use srt_gpu::culling::BackFaceCulling;
 use srt_gpu::probe::{
@@ -33,10 +33,12 @@ use srt_gpu::probe::{
     run_physics_probe, run_spectral_probe, seeded_cases, spectral_seeded_cases,
 };
 use srt_gpu::projection::view_projection;
+use srt_gpu::types::GpuFootprint;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
+use srt_physics::{Event, Frame};
 use srt_proxy::{Viewport, footprint};
 use srt_scene::Scene;
-use srt_trace::compare::{compare, compare_radiance, compare_seen};
+use srt_trace::compare::{Mismatch, compare, compare_radiance, compare_seen};
 use srt_trace::{Output, RenderSettings, Tracer};
 
 use crate::cases::{Case, ENGINE, builtin_cases, fly_by_cases, model_case, with_speed};
@@ -144,7 +146,7 @@ fn fastest(scene: &Scene) -> f64 {
 /// `cargo xtask validate --bench-frames`: every frame `cargo xtask bench` times, at its size,
 /// rendered by every exact method and compared with the CPU reference under the rules of the
 /// image cases. Records each frame's verdict, with the commit and the date, in
-/// [`BENCH_FRAMES_RECORD`] (rewritten after every frame, so that a run cut short keeps its
+/// [`crate::bench::BENCH_FRAMES_RECORD`] (rewritten after every frame, so that a run cut short keeps its
 /// verdicts), from which the bench's table says which lines were validated.
 ///
 /// # Errors
@@ -170,7 +172,7 @@ pub fn run_bench_frames(
         .into_iter()
         .filter(|(case, _)| only.is_none_or(|o| case.name.contains(o)))
         .collect();
-    let path = workspace.join(BENCH_FRAMES_RECORD);
+    let path = workspace.join(crate::bench::BENCH_FRAMES_RECORD);
     let mut renderers = KeptRenderer::default();
     for (case, size) in &frames {
         let failed = validate_image(
@@ -203,10 +205,6 @@ pub fn run_bench_frames(
         )
     }
 }
-
-/// Where `validate --bench-frames` records its verdicts (relative to the workspace): a header
-/// line `# commit=HASH date=YYYY-MM-DD`, then one line per frame, `NAME<TAB>WxH<TAB>pass|FAIL`.
-pub const BENCH_FRAMES_RECORD: &str = "target/validate/bench-frames.tsv";
 
 /// Physics kernels, colour-table sampling and spectral colour.
 fn validate_kernels(ctx: &GpuContext) -> anyhow::Result<Vec<String>> {
@@ -337,57 +335,13 @@ fn validate_footprints(
                 }
                 split += usize::from(cpu.split);
                 pieces += drawn.pieces.len();
-                // Every footprint drawn for the triangle: its own and its pieces'.
-                let drawn_shapes: Vec<(Vec<DVec2>, [f32; 4])> = std::iter::once(g)
-                    .chain(&drawn.pieces)
-                    .map(|f| {
-                        let hull = f.hull[..f.hull_len as usize]
-                            .iter()
-                            .map(|h| DVec2::new(f64::from(h[0]), f64::from(h[1])))
-                            .collect();
-                        (hull, f.rect)
-                    })
-                    .collect();
-                // The curved apparent triangle, in f64, sampled densely along its edges and
-                // over its interior: every sample that lands on the screen must lie inside the
-                // rectangle and hull of one of the GPU's footprints of it (off-screen parts
-                // cannot produce fragments).
-                let boundary = (0..3).flat_map(|k| {
-                    let (a, b) = (corners[k], corners[(k + 1) % 3]);
-                    (0..EDGE_SAMPLES)
-                        .map(move |s| a + (b - a) * (f64::from(s) / f64::from(EDGE_SAMPLES)))
-                });
-                let interior = (0..=EDGE_SAMPLES).flat_map(|i| {
-                    (0..=EDGE_SAMPLES - i).map(move |j| {
-                        let (u, v) = (
-                            f64::from(i) / f64::from(EDGE_SAMPLES),
-                            f64::from(j) / f64::from(EDGE_SAMPLES),
-                        );
-                        corners[0] + u * (corners[1] - corners[0]) + v * (corners[2] - corners[0])
-                    })
-                });
-                // Only points on the screen can be seen at a pixel centre.
-                let on_screen = |q: DVec2| {
-                    q.x >= 0.0 && q.y >= 0.0 && q.x <= viewport.width && q.y <= viewport.height
-                };
-                let inside = |q: DVec2, (hull, rect): &(Vec<DVec2>, [f32; 4])| {
-                    srt_proxy::hull_contains(hull, q, HULL_TOLERANCE)
-                        && q.x >= f64::from(rect[0]) - HULL_TOLERANCE
-                        && q.y >= f64::from(rect[1]) - HULL_TOLERANCE
-                        && q.x <= f64::from(rect[2]) + HULL_TOLERANCE
-                        && q.y <= f64::from(rect[3]) + HULL_TOLERANCE
-                };
-                let mut outside = false;
-                for rest in boundary.chain(interior) {
-                    let seen = object.frame.apparent_position(rest, observer);
-                    // Behind the camera or off screen: never seen.
-                    let Some(q) = srt_proxy::project(view_projection, viewport, seen) else {
-                        continue;
-                    };
-                    if on_screen(q) && !drawn_shapes.iter().any(|shape| inside(q, shape)) {
-                        outside = true;
-                    }
-                }
+                let outside = escapes_footprints(
+                    &object.frame,
+                    corners,
+                    observer,
+                    (view_projection, viewport),
+                    std::iter::once(g).chain(&drawn.pieces),
+                );
                 not_conservative += usize::from(outside);
                 if outside && std::env::var_os("SRT_VALIDATE_DEBUG").is_some() {
                     eprintln!("triangle {t}: outside\n  gpu {drawn:?}\n  cpu {cpu:?}");
@@ -396,20 +350,7 @@ fn validate_footprints(
                     // Clamped to the screen, split, or empty: no margin to measure.
                     continue;
                 }
-                // How much larger the GPU's rectangle is than the f64 one, on the screen.
-                let cpu_rect = cpu.rect.clamped(viewport);
-                let gpu_rect = srt_proxy::Rect {
-                    min: DVec2::new(f64::from(g.rect[0]), f64::from(g.rect[1])),
-                    max: DVec2::new(f64::from(g.rect[2]), f64::from(g.rect[3])),
-                }
-                .clamped(viewport);
-                let excess = [
-                    cpu_rect.min.x - gpu_rect.min.x,
-                    cpu_rect.min.y - gpu_rect.min.y,
-                    gpu_rect.max.x - cpu_rect.max.x,
-                    gpu_rect.max.y - cpu_rect.max.y,
-                ];
-                worst_excess = excess.into_iter().fold(worst_excess, f64::max);
+                worst_excess = worst_excess.max(rect_excess(&cpu.rect, g.rect, viewport));
             }
         }
     }
@@ -425,6 +366,74 @@ fn validate_footprints(
     } else {
         Vec::new()
     })
+}
+
+/// Whether the curved apparent triangle of `corners` (in `frame`'s rest coordinates), sampled
+/// densely in f64 along its edges and over its interior, has a point on the screen outside every
+/// one of `footprints` (the GPU's footprint of the triangle and its pieces'): a footprint that is
+/// not conservative. Off-screen points and points behind the camera cannot produce fragments.
+fn escapes_footprints<'a>(
+    frame: &Frame,
+    corners: [DVec3; 3],
+    observer: Event,
+    (view_projection, viewport): (DMat4, Viewport),
+    footprints: impl Iterator<Item = &'a GpuFootprint>,
+) -> bool {
+    let shapes: Vec<(Vec<DVec2>, [f32; 4])> = footprints
+        .map(|f| {
+            let hull = f.hull[..f.hull_len as usize]
+                .iter()
+                .map(|h| DVec2::new(f64::from(h[0]), f64::from(h[1])))
+                .collect();
+            (hull, f.rect)
+        })
+        .collect();
+    let boundary = (0..3).flat_map(|k| {
+        let (a, b) = (corners[k], corners[(k + 1) % 3]);
+        (0..EDGE_SAMPLES).map(move |s| a + (b - a) * (f64::from(s) / f64::from(EDGE_SAMPLES)))
+    });
+    let interior = (0..=EDGE_SAMPLES).flat_map(|i| {
+        (0..=EDGE_SAMPLES - i).map(move |j| {
+            let (u, v) = (
+                f64::from(i) / f64::from(EDGE_SAMPLES),
+                f64::from(j) / f64::from(EDGE_SAMPLES),
+            );
+            corners[0] + u * (corners[1] - corners[0]) + v * (corners[2] - corners[0])
+        })
+    });
+    let on_screen =
+        |q: DVec2| q.x >= 0.0 && q.y >= 0.0 && q.x <= viewport.width && q.y <= viewport.height;
+    let inside = |q: DVec2, (hull, rect): &(Vec<DVec2>, [f32; 4])| {
+        srt_proxy::hull_contains(hull, q, HULL_TOLERANCE)
+            && q.x >= f64::from(rect[0]) - HULL_TOLERANCE
+            && q.y >= f64::from(rect[1]) - HULL_TOLERANCE
+            && q.x <= f64::from(rect[2]) + HULL_TOLERANCE
+            && q.y <= f64::from(rect[3]) + HULL_TOLERANCE
+    };
+    boundary.chain(interior).any(|rest| {
+        let seen = frame.apparent_position(rest, observer);
+        srt_proxy::project(view_projection, viewport, seen)
+            .is_some_and(|q| on_screen(q) && !shapes.iter().any(|shape| inside(q, shape)))
+    })
+}
+
+/// How much larger the GPU's rectangle `gpu` is than the f64 one, `cpu`, on the screen: the
+/// largest of its four margins, in pixels.
+fn rect_excess(cpu: &srt_proxy::Rect, gpu: [f32; 4], viewport: Viewport) -> f64 {
+    let cpu_rect = cpu.clamped(viewport);
+    let gpu_rect = srt_proxy::Rect {
+        min: DVec2::new(f64::from(gpu[0]), f64::from(gpu[1])),
+        max: DVec2::new(f64::from(gpu[2]), f64::from(gpu[3])),
+    }
+    .clamped(viewport);
+    [
+        cpu_rect.min.x - gpu_rect.min.x,
+        cpu_rect.min.y - gpu_rect.min.y,
+        gpu_rect.max.x - cpu_rect.max.x,
+        gpu_rect.max.y - cpu_rect.max.y,
+    ]
+    .into_iter()
+    .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// What [`validate_image`] compares with the CPU reference.
@@ -488,40 +497,11 @@ fn validate_image(
     let polygon_mismatch = polygon_rgb.as_ref().map_or(f64::NAN, |rgb| {
         compare(&reference, rgb, TOLERANCE, EDGE_MARGIN).fraction()
     });
-    let mut further_mismatches = Vec::new();
-    if compared == Compared::Everything {
-        let mut reference = tracer.render_radiance(settings, &|_| {});
-        // As the GPU's colour target holds it: each channel's magnitude at most its largest
-        // value (f32's, as an EXR holds it, or a half float's).
-        let largest = f64::from(srt_gpu::formats::largest_value(ctx.color_format));
-        for pixel in &mut reference.pixels {
-            *pixel = pixel.clamp(DVec3::splat(-largest), DVec3::splat(largest));
-        }
-        for method in [Method::Lrt, Method::Rt, Method::Auto] {
-            let (image, _) =
-                renderer.render_as(ctx, scene, method, FootprintShape::Hull, Output::Radiance)?;
-            let pixels: Vec<DVec3> = image
-                .pixels
-                .iter()
-                .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
-                .collect();
-            let mismatch = compare_radiance(
-                &reference,
-                &pixels,
-                RADIANCE_TOLERANCE,
-                RADIANCE_FLOOR,
-                EDGE_MARGIN,
-            );
-            further_mismatches.push((format!("{}_radiance", method.name()), mismatch));
-        }
-        let events = tracer.render_seen_events(width, height, &|_| {}, &AtomicBool::new(false));
-        let events = events.context("a render without a stop flag finishes")?;
-        for method in [Method::Lrt, Method::Rt, Method::Auto] {
-            let seen = renderer.render_seen(ctx, scene, method, FootprintShape::Hull)?;
-            let mismatch = compare_seen(&reference, &events, &seen, SEEN_TOLERANCE, EDGE_MARGIN);
-            further_mismatches.push((format!("{}_seen", method.name()), mismatch));
-        }
-    }
+    let further_mismatches = if compared == Compared::Everything {
+        further_mismatches(ctx, renderer, scene, &tracer, settings)?
+    } else {
+        Vec::new()
+    };
     let traced = renderer.auto_traced_objects();
     let further_report: String = further_mismatches
         .iter()
@@ -539,38 +519,11 @@ fn validate_image(
         "{}_{width}x{height}_b{speed:.2}",
         case.name.replace(['.', ' ', '@', '='], "_")
     );
-    let reference_rgb = reference.to_rgb8();
-    save(
-        out.join(format!("{stem}_reference.png")),
-        width,
-        height,
-        &reference_rgb,
-    )?;
-    save(
-        out.join(format!("{stem}_actual.png")),
-        width,
-        height,
-        &lrt_rgb,
-    )?;
-    save(out.join(format!("{stem}_rt.png")), width, height, &rt_rgb)?;
-    if let Some(polygon_rgb) = &polygon_rgb {
-        save(
-            out.join(format!("{stem}_polygon.png")),
-            width,
-            height,
-            polygon_rgb,
-        )?;
-    }
-    let difference: Vec<[u8; 3]> = reference_rgb
-        .iter()
-        .zip(&lrt_rgb)
-        .map(|(a, b)| [0, 1, 2].map(|c| a[c].abs_diff(b[c]).saturating_mul(16)))
-        .collect();
-    save(
-        out.join(format!("{stem}_difference.png")),
-        width,
-        height,
-        &difference,
+    save_images(
+        &out.join(stem),
+        (width, height),
+        &reference.to_rgb8(),
+        [Some(&lrt_rgb), Some(&rt_rgb), polygon_rgb.as_ref()],
     )?;
     let display = [
         ("LRT", mismatch.fraction()),
@@ -600,6 +553,83 @@ fn validate_image(
         })
         .chain(nearer)
         .collect())
+}
+
+/// The exact methods' radiance against the CPU's ([`compare_radiance`], relative, the reference
+/// clamped as the GPU's colour target holds it) and what their pixels see of time
+/// ([`compare_seen`]), each named as validate reports it (`lrt_radiance`, `rt_seen`, …).
+fn further_mismatches(
+    ctx: &GpuContext,
+    renderer: &mut GpuRenderer,
+    scene: &Scene,
+    tracer: &Tracer<'_>,
+    settings: RenderSettings,
+) -> anyhow::Result<Vec<(String, Mismatch<f64>)>> {
+    let (width, height) = (settings.width, settings.height);
+    let mut further_mismatches = Vec::new();
+    let mut reference = tracer.render_radiance(settings, &|_| {});
+    // As the GPU's colour target holds it: each channel's magnitude at most its largest
+    // value (f32's, as an EXR holds it, or a half float's).
+    let largest = f64::from(srt_gpu::formats::largest_value(ctx.color_format));
+    for pixel in &mut reference.pixels {
+        *pixel = pixel.clamp(DVec3::splat(-largest), DVec3::splat(largest));
+    }
+    for method in [Method::Lrt, Method::Rt, Method::Auto] {
+        let (image, _) =
+            renderer.render_as(ctx, scene, method, FootprintShape::Hull, Output::Radiance)?;
+        let pixels: Vec<DVec3> = image
+            .pixels
+            .iter()
+            .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
+            .collect();
+        let mismatch = compare_radiance(
+            &reference,
+            &pixels,
+            RADIANCE_TOLERANCE,
+            RADIANCE_FLOOR,
+            EDGE_MARGIN,
+        );
+        further_mismatches.push((format!("{}_radiance", method.name()), mismatch));
+    }
+    let events = tracer.render_seen_events(width, height, &|_| {}, &AtomicBool::new(false));
+    let events = events.context("a render without a stop flag finishes")?;
+    for method in [Method::Lrt, Method::Rt, Method::Auto] {
+        let seen = renderer.render_seen(ctx, scene, method, FootprintShape::Hull)?;
+        let mismatch = compare_seen(&reference, &events, &seen, SEEN_TOLERANCE, EDGE_MARGIN);
+        further_mismatches.push((format!("{}_seen", method.name()), mismatch));
+    }
+    Ok(further_mismatches)
+}
+
+/// Saves a case's images beside `stem` (a path without extension): the CPU reference, LRT's
+/// image (`_actual`), the ray tracer's, the polygon method's where there is one, and LRT's
+/// difference from the reference, 16× amplified.
+fn save_images(
+    stem: &Path,
+    (width, height): (u32, u32),
+    reference: &[[u8; 3]],
+    [lrt, rt, polygon]: [Option<&Vec<[u8; 3]>>; 3],
+) -> anyhow::Result<()> {
+    let named = |suffix: &str| {
+        let mut name = stem.as_os_str().to_owned();
+        name.push(format!("_{suffix}.png"));
+        PathBuf::from(name)
+    };
+    save(named("reference"), width, height, reference)?;
+    for (suffix, image) in [("actual", lrt), ("rt", rt), ("polygon", polygon)] {
+        if let Some(image) = image {
+            save(named(suffix), width, height, image)?;
+        }
+    }
+    if let Some(lrt) = lrt {
+        let difference: Vec<[u8; 3]> = reference
+            .iter()
+            .zip(lrt)
+            .map(|(a, b)| [0, 1, 2].map(|c| a[c].abs_diff(b[c]).saturating_mul(16)))
+            .collect();
+        save(named("difference"), width, height, &difference)?;
+    }
+    Ok(())
 }
 
 fn save(path: PathBuf, width: u32, height: u32, pixels: &[[u8; 3]]) -> anyhow::Result<()> {

@@ -9,7 +9,7 @@
 use std::ops::Range;
 
 use crate::pipelines::{BindGroupSpec, PipelineSpec, Slot};
-use crate::shaders::{self, Shader};
+use crate::shaders;
 
 /// The display pass's only binding: the frame to show.
 const SOURCE_GROUP: BindGroupSpec = BindGroupSpec {
@@ -30,22 +30,12 @@ const SOURCE_GROUP: BindGroupSpec = BindGroupSpec {
 /// Entry points of the display pass (vertex, fragment).
 const ENTRIES: [&str; 2] = ["display_vertex", "display_fragment"];
 
-/// The display pass's shader.
-#[must_use]
-pub fn shader() -> Shader {
-    Shader {
-        name: "display".into(),
-        source: shaders::DISPLAY.to_owned(),
-        overrides: Vec::new(),
-    }
-}
-
 /// The display pipeline as its bindings see it, for reflection against the WGSL.
 #[must_use]
 pub fn spec() -> PipelineSpec {
     PipelineSpec {
         label: "srt display",
-        shader: shader(),
+        shader: shaders::display(),
         entry_points: &ENTRIES,
         groups: vec![SOURCE_GROUP],
     }
@@ -63,7 +53,7 @@ impl DisplayPass {
     #[must_use]
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
         let layout = SOURCE_GROUP.create_layout(device);
-        let shader = shader();
+        let shader = shaders::display();
         let module = shader.module(device);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("srt display"),

@@ -44,7 +44,7 @@ pub const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The pinhole camera: viewing directions through pixels and back.
 pub const CAMERA: &str = include_str!("../shaders/camera.wgsl");
 
-/// Showing a frame: display colours into an 8-bit target (see [`crate::display`]).
+/// Showing a frame: display colours into an 8-bit target (the `display` module draws it).
 pub const DISPLAY: &str = include_str!("../shaders/display.wgsl");
 
 /// Invocations per workgroup of every compute entry point (WGSL `override WORKGROUP_SIZE`).
@@ -102,13 +102,23 @@ const SPECTRAL_OVERRIDES: [Override; 6] = [
     ("INFRARED_ABOVE_NM", srt_color::spectral::INFRARED_ABOVE_NM),
 ];
 
+/// The relative margin of the shadow test (WGSL override `SHADOW_MARGIN`): a triangle blocks the
+/// segment from the surface event to the light's retarded event (in its object's rest frame)
+/// only where it crosses it more than `SHADOW_MARGIN · (1 + length + max|from|)` from either
+/// end. The CPU takes 10⁻⁹ (f64); in f32 the surface point itself is known to a few ulps of
+/// its coordinates (about 10⁻⁶ relative), and a segment leaving the surface at an angle θ meets
+/// its own face that far over sin θ from its start: 10⁻⁴ keeps points from shadowing themselves
+/// down to grazing angles of about 10⁻², where the light is dim anyway, and misses a blocker only
+/// within 10⁻⁴ of the scene's size of the lit point (far below a pixel in srt's scenes).
+pub const SHADOW_MARGIN: f32 = 1e-4;
+
 /// The overrides of the shadow test (shadows.wgsl) and its slab test (bvh.wgsl), with the
 /// moving lights compiled in (1) or out (0), `MOVING_LIGHTS`, and their shadow test likewise,
 /// `MOVING_LIGHT_SHADOWS`.
 const fn shadow_overrides(moving_lights: f64, shadows: f64) -> [Override; 4] {
     [
         ("SLAB_TOLERANCE", crate::bvh::SLAB_TOLERANCE as f64),
-        ("SHADOW_MARGIN", crate::shadows::SHADOW_MARGIN as f64),
+        ("SHADOW_MARGIN", SHADOW_MARGIN as f64),
         ("MOVING_LIGHTS", moving_lights),
         ("MOVING_LIGHT_SHADOWS", shadows),
     ]
@@ -605,6 +615,16 @@ pub fn compose(modules: &[(&str, &str)]) -> String {
         .collect()
 }
 
+/// The display pass's shader (the `display` module draws with it).
+#[must_use]
+pub fn display() -> Shader {
+    Shader {
+        name: "display".into(),
+        source: DISPLAY.to_owned(),
+        overrides: Vec::new(),
+    }
+}
+
 /// Every complete shader srt builds, for validation (the object passes in the variants of
 /// [`ObjectVariant::covering`]).
 #[must_use]
@@ -617,7 +637,7 @@ pub fn all() -> Vec<Shader> {
             overrides: Vec::new(),
         },
         proxy(),
-        crate::display::shader(),
+        display(),
     ];
     all.extend(variants.iter().map(|&v| lrt(v)));
     all.extend(variants.iter().filter(|v| !v.counting).map(|&v| polygon(v)));

@@ -41,16 +41,6 @@ use crate::types::{
     SHADOW_NODE_ROWS, SHADOW_OBJECT_ROWS, mat4, vec4,
 };
 
-/// The relative margin of the shadow test (WGSL override `SHADOW_MARGIN`): a triangle blocks the
-/// segment from the surface event to the light's retarded event (in its object's rest frame)
-/// only where it crosses it more than `SHADOW_MARGIN · (1 + length + max|from|)` from either
-/// end. The CPU takes 10⁻⁹ (f64); in f32 the surface point itself is known to a few ulps of
-/// its coordinates (about 10⁻⁶ relative), and a segment leaving the surface at an angle θ meets
-/// its own face that far over sin θ from its start: 10⁻⁴ keeps points from shadowing themselves
-/// down to grazing angles of about 10⁻², where the light is dim anyway, and misses a blocker only
-/// within 10⁻⁴ of the scene's size of the lit point (far below a pixel in srt's scenes).
-pub const SHADOW_MARGIN: f32 = 1e-4;
-
 /// The per-frame light uniforms of `scene`: its lamp's strength and its first
 /// [`MAX_MOVING_LIGHTS`] moving lights (scenes have at most that many), with where `shadows`'
 /// casters are (none without, or where the scene's objects cast no shadows:

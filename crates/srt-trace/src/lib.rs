@@ -21,6 +21,7 @@ pub mod clock;
 pub mod compare;
 mod intersect;
 mod moving;
+mod prepared;
 mod render;
 mod seen;
 mod shade;

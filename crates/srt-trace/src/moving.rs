@@ -30,7 +30,7 @@ use srt_physics::motion::{Motion, Spin, Thrust};
 use srt_physics::{RestRay, lorentz_matrix};
 
 use crate::intersect::TriangleHit;
-use crate::render::PreparedObject;
+use crate::prepared::PreparedObject;
 
 /// Most rotation of a spinning body per piece of a curved ray, in radians.
 const SPIN_PIECE_ANGLE: f64 = 0.05;

@@ -11,26 +11,21 @@
 
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
-use bvh::aabb::{Aabb, Bounded};
-use bvh::bounding_hierarchy::BHShape;
-use bvh::bvh::Bvh;
-use bvh::ray::Ray;
 use glam::{DVec2, DVec3, DVec4};
-use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
-use srt_physics::motion::Motion;
-use srt_physics::{Event, Frame, RestRay, RetardedLight};
-use srt_scene::{Mesh, Object, Part, Scene, ViewRays};
+use srt_physics::{Event, RestRay, RetardedLight, doppler_factor};
+use srt_scene::{Scene, ViewRays};
 
 use crate::clock::clock_albedo;
-use crate::intersect::{TriangleHit, intersect_triangle, plane_hit};
+use crate::intersect::plane_hit;
 use crate::moving::{local_rest_frame, moving_normal};
+pub use crate::prepared::Hit;
+use crate::prepared::PreparedObject;
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
 use crate::sky::{sky_image_light, star_layer};
 use crate::texture::sample_trilinear;
-use srt_scene::mip::MipChain;
 
 /// Image size and sampling.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,305 +64,6 @@ impl RenderedImage {
 }
 
 pub use srt_color::Output;
-
-/// A triangle of one of an object's parts, as a leaf of the object's BVH.
-#[derive(Debug, Clone)]
-pub(crate) struct TriangleBox {
-    aabb: Aabb<f64, 3>,
-    pub(crate) part: u32,
-    pub(crate) triangle: u32,
-    node: usize,
-}
-
-impl Bounded<f64, 3> for TriangleBox {
-    fn aabb(&self) -> Aabb<f64, 3> {
-        self.aabb
-    }
-}
-
-impl BHShape<f64, 3> for TriangleBox {
-    fn set_bh_node_index(&mut self, index: usize) {
-        self.node = index;
-    }
-
-    fn bh_node_index(&self) -> usize {
-        self.node
-    }
-}
-
-/// One part's material: its filtered texture and base colour.
-pub(crate) struct PreparedPart<'a> {
-    pub(crate) part: &'a Part,
-    texture: Option<MipChain>,
-    base_color: DVec4,
-}
-
-impl<'a> PreparedPart<'a> {
-    fn new(part: &'a Part) -> Self {
-        let [r, g, b, a] = part.material.base_color.map(f64::from);
-        Self {
-            part,
-            texture: part.material.texture.as_deref().map(MipChain::new),
-            base_color: DVec4::new(r, g, b, a),
-        }
-    }
-}
-
-/// One rigid object: its frame, its parts and one BVH over the triangles of all of them (in
-/// its rest frame S′, where it is static), so a ray walks one hierarchy per object, not one per
-/// part.
-pub(crate) struct PreparedObject<'a> {
-    frame: Frame,
-    /// The observation event in the object's rest frame S′ (the start of every backward ray).
-    observer_rest: Event,
-    pub(crate) parts: Vec<PreparedPart<'a>>,
-    pub(crate) boxes: Vec<TriangleBox>,
-    /// `None` for an object without triangles.
-    pub(crate) bvh: Option<Bvh<f64, 3>>,
-    /// How the body moves in its rest coordinates (the BVH holds it at S′ time 0).
-    pub(crate) motion: Motion,
-    /// The rest coordinates' clock lead over the object's S′ time.
-    rest_time_shift: f64,
-    /// A spinning body's largest distance from its spin centre; otherwise its size (the
-    /// diagonal of its box).
-    pub(crate) reach: f64,
-    /// A spinning body's extent along its axis (from the centre): a slab it never leaves.
-    pub(crate) axial: (f64, f64),
-    /// The box around all its triangles (padded like theirs): a ray that misses it, or meets
-    /// it only beyond a nearer hit, is not traced through the BVH.
-    pub(crate) bounds: (DVec3, DVec3),
-    wireframe: Option<f64>,
-}
-
-impl<'a> PreparedObject<'a> {
-    fn new(object: &'a Object, observer: Event) -> Self {
-        let meshes = || object.parts.iter().map(|part| &part.mesh);
-        let (lo, hi) = meshes()
-            .filter(|mesh| !mesh.triangles().is_empty())
-            .map(Mesh::bounds)
-            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
-            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
-        // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
-        // boxes, which slab tests can miss.
-        let pad = 1e-9 * (hi - lo).length().max(1.0);
-        let mut boxes: Vec<TriangleBox> = meshes()
-            .enumerate()
-            .flat_map(|(part, mesh)| {
-                (0..mesh.triangles().len()).map(move |i| {
-                    let [a, b, c] = mesh.triangle_positions(i);
-                    let min = a.min(b).min(c) - pad;
-                    let max = a.max(b).max(c) + pad;
-                    TriangleBox {
-                        aabb: Aabb::with_bounds(
-                            Point3::new(min.x, min.y, min.z),
-                            Point3::new(max.x, max.y, max.z),
-                        ),
-                        part: part as u32,
-                        triangle: i as u32,
-                        node: 0,
-                    }
-                })
-            })
-            .collect();
-        let bvh = (!boxes.is_empty()).then(|| Bvh::build(&mut boxes));
-        let reach = match object.motion {
-            Motion::Spin(spin) => {
-                meshes()
-                    .flat_map(|mesh| mesh.positions().iter())
-                    .map(|p| (*p - spin.centre()).length())
-                    .fold(0.0, f64::max)
-                    * (1.0 + 1e-12)
-            }
-            _ => (hi - lo).length(),
-        };
-        let axial = match object.motion {
-            Motion::Spin(spin) => meshes()
-                .flat_map(|mesh| mesh.positions().iter())
-                .map(|p| (*p - spin.centre()).dot(spin.axis()))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
-                    (lo.min(h), hi.max(h))
-                }),
-            _ => (f64::NEG_INFINITY, f64::INFINITY),
-        };
-        Self {
-            frame: object.frame,
-            observer_rest: object.frame.to_rest(observer),
-            parts: object.parts.iter().map(PreparedPart::new).collect(),
-            boxes,
-            bvh,
-            motion: object.motion,
-            rest_time_shift: object.rest_time_shift,
-            reach,
-            axial,
-            bounds: (lo - pad, hi + pad),
-            wireframe: object.wireframe,
-        }
-    }
-
-    /// Closest hit along a rest-frame ray of the body at rest, at distance `from` or more and
-    /// no farther than `limit` (beyond it a hit may still be returned; nothing beyond is
-    /// searched for): (part, triangle, hit). Of hits at the same distance the one with the
-    /// lowest (part, triangle) wins, whatever the traversal order.
-    pub(crate) fn closest_hit_between(
-        &self,
-        ray: &RestRay,
-        from: f64,
-        limit: f64,
-    ) -> Option<(u32, u32, TriangleHit)> {
-        let bvh = self.bvh.as_ref()?;
-        let query = Ray::new(
-            Point3::new(ray.origin.x, ray.origin.y, ray.origin.z),
-            Vector3::new(ray.direction.x, ray.direction.y, ray.direction.z),
-        );
-        let mut best: Option<(u32, u32, TriangleHit)> = None;
-        // Leaves come in increasing order of their box's entry distance: stop once a box
-        // starts beyond the best hit.
-        for leaf in bvh.nearest_traverse_iterator(&query, &self.boxes) {
-            let bound = best.map_or(limit, |(_, _, hit)| hit.distance.min(limit));
-            if let Some((entry, _)) = query.intersection_slice_for_aabb(&leaf.aabb)
-                && entry > bound
-            {
-                break;
-            }
-            let mesh = &self.parts[leaf.part as usize].part.mesh;
-            let corners = mesh.triangle_positions(leaf.triangle as usize);
-            let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
-                .filter(|hit| hit.distance >= from)
-            else {
-                continue;
-            };
-            let closer = best.is_none_or(|(part, triangle, b)| {
-                (hit.distance, leaf.part, leaf.triangle) < (b.distance, part, triangle)
-            });
-            if closer {
-                best = Some((leaf.part, leaf.triangle, hit));
-            }
-        }
-        best
-    }
-
-    /// Whether the body crosses the null segment from the rest-frame event `at` back to the
-    /// earlier event `source` strictly between its ends (a margin of 10⁻⁹ of the segment's
-    /// scale at each end keeps the surface point the segment starts on, and the light it ends
-    /// at, out of it). At rest the body is tested along the straight segment; a spinning or
-    /// thrusting one as a backward ray is ([`PreparedObject::closest_hit_moving`]).
-    fn blocks(&self, at: Event, source: Event) -> bool {
-        let (from, to) = (at.position, source.position);
-        let (Some(bvh), length) = (self.bvh.as_ref(), (to - from).length()) else {
-            return false;
-        };
-        let direction = (to - from) / length;
-        let margin = 1e-9 * (1.0 + length + from.abs().max_element());
-        if length <= 2.0 * margin || length.is_nan() {
-            return false;
-        }
-        if !self.motion.is_rest() {
-            let ray = RestRay {
-                origin: from,
-                direction,
-                ct_origin: at.ct,
-            };
-            return (self.closest_hit_moving(&ray, self.rest_time_shift, length - margin))
-                .is_some_and(|(_, _, hit)| {
-                    hit.distance > margin && hit.distance < length - margin
-                });
-        }
-        let (lo, hi) = self.bounds;
-        if box_entry(from, direction.recip(), lo, hi).is_none_or(|entry| entry > length) {
-            return false;
-        }
-        let query = Ray::new(
-            Point3::new(from.x, from.y, from.z),
-            Vector3::new(direction.x, direction.y, direction.z),
-        );
-        bvh.traverse_iterator(&query, &self.boxes).any(|leaf| {
-            let mesh = &self.parts[leaf.part as usize].part.mesh;
-            intersect_triangle(
-                from,
-                direction,
-                mesh.triangle_positions(leaf.triangle as usize),
-            )
-            .is_some_and(|hit| hit.distance > margin && hit.distance < length - margin)
-        })
-    }
-
-    /// The hit of this object (number `index` in the scene) along `ray` if it is seen in front
-    /// of `best`, the closest hit of the objects searched so far: nearer, or as near and of a
-    /// lower index, so that the result does not depend on the order objects are searched in.
-    /// `inverse_direction` is 1 / `ray.direction` per component.
-    fn closest_hit_seen(
-        &self,
-        index: usize,
-        ray: &RestRay,
-        inverse_direction: DVec3,
-        best: Option<Hit>,
-    ) -> Option<Hit> {
-        // The apparent distance grows linearly along the ray (γ s (1 − β·d′)), so a hit beyond
-        // `best` need not be searched for; the bound is widened by a relative 1e-12 so that
-        // rounding never prunes a closer hit.
-        let limit = best.map_or(f64::INFINITY, |b| {
-            b.apparent_distance / self.frame.apparent_distance(ray, 1.0) * (1.0 + 1e-12)
-        });
-        let (lo, hi) = self.bounds;
-        let resting = self.motion.is_rest();
-        if resting
-            && box_entry(ray.origin, inverse_direction, lo, hi).is_none_or(|entry| entry > limit)
-        {
-            return None;
-        }
-        let (part, triangle, rest_hit) =
-            self.closest_hit_moving(ray, self.rest_time_shift, limit)?;
-        let apparent_distance = self.frame.apparent_distance(ray, rest_hit.distance);
-        let seen =
-            best.is_none_or(|b| (apparent_distance, index) < (b.apparent_distance, b.object));
-        seen.then(|| {
-            let emission_rest = ray.event_at(rest_hit.distance);
-            Hit {
-                object: index,
-                part: part as usize,
-                triangle: triangle as usize,
-                rest_hit,
-                ray: *ray,
-                emission_rest,
-                emission: self.frame.to_observer(emission_rest),
-                apparent_distance,
-            }
-        })
-    }
-}
-
-/// Where the ray `origin` + s · direction (s ≥ 0; `inverse_direction` = 1 / direction per
-/// component) enters the box [`lo`, `hi`] (0 when it starts inside), `None` when it misses it:
-/// the slab test. Conservative: where rounding gives NaN (an origin on a slab's plane with a
-/// direction parallel to it) the box counts as met.
-fn box_entry(origin: DVec3, inverse_direction: DVec3, lo: DVec3, hi: DVec3) -> Option<f64> {
-    let to_lo = (lo - origin) * inverse_direction;
-    let to_hi = (hi - origin) * inverse_direction;
-    let near = to_lo.min(to_hi).max_element().max(0.0);
-    let far = to_lo.max(to_hi).min_element();
-    if near > far { None } else { Some(near) }
-}
-
-/// The closest surface point along one viewing direction.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Hit {
-    /// Index of the object in the scene.
-    pub object: usize,
-    /// Index of the part within the object.
-    pub part: usize,
-    /// Index of the triangle within the part's mesh.
-    pub triangle: usize,
-    /// Barycentric hit data in S′.
-    pub rest_hit: TriangleHit,
-    /// The backward ray in S′ that found it.
-    pub ray: RestRay,
-    /// Emission event in S′ (Eq. 7).
-    pub emission_rest: Event,
-    /// Emission event in S (Eq. 8): its position is the apparent position.
-    pub emission: Event,
-    /// Apparent distance from the observer (= light travel time, ct_obs − ct_emission).
-    pub apparent_distance: f64,
-}
 
 /// The surface point a [`Hit`] sees, in the local rest frame it is shaded in
 /// ([`Tracer::surface_at`]).
@@ -739,6 +435,21 @@ impl<'a> Tracer<'a> {
 }
 
 impl Tracer<'_> {
+    /// The emission event of `hit` in the scene's terms ([`SeenEvent`]).
+    #[must_use]
+    pub fn seen_event(&self, hit: &Hit) -> SeenEvent {
+        let scene = self.scene();
+        let surface = self.surface_at(hit);
+        let towards_observer = (scene.observer.position - hit.emission.position).normalize();
+        SeenEvent {
+            object: hit.object,
+            emission_ct: scene.world.apply(hit.emission).ct,
+            proper_time: surface.proper_time,
+            distance: hit.apparent_distance,
+            doppler: doppler_factor(surface.beta, towards_observer),
+        }
+    }
+
     /// What the centre of each pixel of a `width` × `height` image sees of time
     /// ([`SeenEvent`]), row-major from the top; `None` for a pixel that sees no object. Gives
     /// up (`None`) once `stop` is set, as [`Tracer::render_stoppable`].
@@ -828,7 +539,10 @@ pub fn sample_offsets(count: u32) -> Vec<DVec2> {
 
 #[cfg(test)]
 mod tests {
+    use srt_scene::Part;
+
     use super::*;
+    use crate::intersect::intersect_triangle;
 
     /// The probe's ray is the render's: every pixel's hit is the object the render covers it
     /// with (its first sample is the pixel centre), and pixels outside the image hit nothing.

@@ -1,13 +1,10 @@
 //! What a pixel sees of *time*: the event at which the light it receives left a surface. The
 //! tracer finds that event exactly for every hit (Eq. 5–8: the backward light cone of the
-//! observation event meets the surface's worldline); [`SeenEvent`] writes it out in the
+//! observation event meets the surface's worldline); [`SeenEvent`] (made by
+//! [`crate::Tracer::seen_event`]) writes it out in the
 //! scene's own terms — world time, the object's proper time, apparent distance, the Doppler
 //! factor of the light and which object — for `srt render --aov` and `srt.render(aov=True)`
 //! (docs/scene-format.md, "Per-pixel channels").
-
-use srt_physics::doppler_factor;
-
-use crate::render::{Hit, Tracer};
 
 /// The emission event a pixel's centre sees, in the scene's terms (c = 1: times are ct, in
 /// scene units of length).
@@ -28,21 +25,4 @@ pub struct SeenEvent {
     /// The Doppler factor D of the light from the surface to the observer (Eq. 4; D > 1 is a
     /// blue shift): the shift `doppler` and `searchlight` show, without the lamp's.
     pub doppler: f64,
-}
-
-impl Tracer<'_> {
-    /// The emission event of `hit` in the scene's terms ([`SeenEvent`]).
-    #[must_use]
-    pub fn seen_event(&self, hit: &Hit) -> SeenEvent {
-        let scene = self.scene();
-        let surface = self.surface_at(hit);
-        let towards_observer = (scene.observer.position - hit.emission.position).normalize();
-        SeenEvent {
-            object: hit.object,
-            emission_ct: scene.world.apply(hit.emission).ct,
-            proper_time: surface.proper_time,
-            distance: hit.apparent_distance,
-            doppler: doppler_factor(surface.beta, towards_observer),
-        }
-    }
 }

@@ -307,42 +307,47 @@ pub fn arriving_unless_shadowed(
                 std::iter::once(first).chain(sources.map(table)),
             ))
         }
-        SurfaceColour::Spectral => {
-            let linear = point.albedo.truncate().map(srgb_decode);
-            let Ok(reflectance) = srgb_coefficient_table()
-                .lookup(linear.clamp(DVec3::ZERO, DVec3::ONE))
-                .and_then(|polynomial| {
-                    Reflectance::with_bands(
-                        polynomial,
-                        point.optics.ultraviolet,
-                        point.optics.infrared,
-                    )
-                })
-            else {
-                // A surface that reflects nothing is black.
-                return Arriving::Dark;
-            };
-            // A source at a temperature no table reaches gives no light.
-            let spectrum = |s: Source| {
-                reflected_light(&reflectance, s.temperature_k, s.d_in, d_out)
-                    .ok()
-                    .map(|reflected| (reflected.light, reflected.white, s.factor))
-            };
-            let first = sources.next().and_then(spectrum);
-            if sources.peek().is_none() {
-                return first.map_or(Arriving::Dark, |(light, white, factor)| {
-                    Arriving::Spectrum {
-                        light,
-                        white,
-                        factor,
-                    }
-                });
-            }
-            Arriving::Spectra(Sources::collect(
-                first.into_iter().chain(sources.filter_map(spectrum)),
-            ))
-        }
+        SurfaceColour::Spectral => spectral_arriving(point, d_out, sources),
     }
+}
+
+/// The light of `sources` reflected by the point's spectral reflectance (the Jakob–Hanika
+/// spectrum of its albedo, with its bands) and shifted by `d_out` towards the observer.
+fn spectral_arriving(
+    point: &SurfacePoint,
+    d_out: f64,
+    sources: impl Iterator<Item = Source>,
+) -> Arriving {
+    let linear = point.albedo.truncate().map(srgb_decode);
+    let Ok(reflectance) = srgb_coefficient_table()
+        .lookup(linear.clamp(DVec3::ZERO, DVec3::ONE))
+        .and_then(|polynomial| {
+            Reflectance::with_bands(polynomial, point.optics.ultraviolet, point.optics.infrared)
+        })
+    else {
+        // A surface that reflects nothing is black.
+        return Arriving::Dark;
+    };
+    // A source at a temperature no table reaches gives no light.
+    let spectrum = |s: Source| {
+        reflected_light(&reflectance, s.temperature_k, s.d_in, d_out)
+            .ok()
+            .map(|reflected| (reflected.light, reflected.white, s.factor))
+    };
+    let mut sources = sources.peekable();
+    let first = sources.next().and_then(spectrum);
+    if sources.peek().is_none() {
+        return first.map_or(Arriving::Dark, |(light, white, factor)| {
+            Arriving::Spectrum {
+                light,
+                white,
+                factor,
+            }
+        });
+    }
+    Arriving::Spectra(Sources::collect(
+        first.into_iter().chain(sources.filter_map(spectrum)),
+    ))
 }
 
 /// One source's light on a surface point before it is coloured: its geometric factor (with its

@@ -14,8 +14,13 @@ use super::summary::summary;
 /// The document the bench updates, relative to the workspace.
 pub const DOCUMENT: &str = "docs/performance.md";
 
+/// Where `validate --bench-frames` records its verdicts (relative to the workspace), which the
+/// document quotes: a header line `# commit=HASH date=YYYY-MM-DD`, then one line per frame,
+/// `NAME<TAB>WxH<TAB>pass|FAIL`. Here, below validate, since validate times the bench's frames.
+pub const BENCH_FRAMES_RECORD: &str = "target/validate/bench-frames.tsv";
+
 /// What the last `cargo xtask validate --bench-frames` recorded
-/// ([`crate::validate::BENCH_FRAMES_RECORD`]) and the commit the bench measures.
+/// ([`BENCH_FRAMES_RECORD`]) and the commit the bench measures.
 pub struct Validation {
     /// The commit and date the record was made at, if there is a record.
     made: Option<(String, String)>,
@@ -28,8 +33,7 @@ pub struct Validation {
 impl Validation {
     /// Reads the record, if any.
     pub fn read(workspace: &Path) -> Self {
-        let text = std::fs::read_to_string(workspace.join(crate::validate::BENCH_FRAMES_RECORD))
-            .unwrap_or_default();
+        let text = std::fs::read_to_string(workspace.join(BENCH_FRAMES_RECORD)).unwrap_or_default();
         Self::parse(&text, crate::provenance::commit(workspace))
     }
 

@@ -402,37 +402,8 @@ impl super::GpuRenderer {
             stencil_ops: None,
         };
         if method == Method::Polygon {
-            let placement = SkyPlacement::BehindPolygons;
-            let background =
-                self.encode_background(device, encoder, background, tone, &color_view, placement);
-            let mut pass = self.begin_pass(
-                encoder,
-                "srt polygon",
-                &color_view,
-                background,
-                Some(depth),
-                [Some(2), Some(3)],
-            );
-            pass.set_bind_group(
-                POLYGON_FRAME_GROUP.index,
-                &self.frame.polygon_groups[tone],
-                &[],
-            );
-            let mut set = PipelineVariant::default();
-            for &index in shown {
-                let object = &self.objects[index];
-                pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
-                for part in &object.parts {
-                    let variant = variant_of_part(variants[index], part);
-                    set.set(&mut pass, variant, || {
-                        self.pipelines.polygon(device, variant)
-                    });
-                    pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
-                    // Checked at upload: 3 × triangles fits in u32.
-                    pass.draw(0..3 * part.sizes.triangles, 0..1);
-                }
-            }
-            self.draw_sky(device, &mut pass, tone, placement);
+            let target = (&color_view, depth);
+            self.encode_polygon_pass(device, encoder, background, tone, variants, shown, target);
             return;
         }
         if shown.is_empty() {
@@ -472,30 +443,7 @@ impl super::GpuRenderer {
         self.draw_visibility(device, &mut pass, traced, variants, shown);
         drop(pass);
         let part_depth_view = view(&self.targets.part_depth);
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("srt lrt part depth"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &part_depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipelines.part_depth);
-        pass.set_bind_group(
-            SHADE_FRAME_GROUP.index,
-            &self.targets.shade_frame_groups[tone],
-            &[],
-        );
-        // The frame's screen bound as two triangles (`id_depth_vertex`).
-        pass.draw(0..6, 0..1);
-        drop(pass);
+        self.encode_part_depth(encoder, tone, &part_depth_view);
         let tested = wgpu::RenderPassDepthStencilAttachment {
             view: &part_depth_view,
             depth_ops: Some(wgpu::Operations {
@@ -519,6 +467,91 @@ impl super::GpuRenderer {
         );
         self.draw_shading(device, &mut pass, traced, variants, shown);
         self.draw_sky(device, &mut pass, tone, placement);
+    }
+
+    /// Encodes the polygon method's frame (§3.2): the sky behind, then every shown object's
+    /// parts drawn per vertex into `color_view`, depth-tested in `depth`.
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the frame's state as encode_render_pass has it"
+    )]
+    fn encode_polygon_pass(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        background: DVec4,
+        tone: usize,
+        variants: &[ObjectVariant],
+        shown: &[usize],
+        (color_view, depth): (
+            &wgpu::TextureView,
+            wgpu::RenderPassDepthStencilAttachment<'_>,
+        ),
+    ) {
+        let placement = SkyPlacement::BehindPolygons;
+        let background =
+            self.encode_background(device, encoder, background, tone, color_view, placement);
+        let mut pass = self.begin_pass(
+            encoder,
+            "srt polygon",
+            color_view,
+            background,
+            Some(depth),
+            [Some(2), Some(3)],
+        );
+        pass.set_bind_group(
+            POLYGON_FRAME_GROUP.index,
+            &self.frame.polygon_groups[tone],
+            &[],
+        );
+        let mut set = PipelineVariant::default();
+        for &index in shown {
+            let object = &self.objects[index];
+            pass.set_bind_group(OBJECT_GROUP.index, &object.bind_group, &[]);
+            for part in &object.parts {
+                let variant = variant_of_part(variants[index], part);
+                set.set(&mut pass, variant, || {
+                    self.pipelines.polygon(device, variant)
+                });
+                pass.set_bind_group(PART_GROUP.index, &part.bind_group, &[]);
+                // Checked at upload: 3 × triangles fits in u32.
+                pass.draw(0..3 * part.sizes.triangles, 0..1);
+            }
+        }
+        self.draw_sky(device, &mut pass, tone, placement);
+    }
+
+    /// Encodes the part-depth pass: the nearest visible part's depth per pixel, into
+    /// `part_depth_view`, which the shading pass tests against.
+    fn encode_part_depth(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        tone: usize,
+        part_depth_view: &wgpu::TextureView,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("srt lrt part depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: part_depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipelines.part_depth);
+        pass.set_bind_group(
+            SHADE_FRAME_GROUP.index,
+            &self.targets.shade_frame_groups[tone],
+            &[],
+        );
+        // The frame's screen bound as two triangles (`id_depth_vertex`).
+        pass.draw(0..6, 0..1);
     }
 
     /// Encodes the sky's passes that precede the object passes, if the scene has a sky, for
