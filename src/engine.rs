@@ -10,7 +10,7 @@ use anyhow::{Context as _, bail};
 use glam::DVec3;
 use srt_color::srgb_decode;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
-use srt_scene::{Choice, Scene};
+use srt_scene::Scene;
 use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
@@ -31,37 +31,11 @@ pub enum Backend {
     Auto,
 }
 
-impl Backend {
-    /// Every backend, the default first.
-    pub const ALL: [Self; 3] = [Self::Auto, Self::Cpu, Self::Gpu];
-}
-
-impl Choice for Backend {
-    const WHAT: &'static str = "backend";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        match self {
-            Self::Auto => "auto",
-            Self::Cpu => "cpu",
-            Self::Gpu => "gpu",
-        }
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Auto => {
-                "the GPU if an adapter exists (and can hold the target), otherwise the CPU"
-            }
-            Self::Cpu => "the exact CPU ray tracer (srt-trace)",
-            Self::Gpu => "the GPU; an error without an adapter",
-        }
-    }
-}
-srt_scene::choice_str_traits!(Backend);
+srt_scene::choice!(Backend, "backend", {
+    Auto => "auto", "the GPU if an adapter exists (and can hold the target), otherwise the CPU";
+    Cpu => "cpu", "the exact CPU ray tracer (srt-trace)";
+    Gpu => "gpu", "the GPU; an error without an adapter";
+});
 
 /// One frame's scene, with the exact CPU tracer (its BVHs, textures and tables) built at most
 /// once for every layer of the frame that needs it: the CPU engine's display colours, the

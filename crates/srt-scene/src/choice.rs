@@ -1,14 +1,12 @@
-//! One name per user-facing choice: the effect mode, the surface colour, the tone map, the view,
-//! and (implemented beside their types) the GPU method and the backend. Each has its names, its
-//! one-line help texts and the message for a name it does not know here, once; the scene file,
-//! the command line (clap), Python and the web page's address all parse through [`Choice`].
+//! One name per user-facing choice: the effect mode, the surface colour, the view, the GPU method
+//! and the backend (each made a [`Choice`] beside its type by [`crate::choice!`]), and the tone
+//! map. Each has its names, its one-line help texts and the message for a name it does not know
+//! here, once; the scene file, the command line (clap), Python and the web page's address all
+//! parse through [`Choice`].
 
 use std::fmt;
 
 use srt_color::ToneMap;
-
-use crate::scene::{Effects, SurfaceColour};
-use crate::view::View;
 
 /// A closed set of named values that a person picks by name.
 pub trait Choice: Copy + Eq + 'static {
@@ -81,14 +79,70 @@ impl fmt::Display for UnknownChoice {
 
 impl std::error::Error for UnknownChoice {}
 
-/// `Display` (the name) and `FromStr` (through [`Choice::parse`]) for a type of the calling crate
-/// that implements [`Choice`].
+/// Makes an enum of the calling crate a [`Choice`], from one table of its values: each value's
+/// name and help line. Gives the enum `ALL` (the values in the table's order, the default first)
+/// and `const fn name`, implements [`Choice`] with `what` as its [`Choice::WHAT`], and `Display`
+/// (the name) and `FromStr` (through [`Choice::parse`]).
+///
+/// ```
+/// #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// enum Speed {
+///     Slow,
+///     Fast,
+/// }
+/// srt_scene::choice!(Speed, "speed", {
+///     Slow => "slow", "walking pace";
+///     Fast => "fast", "near light speed";
+/// });
+/// assert_eq!("fast".parse::<Speed>(), Ok(Speed::Fast));
+/// assert_eq!(Speed::ALL, [Speed::Slow, Speed::Fast]);
+/// assert_eq!(
+///     "medium".parse::<Speed>().unwrap_err().to_string(),
+///     r#"unknown speed "medium"; expected "slow" or "fast""#
+/// );
+/// ```
 #[macro_export]
-macro_rules! choice_str_traits {
-    ($choice:ty) => {
+macro_rules! choice {
+    // The `Choice` impl alone, for a type that has its own `ALL` and `name` (srt-color's
+    // `ToneMap`, which cannot depend on this crate).
+    (@choice $choice:ty, $what:literal, { $($value:ident => $help:literal;)+ }) => {
+        impl $crate::Choice for $choice {
+            const WHAT: &'static str = $what;
+
+            fn all() -> &'static [Self] {
+                &Self::ALL
+            }
+
+            fn name(self) -> &'static str {
+                Self::name(self)
+            }
+
+            fn help(self) -> &'static str {
+                match self {
+                    $(Self::$value => $help,)+
+                }
+            }
+        }
+    };
+    ($choice:ty, $what:literal, { $($value:ident => $name:literal, $help:literal;)+ }) => {
+        impl $choice {
+            /// Every value, the default first (the order of `--help` and of messages).
+            pub const ALL: [Self; [$($name),+].len()] = [$(Self::$value),+];
+
+            /// The name used in scene files, on the command line, in Python and in addresses.
+            #[must_use]
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Self::$value => $name,)+
+                }
+            }
+        }
+
+        $crate::choice!(@choice $choice, $what, { $($value => $help;)+ });
+
         impl ::core::fmt::Display for $choice {
             fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
-                f.write_str($crate::Choice::name(*self))
+                f.write_str(Self::name(*self))
             }
         }
 
@@ -96,102 +150,16 @@ macro_rules! choice_str_traits {
             type Err = $crate::UnknownChoice;
 
             fn from_str(name: &str) -> Result<Self, Self::Err> {
-                <$choice as $crate::Choice>::parse(name)
+                <Self as $crate::Choice>::parse(name)
             }
         }
     };
 }
 
-impl Choice for Effects {
-    const WHAT: &'static str = "effect mode";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        Self::name(self)
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Geometry => "geometry only: aberration and light travel time, no colour shift",
-            Self::Doppler => "Doppler colour shift, brightness normalised (Fig. 6 left)",
-            Self::Searchlight => "Doppler shift and searchlight effect (Fig. 6 right)",
-        }
-    }
-}
-choice_str_traits!(Effects);
-
-impl Choice for SurfaceColour {
-    const WHAT: &'static str = "surface colour";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        Self::name(self)
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Paper => {
-                "the paper's shortcut: the light's colour at D·T scaled by the surface's grey value"
-            }
-            Self::Spectral => {
-                "reflectance spectra (Jakob & Hanika 2019) under the shifted black body: colours move"
-            }
-        }
-    }
-}
-choice_str_traits!(SurfaceColour);
-
-impl Choice for View {
-    const WHAT: &'static str = "view";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        Self::name(self)
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Seen => {
-                "what a camera sees: light travel time, aberration, Doppler (the paper's picture)"
-            }
-            Self::Measured => {
-                "what is measured: every point where it is at ct_obs in S, Lorentz-contracted, no Doppler"
-            }
-            Self::Newtonian => {
-                "the Newtonian picture: the rest shape, uncontracted, where it is at ct_obs, no Doppler"
-            }
-        }
-    }
-}
-choice_str_traits!(View);
-
-impl Choice for ToneMap {
-    const WHAT: &'static str = "tone map";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        Self::name(self)
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Luminance => "Fig. 6 left: every temperature fully bright, only its hue shifts",
-            Self::Searchlight => "Fig. 6 right: brightness follows the radiance, on a log scale",
-        }
-    }
-}
+crate::choice!(@choice ToneMap, "tone map", {
+    Luminance => "Fig. 6 left: every temperature fully bright, only its hue shifts";
+    Searchlight => "Fig. 6 right: brightness follows the radiance, on a log scale";
+});
 
 /// Serde for a [`Choice`] by its name (`#[serde(with = "choice::by_name")]`).
 pub mod by_name {
@@ -246,6 +214,8 @@ pub mod by_optional_name {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::{Effects, SurfaceColour};
+    use crate::view::View;
 
     fn round_trips<T: Choice + fmt::Debug>() {
         for &value in T::all() {

@@ -25,20 +25,13 @@ pub enum Effects {
     Searchlight,
 }
 
+crate::choice!(Effects, "effect mode", {
+    Geometry => "geometry", "geometry only: aberration and light travel time, no colour shift";
+    Doppler => "doppler", "Doppler colour shift, brightness normalised (Fig. 6 left)";
+    Searchlight => "searchlight", "Doppler shift and searchlight effect (Fig. 6 right)";
+});
+
 impl Effects {
-    /// All modes, in the order of the paper's toggles.
-    pub const ALL: [Self; 3] = [Self::Geometry, Self::Doppler, Self::Searchlight];
-
-    /// The name used in scene files and on the command line.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Geometry => "geometry",
-            Self::Doppler => "doppler",
-            Self::Searchlight => "searchlight",
-        }
-    }
-
     /// The colour table this mode uses unless the scene overrides it.
     #[must_use]
     pub const fn default_tone_map(self) -> ToneMap {
@@ -61,19 +54,12 @@ pub enum SurfaceColour {
     Spectral,
 }
 
-impl SurfaceColour {
-    /// Both ways, the default first.
-    pub const ALL: [Self; 2] = [Self::Paper, Self::Spectral];
-
-    /// The name used in scene files and on the command line.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Paper => "paper",
-            Self::Spectral => "spectral",
-        }
-    }
-}
+crate::choice!(SurfaceColour, "surface colour", {
+    Paper => "paper",
+        "the paper's shortcut: the light's colour at D·T scaled by the surface's grey value";
+    Spectral => "spectral",
+        "reflectance spectra (Jakob & Hanika 2019) under the shifted black body: colours move";
+});
 
 /// A surface that glows as a black body, at rest in its object's frame.
 #[derive(Debug, Clone, Copy, PartialEq)]

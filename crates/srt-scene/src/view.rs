@@ -59,20 +59,16 @@ pub enum ViewError {
     },
 }
 
+crate::choice!(View, "view", {
+    Seen => "seen",
+        "what a camera sees: light travel time, aberration, Doppler (the paper's picture)";
+    Measured => "measured",
+        "what is measured: every point where it is at ct_obs in S, Lorentz-contracted, no Doppler";
+    Newtonian => "newtonian",
+        "the Newtonian picture: the rest shape, uncontracted, where it is at ct_obs, no Doppler";
+});
+
 impl View {
-    /// All views, default first.
-    pub const ALL: [Self; 3] = [Self::Seen, Self::Measured, Self::Newtonian];
-
-    /// The name used on the command line and in provenance records.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Seen => "seen",
-            Self::Measured => "measured",
-            Self::Newtonian => "newtonian",
-        }
-    }
-
     /// `scene` as this view shows it at its observation time `scene.observer.ct`: unchanged for
     /// [`View::Seen`], otherwise every object replaced by one at rest in S (see the module doc).
     ///

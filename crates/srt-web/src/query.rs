@@ -30,35 +30,11 @@ pub enum BackendChoice {
     Webgpu,
 }
 
-impl BackendChoice {
-    /// Every choice, the default first.
-    pub const ALL: [Self; 3] = [Self::Auto, Self::Cpu, Self::Webgpu];
-}
-
-impl Choice for BackendChoice {
-    const WHAT: &'static str = "backend";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        match self {
-            Self::Auto => "auto",
-            Self::Cpu => "cpu",
-            Self::Webgpu => "webgpu",
-        }
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Auto => "WebGPU where the browser has it, else the CPU tracer",
-            Self::Cpu => "the exact CPU tracer in a Web Worker",
-            Self::Webgpu => "WebGPU, or an error",
-        }
-    }
-}
-srt_scene::choice_str_traits!(BackendChoice);
+srt_scene::choice!(BackendChoice, "backend", {
+    Auto => "auto", "WebGPU where the browser has it, else the CPU tracer";
+    Cpu => "cpu", "the exact CPU tracer in a Web Worker";
+    Webgpu => "webgpu", "WebGPU, or an error";
+});
 
 /// The settings an address gives.
 #[derive(Debug, Clone, PartialEq)]

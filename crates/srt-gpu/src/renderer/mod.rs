@@ -112,52 +112,18 @@ impl Method {
     pub const fn is_exact(self) -> bool {
         !matches!(self, Self::Polygon)
     }
-
-    /// Every method, the default first.
-    pub const ALL: [Self; 4] = [Self::Auto, Self::Lrt, Self::Rt, Self::Polygon];
-
-    /// The name used on the command line.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Auto => "auto",
-            Self::Lrt => "lrt",
-            Self::Rt => "rt",
-            Self::Polygon => "polygon",
-        }
-    }
 }
 
-impl srt_scene::Choice for Method {
-    const WHAT: &'static str = "method";
-
-    fn all() -> &'static [Self] {
-        &Self::ALL
-    }
-
-    fn name(self) -> &'static str {
-        Self::name(self)
-    }
-
-    fn help(self) -> &'static str {
-        match self {
-            Self::Auto => {
-                "exact per pixel, each object by whichever of lrt and rt is faster for it in each frame"
-            }
-            Self::Lrt => {
-                "local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes)"
-            }
-            Self::Rt => {
-                "ray tracing through a BVH per object in its rest frame: exact per pixel like lrt, \
-                 faster for deep models and objects passing the camera"
-            }
-            Self::Polygon => {
-                "per-vertex polygon rendering (§3.2), the approximate baseline; GPU only"
-            }
-        }
-    }
-}
-srt_scene::choice_str_traits!(Method);
+srt_scene::choice!(Method, "method", {
+    Auto => "auto",
+        "exact per pixel, each object by whichever of lrt and rt is faster for it in each frame";
+    Lrt => "lrt",
+        "local ray tracing: exact per pixel (the paper's method; what the CPU renderer computes)";
+    Rt => "rt",
+        "ray tracing through a BVH per object in its rest frame: exact per pixel like lrt, \
+         faster for deep models and objects passing the camera";
+    Polygon => "polygon", "per-vertex polygon rendering (§3.2), the approximate baseline; GPU only";
+});
 
 /// Which footprint the LRT pass rasterises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
