@@ -5,7 +5,8 @@
 //! ([`sweep_bounds`]), whose footprints the ray tracer draws for it.
 //!
 //! The WGSL mirrors crates/srt-trace/src/moving.rs in f32: the backward ray's body-space curve
-//! cut into pieces (≤ [`SPIN_PIECE_ANGLE`] of rotation, or [`THRUST_PIECES_PER_SIZE`] per body
+//! cut into pieces (≤ `srt_physics::motion::SPIN_PIECE_ANGLE` of rotation, or
+//! `THRUST_PIECES_PER_SIZE` per body
 //! size of a thrust's accelerating stretch; at most [`MAX_PIECES`], where the reference allows
 //! 2¹⁶), each piece's box (a spinning body's chord box padded by the curve's sagitta bound, a
 //! thrust's exact box of its arc) met with the BVH; on a spinning body the sign change of the
@@ -18,16 +19,10 @@
 use glam::DVec3;
 use srt_physics::Event;
 use srt_physics::motion::Motion;
-use srt_scene::Object;
+use srt_scene::{BodyExtent, Object};
 
-use crate::types::ObjectUniforms;
+use crate::types::{ObjectUniforms, vec4};
 
-/// Most rotation of a spinning body per piece of a curved ray, in radians (srt-trace's).
-pub const SPIN_PIECE_ANGLE: f64 = 0.05;
-/// Pieces of a thrusting body's accelerating stretch of ray per its size (srt-trace's): the
-/// extent of the arc in body space over the body's reach. Only how finely the BVH is asked for
-/// candidates; each piece's box is exact.
-pub const THRUST_PIECES_PER_SIZE: f64 = 4.0;
 /// Most pieces of one curved stretch of ray on the GPU (WGSL `MOTION_MAX_PIECES`).
 pub const MAX_PIECES: u32 = 4096;
 /// Most steps of the search for one crossing of a spinning body's piece in f32 (WGSL
@@ -35,9 +30,9 @@ pub const MAX_PIECES: u32 = 4096;
 /// in a row halved) ends in a few steps where the curve is smooth; the cap is more than
 /// bisection would take from any bracket to the 24 bits of an f32 mantissa.
 pub const CROSSING_STEPS: u32 = 48;
-/// Newton steps polishing each root of a thrust's crossing in f32 (WGSL `MOTION_NEWTON_STEPS`;
-/// srt-trace's `THRUST_NEWTON_STEPS`).
-pub const NEWTON_STEPS: u32 = 2;
+/// Newton steps polishing each root of a thrust's crossing in f32 (WGSL `MOTION_NEWTON_STEPS`):
+/// srt-trace's, from their one home.
+pub const NEWTON_STEPS: u32 = srt_physics::motion::THRUST_NEWTON_STEPS;
 /// Pieces of a spinning body's march that the GPU takes together first (WGSL
 /// `MOTION_PIECES_PER_GROUP`): the group's chord box, padded by the sagitta bound for its span,
 /// holds the curve over all of them, so where it meets no BVH leaf (no box of the triangle the
@@ -95,68 +90,6 @@ pub struct MotionUniforms {
     pub high: [f32; 4],
 }
 
-/// A spinning body's largest distance from its centre and its extent along the axis, or a
-/// body's box diagonal (srt-trace's `PreparedObject::reach` and `axial`), and its box.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BodyExtent {
-    /// Largest distance from the spin centre (spin), the box's diagonal (otherwise).
-    pub reach: f64,
-    /// Lowest and highest heights along the spin axis from the centre (spin; 0 otherwise).
-    pub axial: (f64, f64),
-    /// The box around every vertex at rest.
-    pub bounds: (DVec3, DVec3),
-    /// The ball around the box's centre holding every vertex at rest (centre, radius): for a
-    /// round body much smaller than the ball around its box (a sphere's is 1/√3 of it).
-    pub ball: (DVec3, f64),
-}
-
-impl BodyExtent {
-    /// The extent of `object`'s meshes as srt-trace measures it.
-    #[must_use]
-    pub fn of(object: &Object) -> Self {
-        let positions = || object.parts.iter().flat_map(|p| p.mesh.positions().iter());
-        let (lo, hi) = object
-            .parts
-            .iter()
-            .filter(|p| !p.mesh.triangles().is_empty())
-            .map(|p| p.mesh.bounds())
-            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
-            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
-        let middle = (lo + hi) / 2.0;
-        let ball_radius = (object.parts.iter())
-            .filter(|p| !p.mesh.triangles().is_empty())
-            .flat_map(|p| p.mesh.positions().iter())
-            .map(|p| (*p - middle).length())
-            .fold(0.0, f64::max)
-            * (1.0 + 1e-12);
-        let (reach, axial) = match object.motion {
-            Motion::Spin(spin) => (
-                positions()
-                    .map(|p| (*p - spin.centre()).length())
-                    .fold(0.0, f64::max)
-                    * (1.0 + 1e-12),
-                positions()
-                    .map(|p| (*p - spin.centre()).dot(spin.axis()))
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-                        (l.min(x), h.max(x))
-                    }),
-            ),
-            _ => ((hi - lo).length(), (0.0, 0.0)),
-        };
-        Self {
-            reach,
-            axial,
-            bounds: (lo, hi),
-            ball: (middle, ball_radius),
-        }
-    }
-}
-
-/// `v` as a vec4 with `w`.
-fn vec4(v: DVec3, w: f64) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w as f32]
-}
-
 impl MotionUniforms {
     /// The motion of `object` (whose meshes measure `extent`) seen from the observation event
     /// `observer` (in S).
@@ -165,7 +98,7 @@ impl MotionUniforms {
         // The object's S′ time at the observation event: where every backward ray starts.
         let now = object.proper_time(object.frame.to_rest(observer).ct);
         let (lo, hi) = extent.bounds;
-        let (axial_low, axial_high) = extent.axial;
+        let (axial_low, axial_high) = extent.axial.unwrap_or((0.0, 0.0));
         let low = vec4(lo, axial_low);
         let high = vec4(hi, axial_high);
         match object.motion {

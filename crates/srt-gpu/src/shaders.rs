@@ -300,10 +300,13 @@ impl ObjectVariant {
     fn polygon_overrides(self) -> Vec<Override> {
         let mut overrides = vec![
             ("MOTION_VARIANT", f64::from(self.motion.0)),
-            ("MOTION_SPIN_PIECE_ANGLE", crate::motion::SPIN_PIECE_ANGLE),
+            (
+                "MOTION_SPIN_PIECE_ANGLE",
+                srt_physics::motion::SPIN_PIECE_ANGLE,
+            ),
             (
                 "MOTION_THRUST_PIECES_PER_SIZE",
-                crate::motion::THRUST_PIECES_PER_SIZE,
+                srt_physics::motion::THRUST_PIECES_PER_SIZE,
             ),
             ("SURFACE_COLOUR_VARIANT", f64::from(self.colour.0)),
             ("TEXTURED_VARIANT", f64::from(u8::from(self.textured))),

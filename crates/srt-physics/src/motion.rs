@@ -28,6 +28,23 @@ use glam::{DMat3, DQuat, DVec3};
 
 use crate::event::Event;
 
+/// Most rotation of a spinning body per piece of a curved ray, in radians: how finely the
+/// moving bodies' searches cut a ray's curve in body space into pieces whose boxes ask the BVH
+/// for candidates — srt-trace's, and srt-gpu's through the WGSL override
+/// `MOTION_SPIN_PIECE_ANGLE` (one value for both, so that both search the same pieces).
+pub const SPIN_PIECE_ANGLE: f64 = 0.05;
+
+/// Pieces of a thrusting body's accelerating stretch of ray per its size (the extent of the arc
+/// in body space over the body's reach), for srt-trace's search and srt-gpu's (WGSL
+/// `MOTION_THRUST_PIECES_PER_SIZE`): only how finely the BVH is asked for candidates; each
+/// piece's box is exact.
+pub const THRUST_PIECES_PER_SIZE: f64 = 4.0;
+
+/// Newton steps polishing each root of a thrust's crossing with a triangle's plane (on the
+/// unsquared distance), in srt-trace's f64 search and srt-gpu's f32 one (WGSL
+/// `MOTION_NEWTON_STEPS`).
+pub const THRUST_NEWTON_STEPS: u32 = 2;
+
 /// Why a [`Spin`] or [`Thrust`] could not be built.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum MotionError {

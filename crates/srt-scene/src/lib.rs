@@ -31,8 +31,8 @@ pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{
-    Blink, Clock, Effects, Emission, Kinematics, Light, MAX_MOVING_LIGHTS, MovingLight, Object,
-    Observer, Scene, Shading, SurfaceColour, SurfaceOptics, ViewRays,
+    Blink, BodyExtent, Clock, Effects, Emission, Kinematics, Light, MAX_MOVING_LIGHTS, MovingLight,
+    Object, Observer, Scene, Shading, SurfaceColour, SurfaceOptics, ViewRays,
 };
 pub use sky::{Sky, SkyError, Star};
 pub use view::{View, ViewError};

@@ -320,6 +320,64 @@ impl Object {
     pub fn triangle_count(&self) -> usize {
         self.parts.iter().map(|p| p.mesh.triangles().len()).sum()
     }
+
+    /// How far the body's vertices reach ([`BodyExtent`]): the one measure the moving bodies'
+    /// searches of srt-trace and srt-gpu both bound their pieces with.
+    #[must_use]
+    pub fn body_extent(&self) -> BodyExtent {
+        let positions = || self.parts.iter().flat_map(|p| p.mesh.positions().iter());
+        let with_triangles = || self.parts.iter().filter(|p| !p.mesh.triangles().is_empty());
+        let (lo, hi) = with_triangles()
+            .map(|p| p.mesh.bounds())
+            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
+            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
+        let middle = (lo + hi) / 2.0;
+        let ball_radius = with_triangles()
+            .flat_map(|p| p.mesh.positions().iter())
+            .map(|p| (*p - middle).length())
+            .fold(0.0, f64::max)
+            * (1.0 + 1e-12);
+        let (reach, axial) = match self.motion {
+            Motion::Spin(spin) => (
+                positions()
+                    .map(|p| (*p - spin.centre()).length())
+                    .fold(0.0, f64::max)
+                    * (1.0 + 1e-12),
+                Some(
+                    positions()
+                        .map(|p| (*p - spin.centre()).dot(spin.axis()))
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                            (l.min(x), h.max(x))
+                        }),
+                ),
+            ),
+            _ => ((hi - lo).length(), None),
+        };
+        BodyExtent {
+            reach,
+            axial,
+            bounds: (lo, hi),
+            ball: (middle, ball_radius),
+        }
+    }
+}
+
+/// How far a body's vertices at rest reach ([`Object::body_extent`]): what bounds the pieces of
+/// a backward ray that the moving bodies' searches meet with its BVH.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyExtent {
+    /// A spinning body's largest distance of a vertex from its spin centre (widened by 10⁻¹²
+    /// relative, so that rounding cannot put a vertex outside); otherwise the box's diagonal.
+    pub reach: f64,
+    /// A spinning body's lowest and highest vertex heights along its axis from the centre: a
+    /// slab it never leaves. `None` for a body that does not spin.
+    pub axial: Option<(f64, f64)>,
+    /// The box around the vertices of every part with triangles (a point at the origin for
+    /// none).
+    pub bounds: (DVec3, DVec3),
+    /// The ball around the box's centre holding those vertices (centre, radius; widened as
+    /// `reach`): for a round body much smaller than the ball around its box.
+    pub ball: (DVec3, f64),
 }
 
 /// What of a scene follows the observer's motion, computed from a description by

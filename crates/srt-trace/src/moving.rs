@@ -26,19 +26,14 @@
 use bvh::aabb::Aabb;
 use glam::{DMat4, DVec3, DVec4};
 use nalgebra::Point3;
-use srt_physics::motion::{Motion, Spin, Thrust};
+use srt_physics::motion::{
+    Motion, SPIN_PIECE_ANGLE, Spin, THRUST_NEWTON_STEPS, THRUST_PIECES_PER_SIZE, Thrust,
+};
 use srt_physics::{RestRay, lorentz_matrix};
 
 use crate::intersect::TriangleHit;
 use crate::prepared::PreparedObject;
 
-/// Most rotation of a spinning body per piece of a curved ray, in radians.
-const SPIN_PIECE_ANGLE: f64 = 0.05;
-/// Pieces of a thrusting body's accelerating stretch of ray per its size (the extent of the
-/// arc in body space over the body's reach): only how finely the BVH is asked for candidates.
-const THRUST_PIECES_PER_SIZE: f64 = 4.0;
-/// Newton steps polishing each root of a thrust's crossing on the unsquared distance.
-const THRUST_NEWTON_STEPS: usize = 2;
 /// Most pieces of one curved stretch of ray.
 const MAX_PIECES: usize = 1 << 16;
 

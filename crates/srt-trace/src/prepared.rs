@@ -12,7 +12,7 @@ use nalgebra::{Point3, Vector3};
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::mip::MipChain;
-use srt_scene::{Mesh, Object, Part};
+use srt_scene::{Object, Part};
 
 use crate::intersect::{TriangleHit, intersect_triangle};
 
@@ -88,11 +88,8 @@ pub(crate) struct PreparedObject<'a> {
 impl<'a> PreparedObject<'a> {
     pub(crate) fn new(object: &'a Object, observer: Event) -> Self {
         let meshes = || object.parts.iter().map(|part| &part.mesh);
-        let (lo, hi) = meshes()
-            .filter(|mesh| !mesh.triangles().is_empty())
-            .map(Mesh::bounds)
-            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
-            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
+        let extent = object.body_extent();
+        let (lo, hi) = extent.bounds;
         // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
         // boxes, which slab tests can miss.
         let pad = 1e-9 * (hi - lo).length().max(1.0);
@@ -116,25 +113,6 @@ impl<'a> PreparedObject<'a> {
             })
             .collect();
         let bvh = (!boxes.is_empty()).then(|| Bvh::build(&mut boxes));
-        let reach = match object.motion {
-            Motion::Spin(spin) => {
-                meshes()
-                    .flat_map(|mesh| mesh.positions().iter())
-                    .map(|p| (*p - spin.centre()).length())
-                    .fold(0.0, f64::max)
-                    * (1.0 + 1e-12)
-            }
-            _ => (hi - lo).length(),
-        };
-        let axial = match object.motion {
-            Motion::Spin(spin) => meshes()
-                .flat_map(|mesh| mesh.positions().iter())
-                .map(|p| (*p - spin.centre()).dot(spin.axis()))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
-                    (lo.min(h), hi.max(h))
-                }),
-            _ => (f64::NEG_INFINITY, f64::INFINITY),
-        };
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
@@ -143,8 +121,8 @@ impl<'a> PreparedObject<'a> {
             bvh,
             motion: object.motion,
             rest_time_shift: object.rest_time_shift,
-            reach,
-            axial,
+            reach: extent.reach,
+            axial: extent.axial.unwrap_or((f64::NEG_INFINITY, f64::INFINITY)),
             bounds: (lo - pad, hi + pad),
             wireframe: object.wireframe,
         }

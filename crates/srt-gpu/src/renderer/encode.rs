@@ -301,7 +301,7 @@ impl super::GpuRenderer {
 
     /// The indices of the objects of `scene` that may be seen in this frame, nearest first
     /// ([`ball_nearest_apparent_distance`]; objects as near keep the scene's order): all but
-    /// those whose ball (around their vertices at rest, [`BodyExtent::ball`](crate::motion::BodyExtent::ball),
+    /// those whose ball (around their vertices at rest, [`BodyExtent::ball`](srt_scene::BodyExtent::ball),
     /// or around the box swept by their motion, [`sweep_bounds`]) is out of view
     /// ([`ball_out_of_view`]) or covers no pixel's centre ([`ball_between_pixel_centres`]). The
     /// others' footprints and draws are skipped, whatever the method.

@@ -155,7 +155,7 @@ pub(super) struct ObjectResources {
     /// render the object all the same).
     pub(super) ray_tracing: Result<ObjectRayTracing, GpuError>,
     /// Its meshes' extent, for the uniforms of a spinning or thrusting body.
-    pub(super) extent: crate::motion::BodyExtent,
+    pub(super) extent: srt_scene::BodyExtent,
 }
 
 /// The vertices of `parts`, one after the other, each colour multiplied by its part's base
@@ -357,7 +357,7 @@ pub(super) fn upload_object(
         culling,
         parts,
         ray_tracing,
-        extent: crate::motion::BodyExtent::of(object),
+        extent: object.body_extent(),
     };
     (resources, shadow)
 }
