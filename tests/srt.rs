@@ -5,6 +5,7 @@ mod architecture;
 mod cli;
 #[allow(dead_code)] // each module uses its own share
 mod common;
+mod documents;
 mod overrides;
 mod video_and_shards;
 mod view;
