@@ -12,7 +12,7 @@ use anyhow::{Context as _, bail};
 use glam::DVec3;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
-use srt_scene::{OverrideNames, Overrides, Scene, ValueName, View};
+use srt_scene::{Editor, OverrideNames, Overrides, Scene, ValueName, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::cli::RenderArgs;
@@ -47,7 +47,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     for warning in &loaded.warnings {
         eprintln!("warning: {warning}");
     }
-    let mut scene = loaded.scene;
+    let mut editor = loaded.editor;
+    let scene = editor.scene();
     let output = match &args.output {
         Some(output) => output.clone(),
         None => {
@@ -60,12 +61,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let view = args.view;
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
-    let first = viewed(view, &scene)?;
+    let first = viewed(view, scene)?;
     let mut engine = choose_engine(args, &first, settings)?;
     let record = base_record(
         &loaded.origin,
         loaded.observer_beta,
-        &scene,
+        scene,
         &engine,
         settings,
         view,
@@ -81,11 +82,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         println!("{}", wrote(&output, settings, &engine, start));
         return Ok(());
     };
-    // The animation's ends follow observer.ct's rule; every frame's time lies between them.
-    let t0 = observation_time(
-        ValueName::Option("--t0"),
-        args.t0.unwrap_or(scene.observer.ct),
-    )?;
+    // The animation's ends follow observer.time's rule; every frame's time lies between them.
+    let t0 = observation_time(ValueName::Option("--t0"), args.t0.unwrap_or(editor.time()))?;
     let t1 = observation_time(ValueName::Option("--t1"), args.t1.unwrap_or(t0 + 10.0))?;
     let sweep = Sweep {
         frames,
@@ -96,14 +94,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     match animation {
         Animation::Images(shard) => render_numbered(
             &mut engine,
-            &mut scene,
+            &mut editor,
             &sweep,
             shard,
             &output,
             &record,
             args,
         ),
-        Animation::Video => render_video(&mut engine, &mut scene, &sweep, &output, args),
+        Animation::Video => render_video(&mut engine, &mut editor, &sweep, &output, args),
     }
 }
 
@@ -130,7 +128,7 @@ impl Sweep {
 /// Renders `shard`'s share of the sweep as numbered images beside `output`.
 fn render_numbered(
     engine: &mut Engine,
-    scene: &mut Scene,
+    editor: &mut Editor,
     sweep: &Sweep,
     shard: Shard,
     output: &Path,
@@ -151,16 +149,16 @@ fn render_numbered(
     let bar = DelayedBar::new(
         share.len() as u64,
         "frames",
-        format!("rendering {}", scene.name),
+        format!("rendering {}", editor.scene().name),
     );
     for frame in share {
         let frame_start = Instant::now();
-        scene.observer.ct = sweep.time_of(frame);
-        let frame_scene = viewed(sweep.view, scene)?;
+        editor.set_time(sweep.time_of(frame))?;
+        let frame_scene = viewed(sweep.view, editor.scene())?;
         let traced = Frame::new(&frame_scene);
         let pixels = render_pixels(engine, &traced, settings, false)?;
         let record = record.with(&[
-            ("time", format!("{:?}", scene.observer.ct)),
+            ("time", format!("{:?}", editor.time())),
             ("frame", format!("{frame} of 0 to {}", frames - 1)),
         ]);
         let path = numbered(output, frame, digits);
@@ -177,7 +175,7 @@ fn render_numbered(
 /// Renders the sweep as one video, `output`.
 fn render_video(
     engine: &mut Engine,
-    scene: &mut Scene,
+    editor: &mut Editor,
     sweep: &Sweep,
     output: &Path,
     args: &RenderArgs,
@@ -188,11 +186,11 @@ fn render_video(
     let bar = DelayedBar::new(
         u64::from(sweep.frames),
         "frames",
-        format!("rendering {}", scene.name),
+        format!("rendering {}", editor.scene().name),
     );
     for frame in 0..sweep.frames {
-        scene.observer.ct = sweep.time_of(frame);
-        let frame_scene = viewed(sweep.view, scene)?;
+        editor.set_time(sweep.time_of(frame))?;
+        let frame_scene = viewed(sweep.view, editor.scene())?;
         let pixels = render_pixels(engine, &Frame::new(&frame_scene), settings, false)?;
         video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
         bar.inc();

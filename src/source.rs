@@ -12,12 +12,12 @@ use anyhow::anyhow;
 use glam::DVec3;
 use sha2::{Digest as _, Sha256};
 use srt_scene::message::io_reason;
-use srt_scene::{Overrides, Scene, SceneSource, builtin_scenes};
+use srt_scene::{Editor, Overrides, SceneSource, builtin_scenes};
 
 /// A scene ready to render, and where it came from.
 pub struct LoadedScene {
-    /// The scene.
-    pub scene: Scene,
+    /// The scene, in srt-scene's scene state (an animation moves its time).
+    pub editor: Editor,
     /// Non-fatal problems worked around while loading it.
     pub warnings: Vec<String>,
     /// What it was loaded from, for the images' provenance record.
@@ -53,11 +53,13 @@ pub fn load_scene(argument: &str, overrides: &Overrides) -> anyhow::Result<Loade
         SceneSource::SceneFile(path) => file_origin(path, "scene file")?,
         SceneSource::Model(path) => file_origin(path, "model")?,
     };
+    let observer_beta = DVec3::from_array(loaded.source.description.observer.beta);
+    let (editor, warnings) = Editor::new(loaded);
     Ok(LoadedScene {
-        scene: loaded.scene,
-        warnings: loaded.warnings,
+        editor,
+        warnings,
         origin,
-        observer_beta: DVec3::from_array(loaded.source.description.observer.beta),
+        observer_beta,
     })
 }
 

@@ -43,6 +43,15 @@ pub fn scene(error: &srt_scene::SceneError) -> PyErr {
     }
 }
 
+/// An edit refused: the scene's rules as [`scene`] raises them, the rest as [`SceneError`].
+pub fn edit(error: &srt_scene::EditError) -> PyErr {
+    match error {
+        srt_scene::EditError::Scene(error) => scene(error),
+        srt_scene::EditError::Source(error) => resolve(error),
+        other => value(other.to_string()),
+    }
+}
+
 /// A scene argument that names no scene.
 pub fn resolve(error: &ResolveError) -> PyErr {
     match error {

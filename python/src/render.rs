@@ -17,7 +17,7 @@ use srt::engine::{
 };
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
-use srt_scene::{LoadedScene, OverrideNames, Overrides, SceneSource, View};
+use srt_scene::{OverrideNames, Overrides, SceneSource, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::errors;
@@ -121,22 +121,14 @@ pub fn render<'py>(
         ));
     }
     let view = errors::chosen(view)?;
-    let loaded = match &scene {
+    let (built, warnings) = match &scene {
         SceneArgument::Name(name) => SceneSource::resolve(name)
             .map_err(|e| errors::resolve(&e))
-            .and_then(|source| {
-                py.detach(|| source.load_with(&overrides))
-                    .map_err(|e| errors::scene(&e))
-            }),
-        SceneArgument::Path(path) => crate::scene::file_source(path).and_then(|source| {
-            py.detach(|| source.load_with(&overrides))
-                .map_err(|e| errors::scene(&e))
-        }),
-        SceneArgument::Scene(scene) => {
-            let described = scene.borrow().described().clone();
-            py.detach(|| described.load(&overrides))
-                .map_err(|e| errors::scene(&e))
+            .and_then(|source| load(py, &source, &overrides)),
+        SceneArgument::Path(path) => {
+            crate::scene::file_source(path).and_then(|source| load(py, &source, &overrides))
         }
+        SceneArgument::Scene(scene) => Ok((scene.borrow().overridden(&overrides)?, Vec::new())),
     }?;
     let request = Request {
         settings,
@@ -145,7 +137,7 @@ pub fn render<'py>(
         view,
         aov,
     };
-    let rendered = match run_interruptible(py, |stop| request.run(loaded, stop)) {
+    let rendered = match run_interruptible(py, |stop| request.run(built, warnings, stop)) {
         Ok(rendered) => rendered,
         Err(Failure::Raise(error)) => return Err(error),
         Err(Failure::Stopped) => {
@@ -200,16 +192,20 @@ struct Request {
 }
 
 impl Request {
-    /// Renders `loaded` (no GIL held), giving up once `stop` is set.
-    fn run(&self, loaded: LoadedScene, stop: &AtomicBool) -> Result<Rendered, Failure> {
-        let mut warnings = loaded.warnings;
+    /// Renders `built`, met with `warnings` (no GIL held), giving up once `stop` is set.
+    fn run(
+        &self,
+        built: srt_scene::Scene,
+        mut warnings: Vec<String>,
+        stop: &AtomicBool,
+    ) -> Result<Rendered, Failure> {
         let scene = if self.view == View::Seen {
-            loaded.scene
+            built
         } else {
-            self.view.apply(&loaded.scene).map_err(|error| {
+            self.view.apply(&built).map_err(|error| {
                 Failure::Raise(errors::value(format!(
                     "cannot draw scene {} in the {} view: {error}",
-                    loaded.scene.name,
+                    built.name,
                     self.view.name()
                 )))
             })?
@@ -249,6 +245,18 @@ impl Request {
             warnings,
         })
     }
+}
+
+/// The scene `source` loads with `overrides` (no GIL held), and the warnings met.
+fn load(
+    py: Python<'_>,
+    source: &SceneSource,
+    overrides: &Overrides,
+) -> PyResult<(srt_scene::Scene, Vec<String>)> {
+    let loaded = py
+        .detach(|| source.load_with(overrides))
+        .map_err(|e| errors::scene(&e))?;
+    Ok((loaded.scene, loaded.warnings))
 }
 
 /// Runs `work` on another thread with the GIL released, looking for Ctrl-C meanwhile: on one,

@@ -1,12 +1,14 @@
-//! `srt.Scene`: a scene description (as a scene file holds it) that Python reads and edits, with
-//! the scene file's validation and messages, and that `srt.render` loads the way `srt render`
-//! loads its SCENE argument ([`srt_scene::SceneSource`]). `Observer` and `SceneObject` are views
-//! of a scene's observer and objects: setting one of their fields edits the scene.
+//! `srt.Scene`: a scene that Python reads and edits — srt-scene's [`Editor`], the scene state the
+//! viewer, the web page and `srt render` share — with the scene file's validation and messages;
+//! an edit builds only what it changed (a velocity or a time builds nothing new), and
+//! `srt.render` draws the edited scene with its arguments in place of the scene's values, as
+//! `srt render` does. `Observer` and `SceneObject` are views of a scene's observer and objects:
+//! setting one of their fields edits the scene.
 
 use pyo3::prelude::*;
 use srt_scene::description::LightsDescription;
 use srt_scene::resolve::LocatedDescription;
-use srt_scene::{Effects, LoadedScene, Overrides, SceneDescription, SceneSource, SurfaceColour};
+use srt_scene::{Editor, Effects, Overrides, SceneDescription, SceneSource, SurfaceColour};
 
 use crate::errors;
 
@@ -31,61 +33,57 @@ pub fn file_source(path: &std::path::Path) -> PyResult<SceneSource> {
     SceneSource::from_path(path).map_err(|e| errors::resolve(&e))
 }
 
-/// A scene description: what a scene file holds, plus where it came from.
+/// A scene: what a scene file holds, built, and where it came from.
 #[pyclass(module = "srt")]
 pub struct Scene {
-    /// The description and its origin.
-    described: Described,
-}
-
-/// A scene description as edited so far and where it came from: what loading it needs.
-#[derive(Clone)]
-pub struct Described {
+    /// The scene state: its description and the scene built from it.
+    editor: Editor,
     /// The built-in scene, scene file or model it came from; `None` for scene text.
     source: Option<SceneSource>,
-    /// Its description, and the folder relative paths start from.
-    located: LocatedDescription,
-}
-
-impl Described {
-    /// Loads the scene with `overrides` as `srt render` loads a scene (srt-scene's one route).
-    pub fn load(&self, overrides: &Overrides) -> Result<LoadedScene, srt_scene::SceneError> {
-        match &self.source {
-            Some(source) => source.load_edited(self.located.clone(), overrides),
-            None => self.located.clone().load_with(overrides),
-        }
-    }
 }
 
 impl Scene {
-    /// The description and its origin, to load the scene from.
-    pub const fn described(&self) -> &Described {
-        &self.described
+    /// The description as edited so far.
+    fn description(&self) -> &SceneDescription {
+        self.editor.description()
     }
 
-    /// Applies `change` to the description if the result passes the scene file's validation;
-    /// otherwise leaves the scene as it was and raises its message.
+    /// Applies `change` to the description if the result passes the scene file's validation
+    /// (and its new objects load); otherwise leaves the scene as it was and raises its message.
     fn edit(&mut self, change: impl FnOnce(&mut SceneDescription)) -> PyResult<()> {
-        let mut edited = self.described.located.description.clone();
+        let mut edited = self.description().clone();
         change(&mut edited);
-        edited.validate().map_err(|e| errors::scene(&e))?;
-        self.described.located.description = edited;
-        Ok(())
+        (self.editor.set_description(edited))
+            .map(|_no_new_objects| ())
+            .map_err(|e| errors::edit(&e))
     }
 
-    /// A scene from `source`, its description read (a bare model moving with `beta`) and the
-    /// whole scene built once, so that a missing or broken file is reported now.
+    /// The scene built with `overrides` in place of its values (the scene itself unchanged),
+    /// named in messages as its source names it.
+    pub fn overridden(&self, overrides: &Overrides) -> PyResult<srt_scene::Scene> {
+        let mut description = self.description().clone();
+        let origin = match &self.source {
+            Some(source) => source.origin(&description),
+            None => description.origin(),
+        };
+        (overrides.apply(&mut description, &origin))
+            .map_err(|kind| errors::scene(&srt_scene::SceneError::new(origin, kind)))?;
+        let mut editor = self.editor.clone();
+        (editor.set_description(description)).map_err(|e| errors::edit(&e))?;
+        Ok(editor.scene().clone())
+    }
+
+    /// A scene from `source`, its description read (a bare model moving with `beta`) and built
+    /// at once, so that a missing or broken file is reported now.
     fn from_source(source: SceneSource, beta: Option<[f64; 3]>) -> PyResult<Self> {
         let beta = beta.map(glam::DVec3::from_array);
         let located = source.description(beta).map_err(|e| errors::scene(&e))?;
-        let described = Described {
+        let loaded =
+            (source.load_edited(located, &Overrides::default())).map_err(|e| errors::scene(&e))?;
+        Ok(Self {
+            editor: Editor::new(loaded).0,
             source: Some(source),
-            located,
-        };
-        described
-            .load(&Overrides::default())
-            .map_err(|e| errors::scene(&e))?;
-        Ok(Self { described })
+        })
     }
 }
 
@@ -117,31 +115,26 @@ impl Scene {
     fn from_toml(text: &str) -> PyResult<Self> {
         let description =
             SceneDescription::from_toml_str(text, TEXT_ORIGIN).map_err(|e| errors::scene(&e))?;
-        let described = Described {
-            source: None,
-            located: LocatedDescription {
-                description,
-                base_dir: ".".into(),
-            },
+        let located = LocatedDescription {
+            description,
+            base_dir: ".".into(),
         };
-        described
-            .load(&Overrides::default())
-            .map_err(|e| errors::scene(&e))?;
-        Ok(Self { described })
+        let loaded = (located.load_with(&Overrides::default())).map_err(|e| errors::scene(&e))?;
+        Ok(Self {
+            editor: Editor::new(loaded).0,
+            source: None,
+        })
     }
 
     /// The description as scene-file text that `Scene.from_toml` reads back.
     fn to_toml(&self) -> String {
-        self.described.located.description.to_toml_string()
+        self.description().to_toml_string()
     }
 
     /// The scene's name (`None` if its description gives none).
     #[getter]
     fn name(&self) -> Option<String> {
-        match (
-            &self.described.located.description.name,
-            &self.described.source,
-        ) {
+        match (&self.description().name, &self.source) {
             (Some(name), _) => Some(name.clone()),
             (None, Some(SceneSource::Builtin(builtin))) => Some(builtin.name.to_owned()),
             (None, _) => None,
@@ -152,7 +145,7 @@ impl Scene {
     /// scene the mode's own tone map, as `srt render --effects` does).
     #[getter]
     fn effects(&self) -> &'static str {
-        self.described.located.description.render.effects.name()
+        self.description().render.effects.name()
     }
 
     #[setter]
@@ -167,7 +160,7 @@ impl Scene {
     /// How lit surfaces are coloured: "paper" (the paper's Eq. 18) or "spectral".
     #[getter]
     fn colour(&self) -> &'static str {
-        self.described.located.description.render.colour.name()
+        self.description().render.colour.name()
     }
 
     #[setter]
@@ -179,7 +172,7 @@ impl Scene {
     /// The multiplier on the light before the tone map (spectral colour only).
     #[getter]
     fn exposure(&self) -> f64 {
-        self.described.located.description.render.exposure
+        self.description().render.exposure
     }
 
     #[setter]
@@ -187,21 +180,23 @@ impl Scene {
         self.edit(|d| d.render.exposure = exposure)
     }
 
-    /// The observation time ct_obs (`observer.ct`).
+    /// The observation time: the observer's own clock when it looks (`observer.time`, or
+    /// `observer.ct` when the scene gives none); what `srt.render(time=)` and `srt render
+    /// --time` set.
     #[getter]
     fn time(&self) -> f64 {
-        self.described.located.description.observer.ct
+        self.editor.time()
     }
 
     #[setter]
-    fn set_time(&mut self, ct: f64) -> PyResult<()> {
-        self.edit(|d| d.observer.ct = ct)
+    fn set_time(&mut self, time: f64) -> PyResult<()> {
+        self.edit(|d| d.observer.time = Some(time))
     }
 
     /// The lamp's position and black-body temperature in kelvin, `None` without a lamp.
     #[getter]
     fn light(&self) -> Option<([f64; 3], f64)> {
-        (self.described.located.description.light.as_ref())
+        (self.description().light.as_ref())
             .and_then(LightsDescription::lamp)
             .map(|lamp| (lamp.position, lamp.temperature_k))
     }
@@ -215,7 +210,7 @@ impl Scene {
     /// The objects, in scene-file order (views: setting their fields edits this scene).
     #[getter]
     fn objects(slf: Py<Self>, py: Python<'_>) -> Vec<SceneObject> {
-        let count = slf.borrow(py).described.located.description.objects.len();
+        let count = slf.borrow(py).description().objects.len();
         (0..count)
             .map(|index| SceneObject {
                 scene: slf.clone_ref(py),
@@ -228,7 +223,7 @@ impl Scene {
         format!(
             "<srt.Scene {} ({} objects, {})>",
             self.name().unwrap_or_else(|| "untitled".into()),
-            self.described.located.description.objects.len(),
+            self.description().objects.len(),
             self.effects()
         )
     }
@@ -248,7 +243,7 @@ impl Observer {
         py: Python<'_>,
         field: impl FnOnce(&srt_scene::ObserverDescription) -> T,
     ) -> T {
-        field(&self.scene.borrow(py).described.located.description.observer)
+        field(&self.scene.borrow(py).description().observer)
     }
 
     /// Edits the observer's description (validated as the scene file is).
@@ -337,7 +332,8 @@ impl Observer {
         self.set(py, |o| o.fov_y_deg = value)
     }
 
-    /// The observation time ct_obs (the same as `Scene.time`).
+    /// W's time at which the observer is at `position` (its clock reads `ct` there; `Scene.time`
+    /// is when it looks).
     #[getter]
     fn ct(&self, py: Python<'_>) -> f64 {
         self.get(py, |o| o.ct)
@@ -370,7 +366,7 @@ pub struct SceneObject {
 impl SceneObject {
     /// A value of the object's description.
     fn get<T>(&self, py: Python<'_>, field: impl FnOnce(&srt_scene::ObjectDescription) -> T) -> T {
-        field(&self.scene.borrow(py).described.located.description.objects[self.index])
+        field(&self.scene.borrow(py).description().objects[self.index])
     }
 
     /// Edits the object's description (validated as the scene file is).

@@ -50,7 +50,7 @@ def test_edits_are_kept_and_written_to_toml():
         ),
         (lambda s: setattr(s.observer, "beta", (0.0, float("nan"), 0.0)), "observer.beta"),
         (lambda s: setattr(s.observer, "fov_y_deg", 200.0), "observer.fov_y_deg"),
-        (lambda s: setattr(s, "time", float("inf")), "observer.ct"),
+        (lambda s: setattr(s, "time", float("inf")), "observer.time"),
         (lambda s: setattr(s, "effects", "glow"), 'unknown effect mode "glow"'),
         (lambda s: setattr(s, "colour", "sepia"), 'unknown surface colour "sepia"'),
     ],

@@ -5,7 +5,7 @@ use srt_gpu::{GpuContext, GpuRenderer};
 use srt_scene::Scene;
 
 /// The last renderer made, kept for the next case while its scene uploads alike
-/// ([`srt_gpu::same_upload`]: the same parts, another speed or time) and resized to the next
+/// ([`Scene::same_structure`]: the same parts, another speed or time) and resized to the next
 /// case's size, as a viewer keeps one while the scene moves or the window changes: the image and
 /// bench cases come in such runs (a model at three speeds, a static case at each size, a sweep's
 /// frames), and a new renderer builds its BVHs again.
@@ -25,7 +25,7 @@ impl KeptRenderer {
         let fits = self
             .kept
             .as_ref()
-            .is_some_and(|(uploaded, _)| srt_gpu::same_upload(uploaded, scene));
+            .is_some_and(|(uploaded, _)| uploaded.same_structure(scene));
         if !fits {
             self.kept = None;
             let renderer = GpuRenderer::new(ctx, scene, width, height)?;

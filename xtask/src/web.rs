@@ -356,7 +356,7 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
             set('set-velocity', true, 'change');
             set('speed', '0.8', 'input');
             set('effects', 'searchlight', 'change');
-            set('ct', '0.5', 'input');
+            set('time', '0.5', 'input');
             return true;
         })()",
     )?;
@@ -368,7 +368,7 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
             value[0].as_u64().unwrap_or(0) > frames
                 && value[1]
                     .as_str()
-                    .is_some_and(|q| q.contains("effects=searchlight") && q.contains("ct=0.5"))
+                    .is_some_and(|q| q.contains("effects=searchlight") && q.contains("time=0.5"))
         },
         FIRST_FRAME_TIMEOUT,
     )?;
@@ -382,7 +382,7 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
             .collect();
     // Play runs the observer's clock: frames keep coming, each at a later time.
     let clock = "(() => { const q = new URLSearchParams(document.body.dataset.query); \
-                 return [Number(document.body.dataset.frames), Number(q.get('ct'))]; })()";
+                 return [Number(document.body.dataset.frames), Number(q.get('time'))]; })()";
     let before = browser.evaluate(clock)?;
     browser.evaluate("document.getElementById('play').click(), true")?;
     let later = browser.wait_for(

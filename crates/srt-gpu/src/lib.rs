@@ -61,5 +61,5 @@ pub use error::GpuError;
 pub use readback::{TextureReadback, read_texture};
 pub use renderer::{
     FootprintShape, FragmentCounts, FrameStats, GpuImage, GpuRenderer, Method, SEEN_CHANNELS,
-    TriangleFootprints, same_upload,
+    TriangleFootprints,
 };

@@ -1,10 +1,10 @@
-//! One upload serves every edit that `same_upload` accepts: a renderer uploaded for a scene
+//! One upload serves every edit that `Scene::same_structure` accepts: a renderer uploaded for a scene
 //! draws the scene with other velocities, times, effects and colours exactly as a renderer
 //! uploaded for the edited scene (what the web page and other front ends rely on to skip the
-//! upload when a slider moves), and `same_upload` refuses what changes the upload.
+//! upload when a slider moves), and `Scene::same_structure` refuses what changes the upload.
 
 use glam::DVec3;
-use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip, same_upload};
+use srt_gpu::{FootprintShape, GpuRenderer, Method, context_or_skip};
 use srt_scene::{Effects, Overrides, Scene, SceneSource, SurfaceColour};
 
 const WIDTH: u32 = 160;
@@ -43,7 +43,10 @@ fn a_kept_upload_draws_edits_as_a_fresh_one() {
         let kept = GpuRenderer::new(&ctx, &base, WIDTH, HEIGHT).unwrap();
         for edit in &edits {
             let edited = load(name, edit);
-            assert!(same_upload(&base, &edited), "{name} with {edit:?}");
+            assert!(
+                Scene::same_structure(&base, &edited),
+                "{name} with {edit:?}"
+            );
             let fresh = GpuRenderer::new(&ctx, &edited, WIDTH, HEIGHT).unwrap();
             for method in [Method::Auto, Method::Polygon] {
                 let draw = |renderer: &GpuRenderer| {
@@ -65,17 +68,20 @@ fn a_kept_upload_draws_edits_as_a_fresh_one() {
 #[test]
 fn what_changes_the_upload_is_refused() {
     let teaser = load("teaser", &Overrides::default());
-    assert!(!same_upload(&teaser, &load("fig7", &Overrides::default())));
+    assert!(!Scene::same_structure(
+        &teaser,
+        &load("fig7", &Overrides::default())
+    ));
     let mut fewer = teaser.clone();
     fewer.objects.pop();
-    assert!(!same_upload(&teaser, &fewer));
+    assert!(!Scene::same_structure(&teaser, &fewer));
     let mut recoloured = teaser.clone();
     recoloured.objects[0].parts[0].material.base_color[0] *= 0.5;
-    assert!(!same_upload(&teaser, &recoloured));
+    assert!(!Scene::same_structure(&teaser, &recoloured));
     let mut starry = teaser.clone();
     starry.sky = load("flythrough", &Overrides::default()).sky;
     assert_eq!(
-        same_upload(&teaser, &starry),
+        Scene::same_structure(&teaser, &starry),
         teaser.sky == starry.sky,
         "a sky of its own"
     );

@@ -6,6 +6,7 @@ pub mod assets;
 pub mod builtin;
 pub mod choice;
 pub mod description;
+pub mod edit;
 pub mod import;
 pub mod input_file;
 pub mod limits;
@@ -27,6 +28,7 @@ pub use description::{
     Overrides, RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind,
     ShapeDescription, TextureDescription, ValueName, load_scene_file, parse_vector,
 };
+pub use edit::{EditError, Editor};
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};

@@ -83,6 +83,7 @@ impl SceneDescription {
                 up: [0.0, 0.0, 1.0],
                 fov_y_deg: VIEW_FOV_Y_DEG,
                 ct: 0.0,
+                time: None,
             },
             light: Some(LightsDescription::Lamp(LightDescription::lamp(
                 (position + DVec3::new(-1.0, 0.0, 2.0) * FIT_RADIUS * 2.0).to_array(),

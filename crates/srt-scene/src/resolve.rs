@@ -120,21 +120,28 @@ impl LocatedDescription {
 }
 
 /// Applies `overrides` to `source`'s description (judged by its validation, named by
-/// `origin`), builds it with `build` and sets the overridden time on the built scene: the one
-/// route of [`Overrides`] into a scene.
+/// `origin`) and builds it with `build`: the one route of [`Overrides`] into a scene.
 fn load_overridden(
-    mut source: LocatedDescription,
+    source: LocatedDescription,
     overrides: &Overrides,
     origin: impl FnOnce(&SceneDescription) -> String,
     build: impl FnOnce(LocatedDescription) -> Result<LoadedScene, SceneError>,
 ) -> Result<LoadedScene, SceneError> {
+    build(overridden(source, overrides, origin)?)
+}
+
+/// `source` with `overrides` applied to its description ([`Overrides::apply`]), refused by
+/// the scene file's rules with the scene named by `origin`.
+fn overridden(
+    mut source: LocatedDescription,
+    overrides: &Overrides,
+    origin: impl FnOnce(&SceneDescription) -> String,
+) -> Result<LocatedDescription, SceneError> {
     let origin = origin(&source.description);
     overrides
         .apply(&mut source.description, &origin)
         .map_err(|kind| SceneError::new(origin, kind))?;
-    let mut loaded = build(source)?;
-    overrides.apply_to_scene(&mut loaded.scene);
-    Ok(loaded)
+    Ok(source)
 }
 
 /// Builds a description from its base folder, errors naming it by [`SceneDescription::origin`].
@@ -224,7 +231,7 @@ impl SceneSource {
 
     /// Loads the scene with `overrides` in place of its own values: the description is edited
     /// and validated ([`Overrides::apply`]; a bare model is placed for [`Overrides::beta`]),
-    /// then built, and given [`Overrides::time`] ([`Overrides::apply_to_scene`]).
+    /// then built.
     ///
     /// # Errors
     /// As [`SceneSource::load`]; a value of an option the scene file's rules refuse is reported
@@ -232,6 +239,21 @@ impl SceneSource {
     /// before any model or texture is read.
     pub fn load_with(&self, overrides: &Overrides) -> Result<LoadedScene, SceneError> {
         self.load_edited(self.description(overrides.beta)?, overrides)
+    }
+
+    /// The description [`SceneSource::load_with`] builds: this source's own with `overrides` in
+    /// place of its values, judged by the scene file's rules (what an [`crate::Editor`] is
+    /// given when a front end's values change).
+    ///
+    /// # Errors
+    /// As [`SceneSource::load_with`], before anything is built.
+    pub fn description_with(
+        &self,
+        overrides: &Overrides,
+    ) -> Result<LocatedDescription, SceneError> {
+        overridden(self.description(overrides.beta)?, overrides, |d| {
+            self.origin(d)
+        })
     }
 
     /// Loads `source`, this source's description as a front end holds it (perhaps edited since

@@ -435,7 +435,47 @@ pub struct Scene {
     pub world: Poincare,
 }
 
+/// A scene's structure beside its objects' parts ([`Scene::structure_beside_parts`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct StructureBesideParts {
+    /// Per object: at rest, glowing.
+    objects: Vec<(bool, bool)>,
+    /// Whether there are moving lights.
+    moving_lights: bool,
+    /// The sky.
+    sky: Sky,
+}
+
 impl Scene {
+    /// Whether `self` and `other` have the same structure: the same parts (meshes, materials,
+    /// textures) per object, the same kind of motion (at rest or not), the same glowing objects,
+    /// moving lights in both or in neither, and the same sky. That is what a GPU renderer
+    /// uploads; everything else — velocities, times, the observer, lights' places, effects and
+    /// colours — is the scene's state, written with each frame. A front end uploads again only
+    /// when this is false (an [`crate::Editor`] counts it as its structure version).
+    #[must_use]
+    pub fn same_structure(&self, other: &Self) -> bool {
+        self.objects.len() == other.objects.len()
+            && self
+                .objects
+                .iter()
+                .zip(&other.objects)
+                .all(|(a, b)| a.parts == b.parts)
+            && self.structure_beside_parts() == other.structure_beside_parts()
+    }
+
+    /// The structure of the scene beside its parts ([`Scene::same_structure`]): what an editor
+    /// that kept every object's parts in place compares, without comparing the meshes.
+    pub(crate) fn structure_beside_parts(&self) -> StructureBesideParts {
+        StructureBesideParts {
+            objects: (self.objects.iter())
+                .map(|o| (o.motion.is_rest(), o.optics.emission.is_some()))
+                .collect(),
+            moving_lights: !self.lights.is_empty(),
+            sky: self.sky.clone(),
+        }
+    }
+
     /// Total number of triangles.
     #[must_use]
     pub fn triangle_count(&self) -> usize {

@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use srt_scene::View;
 use srt_viewer::view::{PaneScene, SceneView, UploadKey};
-use srt_viewer::{Editor, Pane, ViewMethod};
+use srt_viewer::{Pane, ViewMethod};
 
 fn main() -> anyhow::Result<()> {
     let mut arguments = std::env::args().skip(1);
@@ -46,7 +46,7 @@ fn main() -> anyhow::Result<()> {
         size.0,
         size.1
     );
-    let (mut editor, _) = Editor::from_arguments(&[scene])?;
+    let (mut editor, _) = srt_viewer::open_arguments(&[scene])?;
     let mut view = SceneView::new(&ctx);
     view.upload(&ctx, editor.scene(), editor.structure_version())?;
     for ct in times {

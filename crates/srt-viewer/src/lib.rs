@@ -35,7 +35,8 @@ use eframe::{egui, egui_wgpu};
 use srt_gpu::GpuContext;
 
 pub use app::{Level, Status, ViewerApp};
-pub use edit::{EditError, Editor, parse_speed};
+pub use edit::open_arguments;
+pub use srt_scene::edit::{EditError, Editor, parse_speed};
 pub use view::{Pane, ViewMethod};
 
 /// Why `srt view` could not run.
@@ -86,7 +87,7 @@ fn wgpu_options() -> egui_wgpu::WgpuConfiguration {
 /// file), [`ViewerError::Window`] for a window or GPU that cannot be opened (no display, no
 /// adapter).
 pub fn run(arguments: &[String]) -> Result<(), ViewerError> {
-    let (editor, warnings) = Editor::from_arguments(arguments)?;
+    let (editor, warnings) = open_arguments(arguments)?;
     let title = format!("srt view — {}", editor.scene().name);
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()

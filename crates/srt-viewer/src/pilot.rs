@@ -14,7 +14,7 @@ use glam::DVec3;
 use srt_physics::FrameError;
 use srt_physics::flight::Worldline;
 
-use crate::edit::{EditError, Editor};
+use srt_scene::{EditError, Editor};
 
 /// The default proper acceleration α, in units of c per unit of ct (c²/length with c = 1):
 /// from rest, 0.9c (rapidity 1.47) after 2.9 units of proper time.

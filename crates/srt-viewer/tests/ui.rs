@@ -15,12 +15,13 @@ use egui_kittest::kittest::Queryable as _;
 use srt_gpu::GpuContext;
 use srt_scene::{Effects, View};
 use srt_viewer::view::DISPLAY_FORMAT;
-use srt_viewer::{Editor, Level, ViewerApp};
+use srt_viewer::{Level, ViewerApp};
 
 const SIZE: [f32; 2] = [1000.0, 620.0];
 
 fn app(scene: &str, ctx: Option<GpuContext>) -> ViewerApp {
-    let (editor, warnings) = Editor::from_arguments(&[scene.to_owned()]).expect("the scene opens");
+    let (editor, warnings) =
+        srt_viewer::open_arguments(&[scene.to_owned()]).expect("the scene opens");
     let gpu = ctx.map(|ctx| {
         let renderer = egui_wgpu::Renderer::new(
             &ctx.device,
@@ -437,7 +438,7 @@ fn two_views_side_by_side_and_the_probe_tells_what_a_pixel_shows() {
     assert_eq!(found.object, "cube");
     assert!(found.doppler > 5.0, "{}", found.doppler);
     // At ct = 0 the Newtonian cube is at the origin, straight ahead, at rest: D = 1.
-    click(&mut harness, "ct = 0");
+    click(&mut harness, "time = 0");
     harness
         .state_mut()
         .probe_at(1, egui::vec2(0.5, 0.5), right.dimensions());
@@ -485,7 +486,7 @@ fn two_views_side_by_side_and_the_probe_tells_what_a_pixel_shows() {
 
 /// A binary STL file with one tetrahedron (4 triangles), shared with the unit tests.
 fn tetrahedron_stl() -> Vec<u8> {
-    include_bytes!("fixtures/tetrahedron.stl").to_vec()
+    include_bytes!("../../srt-scene/tests/fixtures/tetrahedron.stl").to_vec()
 }
 
 #[test]
@@ -508,7 +509,7 @@ fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
     let ct_start = harness.state().editor().scene().observer.ct;
     harness.run_steps(12);
     let ct_end = harness.state().editor().scene().observer.ct;
-    // 12 frames at 24 fps of playback at 1 ct per second: exactly 0.5, whatever the frames took.
+    // 12 frames at 24 fps of playback at 1 unit of time per second: exactly 0.5, whatever the frames took.
     assert!(
         (ct_end - ct_start - 0.5).abs() < 1e-9,
         "ct advanced by {} in 12 recorded frames",

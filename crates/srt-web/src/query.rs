@@ -1,6 +1,6 @@
-//! The page's address as settings: `index.html?scene=fig7&width=320&height=180&ct=5&embed=1`.
+//! The page's address as settings: `index.html?scene=fig7&width=320&height=180&time=5&embed=1`.
 //! Every key has the meaning of the `srt render` option of the same name, so an embedded page
-//! and the command draw the same picture; `ct` is `--time`. A key the page does not know, or a
+//! and the command draw the same picture (`time` is `--time`, the observer's clock). A key the page does not know, or a
 //! value it cannot read, is refused with a message naming the key.
 
 use srt_gpu::Method;
@@ -13,7 +13,7 @@ pub const MAX_CANVAS_SIDE: u32 = 8192;
 pub const QUERY_NAMES: OverrideNames = OverrideNames {
     colour: "colour",
     exposure: "exposure",
-    time: "ct",
+    time: "time",
     beta: "beta",
     observer_beta: "observer_beta",
 };
@@ -100,7 +100,7 @@ pub const KEYS: [&str; 13] = [
     "backend",
     "method",
     "split",
-    "ct",
+    "time",
     "beta",
     "observer_beta",
     "effects",
@@ -138,7 +138,7 @@ pub fn parse_query(query: &str) -> Result<PageQuery, QueryError> {
             "split" => page.split = flag(&value).ok_or_else(|| rule(FLAG_RULE))?,
             "backend" => page.backend = chosen(&value).map_err(bad)?,
             "method" => page.method = chosen(&value).map_err(bad)?,
-            "ct" => overrides.time = Some(number(&value).ok_or_else(|| rule(NUMBER_RULE))?),
+            "time" => overrides.time = Some(number(&value).ok_or_else(|| rule(NUMBER_RULE))?),
             "exposure" => {
                 overrides.exposure = Some(number(&value).ok_or_else(|| rule(NUMBER_RULE))?);
             }
@@ -209,7 +209,7 @@ mod tests {
     #[test]
     fn an_embed_address_reads_as_the_command_line_options() {
         let page = parse_query(
-            "?scene=fig7&width=320&height=180&ct=5.5&embed=1&backend=cpu&beta=0%2C0%2C0.9\
+            "?scene=fig7&width=320&height=180&time=5.5&embed=1&backend=cpu&beta=0%2C0%2C0.9\
              &effects=searchlight&colour=spectral&method=rt&split=0",
         )
         .unwrap();
@@ -233,7 +233,7 @@ mod tests {
             "{unknown}"
         );
         for (query, key) in [
-            ("ct=soon", "ct="),
+            ("time=soon", "time="),
             ("width=0&height=10", "width=0"),
             ("width=10", "height"),
             ("beta=0,0", "beta=0,0"),

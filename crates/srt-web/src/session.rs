@@ -1,16 +1,13 @@
 //! The scene a page shows, as `srt render` loads it: a built-in scene or a dropped model, with
-//! the page's [`Overrides`] in place of the scene's own values (srt-scene's one route for them,
-//! [`SceneSource::load_with`]). The scene is built again only when something other than the
-//! time changed; playing time costs no build. The CPU picture is the exact tracer's, quantised
+//! the page's [`Overrides`] in place of the scene's own values (srt-scene's one route for them),
+//! held by srt-scene's [`Editor`], the scene state every front end shares: playing time costs no
+//! build, a velocity keeps every object's parts. The CPU picture is the exact tracer's, quantised
 //! as `srt render` writes its PNG.
 
 use glam::DVec3;
 use srt_color::quantize_8bit;
-use srt_scene::description::observation_time;
 use srt_scene::resolve::ResolveError;
-use srt_scene::{
-    LoadedScene, Overrides, Scene, SceneError, SceneSource, ValueName, builtin_scenes,
-};
+use srt_scene::{EditError, Editor, Overrides, Scene, SceneError, SceneSource, builtin_scenes};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::query::QUERY_NAMES;
@@ -33,23 +30,22 @@ pub enum SessionError {
     /// file or the key).
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// An edit the scene's rules refuse (the message names the key).
+    #[error(transparent)]
+    Edit(#[from] EditError),
 }
 
-/// The scene a page shows and the values it overrides.
+/// The scene a page shows (srt-scene's [`Editor`], the one scene state) and the values it
+/// overrides.
 pub struct Session {
     source: SceneSource,
+    /// The page's values, judged when the scene is next asked for.
     overrides: Overrides,
-    built: Built,
-    /// Scenes built so far.
-    builds: u64,
-    /// Changes when a build changed what a GPU renderer uploads ([`srt_gpu::same_upload`]).
-    upload_version: u64,
-}
-
-/// A built scene and the overrides it was built with.
-struct Built {
-    loaded: LoadedScene,
-    overrides: Overrides,
+    /// The values the editor's scene was made with.
+    applied: Overrides,
+    editor: Editor,
+    /// Warnings of the last scene opened.
+    warnings: Vec<String>,
 }
 
 /// What the page's controls start from: the scene's own values.
@@ -57,8 +53,8 @@ struct Built {
 pub struct SceneInfo {
     /// The scene's name.
     pub name: String,
-    /// The observation time (the observer's clock).
-    pub ct: f64,
+    /// The observation time (the observer's clock, `observer.time`).
+    pub time: f64,
     /// The velocity of the first moving object (zero if none moves).
     pub beta: DVec3,
     /// Whether the observer moves (then objects' velocities cannot be overridden).
@@ -83,16 +79,13 @@ impl Session {
             names: QUERY_NAMES,
             ..Overrides::default()
         };
-        let built = Built {
-            loaded: source.load_with(&overrides)?,
-            overrides: overrides.clone(),
-        };
+        let (editor, warnings) = Editor::new(source.load_with(&overrides)?);
         Ok(Self {
             source,
+            applied: overrides.clone(),
             overrides,
-            built,
-            builds: 1,
-            upload_version: 0,
+            editor,
+            warnings,
         })
     }
 
@@ -123,27 +116,18 @@ impl Session {
         let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
         let path = srt_scene::assets::add_memory_file(base, bytes);
         self.show(SceneSource::from_path(std::path::Path::new(&path))?)?;
-        Ok(self.built.loaded.warnings.clone())
+        Ok(self.warnings.clone())
     }
 
-    /// Builds `source` with the values set and shows it, or leaves everything as it was.
+    /// Opens `source` with the values set and shows it ([`Editor::replace_with`]), or leaves
+    /// everything as it was.
     fn show(&mut self, source: SceneSource) -> Result<(), SessionError> {
-        let loaded = source.load_with(&self.overrides)?;
+        let (editor, warnings) = Editor::new(source.load_with(&self.overrides)?);
+        self.editor.replace_with(editor);
         self.source = source;
-        self.replace(loaded);
+        self.applied = self.overrides.clone();
+        self.warnings = warnings;
         Ok(())
-    }
-
-    /// Shows `loaded`, built with the values set.
-    fn replace(&mut self, loaded: LoadedScene) {
-        if !srt_gpu::same_upload(&self.built.loaded.scene, &loaded.scene) {
-            self.upload_version += 1;
-        }
-        self.built = Built {
-            loaded,
-            overrides: self.overrides.clone(),
-        };
-        self.builds += 1;
     }
 
     /// Sets the values in place of the scene's own (their names in messages stay the page's);
@@ -155,47 +139,34 @@ impl Session {
         };
     }
 
-    /// The scene as it is now to be shown: built again if a value other than the time changed,
-    /// else the built scene at the new time.
+    /// The scene as it is now to be shown: the scene's own description with the page's values,
+    /// given to the editor ([`Editor::set_description`]: playing time, or any change of the
+    /// observer alone, builds nothing; a velocity keeps every object's parts).
     ///
     /// # Errors
     /// [`SessionError::Scene`] when it does not build or a value is refused; the scene shown
     /// before stays.
     pub fn scene(&mut self) -> Result<&Scene, SessionError> {
-        let built = &mut self.built;
-        let only_time_changed = Overrides {
-            time: built.overrides.time,
-            ..self.overrides.clone()
-        } == built.overrides;
-        match self.overrides.time {
-            Some(ct) if only_time_changed => {
-                observation_time(ValueName::Option(QUERY_NAMES.time), ct).map_err(|kind| {
-                    SceneError::new(self.source.origin(&built.loaded.source.description), kind)
-                })?;
-                built.overrides.time = Some(ct);
-                self.overrides.apply_to_scene(&mut built.loaded.scene);
-            }
-            _ if built.overrides != self.overrides => {
-                let loaded = self.source.load_with(&self.overrides)?;
-                self.replace(loaded);
-            }
-            _ => {}
+        if self.overrides != self.applied {
+            let located = self.source.description_with(&self.overrides)?;
+            self.editor.set_description(located.description)?;
+            self.applied = self.overrides.clone();
         }
-        Ok(&self.built.loaded.scene)
+        Ok(self.editor.scene())
     }
 
     /// A number that changes whenever the scene changed in a way a GPU renderer must upload
-    /// again ([`srt_gpu::same_upload`]: other meshes, materials or sky); velocities, times,
+    /// again ([`Scene::same_structure`]: other meshes, materials or sky); velocities, times,
     /// effects and colours leave it.
     #[must_use]
     pub const fn upload_version(&self) -> u64 {
-        self.upload_version
+        self.editor.structure_version()
     }
 
     /// How many times the scene has been built (playing time builds nothing).
     #[must_use]
     pub const fn builds(&self) -> u64 {
-        self.builds
+        self.editor.builds()
     }
 
     /// The scene's own values (before the page's) for the page's controls, and the warnings
@@ -212,13 +183,13 @@ impl Session {
             .find(|beta| *beta != DVec3::ZERO)
             .unwrap_or(DVec3::ZERO);
         Ok(SceneInfo {
-            name: self.built.loaded.scene.name.clone(),
-            ct: own.observer.ct,
+            name: self.editor.scene().name.clone(),
+            time: own.observer.time.unwrap_or(own.observer.ct),
             beta,
             observer_moves: DVec3::from_array(own.observer.beta) != DVec3::ZERO,
             effects: own.render.effects.name(),
             colour: own.render.colour.name(),
-            warnings: self.built.loaded.warnings.clone(),
+            warnings: self.warnings.clone(),
         })
     }
 

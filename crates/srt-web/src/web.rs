@@ -67,7 +67,7 @@ fn info_json(session: &Session) -> Result<String, JsError> {
     let info = session.info().map_err(js_error)?;
     Ok(serde_json::json!({
         "name": info.name,
-        "ct": info.ct,
+        "time": info.time,
         "beta": info.beta.to_array(),
         "observer_moves": info.observer_moves,
         "effects": info.effects,

@@ -51,8 +51,8 @@ fn the_page_shows_what_the_command_renders() {
     for query in [
         "scene=teaser",
         "scene=fig7&effects=searchlight",
-        "scene=fig4&ct=4&beta=0.3,0,-0.8",
-        "scene=clocks&ct=12",
+        "scene=fig4&time=4&beta=0.3,0,-0.8",
+        "scene=clocks&time=12",
     ] {
         assert!(
             session_picture(&mut session, query) == command_picture(query),
@@ -64,11 +64,11 @@ fn the_page_shows_what_the_command_renders() {
 #[test]
 fn playing_time_builds_nothing_and_matches_a_fresh_build() {
     let mut session = Session::new("fig7").unwrap();
-    session_picture(&mut session, "scene=fig7&ct=1");
+    session_picture(&mut session, "scene=fig7&time=1");
     let builds = session.builds();
     let upload = session.upload_version();
     for ct in [2.0, 3.5, -1.0] {
-        let query = format!("scene=fig7&ct={ct}");
+        let query = format!("scene=fig7&time={ct}");
         let played = session_picture(&mut session, &query);
         assert_eq!(session.builds(), builds, "ct = {ct} built the scene again");
         assert!(played == command_picture(&query), "ct = {ct}");
@@ -76,7 +76,7 @@ fn playing_time_builds_nothing_and_matches_a_fresh_build() {
     // Another mode or velocity is built again, on the same upload.
     session_picture(
         &mut session,
-        "scene=fig7&ct=1&effects=geometry&beta=0,0,0.5",
+        "scene=fig7&time=1&effects=geometry&beta=0,0,0.5",
     );
     assert_eq!(session.builds(), builds + 1);
     assert_eq!(session.upload_version(), upload);

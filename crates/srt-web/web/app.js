@@ -11,7 +11,7 @@ const status = $('status');
 const state = {
   scene: 'teaser',
   model: null,            // { name, bytes } of a dropped model
-  ct: null,
+  time: null,
   beta: null,             // [x, y, z] for every object, or null
   observerBeta: null,
   effects: null,
@@ -50,7 +50,7 @@ function errorText(error) {
 function query() {
   const q = new URLSearchParams();
   if (!state.model) q.set('scene', state.scene);
-  if (state.ct !== null) q.set('ct', String(state.ct));
+  if (state.time !== null) q.set('time', String(state.time));
   if (state.beta) q.set('beta', state.beta.join(','));
   if (state.observerBeta) q.set('observer_beta', state.observerBeta.join(','));
   if (state.effects) q.set('effects', state.effects);
@@ -216,14 +216,14 @@ function redraw() {
 
 // ---- controls
 function clockValue() {
-  return state.ct !== null ? state.ct : info.ct;
+  return state.time !== null ? state.time : info.time;
 }
 
-function setTime(ct) {
-  const slider = $('ct');
+function setTime(time) {
+  const slider = $('time');
   const low = Number(slider.min);
   const high = Number(slider.max);
-  state.ct = ct > high ? low + (ct - high) : ct;
+  state.time = time > high ? low + (time - high) : time;
   showControls();
   redraw();
 }
@@ -253,8 +253,8 @@ function showControls() {
   $('beta-value').textContent = state.beta
     ? `β = (${state.beta.map((x) => x.toFixed(3)).join(', ')}) for every object`
     : 'each object moves as the scene says';
-  $('ct-value').textContent = clockValue().toFixed(2);
-  $('ct').value = String(clockValue());
+  $('time-value').textContent = clockValue().toFixed(2);
+  $('time').value = String(clockValue());
   $('set-velocity').checked = state.beta !== null;
   $('velocity').disabled = info.observer_moves;
   $('effects').value = state.effects || info.effects;
@@ -273,9 +273,9 @@ async function loadInfo() {
   } else {
     info = JSON.parse((await workerCall({ kind: 'info', query: query() })).info);
   }
-  const slider = $('ct');
-  slider.min = String(Math.floor(info.ct - 10));
-  slider.max = String(Math.ceil(info.ct + 10));
+  const slider = $('time');
+  slider.min = String(Math.floor(info.time - 10));
+  slider.max = String(Math.ceil(info.time + 10));
   setVelocityControls(state.beta || info.beta);
   if (info.warnings.length) showNote(info.warnings.join('\n'));
   showControls();
@@ -284,7 +284,7 @@ async function loadInfo() {
 async function changeScene(name) {
   state.scene = name;
   state.model = null;
-  state.ct = null;
+  state.time = null;
   state.beta = null;
   await loadInfo();
   redraw();
@@ -305,7 +305,7 @@ async function loadModel(file) {
       warnings = (await workerCall({ kind: 'model', name: file.name, bytes: copy }, [copy.buffer])).warnings;
     }
     state.model = { name: file.name, bytes };
-    state.ct = null;
+    state.time = null;
     state.beta = null;
     const option = document.createElement('option');
     option.value = `model:${file.name}`;
@@ -350,7 +350,7 @@ function wireControls() {
   }
   $('effects').addEventListener('change', (e) => { state.effects = e.target.value; redraw(); });
   $('colour').addEventListener('change', (e) => { state.colour = e.target.value; redraw(); });
-  $('ct').addEventListener('input', (e) => { state.playing = false; setTime(Number(e.target.value)); });
+  $('time').addEventListener('input', (e) => { state.playing = false; setTime(Number(e.target.value)); });
   $('play').addEventListener('click', () => { state.playing = !state.playing; showControls(); });
   $('rate').addEventListener('change', (e) => { state.rate = Number(e.target.value); });
   $('method').addEventListener('change', (e) => { state.method = e.target.value; redraw(); });
@@ -373,7 +373,7 @@ async function main() {
   // The address's values seed the state (they are checked again by the renderer).
   const params = new URLSearchParams(location.search);
   if (settings.scene) state.scene = settings.scene;
-  if (params.has('ct')) state.ct = Number(params.get('ct'));
+  if (params.has('time')) state.time = Number(params.get('time'));
   if (params.has('beta')) state.beta = params.get('beta').split(',').map(Number);
   if (params.has('observer_beta')) state.observerBeta = params.get('observer_beta').split(',').map(Number);
   if (params.has('effects')) state.effects = params.get('effects');

@@ -218,24 +218,6 @@ pub struct GpuRenderer {
     auto_layers: f64,
 }
 
-/// Whether a renderer uploaded for `uploaded` ([`GpuRenderer::new`]) draws `scene` as one
-/// uploaded for `scene` would: the same parts (meshes, materials, textures) per object, the same
-/// kind of motion and the same glowing objects (what the shadow casters hold), moving lights in
-/// both or in neither, and the same sky. Everything else — velocities, times, the observer,
-/// lights, effects and colours — is written with each frame. A front end that edits a scene
-/// uploads again only when this is false.
-#[must_use]
-pub fn same_upload(uploaded: &Scene, scene: &Scene) -> bool {
-    uploaded.objects.len() == scene.objects.len()
-        && uploaded.objects.iter().zip(&scene.objects).all(|(a, b)| {
-            a.parts == b.parts
-                && a.motion.is_rest() == b.motion.is_rest()
-                && a.optics.emission.is_some() == b.optics.emission.is_some()
-        })
-        && uploaded.lights.is_empty() == scene.lights.is_empty()
-        && uploaded.sky == scene.sky
-}
-
 impl GpuRenderer {
     /// Uploads `scene` (meshes, textures, colour tables) for images of `width` × `height`.
     ///

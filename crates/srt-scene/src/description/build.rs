@@ -157,7 +157,7 @@ impl SceneDescription {
 
 impl SceneDescription {
     /// The observer's rest frame S relative to the world frame W: velocity `observer.beta`,
-    /// observation event (`observer.ct`, `observer.position`).
+    /// origin event (`observer.ct`, `observer.position`), where S's clocks read `observer.ct`.
     ///
     /// # Errors
     /// [`SceneErrorKind::Value`] naming `observer.beta` when it is not a velocity (|β| ≥ 1,
@@ -168,6 +168,20 @@ impl SceneDescription {
         let beta = DVec3::from_array(observer.beta);
         MovingObserver::new(beta, event)
             .map_err(|error| invalid_velocity(ValueName::Key("observer.beta"), beta, &error))
+    }
+
+    /// The observation event in W: where the observer is when its own clock reads
+    /// `observer.time` (`observer.ct` when absent), having moved along its worldline from
+    /// (`observer.ct`, `observer.position`).
+    ///
+    /// # Errors
+    /// As [`SceneDescription::moving_observer`].
+    pub fn observation_event(&self) -> Result<Event, SceneErrorKind> {
+        let observer = &self.observer;
+        let motion = self.moving_observer()?;
+        let time = observer.time.unwrap_or(observer.ct);
+        let at_rest_in_s = Event::new(time, DVec3::from_array(observer.position));
+        Ok(motion.observer_to_world().apply(at_rest_in_s))
     }
 
     /// Each object's frame relative to the observer and the Wigner rotation of its rest-frame
@@ -221,7 +235,7 @@ impl SceneDescription {
                     // At rest relative to the observer, where W says it is at W's observation
                     // time.
                     position: motion
-                        .to_observer(Event::new(observer.ct, DVec3::from_array(l.position)))
+                        .to_observer(Event::new(self.observer.ct, DVec3::from_array(l.position)))
                         .position,
                     temperature_k: l.temperature_k,
                     strength: l.strength,
@@ -412,7 +426,7 @@ impl ObserverDescription {
             direction,
             up: DVec3::from_array(self.up).normalize_or(DVec3::Z),
             fov_y_deg: self.fov_y_deg,
-            ct: self.ct,
+            ct: self.time.unwrap_or(self.ct),
         }
     }
 }

@@ -90,9 +90,9 @@ pub struct SkyDescription {
     pub image_brightness: f64,
 }
 
-/// The `[observer]` table: a pinhole camera moving with `beta` through the world frame W,
-/// observing at the event (`ct`, `position`) of W; its orientation is given in its own rest
-/// frame.
+/// The `[observer]` table: a pinhole camera moving with `beta` through the world frame W, at
+/// `position` at W's time `ct`, where its own clock reads `ct`; it looks when its clock reads
+/// `time` (default `ct`). Its orientation is given in its own rest frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObserverDescription {
@@ -114,9 +114,15 @@ pub struct ObserverDescription {
     /// Vertical field of view in degrees, in (0, 180).
     #[serde(default = "default_fov")]
     pub fov_y_deg: f64,
-    /// Observation time ct in W (c = 1, same unit as positions).
+    /// W's time ct at which the observer is at `position` (c = 1, same unit as positions); its
+    /// own clock reads `ct` there.
     #[serde(default)]
     pub ct: f64,
+    /// The observation time: the observer's own clock when it looks (`None`: `ct`). Between
+    /// `ct` and `time` the observer moves along its worldline; for an observer at rest in W
+    /// both are W's time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time: Option<f64>,
 }
 
 /// One light table: a point light radiating a Planck spectrum. The lamp (`[light]`, or a

@@ -2,12 +2,7 @@
 //! `--exposure`, `--beta`, `--observer-beta` and `--time` — applied as edits of the
 //! [`SceneDescription`] before it is built, so that the scene file's validation judges them: one
 //! set of rules, with each overridden value named in messages by the option that gave it.
-//!
-//! The observation time is the one exception to "an edit of the description": `--time` is the
-//! observer's own clock, which for a moving observer is not the world time `observer.ct` (the
-//! observer moves along its worldline, docs/scene-format.md), so it is checked by
-//! `observer.ct`'s rule ([`observation_time`]) and set on the built scene
-//! ([`Overrides::apply_to_scene`]).
+//! `--time` is `observer.time`, the observer's own clock (docs/scene-format.md, "Time").
 
 use std::borrow::Cow;
 
@@ -15,8 +10,8 @@ use glam::DVec3;
 
 use super::error::SceneErrorKind;
 use super::model::SceneDescription;
-use super::validate::{Names, ValueName, observation_time};
-use crate::scene::{Effects, Scene, SurfaceColour};
+use super::validate::{Names, ValueName};
+use crate::scene::{Effects, SurfaceColour};
 
 /// Values that replace a scene's own (`None`: the scene's), each named in messages by the
 /// option that gave it ([`Overrides::names`]).
@@ -28,8 +23,7 @@ pub struct Overrides {
     pub colour: Option<SurfaceColour>,
     /// The exposure of spectral colour (`render.exposure`).
     pub exposure: Option<f64>,
-    /// The observation time on the observer's own clock, which reads `observer.ct` at the
-    /// scene's observation event.
+    /// The observation time on the observer's own clock (`observer.time`).
     pub time: Option<f64>,
     /// Every object's velocity, relative to an observer at rest (refused with a moving one); a
     /// bare model is also placed for it.
@@ -99,8 +93,7 @@ impl Overrides {
     /// Edits `description` with these values and validates the result
     /// ([`SceneDescription::validate`]'s rules), naming every overridden value by its option.
     /// `origin` names the scene in the message refusing [`Overrides::beta`] with a moving
-    /// observer. [`Overrides::time`] is only checked here; [`Overrides::apply_to_scene`] sets
-    /// it once the scene is built.
+    /// observer.
     ///
     /// # Errors
     /// [`SceneErrorKind::Override`] for a value of an option the rules refuse (a time or an
@@ -112,8 +105,8 @@ impl Overrides {
         description: &mut SceneDescription,
         origin: &str,
     ) -> Result<(), SceneErrorKind> {
-        if let Some(ct) = self.time {
-            observation_time(ValueName::Option(self.names.time), ct)?;
+        if let Some(time) = self.time {
+            description.observer.time = Some(time);
         }
         let render = &mut description.render;
         if let Some(effects) = self.effects {
@@ -149,14 +142,6 @@ impl Overrides {
         Ok(())
     }
 
-    /// Sets the observation time of `scene`, built from a description
-    /// [`Overrides::apply`] accepted, to [`Overrides::time`] when it is given.
-    pub fn apply_to_scene(&self, scene: &mut Scene) {
-        if let Some(ct) = self.time {
-            scene.observer.ct = ct;
-        }
-    }
-
     /// What validation calls the values: the options for those given, the keys for the rest.
     fn value_names(&self) -> Names<'static> {
         let named = |given: bool, option, scene| {
@@ -174,6 +159,7 @@ impl Overrides {
                 self.names.observer_beta,
                 scene.observer_beta,
             ),
+            time: named(self.time.is_some(), self.names.time, scene.time),
             object_beta: self.beta.map(|_| ValueName::Option(self.names.beta)),
             spectral: Cow::Owned(format!("{} spectral", self.names.colour)),
         }

@@ -139,6 +139,8 @@ pub(super) struct Names<'a> {
     pub exposure: ValueName<'a>,
     /// `observer.beta`.
     pub observer_beta: ValueName<'a>,
+    /// `observer.time`.
+    pub time: ValueName<'a>,
     /// Every object's `beta`, when one option gives them all; `None`: each object's own.
     pub object_beta: Option<ValueName<'a>>,
     /// How to ask for spectral colour: `colour = "spectral"`, `--colour spectral`.
@@ -150,13 +152,14 @@ impl Names<'_> {
     pub const SCENE_FILE: Self = Self {
         exposure: ValueName::Key("render.exposure"),
         observer_beta: ValueName::Key("observer.beta"),
+        time: ValueName::Key("observer.time"),
         object_beta: None,
         spectral: Cow::Borrowed("colour = \"spectral\""),
     };
 }
 
-/// `ct` if it is a usable observation time: finite and within ±[`MAX_COORDINATE`], the rule of
-/// `observer.ct` (and of the times front ends give, e.g. an animation's first and last).
+/// `ct` if it is a usable time: finite and within ±[`MAX_COORDINATE`], the rule of `observer.ct`
+/// and `observer.time` (and of the times front ends give, e.g. an animation's first and last).
 ///
 /// # Errors
 /// [`SceneErrorKind::Value`] or [`SceneErrorKind::Override`] naming `name`.
@@ -383,6 +386,9 @@ impl ObserverDescription {
         }
         velocity(names.observer_beta, DVec3::from_array(self.beta))?;
         observation_time(ValueName::Key("observer.ct"), self.ct)?;
+        if let Some(time) = self.time {
+            observation_time(names.time, time)?;
+        }
         Ok(())
     }
 }

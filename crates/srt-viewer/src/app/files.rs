@@ -11,8 +11,8 @@ use srt_scene::import::SUPPORTED_EXTENSIONS;
 use srt_scene::resolve::{PathKind, SCENE_FILE_EXTENSION, model_extension_list, path_kind};
 
 use super::{Level, Purpose, ViewerApp};
-use crate::edit::{EditError, Editor};
 use crate::record::{FRAME_RATES, Recorder};
+use srt_scene::{EditError, Editor};
 
 impl ViewerApp {
     /// Opens dropped or chosen files one by one (models are added; a `.toml` replaces the

@@ -21,11 +21,11 @@ use srt_gpu::GpuContext;
 use srt_scene::{Observer, View};
 
 use crate::camera::{self};
-use crate::edit::{EditError, Editor};
 use crate::pilot::{DEFAULT_ACCELERATION, Engine, Flight};
 use crate::probe::Probe;
 use crate::record::{FRAME_RATES, Recorder};
 use crate::view::{Pane, SceneView, ViewMethod};
+use srt_scene::{EditError, Editor};
 
 mod files;
 mod lights;
@@ -341,7 +341,7 @@ impl ViewerApp {
         let engine = self.engine_button.take();
         self.fly(engine, dt);
         if self.playing && self.flight.is_none() {
-            let ct = self.editor.scene().observer.ct + self.playback_speed * dt;
+            let ct = self.editor.time() + self.playback_speed * dt;
             let result = self.editor.set_time(ct);
             self.edited(result);
             self.extend_time_range(ct);

@@ -8,7 +8,8 @@ use srt_scene::description::{SpinDescription, ThrustDescription};
 use srt_scene::resolve::model_extension_list;
 
 use super::{DEFAULT_WIREFRAME_WIDTH, Purpose, ViewerApp, panel::vector_row};
-use crate::edit::{MAX_SLIDER_SPEED, parse_speed};
+use crate::edit::MAX_SLIDER_SPEED;
+use srt_scene::edit::parse_speed;
 
 impl ViewerApp {
     /// The object list, Add model and Remove, and the selected object's controls.

@@ -10,7 +10,7 @@ use crate::pilot::{Engine, Flight, MotionReadout};
 impl ViewerApp {
     /// Centres the time slider's range on the observation time of a newly opened scene.
     pub(super) fn reset_time_range(&mut self) {
-        let ct = self.editor.scene().observer.ct;
+        let ct = self.editor.time();
         self.time_range = (ct.min(0.0) - 20.0, ct.max(0.0) + 20.0);
     }
 
@@ -94,24 +94,25 @@ impl ViewerApp {
         }
     }
 
-    /// Play and pause, the observation time slider and the playback speed.
+    /// Play and pause, the time slider (the observer's clock, [`srt_scene::Editor::time`]) and the
+    /// playback speed.
     pub(super) fn time_section(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             let label = if self.playing { "Pause" } else { "Play" };
             if ui.button(label).on_hover_text("Space").clicked() {
                 self.playing = !self.playing;
             }
-            if ui.button("ct = 0").clicked() {
+            if ui.button("time = 0").clicked() {
                 let result = self.editor.set_time(0.0);
                 self.edited(result);
             }
         });
-        let mut ct = self.editor.scene().observer.ct;
+        let mut ct = self.editor.time();
         let (lo, hi) = self.time_range;
         if ui
             .add(
                 egui::Slider::new(&mut ct, lo..=hi)
-                    .text("observation time ct")
+                    .text("time (the observer's clock)")
                     // Shown to 2 decimals; `max_decimals` would also round the value itself
                     // every frame, so that playback advanced ct in steps of 0.01.
                     .custom_formatter(|value, _| format!("{value:.2}")),
@@ -124,7 +125,7 @@ impl ViewerApp {
         ui.add(
             egui::Slider::new(&mut self.playback_speed, 0.05..=20.0)
                 .logarithmic(true)
-                .text("playback (ct per second)"),
+                .text("playback (time per second)"),
         );
     }
 

@@ -105,7 +105,7 @@ impl ViewerApp {
         };
         ui.label(
             RichText::new(format!(
-                "pixel ({}, {}) of {}×{}, {}, at ct = {:.3}",
+                "pixel ({}, {}) of {}×{}, {}, at time {:.3}",
                 shown.pixel.0,
                 shown.pixel.1,
                 shown.size.0,
