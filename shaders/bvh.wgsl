@@ -1,6 +1,9 @@
-// bvh.wgsl — the slab test of BVH traversal, shared by the ray tracer's nearest hit (rt.wgsl,
-// bvh_nearest_hit) and the shadow test's any hit (shadows.wgsl, shadow_segment_blocked); the
-// Rust mirror is srt_gpu::bvh (safe_inverse, box_entry).
+// bvh.wgsl — the one BVH walk and its slab test, shared by every traversal: the ray tracer's
+// nearest hit (rt.wgsl, bvh_nearest_hit), a moving body's piece search and leaf test (rt.wgsl,
+// piece_nearest_hit, box_meets_leaf) and the shadow test's any hit (shadows.wgsl,
+// shadow_segment_blocked). Each traversal reads its own nodes and does its own leaf work; the walk
+// (bvh_step) decides where to go next. The Rust mirror is srt_gpu::bvh (safe_inverse, box_entry,
+// ObjectBvh::nearest_hit).
 
 // Factor on the slab test's exit distance: 1 + 2γ₃, rounded up (set from
 // srt_gpu::bvh::SLAB_TOLERANCE).
@@ -22,4 +25,49 @@ fn slab_entry(lo_corner: vec3<f32>, hi_corner: vec3<f32>, origin: vec3<f32>, inv
     let near = max(max(lo.x, lo.y), max(lo.z, 0.0));
     let far = min(min(hi.x, hi.y), hi.z);
     return select(-1.0, near, near <= far * SLAB_TOLERANCE && near <= limit);
+}
+
+// Where a walk through a BVH stands: the node to visit, the entries on its stack, and whether it
+// is over. Nodes are indices into the traversal's own node array; an inner node's children are
+// `first` and `first + 1`.
+struct BvhWalk {
+    node: u32,
+    top: u32,
+    done: bool,
+}
+
+// A walk that starts at `root`.
+fn bvh_walk(root: u32) -> BvhWalk {
+    return BvhWalk(root, 0u, false);
+}
+
+// The walk's next node, once the current one is judged: for an inner node whose children are
+// `first` and `first + 1`, `enter_a` and `enter_b` say which to enter (`a_first`: `first` before
+// `first + 1` when both, the other kept on `stack`); a leaf, or an inner node entering neither,
+// resumes from the stack, and the walk is over when the stack is empty.
+fn bvh_step(
+    walk: ptr<function, BvhWalk>,
+    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
+    first: u32,
+    enter_a: bool,
+    enter_b: bool,
+    a_first: bool,
+) {
+    if (enter_a && enter_b) {
+        (*stack)[(*walk).top] = select(first, first + 1u, a_first);
+        (*walk).top++;
+        (*walk).node = select(first + 1u, first, a_first);
+    } else if (enter_a || enter_b) {
+        (*walk).node = select(first + 1u, first, enter_a);
+    } else if ((*walk).top == 0u) {
+        (*walk).done = true;
+    } else {
+        (*walk).top--;
+        (*walk).node = (*stack)[(*walk).top];
+    }
+}
+
+// bvh_step after a leaf: resume from the stack.
+fn bvh_leave(walk: ptr<function, BvhWalk>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) {
+    bvh_step(walk, stack, 0u, false, false, true);
 }

@@ -49,12 +49,10 @@ fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>, lower: f32, limit: f
         return best;
     }
     var stack: array<u32, BVH_STACK_SIZE>;
-    var top = 0u;
-    var node = 0u;
+    var walk = bvh_walk(0u);
     loop {
-        let count = bvh_nodes[node].primitive_count;
-        let first = bvh_nodes[node].first;
-        var descend = false;
+        let count = bvh_nodes[walk.node].primitive_count;
+        let first = bvh_nodes[walk.node].first;
         if (count > 0u) {
             for (var k = first; k < first + count; k++) {
                 let t = bvh_triangles[k];
@@ -63,29 +61,14 @@ fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>, lower: f32, limit: f
                     best = BvhHit(true, hit.distance, k);
                 }
             }
+            bvh_leave(&walk, &stack);
         } else {
             let ea = box_entry(first, origin, inverse, best.distance);
             let eb = box_entry(first + 1u, origin, inverse, best.distance);
-            if (ea >= 0.0 && eb >= 0.0) {
-                let a_first = ea <= eb;
-                stack[top] = select(first, first + 1u, a_first);
-                top++;
-                node = select(first + 1u, first, a_first);
-                descend = true;
-            } else if (ea >= 0.0) {
-                node = first;
-                descend = true;
-            } else if (eb >= 0.0) {
-                node = first + 1u;
-                descend = true;
-            }
+            bvh_step(&walk, &stack, first, ea >= 0.0, eb >= 0.0, ea <= eb);
         }
-        if (!descend) {
-            if (top == 0u) {
-                break;
-            }
-            top--;
-            node = stack[top];
+        if (walk.done) {
+            break;
         }
     }
     return best;
@@ -116,29 +99,15 @@ fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>, stack: ptr<function, array<u32, 
     if (!box_overlaps(0u, lo, hi)) {
         return false;
     }
-    var top = 0u;
-    var node = 0u;
+    var walk = bvh_walk(0u);
     loop {
-        if (bvh_nodes[node].primitive_count > 0u) {
+        if (bvh_nodes[walk.node].primitive_count > 0u) {
             return true;
         }
-        let first = bvh_nodes[node].first;
-        let a = box_overlaps(first, lo, hi);
-        let b = box_overlaps(first + 1u, lo, hi);
-        if (a) {
-            if (b) {
-                (*stack)[top] = first + 1u;
-                top++;
-            }
-            node = first;
-        } else if (b) {
-            node = first + 1u;
-        } else {
-            if (top == 0u) {
-                break;
-            }
-            top--;
-            node = (*stack)[top];
+        let first = bvh_nodes[walk.node].first;
+        bvh_step(&walk, stack, first, box_overlaps(first, lo, hi), box_overlaps(first + 1u, lo, hi), true);
+        if (walk.done) {
+            break;
         }
     }
     return false;
@@ -151,12 +120,10 @@ fn piece_nearest_hit(ray: RestRay, piece: MotionPiece, stack: ptr<function, arra
     if (!box_overlaps(0u, piece.lo, piece.hi)) {
         return best;
     }
-    var top = 0u;
-    var node = 0u;
+    var walk = bvh_walk(0u);
     loop {
-        let count = bvh_nodes[node].primitive_count;
-        let first = bvh_nodes[node].first;
-        var descend = false;
+        let count = bvh_nodes[walk.node].primitive_count;
+        let first = bvh_nodes[walk.node].first;
         if (count > 0u) {
             for (var k = first; k < first + count; k++) {
                 let t = bvh_triangles[k];
@@ -165,28 +132,14 @@ fn piece_nearest_hit(ray: RestRay, piece: MotionPiece, stack: ptr<function, arra
                     best = BvhHit(true, hit.distance, k);
                 }
             }
+            bvh_leave(&walk, stack);
         } else {
             let a = box_overlaps(first, piece.lo, piece.hi);
             let b = box_overlaps(first + 1u, piece.lo, piece.hi);
-            if (a && b) {
-                (*stack)[top] = first + 1u;
-                top++;
-                node = first;
-                descend = true;
-            } else if (a) {
-                node = first;
-                descend = true;
-            } else if (b) {
-                node = first + 1u;
-                descend = true;
-            }
+            bvh_step(&walk, stack, first, a, b, true);
         }
-        if (!descend) {
-            if (top == 0u) {
-                break;
-            }
-            top--;
-            node = (*stack)[top];
+        if (walk.done) {
+            break;
         }
     }
     return best;

@@ -116,13 +116,13 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: pt
     let direction = delta / span;
     let inverse = safe_inverse(direction);
     let far = span - margin;
-    var node = shadow_node(root);
-    if (slab_entry(node.min, node.max, start, inverse, far) < 0.0) {
+    let root_node = shadow_node(root);
+    if (slab_entry(root_node.min, root_node.max, start, inverse, far) < 0.0) {
         return false;
     }
-    var top = 0u;
+    var walk = bvh_walk(root);
     loop {
-        var descend = false;
+        let node = shadow_node(walk.node);
         if (node.primitive_count > 0u) {
             for (var k = node.first; k < node.first + node.primitive_count; k++) {
                 let hit = intersect_triangle(start, direction, shadow_triangle(k));
@@ -130,36 +130,17 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: pt
                     return true;
                 }
             }
+            bvh_leave(&walk, stack);
         } else {
             let a = shadow_node(node.first);
             let b = shadow_node(node.first + 1u);
             let ea = slab_entry(a.min, a.max, start, inverse, far);
             let eb = slab_entry(b.min, b.max, start, inverse, far);
-            if (ea >= 0.0 && eb >= 0.0) {
-                // The nearer first: a blocker near the lit point is found sooner.
-                if (ea <= eb) {
-                    (*stack)[top] = node.first + 1u;
-                    node = a;
-                } else {
-                    (*stack)[top] = node.first;
-                    node = b;
-                }
-                top++;
-                descend = true;
-            } else if (ea >= 0.0) {
-                node = a;
-                descend = true;
-            } else if (eb >= 0.0) {
-                node = b;
-                descend = true;
-            }
+            // The nearer first: a blocker near the lit point is found sooner.
+            bvh_step(&walk, stack, node.first, ea >= 0.0, eb >= 0.0, ea <= eb);
         }
-        if (!descend) {
-            if (top == 0u) {
-                break;
-            }
-            top--;
-            node = shadow_node((*stack)[top]);
+        if (walk.done) {
+            break;
         }
     }
     return false;

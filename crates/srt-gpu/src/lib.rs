@@ -31,7 +31,9 @@
 //! (`motion.wgsl`, [`motion`]; mirror: `srt-trace`'s `moving`).
 //!
 //! `physics.wgsl` mirrors `srt-physics` in f32 and is composed in front of every pass. The
-//! production modules never depend on [`probe`], the validation harness.
+//! validation harness `probe` (single kernels run against the CPU crates) is compiled only with
+//! the `probe` feature, which `cargo xtask` and this crate's tests enable; the production modules
+//! never depend on it.
 
 pub mod bvh;
 pub mod context;
@@ -44,6 +46,7 @@ pub mod lut;
 pub mod motion;
 pub mod passes;
 pub mod pipelines;
+#[cfg(feature = "probe")]
 pub mod probe;
 pub mod projection;
 pub mod ray_tracing;

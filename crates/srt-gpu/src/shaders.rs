@@ -9,7 +9,7 @@ use crate::types::SurfaceColourCode;
 pub const PHYSICS: &str = include_str!("../shaders/physics.wgsl");
 /// Shared data layouts (twins of [`crate::types`]).
 pub const TYPES: &str = include_str!("../shaders/types.wgsl");
-/// Kernel probes (see [`crate::probe`]).
+/// Kernel probes (see the `probe` module (feature `probe`)).
 pub const PROBE: &str = include_str!("../shaders/probe.wgsl");
 /// Colour-table sampling (mirror of `TemperatureLut::sample`).
 pub const COLOUR: &str = include_str!("../shaders/colour.wgsl");
@@ -593,7 +593,7 @@ pub fn sky() -> Shader {
     }
 }
 
-/// The kernel-probe shader of [`crate::probe`].
+/// The kernel-probe shader of the `probe` module (feature `probe`).
 #[must_use]
 pub fn probe() -> Shader {
     Shader {

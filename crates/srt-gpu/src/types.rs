@@ -641,7 +641,7 @@ pub struct GpuFootprint {
 }
 
 /// Twin of WGSL `PhysicsProbeInput`: one set of arguments for every physics kernel
-/// ([`crate::probe`]).
+/// (the `probe` module (feature `probe`)).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuPhysicsProbeInput {
@@ -668,7 +668,7 @@ pub struct GpuPhysicsProbeInput {
 }
 
 /// Twin of WGSL `PhysicsProbeOutput`: every physics kernel's result for one input
-/// ([`crate::probe`]).
+/// (the `probe` module (feature `probe`)).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuPhysicsProbeOutput {
@@ -693,7 +693,7 @@ pub struct GpuPhysicsProbeOutput {
 }
 
 /// Twin of WGSL `SpectralProbeInput`: one set of arguments of the spectral kernels
-/// ([`crate::probe`]).
+/// (the `probe` module (feature `probe`)).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuSpectralProbeInput {
