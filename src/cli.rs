@@ -117,10 +117,10 @@ pub struct RenderArgs {
     /// Render an animation of N frames, sweeping the observation time from --t0 to --t1.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: Option<u32>,
-    /// First observation time of an animation (default: the scene's time).
+    /// First observation time of an animation (default: the scene's time); needs --frames.
     #[arg(long, allow_hyphen_values = true)]
     pub t0: Option<f64>,
-    /// Last observation time of an animation (default: first + 10).
+    /// Last observation time of an animation (default: first + 10); needs --frames.
     #[arg(long, allow_hyphen_values = true)]
     pub t1: Option<f64>,
     /// Render only share K of N of the frames (K counts from 1): frames i with i mod N = K − 1,
@@ -144,17 +144,19 @@ pub struct ShardArg {
 }
 
 /// Options of the videos `srt render` and `srt encode` write.
-#[derive(Debug, Clone, Copy, Args)]
+#[derive(Debug, Clone, Copy, Default, Args)]
 pub struct VideoArgs {
-    /// Frames per second of a video (.mp4 or .gif; a GIF stores delays in 1/100 s, so 24 fps
-    /// plays at 25).
-    #[arg(long, default_value_t = DEFAULT_FPS, value_parser = clap::value_parser!(u32).range(1..=120))]
-    pub fps: u32,
+    /// Frames per second of a video (.mp4 or .gif; default 24; a GIF stores delays in 1/100 s,
+    /// so 24 fps plays at 25).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=120))]
+    pub fps: Option<u32>,
 }
 
-impl Default for VideoArgs {
-    fn default() -> Self {
-        Self { fps: DEFAULT_FPS }
+impl VideoArgs {
+    /// The frame rate: `--fps`, or [`DEFAULT_FPS`].
+    #[must_use]
+    pub fn fps(self) -> u32 {
+        self.fps.unwrap_or(DEFAULT_FPS)
     }
 }
 

@@ -40,7 +40,7 @@ pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
         height,
         &first_path.display().to_string(),
     )?;
-    let mut video = VideoWriter::create(output, width, height, args.video.fps)?;
+    let mut video = VideoWriter::create(output, width, height, args.video.fps())?;
     let bar = DelayedBar::new(
         args.frames.len() as u64,
         "frames",
@@ -67,7 +67,7 @@ pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
     println!(
         "wrote {} ({frames} frames, {width}x{height}, {} fps, {:.2} s)",
         output.display(),
-        args.video.fps,
+        args.video.fps(),
         start.elapsed().as_secs_f64()
     );
     Ok(())

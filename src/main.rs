@@ -8,6 +8,7 @@
 mod cli;
 mod encode;
 mod exr_range;
+mod listing;
 mod output;
 mod progress;
 mod provenance;
@@ -68,15 +69,12 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or_default() {
         Command::Render(args) => render::run(&args),
-        Command::Scenes => {
-            source::print_scenes();
-            Ok(())
-        }
+        Command::Scenes => source::print_scenes().map_err(anyhow::Error::from),
         Command::View { scenes } => view(&scenes),
         Command::Encode(args) => encode::run(&args),
         Command::Info { image } => provenance::print_info(&image),
     };
-    match result {
+    match listing::ends_quietly(result) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error:#}");

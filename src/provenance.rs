@@ -179,10 +179,7 @@ pub fn print_info(path: &Path) -> anyhow::Result<()> {
         lines.extend((range.lines().into_iter()).map(|(key, value)| (key.to_owned(), value)));
         lines.extend(crate::exr_range::aov_lines(path)?);
     }
-    let width = lines.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
-    for (key, value) in &lines {
-        println!("{key:width$}  {value}");
-    }
+    crate::listing::print_rows(lines.iter().map(|(k, v)| (k.as_str(), v.as_str())))?;
     Ok(())
 }
 

@@ -182,7 +182,7 @@ fn render_video(
 ) -> anyhow::Result<()> {
     let start = Instant::now();
     let settings = settings_of(args);
-    let mut video = VideoWriter::create(output, settings.width, settings.height, args.video.fps)?;
+    let mut video = VideoWriter::create(output, settings.width, settings.height, args.video.fps())?;
     let bar = DelayedBar::new(
         u64::from(sweep.frames),
         "frames",
@@ -201,7 +201,7 @@ fn render_video(
         "wrote {} ({} frames at {} fps, ct {:?} to {:?}; {})",
         output.display(),
         sweep.frames,
-        args.video.fps,
+        args.video.fps(),
         sweep.t0,
         sweep.t1,
         details(settings, engine, start)
@@ -227,6 +227,15 @@ fn check_animation(args: &RenderArgs) -> anyhow::Result<Option<Animation>> {
         .map(OutputFormat::for_path)
         .transpose()?;
     let shard = args.shard.map(Shard::new).transpose()?;
+    if args.frames.is_none() {
+        let given = [("--t0", args.t0), ("--t1", args.t1)];
+        if let Some((option, _)) = given.iter().find(|(_, value)| value.is_some()) {
+            bail!(
+                "{option} sweeps an animation's time and needs --frames N; for one picture at \
+                 one time, give --time T"
+            );
+        }
+    }
     if args.aov && format != Some(OutputFormat::Exr) {
         let output = args.output.as_ref().map_or_else(
             || "the default SCENE.png".to_owned(),
@@ -255,6 +264,10 @@ fn check_animation(args: &RenderArgs) -> anyhow::Result<Option<Animation>> {
             check_size(output, video, args.width, args.height, "--width x --height")?;
             Ok(Some(Animation::Video))
         }
+        _ if args.video.fps.is_some() => bail!(
+            "--fps sets a video's frame rate: give --frames N and -o NAME.mp4 or NAME.gif (numbered \
+             images have none)"
+        ),
         _ => match (args.frames, shard) {
             (None, Some(_)) => bail!("--shard shares the frames of an animation: give --frames N"),
             (None, None) => Ok(None),

@@ -98,15 +98,11 @@ fn sha256_hex(path: &Path) -> anyhow::Result<String> {
 }
 
 /// Prints the built-in scenes, one per line.
-pub fn print_scenes() {
-    let width = builtin_scenes()
-        .iter()
-        .map(|s| s.name.len())
-        .max()
-        .unwrap_or(0);
-    for scene in builtin_scenes() {
-        println!("{:width$}  {}", scene.name, scene.summary);
-    }
+///
+/// # Errors
+/// Writing to standard output failed.
+pub fn print_scenes() -> std::io::Result<()> {
+    crate::listing::print_rows(builtin_scenes().iter().map(|s| (s.name, s.summary)))
 }
 
 #[cfg(test)]

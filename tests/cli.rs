@@ -859,3 +859,40 @@ fn what_the_gpu_cannot_draw_of_moving_bodies_is_refused_or_drawn_on_the_cpu() {
     assert!(String::from_utf8_lossy(&auto.stdout).contains(", cpu,"));
     assert!(dir.path().join("s.png").exists());
 }
+
+/// An option that cannot apply is refused with the reason, not dropped: `--t0` and `--t1`
+/// without `--frames`, `--fps` without a video.
+#[test]
+fn options_that_cannot_apply_are_refused() {
+    let dir = folder();
+    let base = ["render", "fig7", "--backend", "cpu", "--width", "8", "--height", "8"];
+    for (extra, mentions) in [
+        (&["--t0", "3", "-o", "x.png"][..], &["--t0", "--frames", "--time"][..]),
+        (&["--t1", "3", "-o", "x.png"][..], &["--t1", "--frames"][..]),
+        (&["--fps", "10", "-o", "x.png"][..], &["--fps", "video"][..]),
+        (
+            &["--fps", "10", "--frames", "2", "-o", "x.png"][..],
+            &["--fps", "numbered images"][..],
+        ),
+    ] {
+        let output = srt(&[&base[..], extra].concat(), dir.path());
+        assert_clean_failure(&output, mentions);
+    }
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+}
+
+/// A listing whose reader goes away (`srt scenes | head -1`) ends quietly: no panic, success.
+#[test]
+fn a_listing_ends_quietly_when_its_reader_goes_away() {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_srt"))
+        .arg("scenes")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("srt runs");
+    drop(child.stdout.take());
+    let output = child.wait_with_output().expect("srt ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{:?}: {err}", output.status);
+    assert!(!err.contains("panicked"), "{err}");
+}
