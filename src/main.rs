@@ -64,8 +64,34 @@ fn ensure_runtime_dir() -> Option<tempfile::TempDir> {
     Some(dir)
 }
 
+/// On SIGINT, SIGTERM or SIGHUP (Ctrl-C, a cluster's time limit, a closed terminal), removes
+/// the temporary files of outputs not yet finished ([`srt_video::remove_partial_files`]) and
+/// exits with the conventional status 128 + the signal's number: an interrupted render leaves no
+/// half-written file. Without a handler (it cannot be installed) the signals act as before.
+#[cfg(unix)]
+fn remove_partial_files_on_signals() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            let removed = srt_video::remove_partial_files();
+            if removed > 0 {
+                eprintln!("interrupted: removed {removed} unfinished output file(s)");
+            }
+            std::process::exit(128 + signal);
+        }
+    });
+}
+
+/// Other systems end the process on their own terms.
+#[cfg(not(unix))]
+const fn remove_partial_files_on_signals() {}
+
 fn main() -> ExitCode {
     let _runtime_dir = ensure_runtime_dir();
+    remove_partial_files_on_signals();
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or_default() {
         Command::Render(args) => render::run(&args),

@@ -865,9 +865,21 @@ fn what_the_gpu_cannot_draw_of_moving_bodies_is_refused_or_drawn_on_the_cpu() {
 #[test]
 fn options_that_cannot_apply_are_refused() {
     let dir = folder();
-    let base = ["render", "fig7", "--backend", "cpu", "--width", "8", "--height", "8"];
+    let base = [
+        "render",
+        "fig7",
+        "--backend",
+        "cpu",
+        "--width",
+        "8",
+        "--height",
+        "8",
+    ];
     for (extra, mentions) in [
-        (&["--t0", "3", "-o", "x.png"][..], &["--t0", "--frames", "--time"][..]),
+        (
+            &["--t0", "3", "-o", "x.png"][..],
+            &["--t0", "--frames", "--time"][..],
+        ),
         (&["--t1", "3", "-o", "x.png"][..], &["--t1", "--frames"][..]),
         (&["--fps", "10", "-o", "x.png"][..], &["--fps", "video"][..]),
         (

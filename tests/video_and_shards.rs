@@ -528,3 +528,78 @@ fn a_video_failing_midway_leaves_no_file() {
         &["film.png", ".mp4"],
     );
 }
+
+/// The files in `dir` whose names end with `.partial` (the temporary files of unfinished
+/// outputs).
+fn partial_files(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".partial"))
+        .collect()
+}
+
+/// Starts `srt` with `args` in `dir`, waits until `ready` holds for the folder (up to a minute),
+/// sends it `signal` (`kill -s`) and returns how it ended.
+#[cfg(unix)]
+fn interrupted(
+    args: &[&str],
+    dir: &Path,
+    signal: &str,
+    ready: impl Fn(&Path) -> bool,
+) -> std::process::ExitStatus {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_srt"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("srt runs");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !ready(dir) && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(ready(dir), "srt never got to the point to interrupt");
+    let sent = std::process::Command::new("kill")
+        .args(["-s", signal, &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(sent.success());
+    child.wait().expect("srt ends")
+}
+
+/// A render ended by SIGINT, SIGTERM or SIGHUP removes its unfinished files and exits with
+/// 128 + the signal: a video leaves the folder as it was; a sharded run of numbered images keeps
+/// only the frames it finished, each complete.
+#[cfg(unix)]
+#[test]
+fn interrupted_renders_leave_no_unfinished_file() {
+    let frames = ["--frames", "400", "--t0", "0", "--t1", "8"];
+    for (signal, status) in [("INT", 130), ("TERM", 143), ("HUP", 129)] {
+        let dir = folder();
+        let args = [&["render", "teaser"][..], &SMALL, &frames, &["-o", "t.gif"]].concat();
+        let ended = interrupted(&args, dir.path(), signal, |dir| {
+            !partial_files(dir).is_empty()
+        });
+        assert_eq!(ended.code(), Some(status), "SIG{signal}");
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert!(left.is_empty(), "SIG{signal} left {left:?}");
+    }
+    let dir = folder();
+    let args = [
+        &["render", "teaser"][..],
+        &SMALL,
+        &frames,
+        &["--shard", "1/2", "-o", "t.png"],
+    ]
+    .concat();
+    let ended = interrupted(&args, dir.path(), "TERM", |dir| {
+        dir.join("t_0002.png").exists()
+    });
+    assert_eq!(ended.code(), Some(143));
+    assert!(partial_files(dir.path()).is_empty());
+    for entry in std::fs::read_dir(dir.path()).unwrap() {
+        let path = entry.unwrap().path();
+        image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
+}

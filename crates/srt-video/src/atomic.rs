@@ -1,10 +1,13 @@
 //! Files that appear complete or not at all: written to a temporary file in the destination's
 //! folder (with the permissions any new file gets there) and renamed into place when finished;
-//! dropped before that, the temporary file is removed and the destination is untouched.
+//! dropped before that, the temporary file is removed and the destination is untouched. A
+//! process ended by a signal drops nothing: its handler calls [`remove_partial_files`], which
+//! removes every temporary file an [`AtomicFile`] still holds.
 
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use tempfile::NamedTempFile;
 
@@ -51,6 +54,47 @@ pub fn parent_folder(path: &Path) -> &Path {
 pub struct AtomicFile {
     temp: NamedTempFile,
     path: PathBuf,
+    /// Keeps the temporary file in [`PARTIAL_FILES`] while it exists.
+    _listed: Listed,
+}
+
+/// The temporary files of every [`AtomicFile`] not yet committed or dropped.
+static PARTIAL_FILES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes every temporary file an [`AtomicFile`] of this process still holds (best effort: a
+/// file already gone is no error): what a signal handler calls before the process exits, so
+/// that an interrupted render leaves the folder as it was. Returns how many were removed.
+pub fn remove_partial_files() -> usize {
+    let listed = PARTIAL_FILES.lock().map_or_else(
+        |poisoned| poisoned.into_inner().clone(),
+        |files| files.clone(),
+    );
+    listed
+        .iter()
+        .filter(|path| std::fs::remove_file(path).is_ok())
+        .count()
+}
+
+/// A temporary file's entry in [`PARTIAL_FILES`], removed when dropped.
+#[derive(Debug)]
+struct Listed(PathBuf);
+
+impl Listed {
+    /// Lists `path`.
+    fn new(path: &Path) -> Self {
+        if let Ok(mut files) = PARTIAL_FILES.lock() {
+            files.push(path.to_owned());
+        }
+        Self(path.to_owned())
+    }
+}
+
+impl Drop for Listed {
+    fn drop(&mut self) {
+        if let Ok(mut files) = PARTIAL_FILES.lock() {
+            files.retain(|path| *path != self.0);
+        }
+    }
 }
 
 impl AtomicFile {
@@ -59,8 +103,10 @@ impl AtomicFile {
     /// # Errors
     /// [`WriteError::CreateFile`] if no file can be created in `path`'s folder.
     pub fn create(path: &Path) -> Result<Self, WriteError> {
+        let temp = temporary_file_beside(path)?;
         Ok(Self {
-            temp: temporary_file_beside(path)?,
+            _listed: Listed::new(temp.path()),
+            temp,
             path: path.to_owned(),
         })
     }
@@ -94,8 +140,12 @@ impl AtomicFile {
     /// # Errors
     /// [`WriteError::Io`] if the rename fails; the temporary file is then removed.
     pub fn commit(self) -> Result<(), WriteError> {
-        let path = self.path;
-        match self.temp.persist(&path) {
+        let Self {
+            temp,
+            path,
+            _listed,
+        } = self;
+        match temp.persist(&path) {
             Ok(_) => Ok(()),
             Err(error) => Err(WriteError::Io {
                 path,

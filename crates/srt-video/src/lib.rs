@@ -23,7 +23,7 @@ mod atomic;
 mod error;
 mod video;
 
-pub use atomic::{AtomicFile, parent_folder, temporary_file_beside};
+pub use atomic::{AtomicFile, parent_folder, remove_partial_files, temporary_file_beside};
 pub use error::{EncoderError, WriteError};
 pub use video::{VideoFormat, VideoWriter, check_size, lowercase_extension};
 
