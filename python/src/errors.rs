@@ -55,7 +55,9 @@ pub fn edit(error: &srt_scene::EditError) -> PyErr {
 /// A scene argument that names no scene.
 pub fn resolve(error: &ResolveError) -> PyErr {
     match error {
-        ResolveError::NotFound(_) => SceneFileError::new_err(error.to_string()),
+        ResolveError::NotFound(_) | ResolveError::NoSuchFile(_) => {
+            SceneFileError::new_err(error.to_string())
+        }
         ResolveError::Unsupported(_) => SceneError::new_err(error.to_string()),
         ResolveError::Scene(error) => scene(error),
     }

@@ -167,15 +167,25 @@ pub fn render<'py>(
         image_array(py, shape, &display, display_as_linear),
     )?;
     let values = rendered.seen.unwrap_or_default();
+    let grid = (shape.0, shape.1);
     for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
-        let channel: Vec<f32> = values.iter().map(|v| v[index]).collect();
-        let array = Array2::from_shape_vec((shape.0, shape.1), channel)
-            .expect("one value per pixel")
-            .into_pyarray(py);
-        layers.set_item(name, array)?;
+        let channel = values.iter().map(|v| v[index]);
+        if name == OBJECT_CHANNEL {
+            // An object's index (−1: none), a whole number the f32 holds exactly.
+            let ids: Vec<i32> = channel.map(|id| id as i32).collect();
+            let array = Array2::from_shape_vec(grid, ids).expect("one value per pixel");
+            layers.set_item(name, array.into_pyarray(py))?;
+        } else {
+            let array = Array2::from_shape_vec(grid, channel.collect::<Vec<f32>>())
+                .expect("one value per pixel");
+            layers.set_item(name, array.into_pyarray(py))?;
+        }
     }
     Ok(layers.into_any())
 }
+
+/// The time channel holding each pixel's object index, returned as integers.
+const OBJECT_CHANNEL: &str = "object";
 
 /// The parts of a render request that do not name the scene.
 struct Request {

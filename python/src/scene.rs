@@ -22,15 +22,11 @@ pub fn scenes() -> Vec<&'static str> {
 }
 
 /// What the file at `path` is, by its extension (a path is never a built-in scene's name);
-/// a file that does not exist is refused here, naming it.
+/// a file that does not exist is refused here, naming it, as a name given as `str` is.
 pub fn file_source(path: &std::path::Path) -> PyResult<SceneSource> {
-    if !path.exists() {
-        return Err(errors::SceneFileError::new_err(format!(
-            "cannot open {}: no such file",
-            path.display()
-        )));
-    }
-    SceneSource::from_path(path).map_err(|e| errors::resolve(&e))
+    SceneSource::from_path(path)
+        .and_then(SceneSource::existing)
+        .map_err(|e| errors::resolve(&e))
 }
 
 /// A scene: what a scene file holds, built, and where it came from.

@@ -56,7 +56,8 @@ def test_the_time_channels_say_what_each_pixel_sees():
     assert (layers["doppler"][seen] > 1.0).all(), "the cube approaches: every pixel is blue-shifted"
     for name in ("emission_ct", "proper_time", "distance", "doppler"):
         assert (layers[name][~seen] == 0.0).all(), name
-    assert (layers["object"][~seen] == -1.0).all()
+    assert (layers["object"][~seen] == -1).all()
+    assert layers["object"].dtype == np.int32, "object indices are integers"
 
 
 @pytest.mark.parametrize(("speed", "start"), [(0.9, 30.0), (-0.9, 3.0)])
@@ -115,8 +116,12 @@ def test_path_objects_name_files(tmp_path):
     assert np.array_equal(
         srt.render(path, **SMALL, backend="cpu"), srt.render(str(path), **SMALL, backend="cpu")
     )
-    with pytest.raises(srt.SceneFileError, match="cannot open .*absent.toml: no such file"):
-        srt.render(tmp_path / "absent.toml", **SMALL, backend="cpu")
+    messages = []
+    for absent in (tmp_path / "absent.toml", str(tmp_path / "absent.toml")):
+        with pytest.raises(srt.SceneFileError, match="cannot open .*absent.toml: no such file") as e:
+            srt.render(absent, **SMALL, backend="cpu")
+        messages.append(str(e.value))
+    assert messages[0] == messages[1], "a Path and a str name a missing file alike"
 
 
 def test_a_scene_object_renders_as_its_name_does():

@@ -76,6 +76,9 @@ pub enum ResolveError {
     /// Neither a built-in scene's name nor an existing file.
     #[error("{0:?} is neither a built-in scene (see `srt scenes`) nor an existing file")]
     NotFound(String),
+    /// A scene file or model (judged by its extension) that does not exist.
+    #[error("cannot open {0}: no such file or directory")]
+    NoSuchFile(String),
     /// A file that is neither a scene file nor a model, judged by its extension.
     #[error(
         "cannot open {0:?}: a scene file must end in .{SCENE_FILE_EXTENSION} and a model in one of {list}",
@@ -176,12 +179,29 @@ impl SceneSource {
             return Ok(Self::Builtin(builtin));
         }
         let path = Path::new(argument);
-        Self::from_path(path).map_err(|error| match error {
-            ResolveError::Unsupported(_) if !path.exists() => {
-                ResolveError::NotFound(argument.to_owned())
+        Self::from_path(path)
+            .map_err(|error| match error {
+                ResolveError::Unsupported(_) if !path.exists() => {
+                    ResolveError::NotFound(argument.to_owned())
+                }
+                other => other,
+            })
+            .and_then(|source| source.existing())
+    }
+
+    /// The source itself if its file exists (or it has none);
+    /// [`ResolveError::NoSuchFile`] naming the file otherwise, the one message for a missing
+    /// scene file or model whichever front end names it.
+    ///
+    /// # Errors
+    /// [`ResolveError::NoSuchFile`].
+    pub fn existing(self) -> Result<Self, ResolveError> {
+        match &self {
+            Self::SceneFile(path) | Self::Model(path) if !path.exists() => {
+                Err(ResolveError::NoSuchFile(path.display().to_string()))
             }
-            other => other,
-        })
+            _ => Ok(self),
+        }
     }
 
     /// What the file at `path` is, by its extension alone (a file picked or dropped: never a

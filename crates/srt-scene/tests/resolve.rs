@@ -103,13 +103,22 @@ fn a_loaded_scene_file_is_named_after_its_stem() {
     assert_eq!(loaded.source.base_dir, dir.path());
 }
 
+/// A missing scene file or model is refused when resolved with one message, the one every
+/// front end gives (a name typed or a path object in Python alike); one that goes missing after
+/// is reported when read, naming it.
 #[test]
-fn missing_scene_and_model_files_are_reported_when_read_naming_them() {
+fn missing_scene_and_model_files_are_named_with_one_message() {
     let dir = tempfile::tempdir().unwrap();
     for name in ["absent.toml", "absent.obj"] {
         let path = dir.path().join(name);
-        let source = SceneSource::resolve(&argument(&path)).unwrap();
-        let error = source.load(None).unwrap_err().to_string();
+        let error = SceneSource::resolve(&argument(&path)).unwrap_err();
+        assert!(matches!(error, ResolveError::NoSuchFile(_)), "{error}");
+        assert_eq!(
+            error.to_string(),
+            format!("cannot open {}: no such file or directory", path.display())
+        );
+        let from_path = SceneSource::from_path(&path).unwrap();
+        let error = from_path.load(None).unwrap_err().to_string();
         assert!(error.contains(name), "{error}");
     }
 }
