@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use srt::engine::{Backend, MAX_IMAGE_SIDE, MAX_SAMPLES};
 use srt_gpu::Method;
-use srt_scene::{Choice, Effects, SurfaceColour, View, parse_vector};
+use srt_scene::{Choice, Effects, Projection, SurfaceColour, View, parse_vector};
 
 /// srt: see what an observer really sees of objects flying at near light speed.
 #[derive(Debug, Parser)]
@@ -107,6 +107,11 @@ pub struct RenderArgs {
     /// the scene's `observer.beta`); objects keep their velocities relative to the world.
     #[arg(long, value_parser = parse_vector, allow_hyphen_values = true)]
     pub observer_beta: Option<DVec3>,
+    /// How the image maps pixels to directions: perspective (the scene's field of view),
+    /// equirectangular (the whole sphere, W = 2H), fisheye (180°, a dome master) or
+    /// fisheye:FOV (overrides the scene's `observer.projection`).
+    #[arg(long, value_name = "PROJECTION", value_parser = parse_projection)]
+    pub projection: Option<Projection>,
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: u32,
@@ -193,6 +198,7 @@ impl Default for RenderArgs {
             time: None,
             beta: None,
             observer_beta: None,
+            projection: None,
             samples: 1,
             aov: false,
             frames: None,
@@ -216,6 +222,12 @@ fn parse_shard(text: &str) -> Result<ShardArg, String> {
             "expected K/N (share K of N, e.g. 2/8), got {text:?}"
         )),
     }
+}
+
+/// `--projection` as typed: `perspective`, `equirectangular`, `fisheye` or `fisheye:FOV`
+/// (srt-scene's one parser, which Python's `projection=` and the page's `projection=` use too).
+fn parse_projection(text: &str) -> Result<Projection, String> {
+    text.parse()
 }
 
 #[cfg(test)]

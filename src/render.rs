@@ -366,6 +366,7 @@ fn overrides(args: &RenderArgs) -> Overrides {
         time: args.time,
         beta: args.beta,
         observer_beta: args.observer_beta,
+        projection: args.projection,
         names: OverrideNames::COMMAND_LINE,
     }
 }

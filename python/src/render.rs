@@ -30,6 +30,7 @@ const ARGUMENT_NAMES: OverrideNames = OverrideNames {
     time: "time",
     beta: "beta",
     observer_beta: "observer_beta",
+    projection: "projection",
 };
 
 /// How often the waiting Python thread looks for Ctrl-C while a render runs.
@@ -80,7 +81,8 @@ impl From<PyErr> for Failure {
 #[pyfunction]
 #[pyo3(signature = (
     scene, *, width=1280, height=720, time=None, beta=None, observer_beta=None, effects=None,
-    colour=None, exposure=None, samples=1, backend="auto", method="auto", view="seen", aov=false
+    colour=None, exposure=None, projection=None, samples=1, backend="auto", method="auto",
+    view="seen", aov=false
 ))]
 #[expect(
     clippy::too_many_arguments,
@@ -97,6 +99,7 @@ pub fn render<'py>(
     effects: Option<&str>,
     colour: Option<&str>,
     exposure: Option<f64>,
+    projection: Option<&str>,
     samples: u32,
     backend: &str,
     method: &str,
@@ -111,6 +114,9 @@ pub fn render<'py>(
         time,
         beta: beta.map(DVec3::from_array),
         observer_beta: observer_beta.map(DVec3::from_array),
+        projection: projection
+            .map(|text| text.parse().map_err(errors::value))
+            .transpose()?,
         names: ARGUMENT_NAMES,
     };
     let backend = errors::chosen(backend)?;

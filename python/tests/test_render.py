@@ -40,7 +40,7 @@ def test_cpu_render_equals_the_commands_exr_to_the_bit(tmp_path, scene, argument
     layers = srt.render(scene, **SMALL, backend="cpu", aov=True, **arguments)
     assert sorted(layers) == sorted(["radiance", "display", *AOV_CHANNELS])
     for name in ("radiance", "display", *AOV_CHANNELS):
-        assert layers[name].dtype == np.float32
+        assert layers[name].dtype == (np.int32 if name == "object" else np.float32), name
         assert layers[name].shape == expected[name].shape
         assert np.array_equal(layers[name], expected[name]), f"{scene} {arguments}: {name}"
     plain = srt.render(scene, **SMALL, backend="cpu", **arguments)
@@ -269,3 +269,16 @@ except srt.GpuError as error:
     if not done.stdout.startswith("rendered on the GPU"):
         require_gpu(done.stdout.strip())
     assert "XDG_RUNTIME_DIR" not in done.stderr, done.stderr
+
+
+def test_projection_draws_the_whole_sky_as_the_command_does(tmp_path):
+    size = {"width": 64, "height": 32}
+    expected = cli_render(
+        tmp_path, "flythrough", "--width", "64", "--height", "32", "--backend", "cpu",
+        "--projection", "equirectangular",
+    )
+    whole_sky = srt.render("flythrough", **size, backend="cpu", projection="equirectangular")
+    assert np.array_equal(whole_sky, expected["radiance"])
+    assert not np.array_equal(whole_sky, srt.render("flythrough", **size, backend="cpu"))
+    with pytest.raises(srt.SceneError, match=r"fisheye's fov_deg must be in \(0, 360\]"):
+        srt.render("fig7", width=8, height=8, backend="cpu", projection="fisheye:0")

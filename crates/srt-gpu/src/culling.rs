@@ -280,6 +280,7 @@ mod tests {
     /// An observer at the origin looking along +z with a 60° vertical field of view.
     fn looking_along_z(ct: f64) -> Observer {
         Observer {
+            projection: srt_scene::Projection::Perspective,
             position: DVec3::ZERO,
             direction: DVec3::Z,
             up: DVec3::Y,

@@ -14,6 +14,7 @@ pub mod mesh;
 pub mod message;
 pub mod mip;
 pub mod placement;
+pub mod projection;
 pub mod resolve;
 pub mod scene;
 pub mod shapes;
@@ -31,6 +32,7 @@ pub use description::{
 pub use edit::{EditError, Editor};
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
+pub use projection::Projection;
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{
     Blink, BodyExtent, Clock, Effects, Emission, Kinematics, Light, MAX_MOVING_LIGHTS, MovingLight,

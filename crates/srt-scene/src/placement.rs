@@ -84,6 +84,7 @@ impl SceneDescription {
                 fov_y_deg: VIEW_FOV_Y_DEG,
                 ct: 0.0,
                 time: None,
+                projection: None,
             },
             light: Some(LightsDescription::Lamp(LightDescription::lamp(
                 (position + DVec3::new(-1.0, 0.0, 2.0) * FIT_RADIUS * 2.0).to_array(),

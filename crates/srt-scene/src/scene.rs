@@ -3,6 +3,7 @@
 //! moves through its world frame is brought into S by
 //! [`SceneDescription::build`](crate::SceneDescription::build).
 
+use crate::projection::Projection;
 use crate::sky::Sky;
 use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
@@ -143,7 +144,7 @@ pub struct SurfaceOptics {
     pub emission: Option<Emission>,
 }
 
-/// The observer: a pinhole camera at rest in S, observing at time `ct`.
+/// The observer: a camera at rest in S, observing at time `ct`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Observer {
     /// Position in S.
@@ -156,6 +157,8 @@ pub struct Observer {
     pub fov_y_deg: f64,
     /// Observation time ct_obs (c = 1).
     pub ct: f64,
+    /// How the image maps its points to viewing directions ([`Projection`]).
+    pub projection: Projection,
 }
 
 impl Observer {
@@ -173,16 +176,21 @@ impl Observer {
         (forward, right, right.cross(forward))
     }
 
-    /// The (unnormalised) viewing direction in S through the point `ndc` of normalised device
-    /// coordinates (x right, y up, both in [−1, 1]) for an image of `aspect` = width / height.
-    /// Agrees with [`Observer::view_projection`].
+    /// The (unnormalised) viewing direction in S of the pinhole camera through the point `ndc`
+    /// of normalised device coordinates (x right, y up, both in [−1, 1]) for an image of
+    /// `aspect` = width / height, whatever the projection (the GPU's passes draw the pinhole's
+    /// picture). Agrees with [`Observer::view_projection`].
     #[must_use]
     pub fn view_direction(&self, ndc: DVec2, aspect: f64) -> DVec3 {
-        self.view_rays(aspect).direction(ndc)
+        ViewRays {
+            projection: Projection::Perspective,
+            ..self.view_rays(aspect)
+        }
+        .pinhole(ndc)
     }
 
-    /// What [`Observer::view_direction`] needs for every point of an image of `aspect` =
-    /// width / height, computed once (the basis and the field of view's tangent).
+    /// The viewing directions of every point of an image of `aspect` = width / height in this
+    /// observer's projection, computed once (the basis and the field of view's tangent).
     #[must_use]
     pub fn view_rays(&self, aspect: f64) -> ViewRays {
         let (forward, right, up) = self.basis();
@@ -192,6 +200,7 @@ impl Observer {
             up,
             tan_half: (0.5 * self.fov_y_deg.to_radians()).tan(),
             aspect,
+            projection: self.projection,
         }
     }
 
@@ -216,13 +225,42 @@ pub struct ViewRays {
     tan_half: f64,
     /// Width / height.
     aspect: f64,
+    /// The observer's projection.
+    projection: Projection,
 }
 
 impl ViewRays {
     /// The (unnormalised) viewing direction in S through the point `ndc` of normalised device
-    /// coordinates (x right, y up, both in [−1, 1]), as [`Observer::view_direction`].
+    /// coordinates (x right, y up, both in [−1, 1]) in the observer's projection; `None` where
+    /// the image sees nothing (outside a fisheye's circle).
     #[must_use]
-    pub fn direction(&self, ndc: DVec2) -> DVec3 {
+    pub fn direction(&self, ndc: DVec2) -> Option<DVec3> {
+        match self.projection {
+            Projection::Perspective => Some(self.pinhole(ndc)),
+            wide => wide.wide_direction(ndc, [self.forward, self.right, self.up]),
+        }
+    }
+
+    /// Where the direction `direction` (in S) is seen, in normalised device coordinates: the
+    /// inverse of [`ViewRays::direction`]; `None` where it is not in the picture (behind the
+    /// pinhole, outside a fisheye's field).
+    #[must_use]
+    pub fn image_point(&self, direction: DVec3) -> Option<DVec2> {
+        let basis = [self.forward, self.right, self.up];
+        if self.projection != Projection::Perspective {
+            return self.projection.wide_image_point(direction, basis);
+        }
+        let depth = direction.dot(self.forward);
+        (depth > 0.0).then(|| {
+            DVec2::new(
+                direction.dot(self.right) / (depth * self.tan_half * self.aspect),
+                direction.dot(self.up) / (depth * self.tan_half),
+            )
+        })
+    }
+
+    /// The pinhole camera's direction through `ndc`.
+    fn pinhole(&self, ndc: DVec2) -> DVec3 {
         self.forward
             + (ndc.x * self.tan_half * self.aspect) * self.right
             + (ndc.y * self.tan_half) * self.up

@@ -162,7 +162,8 @@ impl<'a> Tracer<'a> {
         }
         let centre = sample_offsets(1)[0];
         let (sx, sy) = (f64::from(x) + centre.x, f64::from(y) + centre.y);
-        self.trace(ImageRays::new(self.scene, width, height).direction(sx, sy))
+        let direction = ImageRays::new(self.scene, width, height).direction(sx, sy)?;
+        self.trace(direction)
     }
 
     /// Display colour of a hit. `neighbour_directions` are the viewing directions one pixel to
@@ -397,18 +398,24 @@ impl<'a> Tracer<'a> {
                 let mut first_object = 0;
                 for (k, offset) in offsets.iter().enumerate() {
                     let (sx, sy) = (f64::from(x) + offset.x, f64::from(y) + offset.y);
-                    let hit = self.trace(direction_at(sx, sy));
+                    // Outside a fisheye's circle the image sees nothing: the background.
+                    let Some(direction) = direction_at(sx, sy) else {
+                        sum += finish(background);
+                        continue;
+                    };
+                    let hit = self.trace(direction);
                     if k == 0 {
                         first_object = hit.map_or(0, |h| h.object as u32 + 1);
                     }
                     sum += finish(hit.map_or_else(
                         || {
-                            let sky = value(&sky_image_light(self.scene, direction_at(sx, sy)));
+                            let sky = value(&sky_image_light(self.scene, direction));
                             background + sky + stars[y as usize * width as usize + x as usize]
                         },
                         |h| {
-                            let neighbours =
-                                [direction_at(sx + 1.0, sy), direction_at(sx, sy + 1.0)];
+                            // A neighbour beyond the fisheye's rim: no footprint that way.
+                            let neighbours = [(sx + 1.0, sy), (sx, sy + 1.0)]
+                                .map(|(nx, ny)| direction_at(nx, ny).unwrap_or(direction));
                             value(&self.light(&h, neighbours))
                         },
                     ));
@@ -519,8 +526,9 @@ impl ImageRays {
     }
 
     /// The direction through the point (`x`, `y`), in pixels from the top-left corner (pixel
-    /// centres at +0.5).
-    fn direction(&self, x: f64, y: f64) -> DVec3 {
+    /// centres at +0.5), in the observer's projection; `None` where the image sees nothing
+    /// (outside a fisheye's circle).
+    fn direction(&self, x: f64, y: f64) -> Option<DVec3> {
         let ndc = DVec2::new(2.0 * x / self.width - 1.0, 1.0 - 2.0 * y / self.height);
         self.rays.direction(ndc)
     }
@@ -619,7 +627,8 @@ mod tests {
         for y in 0..height {
             for x in 0..width {
                 let direction = ImageRays::new(scene, width, height)
-                    .direction(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    .direction(f64::from(x) + 0.5, f64::from(y) + 0.5)
+                    .expect("a pinhole sees through every pixel");
                 // Every triangle of every part of every object, in its own rest frame.
                 let brute = (scene.objects.iter().enumerate())
                     .filter_map(|(object, o)| {

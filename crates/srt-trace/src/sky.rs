@@ -131,21 +131,13 @@ pub fn sky_image_colour(scene: &Scene, lut: &TemperatureLut, direction: DVec3) -
     sky_image_light(scene, direction).display(lut, scene.exposure)
 }
 
-/// The pixel position of the direction `direction` (in S) in the image of `observer`: the inverse
-/// of [`Observer::view_direction`]; `None` behind the camera.
+/// The pixel position of the direction `direction` (in S) in the image of `observer`, in its
+/// projection: the inverse of the pixel's viewing ray ([`srt_scene::ViewRays::image_point`]);
+/// `None` where the direction is not in the picture (behind a pinhole, outside a fisheye).
 #[must_use]
 pub fn project(observer: &Observer, direction: DVec3, width: u32, height: u32) -> Option<DVec2> {
-    let (forward, right, up) = observer.basis();
-    let depth = direction.dot(forward);
-    if depth <= 0.0 {
-        return None;
-    }
-    let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
     let aspect = f64::from(width) / f64::from(height);
-    let ndc = DVec2::new(
-        direction.dot(right) / (depth * tan_half * aspect),
-        direction.dot(up) / (depth * tan_half),
-    );
+    let ndc = observer.view_rays(aspect).image_point(direction)?;
     Some(DVec2::new(
         0.5 * (ndc.x + 1.0) * f64::from(width),
         0.5 * (1.0 - ndc.y) * f64::from(height),

@@ -139,6 +139,7 @@ fn penrose_a_moving_sphere_has_a_circular_outline() {
             .apparent_position(DVec3::ZERO, observer_event)
             .length();
         let observer = Observer {
+            projection: srt_scene::Projection::Perspective,
             position: DVec3::ZERO,
             direction: axis,
             up: DVec3::new(0.1, 1.0, 0.05),
@@ -174,6 +175,7 @@ fn penrose_check_detects_a_non_circular_outline() {
     let mesh = uv_sphere(1.0, 256).transformed(squash).unwrap();
     let ellipsoid = object(mesh, DVec3::ZERO, DVec3::new(0.0, 0.0, -6.0), [1.0; 4]);
     let observer = Observer {
+        projection: srt_scene::Projection::Perspective,
         position: DVec3::ZERO,
         direction: -DVec3::Z,
         up: DVec3::Y,
@@ -221,6 +223,7 @@ fn terrell_a_passing_cube_appears_rotated_by_arcsin_beta() {
     for b in [0.5, 0.9] {
         let cube_object = object(cube(1.0, 1), DVec3::new(b, 0.0, 0.0), DVec3::ZERO, [1.0; 4]);
         let observer = Observer {
+            projection: srt_scene::Projection::Perspective,
             position: DVec3::new(0.0, 0.0, distance),
             direction: -DVec3::Z,
             up: DVec3::Y,
@@ -239,6 +242,7 @@ fn terrell_a_passing_cube_appears_rotated_by_arcsin_beta() {
     // Control: at rest the trailing face is invisible.
     let at_rest = object(cube(1.0, 1), DVec3::ZERO, DVec3::ZERO, [1.0; 4]);
     let observer = Observer {
+        projection: srt_scene::Projection::Perspective,
         position: DVec3::new(0.0, 0.0, distance),
         direction: -DVec3::Z,
         up: DVec3::Y,
@@ -342,6 +346,7 @@ fn at_rest_the_renderer_is_an_ordinary_ray_tracer() {
         ),
     ];
     let observer = Observer {
+        projection: srt_scene::Projection::Perspective,
         position: DVec3::new(0.37, 1.21, 3.43),
         direction: DVec3::new(-0.05, -0.33, -1.0),
         up: DVec3::Y,

@@ -19,6 +19,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
         name: "stars".into(),
         objects: Vec::new(),
         observer: Observer {
+            projection: srt_scene::Projection::Perspective,
             position: DVec3::ZERO,
             direction: DVec3::Y,
             up: DVec3::Z,

@@ -7,6 +7,7 @@ mod moving_bodies;
 mod moving_lights;
 mod physics_checks;
 mod principle_of_relativity;
+mod projections;
 mod seen;
 mod sky;
 mod spectral;

@@ -16,6 +16,7 @@ pub const QUERY_NAMES: OverrideNames = OverrideNames {
     time: "time",
     beta: "beta",
     observer_beta: "observer_beta",
+    projection: "projection",
 };
 
 /// Which renderer draws the page.
@@ -92,7 +93,7 @@ pub enum QueryError {
 }
 
 /// Every key the page reads.
-pub const KEYS: [&str; 13] = [
+pub const KEYS: [&str; 14] = [
     "scene",
     "width",
     "height",
@@ -103,6 +104,7 @@ pub const KEYS: [&str; 13] = [
     "time",
     "beta",
     "observer_beta",
+    "projection",
     "effects",
     "colour",
     "exposure",
@@ -146,6 +148,7 @@ pub fn parse_query(query: &str) -> Result<PageQuery, QueryError> {
             "observer_beta" => {
                 overrides.observer_beta = Some(parse_vector(&value).map_err(bad)?);
             }
+            "projection" => overrides.projection = Some(value.parse().map_err(bad)?),
             "effects" => overrides.effects = Some(chosen(&value).map_err(bad)?),
             "colour" => overrides.colour = Some(chosen(&value).map_err(bad)?),
             _ => return Err(QueryError::UnknownKey(key)),

@@ -92,11 +92,19 @@ pub enum Method {
 }
 
 impl Method {
-    /// Why this method cannot draw `scene` on the GPU, if it cannot: late shadows of moving
-    /// lights cast by a body that spins or thrusts (the GPU's shadow walk meets static triangles
-    /// only; the CPU reference draws them exactly).
+    /// Why this method cannot draw `scene` on the GPU, if it cannot: a projection other than the
+    /// pinhole (the GPU's passes draw footprints through the pinhole's projection), or late
+    /// shadows of moving lights cast by a body that spins or thrusts (the GPU's shadow walk meets
+    /// static triangles only). The CPU reference draws both exactly.
     #[must_use]
     pub fn cannot_draw(self, scene: &Scene) -> Option<String> {
+        let projection = scene.observer.projection;
+        if projection != srt_scene::Projection::Perspective {
+            return Some(format!(
+                "the GPU draws the perspective projection only, not {projection}; use --backend \
+                 cpu (the exact CPU renderer traces every projection)"
+            ));
+        }
         let moving = scene.objects.iter().find(|o| !o.motion.is_rest())?;
         (scene.shadows && !scene.lights.is_empty()).then(|| {
             format!(

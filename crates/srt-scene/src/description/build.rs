@@ -427,6 +427,7 @@ impl ObserverDescription {
             up: DVec3::from_array(self.up).normalize_or(DVec3::Z),
             fov_y_deg: self.fov_y_deg,
             ct: self.time.unwrap_or(self.ct),
+            projection: self.projection.unwrap_or_default(),
         }
     }
 }

@@ -7,6 +7,8 @@ use glam::{DMat4, DQuat, DVec3};
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::ser::{SerializeSeq, Serializer};
 use serde::{Deserialize, Serialize};
+
+use crate::projection::Projection;
 use srt_color::ToneMap;
 use srt_physics::motion::{Motion, Spin, Thrust};
 
@@ -123,6 +125,10 @@ pub struct ObserverDescription {
     /// both are W's time.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time: Option<f64>,
+    /// How the image maps its points to viewing directions (`None`: the pinhole of
+    /// `fov_y_deg`); docs/scene-format.md, "Projections".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projection: Option<Projection>,
 }
 
 /// One light table: a point light radiating a Planck spectrum. The lamp (`[light]`, or a

@@ -11,6 +11,7 @@ use glam::DVec3;
 use super::error::SceneErrorKind;
 use super::model::SceneDescription;
 use super::validate::{Names, ValueName};
+use crate::projection::Projection;
 use crate::scene::{Effects, SurfaceColour};
 
 /// Values that replace a scene's own (`None`: the scene's), each named in messages by the
@@ -30,6 +31,8 @@ pub struct Overrides {
     pub beta: Option<DVec3>,
     /// The observer's velocity through the scene's world frame (`observer.beta`).
     pub observer_beta: Option<DVec3>,
+    /// How the image maps its points to viewing directions (`observer.projection`).
+    pub projection: Option<Projection>,
     /// What messages call each of them.
     pub names: OverrideNames,
 }
@@ -47,6 +50,8 @@ pub struct OverrideNames {
     pub beta: &'static str,
     /// Names [`Overrides::observer_beta`].
     pub observer_beta: &'static str,
+    /// Names [`Overrides::projection`].
+    pub projection: &'static str,
 }
 
 impl OverrideNames {
@@ -57,6 +62,7 @@ impl OverrideNames {
         time: "--time",
         beta: "--beta",
         observer_beta: "--observer-beta",
+        projection: "--projection",
     };
 }
 
@@ -107,6 +113,9 @@ impl Overrides {
     ) -> Result<(), SceneErrorKind> {
         if let Some(time) = self.time {
             description.observer.time = Some(time);
+        }
+        if let Some(projection) = self.projection {
+            description.observer.projection = Some(projection);
         }
         let render = &mut description.render;
         if let Some(effects) = self.effects {
@@ -160,6 +169,11 @@ impl Overrides {
                 scene.observer_beta,
             ),
             time: named(self.time.is_some(), self.names.time, scene.time),
+            projection: named(
+                self.projection.is_some(),
+                self.names.projection,
+                scene.projection,
+            ),
             object_beta: self.beta.map(|_| ValueName::Option(self.names.beta)),
             spectral: Cow::Owned(format!("{} spectral", self.names.colour)),
         }

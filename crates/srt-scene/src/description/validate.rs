@@ -141,6 +141,8 @@ pub(super) struct Names<'a> {
     pub observer_beta: ValueName<'a>,
     /// `observer.time`.
     pub time: ValueName<'a>,
+    /// `observer.projection`.
+    pub projection: ValueName<'a>,
     /// Every object's `beta`, when one option gives them all; `None`: each object's own.
     pub object_beta: Option<ValueName<'a>>,
     /// How to ask for spectral colour: `colour = "spectral"`, `--colour spectral`.
@@ -153,6 +155,7 @@ impl Names<'_> {
         exposure: ValueName::Key("render.exposure"),
         observer_beta: ValueName::Key("observer.beta"),
         time: ValueName::Key("observer.time"),
+        projection: ValueName::Key("observer.projection"),
         object_beta: None,
         spectral: Cow::Borrowed("colour = \"spectral\""),
     };
@@ -388,6 +391,11 @@ impl ObserverDescription {
         observation_time(ValueName::Key("observer.ct"), self.ct)?;
         if let Some(time) = self.time {
             observation_time(names.time, time)?;
+        }
+        if let Some(projection) = self.projection {
+            projection
+                .check()
+                .map_err(|reason| names.projection.error(names.projection.name(), reason))?;
         }
         Ok(())
     }

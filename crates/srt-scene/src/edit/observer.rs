@@ -4,7 +4,7 @@ use glam::DVec3;
 use srt_physics::Event;
 
 use super::{EditError, Editor};
-use crate::{Observer, ObserverDescription};
+use crate::{Observer, ObserverDescription, Projection};
 
 impl Editor {
     /// The observer's velocity through the scene's world frame, in units of c.
@@ -36,6 +36,8 @@ impl Editor {
                 } else {
                     description.time
                 },
+                projection: (observer.projection != Projection::Perspective)
+                    .then_some(observer.projection),
             };
         })
     }
