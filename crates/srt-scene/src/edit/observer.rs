@@ -68,7 +68,7 @@ impl Editor {
     }
 
     /// The observation event in the world frame W: where the observer is at
-    /// [`Editor::time`] ([`SceneDescription::observation_event`]).
+    /// [`Editor::time`] ([`crate::SceneDescription::observation_event`]).
     #[must_use]
     pub fn observer_event(&self) -> Event {
         let observer = &self.description.observer;
