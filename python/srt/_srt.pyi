@@ -47,6 +47,7 @@ class Scene:
     colour: ColourName
     exposure: float
     time: float
+    """The observation time: the observer's own clock when it looks (`observer.time`)."""
     @property
     def light(self) -> tuple[list[float], float] | None:
         """The lamp's position and temperature in kelvin."""
@@ -67,6 +68,7 @@ class Observer:
     up: Vector
     fov_y_deg: float
     ct: float
+    """W's time at which the observer is at `position` (its clock reads `ct` there)."""
 
 class SceneObject:
     """One object of a :class:`Scene`; setting a field edits the scene (validated)."""
@@ -88,6 +90,7 @@ def render(
     effects: EffectsName | None = None,
     colour: ColourName | None = None,
     exposure: float | None = None,
+    projection: str | None = None,
     samples: int = 1,
     backend: Literal["auto", "cpu", "gpu"] = "auto",
     method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
@@ -106,14 +109,17 @@ def render(
     effects: EffectsName | None = None,
     colour: ColourName | None = None,
     exposure: float | None = None,
+    projection: str | None = None,
     samples: int = 1,
     backend: Literal["auto", "cpu", "gpu"] = "auto",
     method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
     view: Literal["seen", "measured", "newtonian"] = "seen",
     aov: Literal[True],
-) -> dict[str, npt.NDArray[np.float32]]:
+) -> dict[str, npt.NDArray[np.float32] | npt.NDArray[np.int32]]:
     """With aov=True: "radiance" and "display" (height, width, 3), and the (height, width)
-    channels "emission_ct", "proper_time", "distance", "doppler", "object" (-1: no object)."""
+    channels "emission_ct", "proper_time", "distance", "doppler" (float32) and "object" (int32,
+    -1: no object). `projection`: "perspective", "equirectangular", "fisheye" or
+    "fisheye:FOV"."""
 def to_srgb8(linear: npt.NDArray[np.float64]) -> npt.NDArray[np.uint8]: ...
 def lorentz_boost(beta: Vector) -> npt.NDArray[np.float64]: ...
 def apparent_positions(
