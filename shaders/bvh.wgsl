@@ -27,7 +27,14 @@ fn slab_entry(lo_corner: vec3<f32>, hi_corner: vec3<f32>, origin: vec3<f32>, inv
     return select(-1.0, near, near <= far * SLAB_TOLERANCE && near <= limit);
 }
 
-// Where a walk through a BVH stands: the node to visit, the entries on its stack, and whether it
+// The one traversal stack of this invocation, shared by its walks, which never nest (each runs
+// to its end before the next begins). A module-scope variable rather than a parameter: GLSL
+// (wgpu's GL backend) passes a pointer parameter by copying it in and out, which for 64 entries at
+// every step of a walk cost llvmpipe several times the walk itself; and it is zeroed once per
+// invocation, not once per walk.
+var<private> bvh_stack: array<u32, BVH_STACK_SIZE>;
+
+// Where a walk through a BVH stands: the node to visit, the entries on bvh_stack, and whether it
 // is over. Nodes are indices into the traversal's own node array; an inner node's children are
 // `first` and `first + 1`.
 struct BvhWalk {
@@ -43,18 +50,17 @@ fn bvh_walk(root: u32) -> BvhWalk {
 
 // The walk's next node, once the current one is judged: for an inner node whose children are
 // `first` and `first + 1`, `enter_a` and `enter_b` say which to enter (`a_first`: `first` before
-// `first + 1` when both, the other kept on `stack`); a leaf, or an inner node entering neither,
+// `first + 1` when both, the other kept on bvh_stack); a leaf, or an inner node entering neither,
 // resumes from the stack, and the walk is over when the stack is empty.
 fn bvh_step(
     walk: ptr<function, BvhWalk>,
-    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
     first: u32,
     enter_a: bool,
     enter_b: bool,
     a_first: bool,
 ) {
     if (enter_a && enter_b) {
-        (*stack)[(*walk).top] = select(first, first + 1u, a_first);
+        bvh_stack[(*walk).top] = select(first, first + 1u, a_first);
         (*walk).top++;
         (*walk).node = select(first + 1u, first, a_first);
     } else if (enter_a || enter_b) {
@@ -63,11 +69,11 @@ fn bvh_step(
         (*walk).done = true;
     } else {
         (*walk).top--;
-        (*walk).node = (*stack)[(*walk).top];
+        (*walk).node = bvh_stack[(*walk).top];
     }
 }
 
 // bvh_step after a leaf: resume from the stack.
-fn bvh_leave(walk: ptr<function, BvhWalk>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) {
-    bvh_step(walk, stack, 0u, false, false, true);
+fn bvh_leave(walk: ptr<function, BvhWalk>) {
+    bvh_step(walk, 0u, false, false, true);
 }

@@ -48,7 +48,6 @@ fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>, lower: f32, limit: f
     if (box_entry(0u, origin, inverse, best.distance) < 0.0) {
         return best;
     }
-    var stack: array<u32, BVH_STACK_SIZE>;
     var walk = bvh_walk(0u);
     loop {
         let count = bvh_nodes[walk.node].primitive_count;
@@ -61,11 +60,11 @@ fn bvh_nearest_hit(origin: vec3<f32>, direction: vec3<f32>, lower: f32, limit: f
                     best = BvhHit(true, hit.distance, k);
                 }
             }
-            bvh_leave(&walk, &stack);
+            bvh_leave(&walk);
         } else {
             let ea = box_entry(first, origin, inverse, best.distance);
             let eb = box_entry(first + 1u, origin, inverse, best.distance);
-            bvh_step(&walk, &stack, first, ea >= 0.0, eb >= 0.0, ea <= eb);
+            bvh_step(&walk, first, ea >= 0.0, eb >= 0.0, ea <= eb);
         }
         if (walk.done) {
             break;
@@ -93,9 +92,8 @@ fn crossing_closer(hit: TriangleHit, k: u32, best: BvhHit) -> bool {
     return a.part < b.part || (a.part == b.part && a.triangle < b.triangle);
 }
 
-// Whether the box [lo, hi] overlaps the box of some BVH leaf (the walk stops at the first);
-// `stack` is the caller's traversal stack.
-fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
+// Whether the box [lo, hi] overlaps the box of some BVH leaf (the walk stops at the first).
+fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>) -> bool {
     if (!box_overlaps(0u, lo, hi)) {
         return false;
     }
@@ -105,7 +103,7 @@ fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>, stack: ptr<function, array<u32, 
             return true;
         }
         let first = bvh_nodes[walk.node].first;
-        bvh_step(&walk, stack, first, box_overlaps(first, lo, hi), box_overlaps(first + 1u, lo, hi), true);
+        bvh_step(&walk, first, box_overlaps(first, lo, hi), box_overlaps(first + 1u, lo, hi), true);
         if (walk.done) {
             break;
         }
@@ -115,7 +113,7 @@ fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>, stack: ptr<function, array<u32, 
 
 // The nearest crossing on one piece of a moving body's curve among the triangles whose BVH boxes
 // overlap the piece's padded box (mirror of the reference's traverse_iterator over the query box).
-fn piece_nearest_hit(ray: RestRay, piece: MotionPiece, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> BvhHit {
+fn piece_nearest_hit(ray: RestRay, piece: MotionPiece) -> BvhHit {
     var best = BvhHit(false, 3.4e38, 0u);
     if (!box_overlaps(0u, piece.lo, piece.hi)) {
         return best;
@@ -132,11 +130,11 @@ fn piece_nearest_hit(ray: RestRay, piece: MotionPiece, stack: ptr<function, arra
                     best = BvhHit(true, hit.distance, k);
                 }
             }
-            bvh_leave(&walk, stack);
+            bvh_leave(&walk);
         } else {
             let a = box_overlaps(first, piece.lo, piece.hi);
             let b = box_overlaps(first + 1u, piece.lo, piece.hi);
-            bvh_step(&walk, stack, first, a, b, true);
+            bvh_step(&walk, first, a, b, true);
         }
         if (walk.done) {
             break;
@@ -157,11 +155,10 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
         }
     }
     var start = motion_march_start(ray, plan);
-    var stack: array<u32, BVH_STACK_SIZE>;
     for (var k = 1u; k <= plan.pieces; k++) {
         if (motion_grouped(plan) && k % MOTION_PIECES_PER_GROUP == 1u) {
             let group = motion_group(ray, plan, k, start);
-            if (!box_meets_leaf(group.lo, group.hi, &stack)) {
+            if (!box_meets_leaf(group.lo, group.hi)) {
                 start = group.end;
                 k = group.last;
                 continue;
@@ -169,7 +166,7 @@ fn moving_nearest_hit(ray: RestRay) -> BvhHit {
         }
         let piece = motion_piece(ray, plan, k, start);
         start = piece.end;
-        let hit = piece_nearest_hit(ray, piece, &stack);
+        let hit = piece_nearest_hit(ray, piece);
         if (hit.found) {
             return hit;
         }

@@ -103,9 +103,8 @@ fn shadow_triangle(index: u32) -> array<vec3<f32>, 3> {
 // (rest coordinates of its object) strictly inside: more than SHADOW_MARGIN · (1 + length +
 // max|start|) from either end, which keeps the lit point's own surface and the light out of it
 // (mirror of PreparedObject::blocks, whose margin is 10⁻⁹ in f64). Any hit will do: the walk
-// stops at the first. `stack` is the caller's traversal stack, one for all its walks (a local
-// array is zeroed wherever it is declared: on a software rasteriser 64 stores per walk).
-fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
+// stops at the first (bvh.wgsl's walk, on its one stack).
+fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>) -> bool {
     let delta = end - start;
     let span = length(delta);
     let magnitude = abs(start);
@@ -130,14 +129,14 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: pt
                     return true;
                 }
             }
-            bvh_leave(&walk, stack);
+            bvh_leave(&walk);
         } else {
             let a = shadow_node(node.first);
             let b = shadow_node(node.first + 1u);
             let ea = slab_entry(a.min, a.max, start, inverse, far);
             let eb = slab_entry(b.min, b.max, start, inverse, far);
             // The nearer first: a blocker near the lit point is found sooner.
-            bvh_step(&walk, stack, node.first, ea >= 0.0, eb >= 0.0, ea <= eb);
+            bvh_step(&walk, node.first, ea >= 0.0, eb >= 0.0, ea <= eb);
         }
         if (walk.done) {
             break;
@@ -150,9 +149,8 @@ fn shadow_segment_blocked(root: u32, start: vec3<f32>, end: vec3<f32>, stack: pt
 // segment from the event to the light's retarded event, taken into each non-emitting caster's
 // rest frame (emitters, the lamps' visible bulbs, cast no shadow). For the object being shaded
 // (scene index `own`) the event's rest coordinates `receiver_rest` are used as they are, rather
-// than rounded once more through S; `stack` is the caller's traversal stack. Mirror of
-// Tracer::shadowed.
-fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, receiver_rest: vec4<f32>, stack: ptr<function, array<u32, BVH_STACK_SIZE>>) -> bool {
+// than rounded once more through S. Mirror of Tracer::shadowed.
+fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, receiver_rest: vec4<f32>) -> bool {
     if (!MOVING_LIGHT_SHADOWS) {
         return false;
     }
@@ -167,7 +165,7 @@ fn moving_light_shadowed(light: RetardedLight, receiver: vec4<f32>, own: u32, re
             start = receiver_rest.yzw;
         }
         let end = (caster.observer_to_rest * (light.source_event - offset)).yzw;
-        if (shadow_segment_blocked(caster.bvh.x, start, end, stack)) {
+        if (shadow_segment_blocked(caster.bvh.x, start, end)) {
             return true;
         }
     }

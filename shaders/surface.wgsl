@@ -307,8 +307,6 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
     let own = u32(object.time.x);
     var sum = light_sum_of(lamp);
     var sources = 0u;
-    // One traversal stack for every shadow walk of the pixel (see shadow_segment_blocked).
-    var shadow_stack: array<u32, BVH_STACK_SIZE>;
     for (var i = 0u; i < frame_uniforms.lights.counts.x; i++) {
         let light = frame_uniforms.lights.moving[i];
         let arriving = retarded_light(light, receiver.event);
@@ -318,7 +316,7 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
         let terms = phong_terms(normal, -normalize(aberrate(-beta, arriving.direction)), to_observer);
         let reflected = terms.x + terms.y;
         if (!(reflected > 0.0) || !(light.strength.x > 0.0)
-            || moving_light_shadowed(arriving, receiver.event, own, receiver.rest, &shadow_stack)) {
+            || moving_light_shadowed(arriving, receiver.event, own, receiver.rest)) {
             continue;
         }
         var light_d_in = 1.0;
