@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use srt::engine::{Backend, MAX_IMAGE_SIDE, MAX_SAMPLES};
 use srt_gpu::Method;
-use srt_scene::{Choice, Effects, Projection, SurfaceColour, View, parse_vector};
+use srt_scene::{Choice, Effects, Projection, Setting, SurfaceColour, View, parse_vector};
 
 /// srt: see what an observer really sees of objects flying at near light speed.
 #[derive(Debug, Parser)]
@@ -23,9 +23,14 @@ pub struct Cli {
 pub enum Command {
     // The model list in this help text is checked against `model_extension_list()` by a test.
     /// Render a built-in scene, a scene file (.toml) or a 3D model (.gltf, .glb, .obj, .ply, .stl).
-    Render(RenderArgs),
-    /// List the built-in scenes.
-    Scenes,
+    Render(Box<RenderArgs>),
+    /// List the built-in scenes, one line each; `--show NAME` prints one scene's file with its
+    /// explanation, ready to copy and edit (`srt scenes --show fig4 > mine.toml`).
+    Scenes {
+        /// The built-in scene whose file to print.
+        #[arg(long, value_name = "NAME")]
+        show: Option<String>,
+    },
     /// Join rendered frames (PNG or EXR, in the order given) into a video: .mp4 (H.264) or .gif.
     Encode(EncodeArgs),
     /// Print how an image was made: the scene, time, velocities, effects and renderer that srt
@@ -44,7 +49,7 @@ pub enum Command {
 
 impl Default for Command {
     fn default() -> Self {
-        Self::Render(RenderArgs::default())
+        Self::Render(Box::default())
     }
 }
 
@@ -112,9 +117,21 @@ pub struct RenderArgs {
     /// fisheye:FOV (overrides the scene's `observer.projection`).
     #[arg(long, value_name = "PROJECTION", value_parser = parse_projection)]
     pub projection: Option<Projection>,
+    /// Give any scene file key a value, e.g. `--set observer.fov_y_deg=60`,
+    /// `--set object.cube.beta=0,0.5,0` (an object by its name or index from 0),
+    /// `--set render.colour=spectral`; repeatable, applied in order before the options above. The
+    /// value is TOML (a bare word is a string, numbers with commas an array), judged by the scene
+    /// file's own rules (docs/scene-format.md).
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_setting)]
+    pub settings: Vec<Setting>,
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: u32,
+    /// Burn a caption into the bottom of the picture: scene, the observer's time, each object's
+    /// velocity, view, effects and renderer (the display colours only: an EXR's radiance stays
+    /// data).
+    #[arg(long)]
+    pub caption: bool,
     /// Add per-pixel channels to an EXR beside R, G, B: what each pixel sees of time
     /// (emission_ct, proper_time, distance, doppler, object; docs/scene-format.md).
     #[arg(long)]
@@ -199,7 +216,9 @@ impl Default for RenderArgs {
             beta: None,
             observer_beta: None,
             projection: None,
+            settings: Vec::new(),
             samples: 1,
+            caption: false,
             aov: false,
             frames: None,
             t0: None,
@@ -222,6 +241,11 @@ fn parse_shard(text: &str) -> Result<ShardArg, String> {
             "expected K/N (share K of N, e.g. 2/8), got {text:?}"
         )),
     }
+}
+
+/// `--set KEY=VALUE` as typed (srt-scene's [`Setting`] parser).
+fn parse_setting(text: &str) -> Result<Setting, String> {
+    text.parse()
 }
 
 /// `--projection` as typed: `perspective`, `equirectangular`, `fisheye` or `fisheye:FOV`

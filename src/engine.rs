@@ -141,6 +141,19 @@ impl Engine {
                 Err(error) => bail!("the polygon method needs a GPU: {error}"),
             },
         };
+        Self::on_gpu(Box::new(context), backend, method, settings, scene)
+    }
+
+    /// The GPU engine on `context` for `scene` at `settings` ([`Engine::choose`]'s rules): the
+    /// scene uploaded for a target ⌈√samples⌉× the size, or with `auto` the CPU when the target
+    /// exceeds the adapter's limits.
+    fn on_gpu(
+        context: Box<GpuContext>,
+        backend: Backend,
+        method: Method,
+        settings: RenderSettings,
+        scene: &Scene,
+    ) -> anyhow::Result<Chosen> {
         let RenderSettings {
             width,
             height,
@@ -153,10 +166,13 @@ impl Engine {
             Err(error @ GpuError::ExceedsLimit { .. })
                 if backend == Backend::Auto && method.is_exact() =>
             {
-                return cpu(Some(format!(
-                    "the GPU cannot render {width}x{height} at {samples} samples (a \
-                     {big_width}x{big_height} target): {error}; rendering on the CPU instead"
-                )));
+                return Ok(Chosen {
+                    engine: Self::Cpu,
+                    note: Some(format!(
+                        "the GPU cannot render {width}x{height} at {samples} samples (a \
+                         {big_width}x{big_height} target): {error}; rendering on the CPU instead"
+                    )),
+                });
             }
             Err(error) => {
                 return Err(error).with_context(|| {
@@ -173,7 +189,7 @@ impl Engine {
         renderer.set_star_light_scale(f64::from(scale * scale));
         Ok(Chosen {
             engine: Self::Gpu {
-                context: Box::new(context),
+                context,
                 renderer: Box::new(renderer),
                 scale,
                 method,
@@ -256,6 +272,78 @@ impl Engine {
                 ))
             }
         })
+    }
+}
+
+/// An engine kept for a sequence of frames whose scenes may change (Python's `srt.Renderer`):
+/// the GPU's device is made once, and a scene is uploaded again only when its structure
+/// ([`Scene::same_structure`]) or the size changes, or when the GPU cannot draw it (a projection
+/// it does not trace); each frame is drawn by the engine [`Engine::choose`] would choose for it.
+pub struct KeptEngine {
+    /// The backend asked for.
+    backend: Backend,
+    /// The method asked for.
+    method: Method,
+    /// The engine, with the scene whose structure it holds and the settings it was made for.
+    kept: Option<(Engine, Scene, RenderSettings)>,
+    /// Whether the GPU was asked for by `auto` and could not serve (no adapter, or a target
+    /// beyond its limits): a CPU engine chosen only because the GPU could not draw a frame
+    /// (a projection it does not trace) gives way to the GPU again when it can.
+    gpu_unavailable: bool,
+}
+
+impl KeptEngine {
+    /// Nothing made yet: the first frame chooses the engine.
+    #[must_use]
+    pub const fn new(backend: Backend, method: Method) -> Self {
+        Self {
+            backend,
+            method,
+            kept: None,
+            gpu_unavailable: false,
+        }
+    }
+
+    /// The engine ready to render `scene` at `settings`, and [`Chosen::note`] when it was chosen
+    /// for this frame.
+    ///
+    /// # Errors
+    /// As [`Engine::choose`].
+    pub fn engine_for(
+        &mut self,
+        scene: &Scene,
+        settings: RenderSettings,
+    ) -> anyhow::Result<(&mut Engine, Option<String>)> {
+        let gpu_can_draw = self.method.cannot_draw(scene).is_none();
+        let fits = |(engine, kept, made_for): &(Engine, Scene, RenderSettings)| {
+            *made_for == settings
+                && kept.same_structure(scene)
+                && match engine {
+                    Engine::Cpu => {
+                        self.backend == Backend::Cpu || self.gpu_unavailable || !gpu_can_draw
+                    }
+                    Engine::Gpu { .. } => gpu_can_draw,
+                }
+        };
+        let mut note = None;
+        let kept = match self.kept.take() {
+            Some(kept) if fits(&kept) => kept,
+            previous => {
+                let chosen = match previous {
+                    Some((Engine::Gpu { context, .. }, ..)) if gpu_can_draw => {
+                        Engine::on_gpu(context, self.backend, self.method, settings, scene)?
+                    }
+                    _ => Engine::choose(self.backend, self.method, settings, scene)?,
+                };
+                self.gpu_unavailable = self.backend == Backend::Auto
+                    && gpu_can_draw
+                    && matches!(chosen.engine, Engine::Cpu);
+                note = chosen.note;
+                (chosen.engine, scene.clone(), settings)
+            }
+        };
+        let (engine, ..) = self.kept.insert(kept);
+        Ok((engine, note))
     }
 }
 

@@ -5,6 +5,7 @@
 //! Every failure the user can cause (bad files, bad numbers, unwritable paths) ends in one clear
 //! message on standard error and exit code 2; nothing is written half-way.
 
+mod caption;
 mod cli;
 mod encode;
 mod exr_range;
@@ -95,7 +96,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or_default() {
         Command::Render(args) => render::run(&args),
-        Command::Scenes => source::print_scenes().map_err(anyhow::Error::from),
+        Command::Scenes { show } => source::print_scenes(show.as_deref()),
         Command::View { scenes } => view(&scenes),
         Command::Encode(args) => encode::run(&args),
         Command::Info { image } => provenance::print_info(&image),

@@ -8,8 +8,10 @@ use std::time::Instant;
 
 use std::sync::atomic::AtomicBool;
 
+use crate::caption::Captioner;
 use anyhow::{Context as _, bail};
 use glam::DVec3;
+use srt::empty::empty_picture_warning;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
 use srt_scene::{Editor, OverrideNames, Overrides, Scene, ValueName, View};
@@ -74,7 +76,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
         let frame = Frame::new(&first);
-        let pixels = render_pixels(&mut engine, &frame, settings, true)?;
+        let mut pixels = render_pixels(&mut engine, &frame, settings, true)?;
+        if let Some(warning) = empty_picture_warning(&first, &pixels) {
+            eprintln!("warning: {warning}");
+        }
+        if let Some(captioner) = captioner(args, loaded.observer_beta, &engine) {
+            captioner.burn_into(scene, &mut pixels, settings.width, settings.height);
+        }
         let layers = exr_layers_for(&mut engine, &output, &frame, settings, args.aov)?;
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         let (width, height) = (settings.width, settings.height);
@@ -90,6 +98,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         t0,
         t1,
         view,
+        captioner: captioner(args, loaded.observer_beta, &engine),
     };
     match animation {
         Animation::Images(shard) => render_numbered(
@@ -105,15 +114,38 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
 }
 
-/// An animation's frames: `frames` observation times from `t0` to `t1`, in `view`.
+/// An animation's frames: `frames` observation times from `t0` to `t1`, in `view`, each
+/// captioned by `captioner` if there is one.
 struct Sweep {
     frames: u32,
     t0: f64,
     t1: f64,
     view: View,
+    captioner: Option<Captioner>,
 }
 
 impl Sweep {
+    /// Renders frame `frame` of the sweep of `editor`'s scene with `engine`: the display colours
+    /// (captioned), and the frame's viewed scene for its other layers.
+    fn render_frame<'e>(
+        &self,
+        engine: &mut Engine,
+        editor: &'e mut Editor,
+        frame: u32,
+        settings: RenderSettings,
+        empty: &mut EmptyFrames,
+    ) -> anyhow::Result<(Cow<'e, Scene>, Vec<DVec3>)> {
+        editor.set_time(self.time_of(frame))?;
+        let editor: &'e Editor = editor;
+        let frame_scene = viewed(self.view, editor.scene())?;
+        let mut pixels = render_pixels(engine, &Frame::new(&frame_scene), settings, false)?;
+        empty.look_at(&frame_scene, &pixels);
+        if let Some(captioner) = &self.captioner {
+            captioner.burn_into(editor.scene(), &mut pixels, settings.width, settings.height);
+        }
+        Ok((frame_scene, pixels))
+    }
+
     /// The observation time of frame `frame` (0-based): evenly spaced, the last at `t1`.
     fn time_of(&self, frame: u32) -> f64 {
         let fraction = if self.frames > 1 {
@@ -151,14 +183,14 @@ fn render_numbered(
         "frames",
         format!("rendering {}", editor.scene().name),
     );
+    let mut empty = EmptyFrames::default();
     for frame in share {
         let frame_start = Instant::now();
-        editor.set_time(sweep.time_of(frame))?;
-        let frame_scene = viewed(sweep.view, editor.scene())?;
+        let (frame_scene, pixels) =
+            sweep.render_frame(engine, editor, frame, settings, &mut empty)?;
         let traced = Frame::new(&frame_scene);
-        let pixels = render_pixels(engine, &traced, settings, false)?;
         let record = record.with(&[
-            ("time", format!("{:?}", editor.time())),
+            ("time", format!("{:?}", sweep.time_of(frame))),
             ("frame", format!("{frame} of 0 to {}", frames - 1)),
         ]);
         let path = numbered(output, frame, digits);
@@ -169,7 +201,43 @@ fn render_numbered(
         bar.inc();
     }
     bar.finish();
+    empty.report();
     Ok(())
+}
+
+/// Whether every frame of an animation showed no object ([`empty_picture_warning`]), and why the
+/// first did.
+#[derive(Default)]
+struct EmptyFrames {
+    /// The first frame's warning, while every frame so far was empty.
+    first: Option<String>,
+    /// Whether some frame showed an object (or had any detail).
+    some_seen: bool,
+}
+
+impl EmptyFrames {
+    /// Takes one frame's `pixels` of `scene` into account.
+    fn look_at(&mut self, scene: &Scene, pixels: &[DVec3]) {
+        if self.some_seen {
+            return;
+        }
+        match empty_picture_warning(scene, pixels) {
+            Some(warning) => {
+                self.first.get_or_insert(warning);
+            }
+            None => {
+                self.some_seen = true;
+                self.first = None;
+            }
+        }
+    }
+
+    /// Warns when every frame was empty.
+    fn report(&self) {
+        if let Some(first) = &self.first {
+            eprintln!("warning: every frame is empty; the first: {first}");
+        }
+    }
 }
 
 /// Renders the sweep as one video, `output`.
@@ -188,14 +256,14 @@ fn render_video(
         "frames",
         format!("rendering {}", editor.scene().name),
     );
+    let mut empty = EmptyFrames::default();
     for frame in 0..sweep.frames {
-        editor.set_time(sweep.time_of(frame))?;
-        let frame_scene = viewed(sweep.view, editor.scene())?;
-        let pixels = render_pixels(engine, &Frame::new(&frame_scene), settings, false)?;
+        let (_, pixels) = sweep.render_frame(engine, editor, frame, settings, &mut empty)?;
         video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
         bar.inc();
     }
     bar.finish();
+    empty.report();
     video.finish()?;
     println!(
         "wrote {} ({} frames at {} fps, ct {:?} to {:?}; {})",
@@ -207,6 +275,18 @@ fn render_video(
         details(settings, engine, start)
     );
     Ok(())
+}
+
+/// The caption's maker when `--caption` asks for one.
+fn captioner(args: &RenderArgs, observer_beta: DVec3, engine: &Engine) -> Option<Captioner> {
+    args.caption.then(|| Captioner {
+        observer_beta,
+        view: args.view,
+        renderer: match engine {
+            Engine::Cpu => "cpu".to_owned(),
+            Engine::Gpu { method, .. } => format!("gpu {}", method.name()),
+        },
+    })
 }
 
 /// The picture size and samples the options ask for.
@@ -356,8 +436,8 @@ fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
     Ok(Cow::Owned(viewed))
 }
 
-/// The scene overrides among the options (--effects, --colour, --exposure, --time, --beta,
-/// --observer-beta), for srt-scene's resolver to apply to the description.
+/// The scene overrides among the options (--set, --effects, --colour, --exposure, --time,
+/// --beta, --observer-beta, --projection), for srt-scene's resolver to apply to the description.
 fn overrides(args: &RenderArgs) -> Overrides {
     Overrides {
         effects: args.effects,
@@ -367,6 +447,7 @@ fn overrides(args: &RenderArgs) -> Overrides {
         beta: args.beta,
         observer_beta: args.observer_beta,
         projection: args.projection,
+        settings: args.settings.clone(),
         names: OverrideNames::COMMAND_LINE,
     }
 }

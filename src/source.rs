@@ -5,12 +5,13 @@
 //! overrides applied to its description ([`srt_scene::Overrides`]).
 
 use std::fmt::Write as _;
-use std::io::Read as _;
+use std::io::{Read as _, Write as _};
 use std::path::Path;
 
 use anyhow::anyhow;
 use glam::DVec3;
 use sha2::{Digest as _, Sha256};
+use srt_scene::builtin::find_builtin;
 use srt_scene::message::io_reason;
 use srt_scene::{Editor, Overrides, SceneSource, builtin_scenes};
 
@@ -97,12 +98,29 @@ fn sha256_hex(path: &Path) -> anyhow::Result<String> {
     Ok(hex)
 }
 
-/// Prints the built-in scenes, one per line.
+/// Prints the built-in scenes, one per line, or with `show` the file of the scene of that name:
+/// its explanation (the comments at its top and beside its values) and its values, as a scene
+/// file to copy and edit (built-in models keep their `builtin:` paths, which work in any file).
 ///
 /// # Errors
-/// Writing to standard output failed.
-pub fn print_scenes() -> std::io::Result<()> {
-    crate::listing::print_rows(builtin_scenes().iter().map(|s| (s.name, s.summary)))
+/// No built-in scene is called `show` (the message lists those there are), or writing to
+/// standard output failed.
+pub fn print_scenes(show: Option<&str>) -> anyhow::Result<()> {
+    let Some(name) = show else {
+        return Ok(crate::listing::print_rows(
+            builtin_scenes().iter().map(|s| (s.name, s.summary)),
+        )?);
+    };
+    let scene = find_builtin(name).ok_or_else(|| {
+        let names: Vec<&str> = builtin_scenes().iter().map(|s| s.name).collect();
+        anyhow!(
+            "no built-in scene is called {name:?}; there are {}",
+            names.join(", ")
+        )
+    })?;
+    let mut out = std::io::stdout().lock();
+    out.write_all(scene.toml().as_bytes())?;
+    Ok(out.flush()?)
 }
 
 #[cfg(test)]

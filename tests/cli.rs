@@ -309,6 +309,86 @@ fn lists_builtin_scenes() {
     }
 }
 
+/// `srt scenes --show NAME` prints the built-in scene's file, explanation included, as a scene
+/// file that reads back to the same scene; an unknown name is refused with the names there are.
+#[test]
+fn shows_a_builtin_scene_file_ready_to_copy() {
+    let output = srt(&["scenes", "--show", "fig4"], Path::new("."));
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8(output.stdout).expect("UTF-8");
+    assert!(text.starts_with("# Fig. 4 of Müller"), "{text}");
+    let shown = srt_scene::SceneDescription::from_toml_str(&text, "shown").expect("parses");
+    assert_eq!(Some(shown), srt_scene::builtin("fig4"));
+    let output = srt(&["scenes", "--show", "fig5"], Path::new("."));
+    assert_clean_failure(&output, &["fig5", "fig4", "teaser"]);
+}
+
+/// A picture in which no object is seen is written with a warning saying where the objects are
+/// (Fig. 4's cube has passed the observer in the measured view); a picture with the cube in it
+/// is not warned about.
+#[test]
+fn an_empty_picture_says_where_the_objects_are() {
+    let dir = folder();
+    let size = ["--backend", "cpu", "--width", "32", "--height", "18"];
+    let output = srt(
+        &[
+            &["render", "fig4", "--view", "measured", "-o", "m.png"][..],
+            &size,
+        ]
+        .concat(),
+        dir.path(),
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let err = stderr(&output);
+    assert!(
+        err.contains("warning: the picture is empty: no object is in the view at ct = 5.12")
+            && err.contains("cube is seen outside the view"),
+        "{err}"
+    );
+    let output = srt(
+        &[&["render", "fig4", "-o", "s.png"][..], &size].concat(),
+        dir.path(),
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(!stderr(&output).contains("empty"), "{}", stderr(&output));
+}
+
+/// `--caption` burns a line into the bottom of the picture and leaves the rest as it was.
+#[test]
+fn a_caption_is_burnt_into_the_bottom_of_the_picture() {
+    let dir = folder();
+    let size = ["--backend", "cpu", "--width", "320", "--height", "180"];
+    for (name, extra) in [
+        ("plain.png", &[][..]),
+        ("captioned.png", &["--caption"][..]),
+    ] {
+        let output = srt(
+            &[&["render", "fig7", "-o", name][..], &size, extra].concat(),
+            dir.path(),
+        );
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let pixels = |name: &str| {
+        image::open(dir.path().join(name))
+            .expect("an image")
+            .to_rgb8()
+    };
+    let (plain, captioned) = (pixels("plain.png"), pixels("captioned.png"));
+    let rows = |image: &image::RgbImage, from: u32, to: u32| -> Vec<u8> {
+        (from..to)
+            .flat_map(|y| (0..320).flat_map(move |x| image.get_pixel(x, y).0))
+            .collect()
+    };
+    assert_eq!(
+        rows(&plain, 0, 150),
+        rows(&captioned, 0, 150),
+        "above the band"
+    );
+    let band = rows(&captioned, 165, 180);
+    assert!(band.iter().any(|&c| c > 200), "white letters in the band");
+    assert_ne!(rows(&plain, 165, 180), band);
+}
+
 #[test]
 fn superluminal_velocity_is_refused() {
     let dir = folder();

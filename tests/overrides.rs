@@ -106,3 +106,68 @@ fn accepted_overrides_are_what_is_rendered_and_recorded() {
         assert!(record.contains(line), "{line:?} missing from:\n{record}");
     }
 }
+
+/// `--set KEY=VALUE` gives a scene file key its value: the picture is byte for byte that of the
+/// scene file with the value written in it, and a key or value the file would refuse is refused
+/// with the setting named, nothing written.
+#[test]
+fn set_gives_any_scene_key_as_the_file_would() {
+    let dir = folder();
+    let shown = srt(&["scenes", "--show", "fig4"], dir.path());
+    let edited = String::from_utf8(shown.stdout)
+        .expect("UTF-8")
+        .replace("fov_y_deg = 35.0", "fov_y_deg = 60.0")
+        .replace("beta = [0.0, 0.95, 0.0]", "beta = [0.0, 0.5, 0.0]");
+    std::fs::write(dir.path().join("mine.toml"), edited).expect("written");
+    let size = ["--backend", "cpu", "--width", "32", "--height", "18"];
+    let from_file = srt(
+        &[&["render", "mine.toml", "-o", "file.png"][..], &size].concat(),
+        dir.path(),
+    );
+    assert!(from_file.status.success(), "{}", stderr(&from_file));
+    let set = [
+        "--set",
+        "observer.fov_y_deg=60",
+        "--set",
+        "object.cube.beta=0,0.5,0",
+    ];
+    let from_set = srt(
+        &[&["render", "fig4", "-o", "set.png"][..], &size, &set].concat(),
+        dir.path(),
+    );
+    assert!(from_set.status.success(), "{}", stderr(&from_set));
+    let pixels = |name: &str| {
+        image::open(dir.path().join(name))
+            .expect("an image")
+            .to_rgb8()
+    };
+    assert_eq!(pixels("file.png"), pixels("set.png"));
+    let plain = srt(
+        &[&["render", "fig4", "-o", "plain.png"][..], &size].concat(),
+        dir.path(),
+    );
+    assert!(plain.status.success(), "{}", stderr(&plain));
+    assert_ne!(
+        pixels("set.png"),
+        pixels("plain.png"),
+        "the settings change the picture"
+    );
+    for (setting, mentions) in [
+        (
+            "observer.fov=60",
+            &["--set observer.fov=60", "unknown field `fov`"][..],
+        ),
+        ("observer.fov_y_deg=200", &["observer.fov_y_deg", "200"][..]),
+        (
+            "object.ship.beta=0,0.5,0",
+            &["no element named \"ship\""][..],
+        ),
+    ] {
+        let output = srt(
+            &["render", "fig4", "--set", setting, "-o", "refused.png"],
+            dir.path(),
+        );
+        assert_clean_failure(&output, mentions);
+        assert!(!dir.path().join("refused.png").exists(), "{setting}");
+    }
+}

@@ -21,6 +21,7 @@ fn _srt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Observer>()?;
     m.add_class::<scene::SceneObject>()?;
     m.add_function(wrap_pyfunction!(scene::scenes, m)?)?;
+    m.add_class::<render::Renderer>()?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(render::to_srgb8, m)?)?;
     physics::register(m)?;

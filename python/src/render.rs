@@ -1,8 +1,10 @@
-//! `srt.render`: a scene rendered to numpy arrays, exactly as `srt render … -o x.exr` writes it
-//! (the same loading, overrides, view and renderer: the `srt` library's
-//! [`engine`](srt::engine)), with the GIL released and Ctrl-C honoured; and `srt.to_srgb8`.
+//! `srt.render` and `srt.Renderer`: a scene rendered to numpy arrays, exactly as
+//! `srt render … -o x.exr` writes it (the same loading, overrides, view and renderer: the `srt`
+//! library's [`engine`](srt::engine)), with the GIL released and Ctrl-C honoured; a `Renderer`
+//! keeps its engine for a loop of frames. And `srt.to_srgb8`.
 
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, PoisonError};
 use std::time::Duration;
 
 use glam::DVec3;
@@ -10,14 +12,15 @@ use numpy::ndarray::{Array2, Array3, ArrayD};
 use numpy::{IntoPyArray as _, PyArray3, PyArrayDyn, PyReadonlyArrayDyn};
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict};
+use srt::empty::empty_picture_warning;
 use srt::engine::{
-    AOV_CHANNELS, Backend, Engine, Frame, MAX_IMAGE_SIDE, MAX_SAMPLES, channel_f32,
+    AOV_CHANNELS, Backend, Frame, KeptEngine, MAX_IMAGE_SIDE, MAX_SAMPLES, channel_f32,
     display_as_linear,
 };
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
-use srt_scene::{OverrideNames, Overrides, SceneSource, View};
+use srt_scene::{OverrideNames, Overrides, SceneSource, Setting, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::errors;
@@ -31,6 +34,7 @@ const ARGUMENT_NAMES: OverrideNames = OverrideNames {
     beta: "beta",
     observer_beta: "observer_beta",
     projection: "projection",
+    settings: "set",
 };
 
 /// How often the waiting Python thread looks for Ctrl-C while a render runs.
@@ -77,12 +81,13 @@ impl From<PyErr> for Failure {
 /// Renders `scene` to a float32 array (height, width, 3) of linear radiance (the EXR's R, G, B);
 /// with `aov=True`, a dict of layers: "radiance", "display" (the displayed image as linear
 /// light, the EXR's display.R, display.G, display.B) and the (height, width) channels
-/// `srt render --aov` writes (emission_ct, proper_time, distance, doppler, object).
+/// `srt render --aov` writes (emission_ct, proper_time, distance, doppler, object). One frame of
+/// a [`Renderer`] made for it: a loop of frames keeps one `srt.Renderer` instead.
 #[pyfunction]
 #[pyo3(signature = (
     scene, *, width=1280, height=720, time=None, beta=None, observer_beta=None, effects=None,
-    colour=None, exposure=None, projection=None, samples=1, backend="auto", method="auto",
-    view="seen", aov=false
+    colour=None, exposure=None, projection=None, set=None, samples=1, backend="auto",
+    method="auto", view="seen", aov=false
 ))]
 #[expect(
     clippy::too_many_arguments,
@@ -100,94 +105,224 @@ pub fn render<'py>(
     colour: Option<&str>,
     exposure: Option<f64>,
     projection: Option<&str>,
+    set: Option<&Bound<'py, PyDict>>,
     samples: u32,
     backend: &str,
     method: &str,
     view: &str,
     aov: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let settings = settings(width, height, samples)?;
-    let overrides = Overrides {
-        effects: effects.map(errors::chosen).transpose()?,
-        colour: colour.map(errors::chosen).transpose()?,
-        exposure,
+    Renderer::new(width, height, samples, backend, method)?.render(
+        py,
+        scene,
         time,
-        beta: beta.map(DVec3::from_array),
-        observer_beta: observer_beta.map(DVec3::from_array),
-        projection: projection
-            .map(|text| text.parse().map_err(errors::value))
-            .transpose()?,
-        names: ARGUMENT_NAMES,
-    };
-    let backend = errors::chosen(backend)?;
-    let method = errors::chosen(method)?;
-    if backend == Backend::Cpu && method == Method::Polygon {
-        return Err(errors::value(
-            "the polygon method runs on the GPU only; use backend=\"gpu\" or \"auto\"",
-        ));
-    }
-    let view = errors::chosen(view)?;
-    let (built, warnings) = match &scene {
-        SceneArgument::Name(name) => SceneSource::resolve(name)
-            .map_err(|e| errors::resolve(&e))
-            .and_then(|source| load(py, &source, &overrides)),
-        SceneArgument::Path(path) => {
-            crate::scene::file_source(path).and_then(|source| load(py, &source, &overrides))
-        }
-        SceneArgument::Scene(scene) => Ok((scene.borrow().overridden(&overrides)?, Vec::new())),
-    }?;
-    let request = Request {
-        settings,
-        backend,
-        method,
+        beta,
+        observer_beta,
+        effects,
+        colour,
+        exposure,
+        projection,
+        set,
         view,
         aov,
-    };
-    let rendered = match run_interruptible(py, |stop| request.run(built, warnings, stop)) {
-        Ok(rendered) => rendered,
-        Err(Failure::Raise(error)) => return Err(error),
-        Err(Failure::Stopped) => {
-            // check_signals raised KeyboardInterrupt and the render has stopped; raise it again.
-            return Err(py.check_signals().err().unwrap_or_else(|| {
-                pyo3::exceptions::PyKeyboardInterrupt::new_err("render stopped")
-            }));
+    )
+}
+
+/// A renderer kept for a loop of frames: the GPU's device is made once and a scene uploaded
+/// again only when its structure or the GPU's ability to draw it changes (the `srt` library's
+/// [`KeptEngine`]), as the viewer and the web page keep theirs. Each frame is exactly what
+/// `srt.render` with the same arguments gives.
+#[pyclass(module = "srt")]
+pub struct Renderer {
+    /// Size and samples per pixel of every frame.
+    settings: RenderSettings,
+    /// The engine, kept between frames (locked by the frame being drawn).
+    engine: Mutex<KeptEngine>,
+}
+
+#[pymethods]
+impl Renderer {
+    /// A renderer of `width` × `height` frames at `samples` per pixel, drawn by `backend` with
+    /// `method` (as `srt.render` takes them).
+    #[new]
+    #[pyo3(signature = (*, width=1280, height=720, samples=1, backend="auto", method="auto"))]
+    fn new(width: u32, height: u32, samples: u32, backend: &str, method: &str) -> PyResult<Self> {
+        let settings = settings(width, height, samples)?;
+        let backend = errors::chosen(backend)?;
+        let method = errors::chosen(method)?;
+        if backend == Backend::Cpu && method == Method::Polygon {
+            return Err(errors::value(
+                "the polygon method runs on the GPU only; use backend=\"gpu\" or \"auto\"",
+            ));
         }
-    };
-    for warning in &rendered.warnings {
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &std::ffi::CString::new(warning.as_str()).unwrap_or_default(),
-            1,
+        Ok(Self {
+            settings,
+            engine: Mutex::new(KeptEngine::new(backend, method)),
+        })
+    }
+
+    /// One frame of `scene`, with the same arguments and result as `srt.render`'s.
+    #[pyo3(signature = (
+        scene, *, time=None, beta=None, observer_beta=None, effects=None, colour=None,
+        exposure=None, projection=None, set=None, view="seen", aov=false
+    ))]
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "Python keyword arguments, as srt.render takes them"
+    )]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        scene: SceneArgument<'py>,
+        time: Option<f64>,
+        beta: Option<[f64; 3]>,
+        observer_beta: Option<[f64; 3]>,
+        effects: Option<&str>,
+        colour: Option<&str>,
+        exposure: Option<f64>,
+        projection: Option<&str>,
+        set: Option<&Bound<'py, PyDict>>,
+        view: &str,
+        aov: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let overrides = Overrides {
+            effects: effects.map(errors::chosen).transpose()?,
+            colour: colour.map(errors::chosen).transpose()?,
+            exposure,
+            time,
+            beta: beta.map(DVec3::from_array),
+            observer_beta: observer_beta.map(DVec3::from_array),
+            projection: projection
+                .map(|text| text.parse().map_err(errors::value))
+                .transpose()?,
+            settings: set.map(scene_settings).transpose()?.unwrap_or_default(),
+            names: ARGUMENT_NAMES,
+        };
+        let (built, warnings) = match &scene {
+            SceneArgument::Name(name) => SceneSource::resolve(name)
+                .map_err(|e| errors::resolve(&e))
+                .and_then(|source| load(py, &source, &overrides)),
+            SceneArgument::Path(path) => {
+                crate::scene::file_source(path).and_then(|source| load(py, &source, &overrides))
+            }
+            SceneArgument::Scene(scene) => Ok((scene.borrow().overridden(&overrides)?, Vec::new())),
+        }?;
+        let request = Request {
+            settings: self.settings,
+            view: errors::chosen(view)?,
+            aov,
+        };
+        let rendered = match run_interruptible(py, |stop| {
+            let mut engine = self.engine.lock().unwrap_or_else(PoisonError::into_inner);
+            request.run(&mut engine, built, warnings, stop)
+        }) {
+            Ok(rendered) => rendered,
+            Err(Failure::Raise(error)) => return Err(error),
+            Err(Failure::Stopped) => {
+                // check_signals raised KeyboardInterrupt and the render has stopped; raise it
+                // again.
+                return Err(py.check_signals().err().unwrap_or_else(|| {
+                    pyo3::exceptions::PyKeyboardInterrupt::new_err("render stopped")
+                }));
+            }
+        };
+        rendered.into_python(py, self.settings)
+    }
+
+    fn __repr__(&self) -> String {
+        let RenderSettings {
+            width,
+            height,
+            samples,
+        } = self.settings;
+        format!("Renderer(width={width}, height={height}, samples={samples})")
+    }
+}
+
+/// `set={"KEY": value, …}` as scene file settings: each value as TOML holds it (a `str` is a
+/// string, a list an array, a dict a table).
+fn scene_settings(set: &Bound<'_, PyDict>) -> PyResult<Vec<Setting>> {
+    set.iter()
+        .map(|(key, value)| {
+            let key: String = key.extract()?;
+            Setting::new(&key, toml_value(&value)?).map_err(errors::value)
+        })
+        .collect()
+}
+
+/// A Python value as TOML: bool, int, float, str, list or tuple, dict with str keys.
+fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    if let Ok(flag) = value.cast::<PyBool>() {
+        return Ok(toml::Value::Boolean(flag.is_true()));
+    }
+    if let Ok(whole) = value.extract::<i64>() {
+        return Ok(toml::Value::Integer(whole));
+    }
+    if let Ok(number) = value.extract::<f64>() {
+        return Ok(toml::Value::Float(number));
+    }
+    if let Ok(text) = value.extract::<String>() {
+        return Ok(toml::Value::String(text));
+    }
+    if let Ok(table) = value.cast::<PyDict>() {
+        return table
+            .iter()
+            .map(|(key, value)| Ok((key.extract::<String>()?, toml_value(&value)?)))
+            .collect::<PyResult<toml::Table>>()
+            .map(toml::Value::Table);
+    }
+    if let Ok(items) = value.try_iter() {
+        return items
+            .map(|item| toml_value(&item?))
+            .collect::<PyResult<Vec<_>>>()
+            .map(toml::Value::Array);
+    }
+    Err(errors::value(format!(
+        "a scene setting's value must be a bool, number, str, list or dict, got {}",
+        value.get_type().name()?
+    )))
+}
+
+impl Rendered {
+    /// The layers as `srt.render` returns them: the radiance array, or with the display layer
+    /// the dict of layers and time channels; the warnings raised as Python warnings.
+    fn into_python(self, py: Python<'_>, settings: RenderSettings) -> PyResult<Bound<'_, PyAny>> {
+        for warning in &self.warnings {
+            PyErr::warn(
+                py,
+                &py.get_type::<PyUserWarning>(),
+                &std::ffi::CString::new(warning.as_str()).unwrap_or_default(),
+                1,
+            )?;
+        }
+        let shape = (settings.height as usize, settings.width as usize, 3);
+        let radiance = image_array(py, shape, &self.radiance, channel_f32);
+        let Some(display) = self.display else {
+            return Ok(radiance.into_any());
+        };
+        let layers = PyDict::new(py);
+        layers.set_item("radiance", radiance)?;
+        layers.set_item(
+            "display",
+            image_array(py, shape, &display, display_as_linear),
         )?;
-    }
-    let shape = (height as usize, width as usize, 3);
-    let radiance = image_array(py, shape, &rendered.radiance, channel_f32);
-    let Some(display) = rendered.display else {
-        return Ok(radiance.into_any());
-    };
-    let layers = PyDict::new(py);
-    layers.set_item("radiance", radiance)?;
-    layers.set_item(
-        "display",
-        image_array(py, shape, &display, display_as_linear),
-    )?;
-    let values = rendered.seen.unwrap_or_default();
-    let grid = (shape.0, shape.1);
-    for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
-        let channel = values.iter().map(|v| v[index]);
-        if name == OBJECT_CHANNEL {
-            // An object's index (−1: none), a whole number the f32 holds exactly.
-            let ids: Vec<i32> = channel.map(|id| id as i32).collect();
-            let array = Array2::from_shape_vec(grid, ids).expect("one value per pixel");
-            layers.set_item(name, array.into_pyarray(py))?;
-        } else {
-            let array = Array2::from_shape_vec(grid, channel.collect::<Vec<f32>>())
-                .expect("one value per pixel");
-            layers.set_item(name, array.into_pyarray(py))?;
+        let values = self.seen.unwrap_or_default();
+        let grid = (shape.0, shape.1);
+        for (index, name) in AOV_CHANNELS.into_iter().enumerate() {
+            let channel = values.iter().map(|v| v[index]);
+            if name == OBJECT_CHANNEL {
+                // An object's index (−1: none), a whole number the f32 holds exactly.
+                let ids: Vec<i32> = channel.map(|id| id as i32).collect();
+                let array = Array2::from_shape_vec(grid, ids).expect("one value per pixel");
+                layers.set_item(name, array.into_pyarray(py))?;
+            } else {
+                let array = Array2::from_shape_vec(grid, channel.collect::<Vec<f32>>())
+                    .expect("one value per pixel");
+                layers.set_item(name, array.into_pyarray(py))?;
+            }
         }
+        Ok(layers.into_any())
     }
-    Ok(layers.into_any())
 }
 
 /// The time channel holding each pixel's object index, returned as integers.
@@ -197,10 +332,6 @@ const OBJECT_CHANNEL: &str = "object";
 struct Request {
     /// Size and samples per pixel.
     settings: RenderSettings,
-    /// Who draws the display layer.
-    backend: Backend,
-    /// How the GPU draws it.
-    method: Method,
     /// Which picture.
     view: View,
     /// Whether the display layer is asked for.
@@ -208,9 +339,11 @@ struct Request {
 }
 
 impl Request {
-    /// Renders `built`, met with `warnings` (no GIL held), giving up once `stop` is set.
+    /// Renders `built`, met with `warnings`, with the engine `kept` has for it (no GIL held),
+    /// giving up once `stop` is set.
     fn run(
         &self,
+        kept: &mut KeptEngine,
         built: srt_scene::Scene,
         mut warnings: Vec<String>,
         stop: &AtomicBool,
@@ -230,10 +363,10 @@ impl Request {
         // radiance, the time channels); the engine `srt render` would choose draws the
         // radiance, and with `aov` the display colours too.
         let frame = Frame::new(&scene);
-        let chosen = Engine::choose(self.backend, self.method, self.settings, &scene)
+        let (engine, note) = kept
+            .engine_for(&scene, self.settings)
             .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
-        warnings.extend(chosen.note.map(|note| format!("note: {note}")));
-        let mut engine = chosen.engine;
+        warnings.extend(note.map(|note| format!("note: {note}")));
         let mut render = |output| {
             engine
                 .render(&frame, self.settings, output, &|_| {}, stop)
@@ -246,6 +379,7 @@ impl Request {
             None
         };
         let radiance = render(Output::Radiance)?;
+        warnings.extend(empty_picture_warning(&scene, &radiance));
         let seen = if self.aov {
             let values = engine
                 .render_aov(&frame, self.settings, &|_| {}, stop)

@@ -44,6 +44,7 @@ from . import physics
 from ._srt import (
     GpuError,
     Observer,
+    Renderer,
     Scene,
     SceneError,
     SceneFileError,
@@ -57,6 +58,7 @@ from ._srt import to_srgb8 as _to_srgb8
 __all__ = [
     "GpuError",
     "Observer",
+    "Renderer",
     "Scene",
     "SceneError",
     "SceneFileError",

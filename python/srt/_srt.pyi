@@ -13,6 +13,8 @@ __version__: str
 Vector = Sequence[float]
 EffectsName = Literal["geometry", "doppler", "searchlight"]
 ColourName = Literal["paper", "spectral"]
+SettingValue = bool | int | float | str | Sequence["SettingValue"] | dict[str, "SettingValue"]
+"""A scene file key's value in `set=`: as TOML holds it (a list is an array, a dict a table)."""
 
 class SceneError(ValueError):
     """A scene or value srt refuses; the message is srt's own one line."""
@@ -91,6 +93,7 @@ def render(
     colour: ColourName | None = None,
     exposure: float | None = None,
     projection: str | None = None,
+    set: dict[str, SettingValue] | None = None,
     samples: int = 1,
     backend: Literal["auto", "cpu", "gpu"] = "auto",
     method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
@@ -110,6 +113,7 @@ def render(
     colour: ColourName | None = None,
     exposure: float | None = None,
     projection: str | None = None,
+    set: dict[str, SettingValue] | None = None,
     samples: int = 1,
     backend: Literal["auto", "cpu", "gpu"] = "auto",
     method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
@@ -120,6 +124,36 @@ def render(
     channels "emission_ct", "proper_time", "distance", "doppler" (float32) and "object" (int32,
     -1: no object). `projection`: "perspective", "equirectangular", "fisheye" or
     "fisheye:FOV"."""
+class Renderer:
+    """A renderer kept for a loop of frames: the GPU device is made once and a scene uploaded
+    again only when its structure changes. `render` takes `srt.render`'s per-frame arguments and
+    returns what `srt.render` returns for them."""
+
+    def __init__(
+        self,
+        *,
+        width: int = 1280,
+        height: int = 720,
+        samples: int = 1,
+        backend: Literal["auto", "cpu", "gpu"] = "auto",
+        method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
+    ) -> None: ...
+    def render(
+        self,
+        scene: str | Scene,
+        *,
+        time: float | None = None,
+        beta: Vector | None = None,
+        observer_beta: Vector | None = None,
+        effects: EffectsName | None = None,
+        colour: ColourName | None = None,
+        exposure: float | None = None,
+        projection: str | None = None,
+        set: dict[str, SettingValue] | None = None,
+        view: Literal["seen", "measured", "newtonian"] = "seen",
+        aov: bool = False,
+    ) -> npt.NDArray[np.float32] | dict[str, npt.NDArray[np.float32] | npt.NDArray[np.int32]]: ...
+
 def to_srgb8(linear: npt.NDArray[np.float64]) -> npt.NDArray[np.uint8]: ...
 def lorentz_boost(beta: Vector) -> npt.NDArray[np.float64]: ...
 def apparent_positions(

@@ -282,3 +282,58 @@ def test_projection_draws_the_whole_sky_as_the_command_does(tmp_path):
     assert not np.array_equal(whole_sky, srt.render("flythrough", **size, backend="cpu"))
     with pytest.raises(srt.SceneError, match=r"fisheye's fov_deg must be in \(0, 360\]"):
         srt.render("fig7", width=8, height=8, backend="cpu", projection="fisheye:0")
+
+
+def test_set_gives_scene_keys_as_the_commands_set_does(tmp_path):
+    size = ["--width", str(SMALL["width"]), "--height", str(SMALL["height"])]
+    expected = cli_render(
+        tmp_path, "fig4", *size, "--backend", "cpu",
+        "--set", "observer.fov_y_deg=60", "--set", "object.cube.beta=0,0.5,0",
+        "--set", "render.colour=spectral",
+    )
+    image = srt.render(
+        "fig4", **SMALL, backend="cpu",
+        set={"observer.fov_y_deg": 60, "object.cube.beta": [0, 0.5, 0], "render.colour": "spectral"},
+    )
+    assert np.array_equal(image, expected["radiance"])
+    with pytest.raises(srt.SceneError, match=r"set observer\.fov=60 does not fit the scene file"):
+        srt.render("fig4", **SMALL, backend="cpu", set={"observer.fov": 60})
+    with pytest.raises(srt.SceneError, match=r"observer\.fov_y_deg must be in \(0, 180\)"):
+        srt.render("fig4", **SMALL, backend="cpu", set={"observer.fov_y_deg": 200.0})
+
+
+def frames_of(renderer, scenes):
+    """Each (scene, time) of `scenes` rendered by `renderer`, in order."""
+    return [renderer.render(scene, time=t) for scene, t in scenes]
+
+
+# A loop that changes time (one upload), then the scene's structure (another), then back.
+LOOP = [("fig7", 4.0), ("fig7", 4.5), ("fig7", 5.0), ("fig4", 5.12), ("fig7", 4.5)]
+
+
+def test_a_renderer_gives_each_frame_as_render_does():
+    renderer = srt.Renderer(**SMALL, backend="cpu")
+    assert repr(renderer) == "Renderer(width=96, height=54, samples=1)"
+    for (scene, t), frame in zip(LOOP, frames_of(renderer, LOOP)):
+        assert np.array_equal(frame, srt.render(scene, **SMALL, backend="cpu", time=t)), (scene, t)
+
+
+def test_a_gpu_renderer_keeps_its_engine_and_gives_each_frame_as_render_does():
+    try:
+        renderer = srt.Renderer(**SMALL, backend="gpu")
+        frames = frames_of(renderer, LOOP)
+    except srt.GpuError as error:
+        require_gpu(f"no GPU adapter for srt.Renderer(backend='gpu'): {error}")
+    for (scene, t), frame in zip(LOOP, frames):
+        alone = srt.render(scene, **SMALL, backend="gpu", time=t)
+        assert np.array_equal(frame, alone), (scene, t)
+    assert not np.array_equal(frames[0], frames[2]), "time moves the cube"
+
+
+def test_an_auto_renderer_follows_what_the_gpu_can_draw():
+    # A projection the GPU does not trace goes to the CPU within the loop, and the next frame
+    # back to the GPU (where there is one): every frame is what srt.render gives.
+    renderer = srt.Renderer(**SMALL)
+    for arguments in ({}, {"projection": "equirectangular"}, {}):
+        frame = renderer.render("fig7", **arguments)
+        assert np.array_equal(frame, srt.render("fig7", **SMALL, **arguments)), arguments

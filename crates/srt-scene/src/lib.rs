@@ -26,7 +26,7 @@ pub use builtin::{BuiltinScene, builtin, builtin_scenes};
 pub use choice::{Choice, UnknownChoice};
 pub use description::{
     LightDescription, LightsDescription, ObjectDescription, ObserverDescription, OverrideNames,
-    Overrides, RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind,
+    Overrides, RenderDescription, Scale, SceneDescription, SceneError, SceneErrorKind, Setting,
     ShapeDescription, TextureDescription, ValueName, load_scene_file, parse_vector,
 };
 pub use edit::{EditError, Editor};

@@ -24,6 +24,16 @@ fn every_builtin_parses_builds_and_round_trips() {
             "the file names itself"
         );
         assert!(description.description.is_some(), "{}", entry.name);
+        let explanation = entry
+            .toml()
+            .lines()
+            .take_while(|l| l.starts_with('#'))
+            .count();
+        assert!(
+            explanation >= 2,
+            "{}: the file opens with its explanation (`srt scenes --show` prints it)",
+            entry.name
+        );
         assert!(
             !entry.summary.is_empty() && !entry.summary.contains('\n'),
             "{}",

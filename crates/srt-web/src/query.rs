@@ -17,6 +17,7 @@ pub const QUERY_NAMES: OverrideNames = OverrideNames {
     beta: "beta",
     observer_beta: "observer_beta",
     projection: "projection",
+    settings: "set",
 };
 
 /// Which renderer draws the page.
@@ -93,7 +94,7 @@ pub enum QueryError {
 }
 
 /// Every key the page reads.
-pub const KEYS: [&str; 14] = [
+pub const KEYS: [&str; 15] = [
     "scene",
     "width",
     "height",
@@ -108,6 +109,7 @@ pub const KEYS: [&str; 14] = [
     "effects",
     "colour",
     "exposure",
+    "set",
 ];
 
 /// Reads `query`, the part of the address after `?` (a leading `?` is allowed), with
@@ -151,6 +153,7 @@ pub fn parse_query(query: &str) -> Result<PageQuery, QueryError> {
             "projection" => overrides.projection = Some(value.parse().map_err(bad)?),
             "effects" => overrides.effects = Some(chosen(&value).map_err(bad)?),
             "colour" => overrides.colour = Some(chosen(&value).map_err(bad)?),
+            "set" => overrides.settings.push(value.parse().map_err(bad)?),
             _ => return Err(QueryError::UnknownKey(key)),
         }
     }
@@ -226,6 +229,9 @@ mod tests {
         assert_eq!(page.overrides.effects, Some(Effects::Searchlight));
         assert_eq!(page.overrides.colour, Some(SurfaceColour::Spectral));
         assert_eq!(parse_query("").unwrap(), PageQuery::default());
+        let set = parse_query("set=observer.fov_y_deg%3D60&set=object.cube.beta=0,0.5,0").unwrap();
+        let keys: Vec<String> = set.overrides.settings.iter().map(|s| s.key()).collect();
+        assert_eq!(keys, ["observer.fov_y_deg", "object.cube.beta"]);
     }
 
     #[test]
@@ -245,6 +251,7 @@ mod tests {
             ("backend=gl", "backend=gl"),
             ("embed=yes", "embed=yes"),
             ("effects=all", "effects=all"),
+            ("set=fov", "set=fov"),
         ] {
             let message = parse_query(query).unwrap_err().to_string();
             assert!(message.starts_with(key), "{query}: {message}");

@@ -18,12 +18,13 @@
 //! The module is split by concern: `error` (what can go wrong), `model` (the serde
 //! model of the file), `validate` (checks that need no file, every rule once), `overrides`
 //! (values front ends give in place of the scene's own, applied as edits and judged by the same
-//! checks) and `build` (shapes, models, textures and placement into the runtime scene).
+//! checks), `setting` (any key given as `KEY=VALUE`) and `build` (shapes, models, textures and placement into the runtime scene).
 
 mod build;
 mod error;
 mod model;
 mod overrides;
+mod setting;
 mod validate;
 
 pub use build::{
@@ -36,6 +37,7 @@ pub use model::{
     SkyDescription, SpinDescription, TextureDescription, ThrustDescription,
 };
 pub use overrides::{OverrideNames, Overrides, parse_vector};
+pub use setting::Setting;
 pub use validate::{ValueName, observation_time, velocity};
 
 /// Up direction of the observer's camera when a scene file gives none: +z.

@@ -2,7 +2,8 @@
 //! `--exposure`, `--beta`, `--observer-beta` and `--time` — applied as edits of the
 //! [`SceneDescription`] before it is built, so that the scene file's validation judges them: one
 //! set of rules, with each overridden value named in messages by the option that gave it.
-//! `--time` is `observer.time`, the observer's own clock (docs/scene-format.md, "Time").
+//! `--time` is `observer.time`, the observer's own clock (docs/scene-format.md, "Time"). Any other
+//! key is given by a [`Setting`] (`--set KEY=VALUE`), applied first.
 
 use std::borrow::Cow;
 
@@ -10,6 +11,7 @@ use glam::DVec3;
 
 use super::error::SceneErrorKind;
 use super::model::SceneDescription;
+use super::setting::Setting;
 use super::validate::{Names, ValueName};
 use crate::projection::Projection;
 use crate::scene::{Effects, SurfaceColour};
@@ -33,6 +35,9 @@ pub struct Overrides {
     pub observer_beta: Option<DVec3>,
     /// How the image maps its points to viewing directions (`observer.projection`).
     pub projection: Option<Projection>,
+    /// Any scene file keys with their values, in order, applied before the values above (which
+    /// therefore win where both give one).
+    pub settings: Vec<Setting>,
     /// What messages call each of them.
     pub names: OverrideNames,
 }
@@ -52,6 +57,8 @@ pub struct OverrideNames {
     pub observer_beta: &'static str,
     /// Names [`Overrides::projection`].
     pub projection: &'static str,
+    /// Names [`Overrides::settings`].
+    pub settings: &'static str,
 }
 
 impl OverrideNames {
@@ -63,6 +70,7 @@ impl OverrideNames {
         beta: "--beta",
         observer_beta: "--observer-beta",
         projection: "--projection",
+        settings: "--set",
     };
 }
 
@@ -111,6 +119,9 @@ impl Overrides {
         description: &mut SceneDescription,
         origin: &str,
     ) -> Result<(), SceneErrorKind> {
+        for setting in &self.settings {
+            setting.apply(description, self.names.settings)?;
+        }
         if let Some(time) = self.time {
             description.observer.time = Some(time);
         }
