@@ -51,6 +51,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let mut editor = loaded.editor;
     let scene = editor.scene();
+    // The paper's scenes are drawn in the paper's colour on purpose, as is a scene with
+    // --colour paper; a user's own scene that loses colours is told.
+    let colour_chosen = args.colour.is_some() || loaded.origin.is_builtin();
+    if let Some(note) = scene.paper_colour_note().filter(|_| !colour_chosen) {
+        eprintln!("note: {note}");
+    }
     let output = match &args.output {
         Some(output) => output.clone(),
         None => {

@@ -36,6 +36,13 @@ pub struct SceneOrigin {
     pub sha256: Option<String>,
 }
 
+impl SceneOrigin {
+    /// Whether the scene is one of srt's own (built-in), not the user's file.
+    pub const fn is_builtin(&self) -> bool {
+        self.sha256.is_none()
+    }
+}
+
 /// Loads the scene named by `argument` with the command-line `overrides` in place of its own
 /// values (srt-scene's one route for them, [`SceneSource::load_with`]: they edit the description,
 /// whose validation judges them by their options' names).

@@ -389,6 +389,67 @@ fn a_caption_is_burnt_into_the_bottom_of_the_picture() {
     assert_ne!(rows(&plain, 165, 180), band);
 }
 
+/// A bare model keeps its colours (spectral colour, recorded); a scene file of the user's that
+/// draws a red model in the paper's grey is told how to keep them, unless it asked for the
+/// paper's colour on the command line.
+#[test]
+fn a_coloured_model_keeps_its_colours_or_is_told_why_not() {
+    let dir = folder();
+    std::fs::write(
+        dir.path().join("red.obj"),
+        "mtllib red.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl red\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("red.mtl"), "newmtl red\nKd 0.9 0.1 0.1\n").unwrap();
+    let size = ["--backend", "cpu", "--width", "32", "--height", "18"];
+    let bare = srt(
+        &[&["render", "red.obj", "-o", "bare.png"][..], &size].concat(),
+        dir.path(),
+    );
+    assert!(bare.status.success(), "{}", stderr(&bare));
+    assert!(!stderr(&bare).contains("note:"), "{}", stderr(&bare));
+    let info = srt(&["info", "bare.png"], dir.path());
+    assert!(String::from_utf8_lossy(&info.stdout).contains("spectral"));
+    std::fs::write(
+        dir.path().join("red.toml"),
+        "[observer]\nposition = [0.3, -4.0, 0.3]\nlook_at = [0.3, 0.0, 0.3]\n\n\
+         [[object]]\nshape = { type = \"model\", path = \"red.obj\" }\n",
+    )
+    .unwrap();
+    let paper = srt(
+        &[&["render", "red.toml", "-o", "paper.png"][..], &size].concat(),
+        dir.path(),
+    );
+    assert!(paper.status.success(), "{}", stderr(&paper));
+    assert!(
+        stderr(&paper).contains("note: the paper's colour draws surfaces grey"),
+        "{}",
+        stderr(&paper)
+    );
+    assert!(
+        stderr(&paper).contains("--colour spectral"),
+        "{}",
+        stderr(&paper)
+    );
+    let chosen = srt(
+        &[
+            &[
+                "render",
+                "red.toml",
+                "--colour",
+                "paper",
+                "-o",
+                "chosen.png",
+            ][..],
+            &size,
+        ]
+        .concat(),
+        dir.path(),
+    );
+    assert!(chosen.status.success(), "{}", stderr(&chosen));
+    assert!(!stderr(&chosen).contains("note:"), "{}", stderr(&chosen));
+}
+
 #[test]
 fn superluminal_velocity_is_refused() {
     let dir = folder();

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use srt_physics::Frame;
-use srt_scene::placement::approach_velocity;
+use srt_scene::placement::{VIEW_DISTANCE, approach_velocity};
 use srt_scene::sky::SkyImage;
 use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, View, builtin_scenes};
 
@@ -35,13 +35,17 @@ pub fn assimp_model(relative: &str) -> anyhow::Result<PathBuf> {
     Ok(path)
 }
 
-/// A bare model placed in front of the observer, approaching at `speed`.
+/// A bare model placed in front of the observer, approaching at `speed`, as the paper's
+/// comparisons place it (3.5 from the observer, the paper's colour), so that every recorded
+/// figure measures the same picture; `srt render MODEL` now stands back until the seen model fits
+/// and keeps its colours (`SceneDescription::for_model`).
 ///
 /// # Errors
 /// If the model cannot be loaded.
 pub fn model_case(relative: &str, speed: f64) -> anyhow::Result<Case> {
     let path = assimp_model(relative)?;
-    let (scene, _) = SceneDescription::for_model(&path, approach_velocity(speed))
+    let placement = SceneDescription::for_model_at(&path, approach_velocity(speed), VIEW_DISTANCE);
+    let (scene, _) = placement
         .build(Path::new("/"))
         .with_context(|| format!("cannot load {}", path.display()))?;
     let name = path

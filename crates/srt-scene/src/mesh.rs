@@ -365,6 +365,37 @@ impl Texture {
     }
 }
 
+/// The most two channels of a colour may differ for it to count as grey: a faint tint (the
+/// teaser spider's [0.85, 0.85, 0.8]) is not a colour worth a note.
+const GREY_TOLERANCE: f32 = 0.1;
+
+/// Whether the colour `rgba` (channels in [0, 1]) has a hue: its red, green and blue differ.
+fn has_hue(rgba: [f32; 4]) -> bool {
+    let [r, g, b, _] = rgba;
+    (r - g).abs().max((g - b).abs()).max((r - b).abs()) > GREY_TOLERANCE
+}
+
+impl Part {
+    /// Whether the part shows any colour beside grey — its material's base colour, a texel of
+    /// its texture or a vertex colour has a hue — which the paper's grey reflectance (Eq. 18)
+    /// would lose.
+    #[must_use]
+    pub fn has_hue(&self) -> bool {
+        let material = &self.material;
+        has_hue(material.base_color)
+            || material.texture.as_ref().is_some_and(|texture| {
+                texture
+                    .texels
+                    .iter()
+                    .any(|texel| has_hue(texel.map(|c| f32::from(c) / 255.0)))
+            })
+            || self
+                .mesh
+                .colors()
+                .is_some_and(|colors| colors.iter().any(|c| has_hue(*c)))
+    }
+}
+
 /// Surface description of a mesh part.
 ///
 /// The paper (§4.2, Eq. 18) only needs a grey value per surface point: it uses the texel colour
@@ -401,6 +432,47 @@ pub struct Part {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A grey or faintly tinted part has no hue; a coloured material, texel or vertex has.
+    #[test]
+    fn a_part_has_a_hue_when_any_of_its_colours_does() {
+        let (positions, triangles) = quad();
+        let part = |base_color, texture: Option<Arc<Texture>>| Part {
+            mesh: Mesh::new(positions.clone(), triangles.clone()).expect("a mesh"),
+            material: Material {
+                name: String::new(),
+                base_color,
+                texture,
+            },
+        };
+        assert!(!part([0.85, 0.85, 0.8, 1.0], None).has_hue());
+        assert!(part([0.9, 0.1, 0.1, 1.0], None).has_hue());
+        let grey = Texture::still(
+            2,
+            1,
+            vec![[10, 10, 10, 255], [200, 200, 200, 255]],
+            "g".into(),
+        );
+        assert!(!part([1.0; 4], Some(Arc::new(grey))).has_hue());
+        let green = Texture::still(
+            2,
+            1,
+            vec![[10, 10, 10, 255], [20, 200, 20, 255]],
+            "c".into(),
+        );
+        assert!(part([1.0; 4], Some(Arc::new(green))).has_hue());
+        let mut tinted = part([1.0; 4], None);
+        tinted.mesh = tinted
+            .mesh
+            .with_colors(vec![
+                [1.0, 1.0, 1.0, 1.0],
+                [0.2, 0.4, 1.0, 1.0],
+                [1.0; 4],
+                [1.0; 4],
+            ])
+            .expect("one colour per vertex");
+        assert!(tinted.has_hue());
+    }
 
     fn quad() -> (Vec<DVec3>, Vec<[u32; 3]>) {
         (

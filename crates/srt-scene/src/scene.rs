@@ -520,6 +520,25 @@ impl Scene {
         self.objects.iter().map(Object::triangle_count).sum()
     }
 
+    /// A note for a scene drawn in the paper's colour whose surfaces have colours that it turns
+    /// grey ([`Part::has_hue`]): what a user's textured model looks like unless told otherwise.
+    #[must_use]
+    pub fn paper_colour_note(&self) -> Option<String> {
+        if self.colour != SurfaceColour::Paper {
+            return None;
+        }
+        let coloured = self
+            .objects
+            .iter()
+            .find(|object| object.parts.iter().any(Part::has_hue))?;
+        Some(format!(
+            "the paper's colour draws surfaces grey (brightness only), so {}'s colours are lost; \
+             spectral colour keeps them and shifts them as light does (--colour spectral, or \
+             render.colour = \"spectral\" in the scene file)",
+            coloured.name
+        ))
+    }
+
     /// How light becomes radiance in this scene's images (srt-color's `radiance` module):
     /// brightness follows luminance with the searchlight effect, the unit is the lamp's light
     /// on a white surface at rest facing it (f_amb + f_diff + f_spec).

@@ -238,9 +238,10 @@ fn the_teaser_has_three_differently_moving_objects_and_a_real_model() {
 #[test]
 fn the_spider_scene_is_a_default_placed_model() {
     let description = builtin("spider").unwrap();
-    let mut expected = SceneDescription::for_model(
+    let mut expected = SceneDescription::for_model_at(
         Path::new("builtin:models/spider.stl"),
         DVec3::new(0.0, -0.9, 0.0),
+        srt_scene::placement::VIEW_DISTANCE,
     );
     expected.description.clone_from(&description.description);
     expected.objects[0].rotate_deg = [0.0, 0.0, 90.0];
