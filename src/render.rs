@@ -14,7 +14,7 @@ use glam::DVec3;
 use srt::empty::empty_picture_warning;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
-use srt_scene::{Editor, OverrideNames, Overrides, Scene, ValueName, View};
+use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, ValueName, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::cli::RenderArgs;
@@ -23,7 +23,7 @@ use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
 use crate::shard::Shard;
 use crate::source::{SceneOrigin, load_scene};
-use srt_video::{VideoWriter, check_size};
+use srt_video::{StereoMode, VideoWriter, check_size};
 
 /// What an animation writes: numbered images (this machine's share of them) or one video.
 enum Animation {
@@ -257,6 +257,10 @@ fn render_video(
     let start = Instant::now();
     let settings = settings_of(args);
     let mut video = VideoWriter::create(output, settings.width, settings.height, args.video.fps())?;
+    if editor.scene().observer.projection == Projection::Equirectangular {
+        // 360° players show it around the viewer (the Spherical Video V2 boxes of an MP4).
+        video.set_spherical(StereoMode::Mono);
+    }
     let bar = DelayedBar::new(
         u64::from(sweep.frames),
         "frames",

@@ -603,3 +603,104 @@ fn interrupted_renders_leave_no_unfinished_file() {
         image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     }
 }
+
+/// The boxes of an MP4 below `start..end` of `data`, each as its path of box types
+/// ("moov/trak/…/st3d") with its start and size, descending into the containers on the way to
+/// the video sample entry and into the spherical metadata.
+fn mp4_boxes(data: &[u8], start: usize, end: usize, parent: &str) -> Vec<(String, usize, usize)> {
+    let mut found = Vec::new();
+    let mut at = start;
+    while at + 8 <= end {
+        let size = u32::from_be_bytes(data[at..at + 4].try_into().unwrap()) as usize;
+        let kind = String::from_utf8_lossy(&data[at + 4..at + 8]).into_owned();
+        let path = if parent.is_empty() {
+            kind.clone()
+        } else {
+            format!("{parent}/{kind}")
+        };
+        let fields = match kind.as_str() {
+            "moov" | "trak" | "mdia" | "minf" | "stbl" | "sv3d" | "proj" => Some(0),
+            "stsd" => Some(8),
+            "avc1" => Some(78),
+            _ => None,
+        };
+        if let Some(fields) = fields {
+            found.extend(mp4_boxes(data, at + 8 + fields, at + size, &path));
+        }
+        found.push((path, at, size));
+        at += size;
+    }
+    found
+}
+
+/// An equirectangular video carries the Spherical Video V2 boxes in its sample entry — `st3d`
+/// (mono) and `sv3d` with `svhd` and `proj` (`prhd`, `equi`) — so that 360° players show it
+/// around the viewer, and still decodes to its frames; a perspective video has none.
+#[test]
+fn a_360_video_carries_the_spherical_boxes_and_still_plays() {
+    let dir = folder();
+    let common = [
+        "--frames",
+        "3",
+        "--width",
+        "64",
+        "--height",
+        "32",
+        "--backend",
+        "cpu",
+    ];
+    for (name, projection) in [("sky.mp4", "equirectangular"), ("flat.mp4", "perspective")] {
+        let output = srt(
+            &[
+                &["render", "fig7", "--projection", projection, "-o", name][..],
+                &common,
+            ]
+            .concat(),
+            dir.path(),
+        );
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert_eq!(
+            decode_mp4(&dir.path().join(name)).frames.len(),
+            3,
+            "{name} plays"
+        );
+    }
+    let sky = std::fs::read(dir.path().join("sky.mp4")).unwrap();
+    let boxes = mp4_boxes(&sky, 0, sky.len(), "");
+    let entry = "moov/trak/mdia/minf/stbl/stsd/avc1";
+    let find = |path: &str| {
+        boxes
+            .iter()
+            .find(|(p, ..)| p == path)
+            .map(|&(_, at, size)| (at, size))
+    };
+    for child in [
+        "avcC",
+        "st3d",
+        "sv3d",
+        "sv3d/svhd",
+        "sv3d/proj",
+        "sv3d/proj/prhd",
+        "sv3d/proj/equi",
+    ] {
+        assert!(
+            find(&format!("{entry}/{child}")).is_some(),
+            "{child} missing: {boxes:?}"
+        );
+    }
+    let (st3d, size) = find(&format!("{entry}/st3d")).unwrap();
+    assert_eq!((size, sky[st3d + 12]), (13, 0), "st3d: mono");
+    let (equi, size) = find(&format!("{entry}/sv3d/proj/equi")).unwrap();
+    assert_eq!(size, 28);
+    assert!(
+        sky[equi + 8..equi + 28].iter().all(|&b| b == 0),
+        "the whole sphere"
+    );
+    let flat = std::fs::read(dir.path().join("flat.mp4")).unwrap();
+    assert!(
+        !mp4_boxes(&flat, 0, flat.len(), "")
+            .iter()
+            .any(|(p, ..)| p.ends_with("sv3d")),
+        "a perspective video is not 360°"
+    );
+}

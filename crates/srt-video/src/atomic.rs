@@ -124,6 +124,15 @@ impl AtomicFile {
         Ok(BufWriter::new(file))
     }
 
+    /// The temporary file read from its start (what has been flushed to it).
+    ///
+    /// # Errors
+    /// [`WriteError::Io`] if the file cannot be opened again.
+    pub fn reader(&self) -> Result<std::io::BufReader<File>, WriteError> {
+        let file = self.temp.reopen().map_err(|error| self.io_error(error))?;
+        Ok(std::io::BufReader::new(file))
+    }
+
     /// Flushes what an encoder left in `writer`.
     ///
     /// # Errors

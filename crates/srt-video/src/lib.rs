@@ -21,10 +21,12 @@
 
 mod atomic;
 mod error;
+pub mod spherical;
 mod video;
 
 pub use atomic::{AtomicFile, parent_folder, remove_partial_files, temporary_file_beside};
 pub use error::{EncoderError, WriteError};
+pub use spherical::StereoMode;
 pub use video::{VideoFormat, VideoWriter, check_size, lowercase_extension};
 
 /// The README's example, compiled and run by `cargo test --doc`.

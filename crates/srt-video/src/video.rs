@@ -18,6 +18,7 @@ use openh264::formats::{RgbSliceU8, YUVBuffer};
 
 use crate::atomic::AtomicFile;
 use crate::error::{EncoderError, WriteError};
+use crate::spherical::{StereoMode, add_spherical_metadata};
 
 /// Bits per pixel and frame the H.264 encoder's buffer model is set up for (about 5.5 Mbit/s at
 /// 1280×720 and 24 fps).
@@ -114,6 +115,8 @@ pub struct VideoWriter {
     height: u32,
     frames: u32,
     encoder: VideoEncoder,
+    /// The 360° metadata to add to an MP4 ([`VideoWriter::set_spherical`]).
+    spherical: Option<StereoMode>,
 }
 
 impl std::fmt::Debug for VideoWriter {
@@ -213,7 +216,15 @@ impl VideoWriter {
             height,
             frames: 0,
             encoder,
+            spherical: None,
         })
+    }
+
+    /// Marks the video as 360° equirectangular, its eyes' pictures laid out as `stereo` says:
+    /// an MP4 gets the Spherical Video V2 boxes ([`crate::spherical`]) so that 360° players show
+    /// it around the viewer. A GIF has no such metadata and is written as it is.
+    pub const fn set_spherical(&mut self, stereo: StereoMode) {
+        self.spherical = Some(stereo);
     }
 
     /// Appends a frame.
@@ -275,19 +286,33 @@ impl VideoWriter {
         }
         let path = &self.path;
         let cannot = |error| encode_error(path, None, error);
-        let writer = match self.encoder {
+        let (writer, spherical) = match self.encoder {
             VideoEncoder::Mp4 { mut muxer, .. } => {
                 muxer
                     .finish_in_place()
                     .map_err(|error| cannot(error.into()))?;
-                (*muxer).into_writer()
+                ((*muxer).into_writer(), self.spherical)
             }
-            VideoEncoder::Gif { encoder, .. } => (*encoder)
-                .into_inner()
-                .map_err(|error| cannot(error.into()))?,
+            VideoEncoder::Gif { encoder, .. } => (
+                (*encoder)
+                    .into_inner()
+                    .map_err(|error| cannot(error.into()))?,
+                None,
+            ),
         };
         self.file.flush(writer)?;
-        self.file.commit()?;
+        let Some(stereo) = spherical else {
+            self.file.commit()?;
+            return Ok(self.frames);
+        };
+        // The muxer's file, copied with the 360° boxes into a second temporary file that
+        // replaces it; the first is removed when it drops.
+        let with_metadata = AtomicFile::create(path)?;
+        let mut out = with_metadata.writer()?;
+        add_spherical_metadata(&mut self.file.reader()?, &mut out, stereo)
+            .map_err(|error| cannot(error.into()))?;
+        with_metadata.flush(out)?;
+        with_metadata.commit()?;
         Ok(self.frames)
     }
 }
