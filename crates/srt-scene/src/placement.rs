@@ -52,7 +52,7 @@ const FRAMING_SAMPLES: usize = 4096;
 /// `beta` is seen whole within [`VIEW_FILL`] of the view, placed as the
 /// [module documentation](self) explains: [`VIEW_DISTANCE`] when that is enough (at rest, and
 /// for slow or crossing motion), else the nearest distance that is, to 0.1 %. The seen sphere is
-/// the apparent position (Eq. 8) of [`FRAMING_SAMPLES`] points of the sphere of radius
+/// the apparent position (Eq. 8) of 4096 points (`FRAMING_SAMPLES`) of the sphere of radius
 /// [`FIT_RADIUS`] (a fitted model lies inside it, and the seen image of the ball is bounded by
 /// the seen image of its sphere); a point seen behind the observer (one that has passed it)
 /// does not fit.
