@@ -279,6 +279,7 @@ impl Engine {
 /// the GPU's device is made once, and a scene is uploaded again only when its structure
 /// ([`Scene::same_structure`]) or the size changes, or when the GPU cannot draw it (a projection
 /// it does not trace); each frame is drawn by the engine [`Engine::choose`] would choose for it.
+/// It keeps a copy of the scene it uploaded (meshes included) to compare the next frame's with.
 pub struct KeptEngine {
     /// The backend asked for.
     backend: Backend,
