@@ -226,8 +226,11 @@ def test_ctrl_c_stops_a_long_render(tmp_path):
     import subprocess
     import sys
 
+    # Python's own Ctrl-C handler, even where this process was started with SIGINT ignored (a
+    # job a non-interactive shell ran in the background inherits that, and Python keeps it).
     script = """
 import os, signal, threading, time, srt
+signal.signal(signal.SIGINT, signal.default_int_handler)
 threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 start = time.monotonic()
 try:
