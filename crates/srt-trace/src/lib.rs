@@ -38,7 +38,7 @@ pub use shade::{
     arriving_unless_shadowed, grey_value, shade,
 };
 pub use sky::{
-    StarImage, project, sky_image_colour, sky_image_light, star_colour, star_image, star_layer,
-    star_light, tent_splat,
+    StarImage, StarLayer, project, sky_image_colour, sky_image_light, star_colour, star_image,
+    star_layer, star_light, tent_splat,
 };
 pub use texture::sample_trilinear;

@@ -9,6 +9,7 @@
 //! that a ray costs about one box test per object it misses. None of this changes a result:
 //! ties go to the lowest (object, part, triangle) whatever the order of the search.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 use glam::{DVec2, DVec3, DVec4};
@@ -358,6 +359,25 @@ impl<'a> Tracer<'a> {
         self.render_as(settings, progress, output, Some(stop))
     }
 
+    /// The rows `rows` of the image [`Tracer::render_stoppable`] renders (a band, for writing
+    /// an image of any size a band at a time): the same pixels, bit for bit, as those rows of
+    /// the whole image; the result's `height` is the band's. `progress` hears the number of
+    /// finished rows of the band.
+    ///
+    /// # Panics
+    /// If `rows` reaches past the image's height.
+    #[must_use]
+    pub fn render_band(
+        &self,
+        settings: RenderSettings,
+        rows: Range<u32>,
+        output: Output,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> Option<RenderedImage> {
+        self.render_rows(settings, rows, progress, output, Some(stop))
+    }
+
     /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says; `None` if `stop` was
     /// set before some row began.
     fn render_as(
@@ -367,11 +387,24 @@ impl<'a> Tracer<'a> {
         output: Output,
         stop: Option<&AtomicBool>,
     ) -> Option<RenderedImage> {
+        self.render_rows(settings, 0..settings.height, progress, output, stop)
+    }
+
+    /// The rows `rows` of [`Tracer::render_as`]'s image.
+    fn render_rows(
+        &self,
+        settings: RenderSettings,
+        rows: Range<u32>,
+        progress: &(dyn Fn(u32) + Sync),
+        output: Output,
+        stop: Option<&AtomicBool>,
+    ) -> Option<RenderedImage> {
         let RenderSettings {
             width,
             height,
             samples,
         } = settings;
+        assert!(rows.end <= height, "rows {rows:?} of a {height}-row image");
         let image_rays = ImageRays::new(self.scene, width, height);
         let direction_at = |x: f64, y: f64| image_rays.direction(x, y);
         let offsets = sample_offsets(samples.max(1));
@@ -390,7 +423,8 @@ impl<'a> Tracer<'a> {
             Output::Radiance => colour,
         };
         let stars = star_layer(self.scene, width, height, &value);
-        let rows = rows_in_parallel(height, progress, stop, |y| {
+        let band_height = rows.len() as u32;
+        let rows = rows_in_parallel(rows, progress, stop, |y| {
             let mut colours = Vec::with_capacity(width as usize);
             let mut coverage = Vec::with_capacity(width as usize);
             for x in 0..width {
@@ -410,7 +444,7 @@ impl<'a> Tracer<'a> {
                     sum += finish(hit.map_or_else(
                         || {
                             let sky = value(&sky_image_light(self.scene, direction));
-                            background + sky + stars[y as usize * width as usize + x as usize]
+                            background + sky + stars.at(y as usize * width as usize + x as usize)
                         },
                         |h| {
                             // A neighbour beyond the fisheye's rim: no footprint that way.
@@ -425,16 +459,15 @@ impl<'a> Tracer<'a> {
             }
             (colours, coverage)
         })?;
-        let (pixels, coverage) =
-            rows.into_iter()
-                .fold((Vec::new(), Vec::new()), |(mut p, mut c), (rp, rc)| {
-                    p.extend(rp);
-                    c.extend(rc);
-                    (p, c)
-                });
+        let count = width as usize * rows.len();
+        let (mut pixels, mut coverage) = (Vec::with_capacity(count), Vec::with_capacity(count));
+        for (row_pixels, row_coverage) in rows {
+            pixels.extend(row_pixels);
+            coverage.extend(row_coverage);
+        }
         Some(RenderedImage {
             width,
-            height,
+            height: band_height,
             pixels,
             coverage,
         })
@@ -468,7 +501,25 @@ impl Tracer<'_> {
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> Option<Vec<Option<SeenEvent>>> {
-        let rows = rows_in_parallel(height, progress, Some(stop), |y| {
+        self.render_seen_events_band(width, height, 0..height, progress, stop)
+    }
+
+    /// The rows `rows` of [`Tracer::render_seen_events`]'s picture (a band, as
+    /// [`Tracer::render_band`]).
+    ///
+    /// # Panics
+    /// If `rows` reaches past `height`.
+    #[must_use]
+    pub fn render_seen_events_band(
+        &self,
+        width: u32,
+        height: u32,
+        rows: Range<u32>,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> Option<Vec<Option<SeenEvent>>> {
+        assert!(rows.end <= height, "rows {rows:?} of a {height}-row image");
+        let rows = rows_in_parallel(rows, progress, Some(stop), |y| {
             (0..width)
                 .map(|x| {
                     self.hit_at_pixel(width, height, x, y)
@@ -480,17 +531,16 @@ impl Tracer<'_> {
     }
 }
 
-/// Runs `row` for every row 0..`height` on rayon's threads and returns the rows in order;
-/// `progress` hears the number of finished rows. `None` once `stop` is set: rows not yet begun
-/// are skipped.
+/// Runs `row` for every row of `rows` on rayon's threads and returns them in order; `progress`
+/// hears the number of finished rows. `None` once `stop` is set: rows not yet begun are skipped.
 fn rows_in_parallel<T: Send>(
-    height: u32,
+    rows: Range<u32>,
     progress: &(dyn Fn(u32) + Sync),
     stop: Option<&AtomicBool>,
     row: impl Fn(u32) -> T + Sync,
 ) -> Option<Vec<T>> {
     let finished = AtomicU32::new(0);
-    let rows: Vec<Option<T>> = (0..height)
+    let rows: Vec<Option<T>> = rows
         .into_par_iter()
         .map(|y| {
             if stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {

@@ -6,6 +6,8 @@
 //! taken back into the sky's frame (the inverse aberration) and the light found there is
 //! Doppler-shifted like a surface's. The sky shows where no object is hit.
 
+use std::collections::BTreeMap;
+
 use glam::{DVec2, DVec3};
 use srt_color::{Reflectance, TemperatureLut, reflected_light, srgb_coefficient_table};
 use srt_physics::distant_source_image;
@@ -171,23 +173,52 @@ pub fn tent_splat(pixel: DVec2, width: u32, height: u32) -> impl Iterator<Item =
         })
 }
 
-/// The light the stars add to every pixel, each star's [`Arriving`] light turned into a pixel
-/// value by `value` (display colour or radiance; not clamped), row-major from the top.
+/// The light the stars add to the pixels they land on, each star's [`Arriving`] light turned
+/// into a pixel value by `value` (display colour or radiance; not clamped): sparse, so that it
+/// costs memory per star, not per pixel, at any image size.
 #[must_use]
 pub fn star_layer(
     scene: &Scene,
     width: u32,
     height: u32,
     value: &dyn Fn(&Arriving) -> DVec3,
-) -> Vec<DVec3> {
-    let mut layer = vec![DVec3::ZERO; width as usize * height as usize];
+) -> StarLayer {
+    let mut lit = BTreeMap::new();
     for star in &scene.sky.stars {
         if let Some(image) = star_image(star, scene, width, height) {
             let colour = value(&image.light);
             for (index, weight) in tent_splat(image.pixel, width, height) {
-                layer[index] += weight * colour;
+                *lit.entry(index).or_insert(DVec3::ZERO) += weight * colour;
             }
         }
     }
-    layer
+    StarLayer { lit }
+}
+
+/// The stars' light on an image ([`star_layer`]): the pixels some star lands on, by row-major
+/// index from the top; every other pixel gets none.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StarLayer {
+    /// The light of each lit pixel, by row-major index.
+    lit: BTreeMap<usize, DVec3>,
+}
+
+impl StarLayer {
+    /// The stars' light on the pixel of row-major index `index` (zero where no star lands).
+    #[must_use]
+    pub fn at(&self, index: usize) -> DVec3 {
+        self.lit.get(&index).copied().unwrap_or(DVec3::ZERO)
+    }
+
+    /// How many pixels some star lands on.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.lit.len()
+    }
+
+    /// Whether no star lands on the image.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.lit.is_empty()
+    }
 }

@@ -1,6 +1,7 @@
 //! srt-trace's integration tests in one binary (one link, not one per file): each module
 //! below was a test binary of its own; `cargo test --test trace MODULE::` runs one.
 
+mod bands;
 mod blink;
 mod clock;
 mod moving_bodies;
