@@ -5,19 +5,24 @@
 // shader in flat varyings (lrt.wgsl: llvmpipe reads a storage buffer in a fragment shader one
 // lane at a time).
 struct ViewCamera {
+    // Through the target's centre: the observer's forward, moved by the window's offset where
+    // the target holds a window of a larger picture (srt_gpu::projection::TargetCamera).
     forward: vec3<f32>,
-    // Scaled by tan(fov/2)·aspect.
+    // Scaled by tan(fov/2)·aspect (and by the target's share of the picture's width).
     right: vec3<f32>,
-    // Scaled by tan(fov/2).
+    // Scaled by tan(fov/2) (and by the target's share of the picture's height).
     up: vec3<f32>,
     // 1/width and 1/height in pixels⁻¹ (frame_uniforms.viewport.zw).
     inverse_size: vec2<f32>,
 }
 
-// The frame's camera.
+// The frame's camera. camera_right.w and camera_up.w are the target's centre in the picture in
+// units of those axes: 0 for a whole picture, so that forward is then exactly camera_forward.
 fn frame_camera() -> ViewCamera {
+    let right = frame_uniforms.camera_right;
+    let up = frame_uniforms.camera_up;
     return ViewCamera(
-        frame_uniforms.camera_forward.xyz,
+        frame_uniforms.camera_forward.xyz + right.w * right.xyz + up.w * up.xyz,
         frame_uniforms.camera_right.xyz,
         frame_uniforms.camera_up.xyz,
         frame_uniforms.viewport.zw,
@@ -50,8 +55,10 @@ fn project_direction(d: vec3<f32>) -> vec3<f32> {
     if (depth <= 0.0) {
         return vec3<f32>(0.0);
     }
-    // camera_right and camera_up are scaled by tan(fov/2)·aspect and tan(fov/2).
-    let ndc = vec2<f32>(dot(d, right) / (depth * dot(right, right)), dot(d, up) / (depth * dot(up, up)));
+    // camera_right and camera_up are scaled by tan(fov/2)·aspect and tan(fov/2) (times the
+    // target's share of the picture); their w, the target's centre, is 0 for a whole picture.
+    let offset = vec2<f32>(frame_uniforms.camera_right.w, frame_uniforms.camera_up.w);
+    let ndc = vec2<f32>(dot(d, right) / (depth * dot(right, right)), dot(d, up) / (depth * dot(up, up))) - offset;
     return vec3<f32>(
         0.5 * (ndc.x + 1.0) * frame_uniforms.viewport.x,
         0.5 * (1.0 - ndc.y) * frame_uniforms.viewport.y,

@@ -42,8 +42,16 @@ const MIN_CLIP_W: f32 = 1e-6;
 // Outward dilation of rectangle and hull, in pixels.
 const FOOTPRINT_MARGIN: f32 = 0.25;
 
+// The whole picture's rectangle (min.xy, max.xy) in the target's pixels: the target itself
+// unless it holds a window of a larger picture (frame_uniforms.picture). The "screen" every
+// footprint rule below measures against, so that a tile's footprints are the whole picture's.
+fn picture_rect() -> vec4<f32> {
+    let lo = -frame_uniforms.picture.zw;
+    return vec4<f32>(lo, lo + frame_uniforms.picture.xy);
+}
+
 // Pixel position of a point in S (xy) and whether it is in front of the camera and within
-// MAX_SCREEN_REACH screens of the screen's centre (z = 1).
+// MAX_SCREEN_REACH screens of the picture's centre (z = 1).
 fn project_point(p: vec3<f32>) -> vec3<f32> {
     let clip = frame_uniforms.view_projection * vec4<f32>(p, 1.0);
     if (!(clip.w > MIN_CLIP_W)) {
@@ -52,8 +60,9 @@ fn project_point(p: vec3<f32>) -> vec3<f32> {
     let ndc = clip.xy / clip.w;
     let screen = frame_uniforms.viewport.xy;
     let pixel = vec2<f32>((ndc.x + 1.0) * 0.5 * screen.x, (1.0 - ndc.y) * 0.5 * screen.y);
-    let offset = abs(pixel - 0.5 * screen);
-    if (!(max(offset.x, offset.y) <= MAX_SCREEN_REACH * max(screen.x, screen.y))) {
+    let picture = picture_rect();
+    let offset = abs(pixel - 0.5 * (picture.xy + picture.zw));
+    if (!(max(offset.x, offset.y) <= MAX_SCREEN_REACH * max(frame_uniforms.picture.x, frame_uniforms.picture.y))) {
         return vec3<f32>(0.0);
     }
     return vec3<f32>(pixel, 1.0);
@@ -99,7 +108,8 @@ fn rectangle_footprint(lo: vec2<f32>, hi: vec2<f32>) -> Footprint {
 }
 
 fn whole_screen_footprint() -> Footprint {
-    var f = rectangle_footprint(vec2<f32>(0.0), frame_uniforms.viewport.xy);
+    let picture = picture_rect();
+    var f = rectangle_footprint(picture.xy, picture.zw);
     f.whole_screen = 1u;
     return f;
 }
@@ -256,7 +266,8 @@ fn clipped_rect(clip: ptr<function, array<vec4<f32>, 6>>, near: f32) -> vec4<f32
             pixels_hi = max(pixels_hi, pixel);
         }
     }
-    return vec4<f32>(max(pixels_lo, vec2<f32>(0.0)), min(pixels_hi, frame_uniforms.viewport.xy));
+    let picture = picture_rect();
+    return vec4<f32>(max(pixels_lo, picture.xy), min(pixels_hi, picture.zw));
 }
 
 // Area of a clamped rectangle (min.xy, max.xy); 0 when empty.
@@ -358,8 +369,9 @@ fn hull_footprint(six: array<vec2<f32>, 6>) -> Footprint {
 // SPLIT_AREA_FRACTION of the screen and its hull is loose (LOOSE_HULL_FACTOR times the area of
 // the triangle of the projected corners).
 fn worth_splitting(f: Footprint, six: array<vec2<f32>, 6>) -> bool {
-    let screen = frame_uniforms.viewport.xy;
-    let on_screen = vec4<f32>(max(f.rect.xy, vec2<f32>(0.0)), min(f.rect.zw, screen));
+    let picture = picture_rect();
+    let screen = frame_uniforms.picture.xy;
+    let on_screen = vec4<f32>(max(f.rect.xy, picture.xy), min(f.rect.zw, picture.zw));
     if (!(rect_area(on_screen) > SPLIT_AREA_FRACTION * screen.x * screen.y)) {
         return false;
     }
@@ -516,8 +528,8 @@ const SPLIT_STACK: u32 = MAX_SPLIT_DEPTH + 1u;
 // own slot gets the rectangle holding all its pieces instead (srt_proxy::split_footprint); when
 // a piece MAX_SPLIT_DEPTH deep may reach the camera, the whole screen.
 fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
-    let screen = frame_uniforms.viewport.xy;
-    let split_area = SPLIT_AREA_FRACTION * screen.x * screen.y;
+    let picture = picture_rect();
+    let split_area = SPLIT_AREA_FRACTION * frame_uniforms.picture.x * frame_uniforms.picture.y;
     var stack: array<array<vec3<f32>, 3>, SPLIT_STACK>;
     var depths: array<u32, SPLIT_STACK>;
     stack[0] = rest;
@@ -560,8 +572,8 @@ fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
                 if (!all(rect.xy < rect.zw)) {
                     continue;
                 }
-                let lo = max(rect.xy - FOOTPRINT_MARGIN, vec2<f32>(0.0));
-                let hi = min(rect.zw + FOOTPRINT_MARGIN, screen);
+                let lo = max(rect.xy - FOOTPRINT_MARGIN, picture.xy);
+                let hi = min(rect.zw + FOOTPRINT_MARGIN, picture.zw);
                 f = rectangle_footprint(lo, hi);
             }
         }
@@ -574,9 +586,9 @@ fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
             size += 2u;
             continue;
         }
-        // A kept piece: skip it when nothing of it is on screen.
+        // A kept piece: skip it when nothing of it is on this target.
         let lo = max(f.rect.xy, vec2<f32>(0.0));
-        let hi = min(f.rect.zw, screen);
+        let hi = min(f.rect.zw, frame_uniforms.viewport.xy);
         if (!all(lo < hi)) {
             continue;
         }

@@ -61,9 +61,12 @@ struct FrameUniforms {
     view_projection: mat4x4<f32>,
     // Unit viewing direction of the camera, w = 0.
     camera_forward: vec4<f32>,
-    // Camera right axis scaled by tan(fov/2)·aspect, w = 0.
+    // Camera right axis scaled by tan(fov/2)·aspect and the target's share of the picture's
+    // width; w: the target's centre in the picture in units of this axis (0 for a whole
+    // picture; srt_gpu::projection::TargetCamera).
     camera_right: vec4<f32>,
-    // Camera up axis scaled by tan(fov/2), w = 0.
+    // Camera up axis scaled by tan(fov/2) and the target's share of the picture's height; w as
+    // camera_right's.
     camera_up: vec4<f32>,
     // Observer position in S (xyz); w is 0 (ct_obs is in each object's Frame.observer_rest).
     observer: vec4<f32>,
@@ -79,6 +82,11 @@ struct FrameUniforms {
     lut: vec4<f32>,
     // Viewport width, height in pixels and their reciprocals.
     viewport: vec4<f32>,
+    // The whole picture's width and height in pixels and the target's first column and row in
+    // it: the target itself (width, height, 0, 0) unless it holds a window of a larger picture
+    // (a tile, srt_gpu::projection::ImageWindow). The proxy pass judges footprints against the
+    // picture, so that a tile draws the footprints the whole picture would.
+    picture: vec4<f32>,
     // One of EFFECTS_*.
     effects: u32,
     // One of FOOTPRINT_*.

@@ -336,6 +336,21 @@ fn image_texture(ctx: &GpuContext, image: Option<&SkyImage>) -> wgpu::TextureVie
     .create_view(&wgpu::TextureViewDescriptor::default())
 }
 
+/// Checks that the star light of a `width` × `height` image fits one storage buffer binding.
+///
+/// # Errors
+/// [`GpuError::ExceedsLimit`] when it does not.
+pub(crate) fn check_star_light(
+    limits: &DeviceLimits,
+    width: u32,
+    height: u32,
+) -> Result<(), GpuError> {
+    limits.check_storage_buffer(
+        || format!("the star light of a {width}×{height} image"),
+        u64::from(width) * u64::from(height) * STAR_LIGHT_BYTES_PER_PIXEL,
+    )
+}
+
 impl StarLight {
     fn new(
         ctx: &GpuContext,
@@ -343,11 +358,8 @@ impl StarLight {
         width: u32,
         height: u32,
     ) -> Result<Self, GpuError> {
+        check_star_light(&DeviceLimits::of(ctx), width, height)?;
         let bytes = u64::from(width) * u64::from(height) * STAR_LIGHT_BYTES_PER_PIXEL;
-        DeviceLimits::of(ctx).check_storage_buffer(
-            || format!("the star light of a {width}×{height} image"),
-            bytes,
-        )?;
         let device = &ctx.device;
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("srt sky star light"),

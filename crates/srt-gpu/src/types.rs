@@ -173,9 +173,10 @@ pub struct FrameUniforms {
     pub view_projection: [[f32; 4]; 4],
     /// Unit camera forward, w = 0.
     pub camera_forward: [f32; 4],
-    /// Camera right × tan(fov/2) × aspect.
+    /// Camera right × tan(fov/2) × aspect × the target's share of the width; w: the target's
+    /// centre in units of it ([`crate::projection::TargetCamera`]).
     pub camera_right: [f32; 4],
-    /// Camera up × tan(fov/2).
+    /// Camera up × tan(fov/2) × the target's share of the height; w as `camera_right`'s.
     pub camera_up: [f32; 4],
     /// Observer position (xyz), w = 0: the observation time reaches the shaders through each
     /// object's [`GpuFrame::observer_rest`].
@@ -190,6 +191,10 @@ pub struct FrameUniforms {
     pub lut: [f32; 4],
     /// Width, height, 1/width, 1/height.
     pub viewport: [f32; 4],
+    /// The whole picture's width and height in target pixels, and the target's first column
+    /// and row in it: (width, height, 0, 0) of the target itself unless it holds a window of a
+    /// larger picture ([`crate::projection::ImageWindow`]).
+    pub picture: [f32; 4],
     /// Which effects the shading shows.
     pub effects: EffectsCode,
     /// What the LRT pass draws per triangle.

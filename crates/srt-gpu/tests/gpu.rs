@@ -13,3 +13,4 @@ mod readback;
 mod reflect;
 mod shaders;
 mod upload;
+mod windows;

@@ -40,16 +40,14 @@ impl super::GpuRenderer {
             sky.write_uniforms(ctx, scene, self.star_light_scale);
         }
         let (width, height) = self.size();
-        let aspect = f64::from(width) / f64::from(height);
         let observer = &scene.observer;
-        let (forward, right, up) = observer.basis();
-        let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
+        let camera = target_camera(observer, width, height, self.window);
         let tone = FrameResources::tone_index(scene.tone_map);
         let uniforms = FrameUniforms {
-            view_projection: mat4(view_projection(observer, width, height)),
-            camera_forward: vec4(forward, 0.0),
-            camera_right: vec4(right * tan_half * aspect, 0.0),
-            camera_up: vec4(up * tan_half, 0.0),
+            view_projection: mat4(camera.view_projection),
+            camera_forward: vec4(camera.forward, 0.0),
+            camera_right: vec4(camera.right, camera.offset.x),
+            camera_up: vec4(camera.up, camera.offset.y),
             observer: vec4(observer.position, 0.0),
             light: vec4(scene.light.position, scene.light.temperature_k),
             shading: [
@@ -66,6 +64,16 @@ impl super::GpuRenderer {
                 1.0 / width as f32,
                 1.0 / height as f32,
             ],
+            picture: self
+                .window
+                .map_or([width as f32, height as f32, 0.0, 0.0], |window| {
+                    [
+                        window.image_width as f32,
+                        window.image_height as f32,
+                        window.left as f32,
+                        window.top as f32,
+                    ]
+                }),
             effects: EffectsCode::from(scene.effects),
             footprint_shape: FootprintCode::from(footprint),
             depth_scale: LRT_DEPTH_SCALE,
@@ -306,7 +314,12 @@ impl super::GpuRenderer {
     /// ([`ball_out_of_view`]) or covers no pixel's centre ([`ball_between_pixel_centres`]). The
     /// others' footprints and draws are skipped, whatever the method.
     pub fn objects_in_view(&self, scene: &Scene) -> Vec<usize> {
-        let (width, height) = self.size();
+        // Culled against the whole picture (its view and its grid of pixel centres): an object
+        // outside the window but in the picture is drawn and clipped.
+        let (width, height) = self.window.map_or_else(
+            || self.size(),
+            |window| (window.image_width, window.image_height),
+        );
         let aspect = f64::from(width) / f64::from(height);
         let event = scene.observer.event();
         // Zipped, not indexed: a scene of another structure is refused later (SceneChanged).

@@ -28,7 +28,7 @@ use crate::pipelines::{
     FRAME_GROUP, LRT_INPUT_GROUP, OBJECT_GROUP, PART_GROUP, POLYGON_FRAME_GROUP,
     PROXY_OUTPUT_GROUP, Pipelines, RT_INPUT_GROUP, SHADE_FRAME_GROUP, SKY_FRAME_GROUP, slots,
 };
-use crate::projection::view_projection;
+use crate::projection::{ImageWindow, target_camera};
 use crate::ray_tracing::{BOX_TRIANGLES, ObjectRayTracing, object_bvh};
 use crate::readback::{TextureReadback, texel_bytes};
 use crate::shaders::{BlockSpace, WORKGROUP_SIZE};
@@ -224,6 +224,9 @@ pub struct GpuRenderer {
     /// The layers above which `auto` traces a static object on this adapter
     /// ([`crate::ray_tracing::auto_layers`]).
     auto_layers: f64,
+    /// The part of a larger picture the target holds, if it holds a part
+    /// ([`GpuRenderer::set_window`]).
+    window: Option<ImageWindow>,
 }
 
 impl GpuRenderer {
@@ -302,6 +305,7 @@ impl GpuRenderer {
             count_fragments: false,
             indirect_draws: ctx.indirect_draws,
             auto_layers: crate::ray_tracing::auto_layers(ctx.adapter_info.device_type),
+            window: None,
         };
         ctx.take_errors()?;
         Ok(renderer)
@@ -353,12 +357,28 @@ impl GpuRenderer {
         (self.targets.width, self.targets.height)
     }
 
-    /// Changes the image size (recreates the render targets).
+    /// Makes the target hold `window` of a larger picture (a tile: the same rays through its
+    /// pixels as through those pixels of the whole picture), or the whole picture (`None`, the
+    /// default). A resize returns to the whole picture.
+    ///
+    /// # Panics
+    /// If the window at the target's size reaches beyond its picture.
+    pub fn set_window(&mut self, window: Option<ImageWindow>) {
+        if let Some(window) = window {
+            let (width, height) = self.size();
+            window.check_holds(width, height);
+        }
+        self.window = window;
+    }
+
+    /// Changes the image size (recreates the render targets) and returns to the whole picture
+    /// ([`GpuRenderer::set_window`]).
     ///
     /// # Errors
     /// [`GpuError::ExceedsLimit`] when the size exceeds the device's limits; the renderer then
     /// keeps its previous size.
     pub fn resize(&mut self, ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
+        self.window = None;
         if (width, height) != self.size() {
             let targets = Targets::new(ctx, width, height, &self.pipelines, &self.frame)?;
             if let Some(sky) = &mut self.sky {
