@@ -63,7 +63,9 @@ pub enum WriteError {
     },
     /// A GIF's sides are 16-bit numbers.
     #[error(
-        "cannot write {}: a GIF is at most 65535 pixels a side, and {origin} is {width}x{height}",
+        "cannot write {}: a GIF is at most 65535 pixels a side and 8192x8192 pixels in all (its \
+         colour quantiser holds about 9 bytes a pixel), and {origin} is {width}x{height}; write \
+         numbered PNGs instead",
         .path.display()
     )]
     TooLargeForGif {
@@ -201,9 +203,13 @@ mod tests {
         );
         assert_eq!(
             message(VideoFormat::Gif, 70_000, 2),
-            "cannot write out/f.mp4: a GIF is at most 65535 pixels a side, and \
-             --width x --height is 70000x2"
+            "cannot write out/f.mp4: a GIF is at most 65535 pixels a side and 8192x8192 pixels \
+             in all (its colour quantiser holds about 9 bytes a pixel), and --width x --height \
+             is 70000x2; write numbered PNGs instead"
         );
+        // The largest picture srt renders is too many pixels for one GIF frame; 8192² is not.
+        assert!(message(VideoFormat::Gif, 16384, 8192).contains("8192x8192 pixels in all"));
+        assert!(check_size(path, VideoFormat::Gif, 8192, 8192, "").is_ok());
         assert!(check_size(path, VideoFormat::Mp4, 2160, 3840, "").is_ok());
     }
 
