@@ -25,11 +25,13 @@ pub struct Captioner {
 }
 
 impl Captioner {
-    /// Burns the caption of `scene` (the frame's scene before its view is applied: its
-    /// velocities are the objects') into `pixels`, `width` × `height` display colours.
-    pub fn burn_into(&self, scene: &Scene, pixels: &mut [DVec3], width: u32, height: u32) {
+    /// The caption of `scene` (the frame's scene before its view is applied: its velocities are
+    /// the objects') for a `width` × `height` picture, to burn into it a band of rows at a time
+    /// ([`Ink::burn_into_rows`]).
+    #[must_use]
+    pub fn ink_for(&self, scene: &Scene, width: u32, height: u32) -> Ink {
         let text = caption_text(scene, self.observer_beta, self.view, &self.renderer);
-        burn(pixels, width, height, &text);
+        Ink::new(width, height, &text)
     }
 }
 
@@ -91,41 +93,58 @@ fn vector(value: DVec3) -> String {
     )
 }
 
-/// Burns `text` into the bottom of `pixels` (display colours, row-major from the top, `width`
-/// × `height`): white letters on a darkened band, a thirtieth of the height high, smaller where
-/// the line would not fit the width.
-pub fn burn(pixels: &mut [DVec3], width: u32, height: u32, text: &str) {
-    let font = FontRef::try_from_slice(dejavu::sans::regular())
-        .expect("the DejaVu Sans font embedded by the dejavu crate parses");
-    let margin = (height / 120).max(2);
-    let mut size = (height as f32 / 30.0).clamp(10.0, 64.0);
-    let (text_width, _) = text_size(PxScale::from(size), &font, text);
-    let room = width.saturating_sub(2 * margin).max(1);
-    if text_width > room {
-        size *= room as f32 / text_width as f32;
+/// A caption laid out for one picture size: white letters on a darkened band at the bottom, a
+/// thirtieth of the height high, smaller where the line would not fit the width.
+pub struct Ink {
+    /// The first row of the band.
+    first_row: u32,
+    /// The letters' coverage of the band, 255 = white ink.
+    coverage: GrayImage,
+}
+
+impl Ink {
+    /// `text` laid out for the bottom of a `width` × `height` picture.
+    #[must_use]
+    pub fn new(width: u32, height: u32, text: &str) -> Self {
+        let font = FontRef::try_from_slice(dejavu::sans::regular())
+            .expect("the DejaVu Sans font embedded by the dejavu crate parses");
+        let margin = (height / 120).max(2);
+        let mut size = (height as f32 / 30.0).clamp(10.0, 64.0);
+        let (text_width, _) = text_size(PxScale::from(size), &font, text);
+        let room = width.saturating_sub(2 * margin).max(1);
+        if text_width > room {
+            size *= room as f32 / text_width as f32;
+        }
+        let band = (size * 1.4).ceil() as u32 + margin;
+        let band = band.min(height);
+        let mut coverage = GrayImage::new(width, band);
+        let top = (band as f32 - size * 1.2).max(0.0) as i32;
+        draw_text_mut(
+            &mut coverage,
+            Luma([255]),
+            margin as i32,
+            top,
+            PxScale::from(size),
+            &font,
+            text,
+        );
+        Self {
+            first_row: height - band,
+            coverage,
+        }
     }
-    let band = (size * 1.4).ceil() as u32 + margin;
-    let band = band.min(height);
-    let mut coverage = GrayImage::new(width, band);
-    let top = (band as f32 - size * 1.2).max(0.0) as i32;
-    draw_text_mut(
-        &mut coverage,
-        Luma([255]),
-        margin as i32,
-        top,
-        PxScale::from(size),
-        &font,
-        text,
-    );
-    let first_row = (height - band) as usize;
-    for (y, row) in pixels
-        .chunks_exact_mut(width as usize)
-        .skip(first_row)
-        .enumerate()
-    {
-        for (x, pixel) in row.iter_mut().enumerate() {
-            let ink = f64::from(coverage.get_pixel(x as u32, y as u32).0[0]) / 255.0;
-            *pixel = *pixel * BAND_KEEPS * (1.0 - ink) + DVec3::ONE * ink;
+
+    /// Burns the caption into `pixels`, the rows `rows` of the picture (`width` pixels each,
+    /// row-major from the top).
+    pub fn burn_into_rows(&self, pixels: &mut [DVec3], width: u32, rows: std::ops::Range<u32>) {
+        for (row, y) in pixels.chunks_exact_mut(width as usize).zip(rows) {
+            let Some(band_row) = y.checked_sub(self.first_row) else {
+                continue;
+            };
+            for (x, pixel) in row.iter_mut().enumerate() {
+                let ink = f64::from(self.coverage.get_pixel(x as u32, band_row).0[0]) / 255.0;
+                *pixel = *pixel * BAND_KEEPS * (1.0 - ink) + DVec3::ONE * ink;
+            }
         }
     }
 }
@@ -158,7 +177,17 @@ mod tests {
         let (width, height) = (320, 90);
         let grey = DVec3::splat(0.5);
         let mut pixels = vec![grey; (width * height) as usize];
-        burn(&mut pixels, width, height, "fig4 · time 5.12");
+        Ink::new(width, height, "fig4 · time 5.12").burn_into_rows(&mut pixels, width, 0..height);
+        // Burnt a band of rows at a time, the caption is the same.
+        let mut banded = vec![grey; (width * height) as usize];
+        for (band, first_row) in banded
+            .chunks_mut((width * 16) as usize)
+            .zip((0..).step_by(16))
+        {
+            let rows = first_row..first_row + (band.len() as u32 / width);
+            Ink::new(width, height, "fig4 · time 5.12").burn_into_rows(band, width, rows);
+        }
+        assert_eq!(banded, pixels);
         let (above, band) = pixels.split_at((width * height / 2) as usize);
         assert!(
             above.iter().all(|p| *p == grey),
@@ -172,7 +201,7 @@ mod tests {
         // A line too long for the width shrinks to fit instead of running off the picture.
         let long = "x".repeat(400);
         let mut pixels = vec![grey; (width * height) as usize];
-        burn(&mut pixels, width, height, &long);
+        Ink::new(width, height, &long).burn_into_rows(&mut pixels, width, 0..height);
         let last_column_inked = pixels
             .chunks_exact(width as usize)
             .any(|row| row[width as usize - 1].min_element() > 0.9);

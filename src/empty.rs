@@ -40,28 +40,56 @@ pub enum Seen {
 /// is one colour too).
 #[must_use]
 pub fn empty_picture_warning(scene: &Scene, display: &[DVec3]) -> Option<String> {
-    let first = display.first()?;
-    if display.iter().any(|pixel| pixel != first) {
-        return None;
+    let mut colours = OneColour::default();
+    colours.look_at(display);
+    colours.empty_warning(scene)
+}
+
+/// Whether a picture seen a band of rows at a time is one colour (for
+/// [`empty_picture_warning`]'s test on a picture never held whole).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct OneColour {
+    /// The first pixel seen.
+    first: Option<DVec3>,
+    /// Whether some pixel differed from it.
+    varied: bool,
+}
+
+impl OneColour {
+    /// Takes the next `pixels` of the picture into account.
+    pub fn look_at(&mut self, pixels: &[DVec3]) {
+        let Some(&head) = pixels.first() else {
+            return;
+        };
+        let first = *self.first.get_or_insert(head);
+        self.varied = self.varied || pixels.iter().any(|pixel| *pixel != first);
     }
-    let seen: Vec<(String, Seen)> = (scene.objects.iter())
-        .map(|object| (object.name.clone(), where_seen(scene, object)))
-        .collect();
-    if seen
-        .iter()
-        .any(|(_, where_seen)| *where_seen == Seen::InView)
-    {
-        return None;
+
+    /// [`empty_picture_warning`] for the picture of `scene` seen so far.
+    #[must_use]
+    pub fn empty_warning(&self, scene: &Scene) -> Option<String> {
+        if self.varied || self.first.is_none() {
+            return None;
+        }
+        let seen: Vec<(String, Seen)> = (scene.objects.iter())
+            .map(|object| (object.name.clone(), where_seen(scene, object)))
+            .collect();
+        if seen
+            .iter()
+            .any(|(_, where_seen)| *where_seen == Seen::InView)
+        {
+            return None;
+        }
+        let places: Vec<String> = seen
+            .iter()
+            .map(|(name, where_seen)| format!("{name} {}", describe(*where_seen)))
+            .collect();
+        Some(format!(
+            "the picture is empty: no object is in the view at ct = {} ({})",
+            scene.observer.ct,
+            places.join("; ")
+        ))
     }
-    let places: Vec<String> = seen
-        .iter()
-        .map(|(name, where_seen)| format!("{name} {}", describe(*where_seen)))
-        .collect();
-    Some(format!(
-        "the picture is empty: no object is in the view at ct = {} ({})",
-        scene.observer.ct,
-        places.join("; ")
-    ))
 }
 
 /// Words for where an object is seen.

@@ -4,12 +4,16 @@
 //! pixels for the same arguments.
 
 use std::cell::OnceCell;
+use std::ops::Range;
 use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use srt_color::srgb_decode;
+use srt_gpu::limits::DeviceLimits;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
+
+use crate::tiles::{Tiling, assemble};
 use srt_scene::Scene;
 use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
 
@@ -18,6 +22,24 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 /// The most samples per pixel `srt render` accepts.
 pub const MAX_SAMPLES: u32 = 1024;
+
+/// The most pixels the CPU renders at a time for a file written a band of rows at a time
+/// ([`Engine::band_rows`]): about a hundred bytes each while the band is held (display colours,
+/// radiance, time channels), so about 100 MiB whatever the picture's size.
+pub const BAND_PIXELS: u64 = 1 << 20;
+
+/// The most memory `srt render` means to hold for one picture beyond its scene (2 GiB): the
+/// CPU renders a band of rows at a time, far below it at any size srt accepts; the GPU draws in
+/// tiles that hold at most [`crate::tiles::GPU_TILE_BYTES`] (docs/performance.md, "Memory").
+pub const MEMORY_BOUND: u64 = 2 << 30;
+
+/// The GPU's supersampling for `samples` per pixel: it renders at this many times the size.
+fn supersampling_scale(samples: u32) -> u32 {
+    f64::from(samples).sqrt().ceil() as u32
+}
+
+/// Bands are whole multiples of this many rows: an EXR's ZIP blocks of 16 scan lines.
+pub const BAND_ROW_MULTIPLE: u32 = 16;
 
 /// Which renderer draws the display colours.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -73,14 +95,17 @@ impl<'a> Frame<'a> {
 pub enum Engine {
     /// The exact CPU reference.
     Cpu,
-    /// The GPU local ray tracer (or polygon method), rendering at `scale`× the output size.
+    /// The GPU local ray tracer (or polygon method), rendering at `tiling.scale`× the output
+    /// size, in tiles where the picture is larger than the adapter or the memory bound allows.
     Gpu {
         /// The adapter and device.
         context: Box<GpuContext>,
-        /// The scene's geometry on the GPU, with targets `scale`× the output size.
+        /// The scene's geometry on the GPU, with targets of one tile at `tiling.scale`× the
+        /// output size.
         renderer: Box<GpuRenderer>,
-        /// Supersampling: each output pixel averages `scale`² rendered pixels.
-        scale: u32,
+        /// The tiles, and the supersampling: each output pixel averages `scale`² rendered
+        /// pixels.
+        tiling: Tiling,
         /// The method the GPU draws with.
         method: Method,
     },
@@ -159,8 +184,13 @@ impl Engine {
             height,
             samples,
         } = settings;
-        let scale = f64::from(samples).sqrt().ceil() as u32;
-        let (big_width, big_height) = (width * scale, height * scale);
+        let scale = supersampling_scale(samples);
+        let limits = DeviceLimits::of(&context);
+        let texel_bytes = srt_gpu::readback::texel_bytes(context.color_format)?;
+        let tiling = Tiling::new(width, height, scale, |tile_width, tile_height| {
+            (limits.check_per_pixel_resources(tile_width, tile_height, texel_bytes)).is_ok()
+        });
+        let (big_width, big_height) = (tiling.tile_width * scale, tiling.tile_height * scale);
         let mut renderer = match GpuRenderer::new(&context, scene, big_width, big_height) {
             Ok(renderer) => renderer,
             Err(error @ GpuError::ExceedsLimit { .. })
@@ -169,8 +199,8 @@ impl Engine {
                 return Ok(Chosen {
                     engine: Self::Cpu,
                     note: Some(format!(
-                        "the GPU cannot render {width}x{height} at {samples} samples (a \
-                         {big_width}x{big_height} target): {error}; rendering on the CPU instead"
+                        "the GPU cannot render {width}x{height} at {samples} samples (in \
+                         {big_width}x{big_height} tiles): {error}; rendering on the CPU instead"
                     )),
                 });
             }
@@ -178,7 +208,7 @@ impl Engine {
                 return Err(error).with_context(|| {
                     format!(
                         "cannot prepare scene {} for the GPU ({width}x{height} at {samples} \
-                         samples needs a {big_width}x{big_height} target; use fewer pixels or \
+                         samples, in {big_width}x{big_height} tiles; use fewer pixels or \
                          samples, or --backend cpu)",
                         scene.name
                     )
@@ -191,7 +221,7 @@ impl Engine {
             engine: Self::Gpu {
                 context,
                 renderer: Box::new(renderer),
-                scale,
+                tiling,
                 method,
             },
             note: None,
@@ -249,27 +279,72 @@ impl Engine {
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> anyhow::Result<Option<Vec<DVec3>>> {
+        self.render_band(frame, settings, 0..settings.height, output, progress, stop)
+    }
+
+    /// How many rows of a picture at `settings` to render at a time when it is written a band
+    /// at a time, so that memory does not grow with the picture's height: about
+    /// [`BAND_PIXELS`] pixels on the CPU, a row of tiles on the GPU (the whole frame where it is
+    /// one tile); a multiple of [`BAND_ROW_MULTIPLE`] either way.
+    #[must_use]
+    pub fn band_rows(&self, settings: RenderSettings) -> u32 {
+        let rows = match self {
+            Self::Cpu => {
+                let rows = BAND_PIXELS / u64::from(settings.width.max(1));
+                u32::try_from(rows).unwrap_or(u32::MAX).min(settings.height)
+            }
+            Self::Gpu { tiling, .. } => tiling.tile_height,
+        };
+        rows.max(1).div_ceil(BAND_ROW_MULTIPLE) * BAND_ROW_MULTIPLE
+    }
+
+    /// The rows `rows` of [`Engine::render`]'s picture: the CPU renders only those rows, the
+    /// same pixels bit for bit (`progress` hears the band's finished rows); the GPU draws the
+    /// tiles over them, or the whole frame where it is one tile, and keeps them.
+    ///
+    /// # Errors
+    /// A GPU failure (device lost, out of memory).
+    ///
+    /// # Panics
+    /// If `rows` reaches past the picture's height.
+    pub fn render_band(
+        &mut self,
+        frame: &Frame<'_>,
+        settings: RenderSettings,
+        rows: Range<u32>,
+        output: Output,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> anyhow::Result<Option<Vec<DVec3>>> {
         let scene = frame.scene();
         Ok(match self {
             Self::Cpu => frame
                 .tracer()
-                .render_stoppable(settings, output, progress, stop)
+                .render_band(settings, rows, output, progress, stop)
                 .map(|image| image.pixels),
             Self::Gpu {
                 context,
                 renderer,
-                scale,
+                tiling,
                 method,
             } => {
-                let (image, _) = renderer
-                    .render_as(context, scene, *method, FootprintShape::Hull, output)
-                    .with_context(|| format!("GPU rendering of {} failed", scene.name))?;
-                Some(downsample(
-                    &image.pixels,
-                    settings.width,
-                    settings.height,
-                    *scale,
-                ))
+                let failed = || format!("GPU rendering of {} failed", scene.name);
+                let scale = tiling.scale;
+                let mut draw = |window| {
+                    renderer.set_window(window);
+                    let (image, _) = renderer
+                        .render_as(context, scene, *method, FootprintShape::Hull, output)
+                        .with_context(failed)?;
+                    let (width, height) = (image.width / scale, image.height / scale);
+                    anyhow::Ok(downsample(&image.pixels, width, height, scale))
+                };
+                if tiling.is_whole() {
+                    Some(keep_rows(draw(None)?, settings.width, rows))
+                } else {
+                    Some(assemble(tiling, rows, |tile| {
+                        draw(Some(tiling.window(tile, scale)))
+                    })?)
+                }
             }
         })
     }
@@ -370,28 +445,66 @@ impl Engine {
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> anyhow::Result<Option<Vec<[f32; 5]>>> {
+        self.render_aov_band(frame, settings, 0..settings.height, progress, stop)
+    }
+
+    /// The rows `rows` of [`Engine::render_aov`]'s channels, as [`Engine::render_band`] gives
+    /// a band of the colours.
+    ///
+    /// # Errors
+    /// A GPU failure.
+    ///
+    /// # Panics
+    /// If `rows` reaches past the picture's height.
+    pub fn render_aov_band(
+        &mut self,
+        frame: &Frame<'_>,
+        settings: RenderSettings,
+        rows: Range<u32>,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> anyhow::Result<Option<Vec<[f32; 5]>>> {
         let scene = frame.scene();
         match self {
             Self::Gpu {
                 context,
                 renderer,
-                scale,
+                tiling,
                 method,
             } if context.color_format == srt_gpu::formats::COLOR_FORMAT => {
                 let failed = || format!("GPU rendering of {}'s time channels failed", scene.name);
-                let (width, height) = (settings.width, settings.height);
+                // Drawn at the output size (scale 1), in tiles of the output's tile size.
+                let unscaled = Tiling {
+                    scale: 1,
+                    ..*tiling
+                };
                 renderer
-                    .resize(context, width, height)
+                    .resize(context, unscaled.tile_width, unscaled.tile_height)
                     .with_context(failed)?;
-                let seen = renderer.render_seen(context, scene, *method, FootprintShape::Hull);
+                let mut draw = |window| {
+                    renderer.set_window(window);
+                    renderer
+                        .render_seen(context, scene, *method, FootprintShape::Hull)
+                        .with_context(failed)
+                };
+                let seen = if unscaled.is_whole() {
+                    draw(None).map(|seen| keep_rows(seen, settings.width, rows))
+                } else {
+                    assemble(&unscaled, rows, |tile| draw(Some(unscaled.window(tile, 1))))
+                };
+                let scale = tiling.scale;
                 renderer
-                    .resize(context, width * *scale, height * *scale)
+                    .resize(
+                        context,
+                        tiling.tile_width * scale,
+                        tiling.tile_height * scale,
+                    )
                     .with_context(failed)?;
-                Ok(Some(seen.with_context(failed)?))
+                Ok(Some(seen?))
             }
             _ => Ok(frame
                 .tracer()
-                .render_seen_events(settings.width, settings.height, progress, stop)
+                .render_seen_events_band(settings.width, settings.height, rows, progress, stop)
                 .map(|events| events.iter().map(|e| aov_values(e.as_ref())).collect())),
         }
     }
@@ -435,6 +548,14 @@ pub fn channel_f32(value: f64) -> f32 {
     #[expect(clippy::cast_possible_truncation, reason = "32-bit float channels")]
     let float = value.clamp(-largest, largest) as f32;
     float
+}
+
+/// The rows `rows` of `pixels`, a picture `width` pixels wide, row-major from the top.
+fn keep_rows<T>(mut pixels: Vec<T>, width: u32, rows: Range<u32>) -> Vec<T> {
+    let width = width as usize;
+    pixels.truncate(rows.end as usize * width);
+    pixels.drain(..rows.start as usize * width);
+    pixels
 }
 
 /// Box-filters an image rendered at `scale`× the size down to `width` × `height`.

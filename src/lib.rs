@@ -9,3 +9,4 @@
 
 pub mod empty;
 pub mod engine;
+pub mod tiles;

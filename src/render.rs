@@ -3,22 +3,26 @@
 //! animation's numbered frames, or a video, and write it with a record of how it was made.
 
 use std::borrow::Cow;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use std::sync::atomic::AtomicBool;
 
-use crate::caption::Captioner;
+use crate::caption::{Captioner, Ink};
 use anyhow::{Context as _, bail};
 use glam::DVec3;
-use srt::empty::empty_picture_warning;
+use image::RgbImage;
+use srt::empty::OneColour;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
 use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, ValueName, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::cli::RenderArgs;
-use crate::output::{ExrLayers, OutputFormat, check_writable, display_rgb8, numbered, write_image};
+use crate::output::{
+    Band, Layers, OutputFormat, bands, check_writable, display_bytes, numbered, write_image,
+};
 use crate::progress::DelayedBar;
 use crate::provenance::Provenance;
 use crate::shard::Shard;
@@ -81,18 +85,19 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     );
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
-        let frame = Frame::new(&first);
-        let mut pixels = render_pixels(&mut engine, &frame, settings, true)?;
-        if let Some(warning) = empty_picture_warning(&first, &pixels) {
+        let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
+        let captioner = captioner(args, loaded.observer_beta, &engine);
+        let picture = Picture {
+            frame: &Frame::new(&first),
+            captioned: scene,
+            captioner: captioner.as_ref(),
+            settings,
+            show_rows: true,
+        };
+        let colours = picture.write(&mut engine, &record, args.aov, &output)?;
+        if let Some(warning) = colours.empty_warning(&first) {
             eprintln!("warning: {warning}");
         }
-        if let Some(captioner) = captioner(args, loaded.observer_beta, &engine) {
-            captioner.burn_into(scene, &mut pixels, settings.width, settings.height);
-        }
-        let layers = exr_layers_for(&mut engine, &output, &frame, settings, args.aov)?;
-        let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
-        let (width, height) = (settings.width, settings.height);
-        write_image(width, height, &pixels, layers.as_ref(), &record, &output)?;
         println!("{}", wrote(&output, settings, &engine, start));
         return Ok(());
     };
@@ -131,25 +136,33 @@ struct Sweep {
 }
 
 impl Sweep {
-    /// Renders frame `frame` of the sweep of `editor`'s scene with `engine`: the display colours
-    /// (captioned), and the frame's viewed scene for its other layers.
-    fn render_frame<'e>(
+    /// Sets `editor`'s scene to frame `frame`'s time; the scene then, and the frame's scene in
+    /// the sweep's view.
+    fn frame_scene<'e>(
         &self,
-        engine: &mut Engine,
         editor: &'e mut Editor,
         frame: u32,
-        settings: RenderSettings,
-        empty: &mut EmptyFrames,
-    ) -> anyhow::Result<(Cow<'e, Scene>, Vec<DVec3>)> {
+    ) -> anyhow::Result<(&'e Scene, Cow<'e, Scene>)> {
         editor.set_time(self.time_of(frame))?;
         let editor: &'e Editor = editor;
-        let frame_scene = viewed(self.view, editor.scene())?;
-        let mut pixels = render_pixels(engine, &Frame::new(&frame_scene), settings, false)?;
-        empty.look_at(&frame_scene, &pixels);
-        if let Some(captioner) = &self.captioner {
-            captioner.burn_into(editor.scene(), &mut pixels, settings.width, settings.height);
+        Ok((editor.scene(), viewed(self.view, editor.scene())?))
+    }
+
+    /// The picture of one frame of the sweep: `frame`, captioned from `scene` (the frame's
+    /// scene before its view is applied).
+    fn picture<'p, 'f>(
+        &'p self,
+        frame: &'p Frame<'f>,
+        scene: &'p Scene,
+        settings: RenderSettings,
+    ) -> Picture<'p, 'f> {
+        Picture {
+            frame,
+            captioned: scene,
+            captioner: self.captioner.as_ref(),
+            settings,
+            show_rows: false,
         }
-        Ok((frame_scene, pixels))
     }
 
     /// The observation time of frame `frame` (0-based): evenly spaced, the last at `t1`.
@@ -160,6 +173,157 @@ impl Sweep {
             0.0
         };
         self.t0 + fraction * (self.t1 - self.t0)
+    }
+}
+
+/// One picture to render and write a band of rows at a time, so that it is never held whole
+/// on the CPU (docs/performance.md, "Memory").
+struct Picture<'p, 'f> {
+    /// The frame: the scene in its view.
+    frame: &'p Frame<'f>,
+    /// The scene the caption describes (before its view is applied: its velocities are the
+    /// objects').
+    captioned: &'p Scene,
+    /// The caption's maker, with `--caption`.
+    captioner: Option<&'p Captioner>,
+    /// Size and samples.
+    settings: RenderSettings,
+    /// Whether to show the CPU's row progress (single images; animations count frames).
+    show_rows: bool,
+}
+
+impl Picture<'_, '_> {
+    /// Renders the picture with `engine` and writes it to `path` with `record` (an EXR with its
+    /// radiance, and with `aov` its time channels); whether it was one colour.
+    fn write(
+        &self,
+        engine: &mut Engine,
+        record: &Provenance,
+        aov: bool,
+        path: &Path,
+    ) -> anyhow::Result<OneColour> {
+        let settings = self.settings;
+        let layers = Layers::for_path(path, aov);
+        let mut colours = OneColour::default();
+        let bar = self.row_bar(engine);
+        let band_rows = engine.band_rows(settings);
+        let ink = self.ink();
+        let never = AtomicBool::new(false);
+        let finished = "a render that is never stopped finishes";
+        write_image(
+            (settings.width, settings.height),
+            band_rows,
+            layers,
+            record,
+            path,
+            &mut |rows| {
+                let display = self.display_band(
+                    engine,
+                    rows.clone(),
+                    ink.as_ref(),
+                    &mut colours,
+                    bar.as_ref(),
+                )?;
+                let radiance = layers
+                    .radiance
+                    .then(|| {
+                        engine.render_band(
+                            self.frame,
+                            settings,
+                            rows.clone(),
+                            Output::Radiance,
+                            &|_| {},
+                            &never,
+                        )
+                    })
+                    .transpose()?
+                    .map(|pixels| pixels.expect(finished));
+                let seen = layers
+                    .seen
+                    .then(|| {
+                        engine.render_aov_band(self.frame, settings, rows.clone(), &|_| {}, &never)
+                    })
+                    .transpose()?
+                    .map(|values| values.expect(finished));
+                Ok(Band {
+                    display,
+                    radiance,
+                    seen,
+                })
+            },
+        )?;
+        if let Some(bar) = bar {
+            bar.finish();
+        }
+        Ok(colours)
+    }
+
+    /// Renders the picture's display colours into an 8-bit image, a band of rows at a time
+    /// (for a video's frame); whether it was one colour.
+    fn rgb8(&self, engine: &mut Engine) -> anyhow::Result<(RgbImage, OneColour)> {
+        let settings = self.settings;
+        let mut colours = OneColour::default();
+        let ink = self.ink();
+        let mut bytes = Vec::with_capacity(3 * settings.width as usize * settings.height as usize);
+        for rows in bands(settings.height, engine.band_rows(settings)) {
+            let display = self.display_band(engine, rows, ink.as_ref(), &mut colours, None)?;
+            bytes.extend(display_bytes(&display));
+        }
+        let image = RgbImage::from_raw(settings.width, settings.height, bytes)
+            .expect("one colour per pixel");
+        Ok((image, colours))
+    }
+
+    /// The display colours of `rows`, their colours noted in `colours` before `ink` (the
+    /// caption) is burnt into them; `bar` shows the rows finished.
+    fn display_band(
+        &self,
+        engine: &mut Engine,
+        rows: Range<u32>,
+        ink: Option<&Ink>,
+        colours: &mut OneColour,
+        bar: Option<&DelayedBar>,
+    ) -> anyhow::Result<Vec<DVec3>> {
+        let never = AtomicBool::new(false);
+        let first_row = rows.start;
+        let progress = |done: u32| {
+            if let Some(bar) = bar {
+                bar.set_position(u64::from(first_row + done));
+            }
+        };
+        let mut display = engine
+            .render_band(
+                self.frame,
+                self.settings,
+                rows.clone(),
+                Output::Display,
+                &progress,
+                &never,
+            )?
+            .expect("a render that is never stopped finishes");
+        colours.look_at(&display);
+        if let Some(ink) = ink {
+            ink.burn_into_rows(&mut display, self.settings.width, rows);
+        }
+        Ok(display)
+    }
+
+    /// The caption laid out for the picture, with `--caption`.
+    fn ink(&self) -> Option<Ink> {
+        (self.captioner).map(|captioner| {
+            captioner.ink_for(self.captioned, self.settings.width, self.settings.height)
+        })
+    }
+
+    /// The bar showing the CPU's finished rows, for a single image.
+    fn row_bar(&self, engine: &Engine) -> Option<DelayedBar> {
+        (self.show_rows && matches!(engine, Engine::Cpu)).then(|| {
+            DelayedBar::new(
+                u64::from(self.settings.height),
+                "rows",
+                format!("rendering {}", self.frame.scene().name),
+            )
+        })
     }
 }
 
@@ -192,17 +356,17 @@ fn render_numbered(
     let mut empty = EmptyFrames::default();
     for frame in share {
         let frame_start = Instant::now();
-        let (frame_scene, pixels) =
-            sweep.render_frame(engine, editor, frame, settings, &mut empty)?;
-        let traced = Frame::new(&frame_scene);
+        let (scene, frame_scene) = sweep.frame_scene(editor, frame)?;
         let record = record.with(&[
             ("time", format!("{:?}", sweep.time_of(frame))),
             ("frame", format!("{frame} of 0 to {}", frames - 1)),
         ]);
         let path = numbered(output, frame, digits);
-        let layers = exr_layers_for(engine, &path, &traced, settings, args.aov)?;
-        let (width, height) = (settings.width, settings.height);
-        write_image(width, height, &pixels, layers.as_ref(), &record, &path)?;
+        let frame_of = Frame::new(&frame_scene);
+        let colours = sweep
+            .picture(&frame_of, scene, settings)
+            .write(engine, &record, args.aov, &path)?;
+        empty.look_at(&frame_scene, &colours);
         bar.println(&wrote(&path, settings, engine, frame_start));
         bar.inc();
     }
@@ -222,12 +386,12 @@ struct EmptyFrames {
 }
 
 impl EmptyFrames {
-    /// Takes one frame's `pixels` of `scene` into account.
-    fn look_at(&mut self, scene: &Scene, pixels: &[DVec3]) {
+    /// Takes one frame of `scene` into account, whose pixels were `colours`.
+    fn look_at(&mut self, scene: &Scene, colours: &OneColour) {
         if self.some_seen {
             return;
         }
-        match empty_picture_warning(scene, pixels) {
+        match colours.empty_warning(scene) {
             Some(warning) => {
                 self.first.get_or_insert(warning);
             }
@@ -268,17 +432,21 @@ fn render_video(
     );
     let mut empty = EmptyFrames::default();
     for frame in 0..sweep.frames {
-        let (_, pixels) = sweep.render_frame(engine, editor, frame, settings, &mut empty)?;
-        video.push(&display_rgb8(settings.width, settings.height, &pixels))?;
+        let (scene, frame_scene) = sweep.frame_scene(editor, frame)?;
+        let frame_of = Frame::new(&frame_scene);
+        let (image, colours) = sweep.picture(&frame_of, scene, settings).rgb8(engine)?;
+        empty.look_at(&frame_scene, &colours);
+        video.push(&image)?;
         bar.inc();
     }
     bar.finish();
     empty.report();
     video.finish()?;
     println!(
-        "wrote {} ({} frames at {} fps, ct {:?} to {:?}; {})",
+        "wrote {} ({} frame{} at {} fps, ct {:?} to {:?}; {})",
         output.display(),
         sweep.frames,
+        if sweep.frames == 1 { "" } else { "s" },
         args.video.fps(),
         sweep.t0,
         sweep.t1,
@@ -493,63 +661,4 @@ fn choose_engine(
         eprintln!("note: {note}");
     }
     Ok(chosen.engine)
-}
-
-/// Renders one frame with `engine`: display colours, row-major from the top. `show_rows` shows
-/// the CPU renderer's row progress (for single images; animations count frames instead).
-fn render_pixels(
-    engine: &mut Engine,
-    frame: &Frame<'_>,
-    settings: RenderSettings,
-    show_rows: bool,
-) -> anyhow::Result<Vec<DVec3>> {
-    let never = AtomicBool::new(false);
-    let bar = (show_rows && matches!(engine, Engine::Cpu)).then(|| {
-        DelayedBar::new(
-            u64::from(settings.height),
-            "rows",
-            format!("rendering {}", frame.scene().name),
-        )
-    });
-    let progress = |rows: u32| {
-        if let Some(bar) = &bar {
-            bar.set_position(u64::from(rows));
-        }
-    };
-    let pixels = engine.render(frame, settings, Output::Display, &progress, &never)?;
-    if let Some(bar) = bar {
-        bar.finish();
-    }
-    Ok(pixels.expect("a render that is never stopped finishes"))
-}
-
-/// What an image written to `path` holds beside its display colours, if its format holds more
-/// (EXR): the radiance, rendered by `engine` as the display colours are, and, with `aov`, what
-/// each pixel sees of time ([`Engine::render_aov`]).
-fn exr_layers_for(
-    engine: &mut Engine,
-    path: &Path,
-    frame: &Frame<'_>,
-    settings: RenderSettings,
-    aov: bool,
-) -> anyhow::Result<Option<ExrLayers>> {
-    if OutputFormat::for_path(path).ok() != Some(OutputFormat::Exr) {
-        return Ok(None);
-    }
-    let never = AtomicBool::new(false);
-    let finished = "a render that is never stopped finishes";
-    let radiance = engine.render(frame, settings, Output::Radiance, &|_| {}, &never)?;
-    let seen = if aov {
-        Some(
-            engine
-                .render_aov(frame, settings, &|_| {}, &never)?
-                .expect(finished),
-        )
-    } else {
-        None
-    };
-    Ok(Some(ExrLayers {
-        radiance: radiance.expect(finished),
-        seen,
-    }))
 }

@@ -6,6 +6,7 @@ mod cli;
 #[allow(dead_code)] // each module uses its own share
 mod common;
 mod documents;
+mod memory;
 mod overrides;
 mod video_and_shards;
 mod view;

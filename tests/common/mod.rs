@@ -45,3 +45,23 @@ pub fn assert_clean_failure(output: &Output, mentions: &[&str]) {
         );
     }
 }
+
+/// A named channel of an EXR, as f32 values row-major.
+pub fn exr_channel(path: &Path, name: &str) -> Vec<f32> {
+    use exr::prelude::{FlatSamples, ReadChannels as _, ReadLayers as _, read};
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .expect("srt's EXR reads back");
+    let channel = (image.layer_data.channel_data.list.iter())
+        .find(|channel| channel.name.to_string() == name)
+        .unwrap_or_else(|| panic!("{} has no channel {name}", path.display()));
+    match &channel.sample_data {
+        FlatSamples::F32(values) => values.clone(),
+        other => panic!("{name} is not f32: {other:?}"),
+    }
+}
