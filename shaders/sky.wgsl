@@ -63,9 +63,10 @@ fn star_arriving(star: Star, doppler: f32) -> Arriving {
     return table_light(weight * solid_angle, d * star.direction_temperature.w);
 }
 
-// Where a star lands and what it adds: the pixel of its splat's lower corner, the tent
-// weights' fractions, and its light as the frame's output holds it; visible = false when it is
-// behind the camera (or there is no star: invocation_splat).
+// Where a star lands and what it adds: the output pixel of its splat's lower corner (output
+// pixels are sky.supersampling.x target pixels a side), the tent weights' fractions, and its
+// light as the frame's output holds it; visible = false when it is behind the camera (or there
+// is no star: invocation_splat).
 struct StarSplat {
     visible: bool,
     base: vec2<f32>,
@@ -79,22 +80,34 @@ fn star_splat(i: u32) -> StarSplat {
     let rest = normalize(sky.direction_map * star.direction_temperature.xyz);
     let image = distant_source_image(sky.beta_saturation.xyz, rest);
     let projected = project_direction(image.direction);
-    let corner = projected.xy - vec2<f32>(0.5);
+    let corner = projected.xy / f32(sky.supersampling.x) - vec2<f32>(0.5);
     let base = floor(corner);
     let light = arriving_output(star_arriving(star, image.doppler));
     return StarSplat(projected.z != 0.0, base, corner - base, light);
 }
 
-// Pixel `k` (0–3) of the splat `s`, and what the star adds there; index = −1 outside the image.
+// Target pixel `k` of the splat `s`, and what the star adds there; index = −1 outside the
+// image.
 struct SplatPixel {
     index: i32,
     added: vec3<f32>,
 }
 
-// Pixel `k` of the splat `s` (see SplatPixel).
+// How many target pixels a splat lights: the four output pixels of the tent, each of
+// sky.supersampling.x² target pixels.
+fn splat_pixel_count() -> u32 {
+    let scale = sky.supersampling.x;
+    return 4u * scale * scale;
+}
+
+// Target pixel `k` (below splat_pixel_count()) of the splat `s` (see SplatPixel): the star adds
+// its output pixel's tent weight of its light to each target pixel of that output pixel.
 fn splat_pixel(s: StarSplat, k: u32) -> SplatPixel {
-    let offset = vec2<f32>(f32(k & 1u), f32(k >> 1u));
-    let p = s.base + offset;
+    let scale = sky.supersampling.x;
+    let corner = k / (scale * scale);
+    let sub = k % (scale * scale);
+    let offset = vec2<f32>(f32(corner & 1u), f32(corner >> 1u));
+    let p = (s.base + offset) * f32(scale) + vec2<f32>(f32(sub % scale), f32(sub / scale));
     let size = frame_uniforms.viewport.xy;
     if (any(p < vec2<f32>(0.0)) || any(p >= size)) {
         return SplatPixel(-1, vec3<f32>(0.0));
@@ -125,7 +138,7 @@ fn sky_star_peaks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     if (!s.visible) {
         return;
     }
-    for (var k = 0u; k < 4u; k++) {
+    for (var k = 0u; k < splat_pixel_count(); k++) {
         let pixel = splat_pixel(s, k);
         let magnitude = abs(pixel.added);
         let peak = max(magnitude.x, max(magnitude.y, magnitude.z));
@@ -142,7 +155,7 @@ fn sky_stars(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgrou
     if (!s.visible) {
         return;
     }
-    for (var k = 0u; k < 4u; k++) {
+    for (var k = 0u; k < splat_pixel_count(); k++) {
         let pixel = splat_pixel(s, k);
         if (pixel.index < 0) {
             continue;

@@ -298,6 +298,10 @@ struct SkyUniforms {
     direction_unmap: mat3x3<f32>,
     // The sky image's brightness factor (x); yzw unused.
     image: vec4<f32>,
+    // Supersampling (x): each output pixel is x × x target pixels, and a star lights every
+    // target pixel of the output pixels around it (srt_trace::star_layer's tent at the output's
+    // size), as the CPU reference adds it to every sample of them; yzw unused.
+    supersampling: vec4<u32>,
 }
 
 // The kernel probes of probe.wgsl (srt_gpu::probe).

@@ -215,8 +215,8 @@ impl Engine {
                 });
             }
         };
-        // Each output pixel averages scale² rendered pixels; a star lands in one of them.
-        renderer.set_star_light_scale(f64::from(scale * scale));
+        // Each output pixel averages scale² rendered pixels; a star lights all of them.
+        renderer.set_supersampling(scale);
         Ok(Chosen {
             engine: Self::Gpu {
                 context,

@@ -8,5 +8,6 @@ mod common;
 mod documents;
 mod memory;
 mod overrides;
+mod supersampling;
 mod video_and_shards;
 mod view;

@@ -200,12 +200,12 @@ impl SkyResources {
         Ok(())
     }
 
-    /// Writes the sky's uniforms for `scene` (its motion relative to the observer now), each
-    /// star's light multiplied by `light_scale` (see [`crate::GpuRenderer::set_star_light_scale`]):
-    /// the saturation magnitude moves by 2.5 log₁₀ of it (Pogson).
-    pub fn write_uniforms(&self, ctx: &GpuContext, scene: &Scene, light_scale: f64) {
+    /// Writes the sky's uniforms for `scene` (its motion relative to the observer now), for a
+    /// target of `supersampling` × `supersampling` pixels per output pixel (see
+    /// [`crate::GpuRenderer::set_supersampling`]).
+    pub fn write_uniforms(&self, ctx: &GpuContext, scene: &Scene, supersampling: u32) {
         let sky = &scene.sky;
-        let saturation = sky.saturation_magnitude + 2.5 * light_scale.log10();
+        let saturation = sky.saturation_magnitude;
         let (width, height) = self.image_size.unwrap_or((0, 0));
         let uniforms = SkyUniforms {
             beta_saturation: vec4(sky.beta, saturation),
@@ -218,6 +218,7 @@ impl SkyResources {
             direction_map: mat3(sky.direction_map),
             direction_unmap: mat3(sky.direction_map.inverse()),
             image: [sky.image_brightness as f32, 0.0, 0.0, 0.0],
+            supersampling: [supersampling.max(1), 0, 0, 0],
         };
         ctx.queue
             .write_buffer(&self.uploaded.uniforms, 0, bytemuck::bytes_of(&uniforms));

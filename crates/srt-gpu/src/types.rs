@@ -451,6 +451,9 @@ pub struct SkyUniforms {
     pub direction_unmap: [[f32; 4]; 3],
     /// The sky image's brightness factor (x).
     pub image: [f32; 4],
+    /// Supersampling (x): each output pixel is x × x target pixels
+    /// ([`crate::GpuRenderer::set_supersampling`]); yzw unused.
+    pub supersampling: [u32; 4],
 }
 
 /// A 3×3 matrix as WGSL's `mat3x3<f32>` lays it out: three columns of `vec4` alignment.

@@ -124,7 +124,7 @@ fn table() -> Vec<Twin> {
         twin!(LightUniforms => "LightUniforms" { lamp, counts, moving }),
         twin!(GpuShadowObject => "ShadowObject" { observer_to_rest, offset, bvh }),
         twin!(GpuStar => "Star" { direction_temperature, magnitude }),
-        twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts, direction_map, direction_unmap, image }),
+        twin!(SkyUniforms => "SkyUniforms" { beta_saturation, counts, direction_map, direction_unmap, image, supersampling }),
         twin!(GpuPhysicsProbeInput => "PhysicsProbeInput" { frame, event, rest_event, point, direction, view, propagation, direction_rest, incident, outgoing }),
         twin!(GpuPhysicsProbeOutput => "PhysicsProbeOutput" { to_observer, to_rest, emission_event, apparent_position, apparent_tangent, aberrate, ray_origin, ray_direction, scalars }),
         twin!(GpuSpectralProbeInput => "SpectralProbeInput" { rgb_temperature, factors, bands }),

@@ -37,7 +37,7 @@ impl super::GpuRenderer {
             return Err(GpuError::SceneChanged);
         }
         if let Some(sky) = &self.sky {
-            sky.write_uniforms(ctx, scene, self.star_light_scale);
+            sky.write_uniforms(ctx, scene, self.supersampling);
         }
         let (width, height) = self.size();
         let observer = &scene.observer;

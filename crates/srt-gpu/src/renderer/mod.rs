@@ -214,8 +214,8 @@ pub struct GpuRenderer {
     sky: Option<SkyResources>,
     /// Every object's BVH for the shadows of moving lights, if the scene has moving lights.
     shadows: Option<ShadowScene>,
-    /// Factor on every star's light ([`GpuRenderer::set_star_light_scale`]).
-    star_light_scale: f64,
+    /// Target pixels per output pixel along each side ([`GpuRenderer::set_supersampling`]).
+    supersampling: u32,
     /// Whether the LRT pass counts its fragments.
     count_fragments: bool,
     /// Whether the LRT draws take their vertex counts from the proxy pass
@@ -297,7 +297,7 @@ impl GpuRenderer {
             targets: Targets::new(ctx, width, height, &pipelines, &frame)?,
             sky: SkyResources::new(ctx, scene, width, height)?,
             shadows,
-            star_light_scale: 1.0,
+            supersampling: 1,
             pipelines,
             frame,
             objects,
@@ -311,12 +311,12 @@ impl GpuRenderer {
         Ok(renderer)
     }
 
-    /// Multiplies every star's light by `scale` (default 1). A caller that renders at k× the
-    /// output size and box-filters down (supersampling) sets k², so that each star brings the
-    /// same light to the output pixels as in the CPU reference, where it lands in one output
-    /// pixel's samples.
-    pub fn set_star_light_scale(&mut self, scale: f64) {
-        self.star_light_scale = scale;
+    /// Tells the renderer that its target is `scale`× the output size along each side (a
+    /// caller that box-filters it down: supersampling; default 1). A star then lights every
+    /// target pixel of the output pixels around it, as the CPU reference adds its light to every
+    /// sample of those pixels, so that a bright star clamps as it does there.
+    pub fn set_supersampling(&mut self, scale: u32) {
+        self.supersampling = scale.max(1);
     }
 
     /// Makes the LRT passes count the fragments they run and shade
