@@ -63,11 +63,11 @@ const MAX_H264_SIZE: (u32, u32) = (3840, 2160);
 /// The most pixels of a GIF frame srt writes, 8192 × 8192: the frame and the colour
 /// quantiser's copies hold about 9 bytes a pixel (601 MB measured for one 8192 × 8192 frame),
 /// so that a GIF stays within srt's memory bound of 2 GiB (docs/performance.md, "Memory").
-pub const MAX_GIF_PIXELS: u64 = 8192 * 8192;
+const MAX_GIF_PIXELS: u64 = 8192 * 8192;
 
 /// Checks that a `width` × `height` picture can be stored as `format`: H.264 (4:2:0) needs even
 /// sizes and OpenH264 at most 3840×2160 (either way round), a GIF at most 65535 pixels a side
-/// and [`MAX_GIF_PIXELS`] in all.
+/// and 8192 × 8192 pixels in all (`MAX_GIF_PIXELS`).
 /// `origin` says where the size came from (options or a file) for the message.
 ///
 /// # Errors
