@@ -33,13 +33,13 @@ pub const BAND_PIXELS: u64 = 1 << 20;
 /// tiles that hold at most [`crate::tiles::GPU_TILE_BYTES`] (docs/performance.md, "Memory").
 pub const MEMORY_BOUND: u64 = 2 << 30;
 
+/// Bands are whole multiples of this many rows: an EXR's ZIP blocks of 16 scan lines.
+pub const BAND_ROW_MULTIPLE: u32 = 16;
+
 /// The GPU's supersampling for `samples` per pixel: it renders at this many times the size.
 fn supersampling_scale(samples: u32) -> u32 {
     f64::from(samples).sqrt().ceil() as u32
 }
-
-/// Bands are whole multiples of this many rows: an EXR's ZIP blocks of 16 scan lines.
-pub const BAND_ROW_MULTIPLE: u32 = 16;
 
 /// Which renderer draws the display colours.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

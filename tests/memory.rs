@@ -7,7 +7,7 @@ use std::process::Command;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
-use crate::common::{exr_channel, folder, srt, stderr};
+use crate::common::{builtin_scene, exr_channel, folder, srt, stderr};
 use srt::engine::{aov_values, channel_f32, display_as_linear};
 use srt_trace::{RenderSettings, Tracer};
 
@@ -21,11 +21,7 @@ fn a_picture_written_in_bands_is_the_whole_picture() {
         let output = srt(&[&["render", "fig4"][..], &size, file].concat(), dir.path());
         assert!(output.status.success(), "{}", stderr(&output));
     }
-    let scene = srt_scene::SceneSource::resolve("fig4")
-        .unwrap()
-        .load(None)
-        .unwrap()
-        .scene;
+    let scene = builtin_scene("fig4");
     let tracer = Tracer::new(&scene);
     let settings = RenderSettings {
         width: 4096,
@@ -173,11 +169,7 @@ fn gpu_tiles_give_the_whole_frame() {
     if srt_gpu::context_or_skip("gpu_tiles_give_the_whole_frame").is_none() {
         return;
     }
-    let scene = srt_scene::SceneSource::resolve("teaser")
-        .unwrap()
-        .load(None)
-        .unwrap()
-        .scene;
+    let scene = builtin_scene("teaser");
     let settings = RenderSettings {
         width: 160,
         height: 90,

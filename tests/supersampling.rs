@@ -6,6 +6,7 @@
 
 use std::sync::atomic::AtomicBool;
 
+use crate::common::builtin_scene;
 use srt::engine::{Backend, Engine, Frame};
 use srt_gpu::Method;
 use srt_trace::{Output, RenderSettings, Tracer};
@@ -17,11 +18,7 @@ fn supersampled_stars_are_as_bright_on_the_gpu_as_on_the_cpu() {
     {
         return;
     }
-    let scene = srt_scene::SceneSource::resolve("flythrough")
-        .unwrap()
-        .load(None)
-        .unwrap()
-        .scene;
+    let scene = builtin_scene("flythrough");
     for samples in [4, 25] {
         let settings = RenderSettings {
             width: 700,

@@ -65,3 +65,12 @@ pub fn exr_channel(path: &Path, name: &str) -> Vec<f32> {
         other => panic!("{name} is not f32: {other:?}"),
     }
 }
+
+/// The built-in scene `name`, built as `srt render NAME` builds it without options.
+pub fn builtin_scene(name: &str) -> srt_scene::Scene {
+    srt_scene::SceneSource::resolve(name)
+        .unwrap()
+        .load(None)
+        .unwrap()
+        .scene
+}
