@@ -11,9 +11,10 @@ use anyhow::{Context as _, bail};
 use glam::DVec3;
 use srt_color::srgb_decode;
 use srt_gpu::limits::DeviceLimits;
+use srt_gpu::renderer::check_per_pixel_resources;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 
-use crate::tiles::{Tiling, assemble};
+use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
 use srt_scene::Scene;
 use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
 
@@ -32,9 +33,6 @@ pub const BAND_PIXELS: u64 = 1 << 20;
 /// CPU renders a band of rows at a time, far below it at any size srt accepts; the GPU draws in
 /// tiles that hold at most [`crate::tiles::GPU_TILE_BYTES`] (docs/performance.md, "Memory").
 pub const MEMORY_BOUND: u64 = 2 << 30;
-
-/// Bands are whole multiples of this many rows: an EXR's ZIP blocks of 16 scan lines.
-pub const BAND_ROW_MULTIPLE: u32 = 16;
 
 /// The GPU's supersampling for `samples` per pixel: it renders at this many times the size.
 fn supersampling_scale(samples: u32) -> u32 {
@@ -188,7 +186,7 @@ impl Engine {
         let limits = DeviceLimits::of(&context);
         let texel_bytes = srt_gpu::readback::texel_bytes(context.color_format)?;
         let tiling = Tiling::new(width, height, scale, |tile_width, tile_height| {
-            (limits.check_per_pixel_resources(tile_width, tile_height, texel_bytes)).is_ok()
+            check_per_pixel_resources(&limits, tile_width, tile_height, texel_bytes).is_ok()
         });
         let (big_width, big_height) = (tiling.tile_width * scale, tiling.tile_height * scale);
         let mut renderer = match GpuRenderer::new(&context, scene, big_width, big_height) {

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
-use srt::engine::{AOV_CHANNELS, BAND_ROW_MULTIPLE, channel_f32, display_as_linear};
+use srt::engine::{AOV_CHANNELS, channel_f32, display_as_linear};
+use srt::tiles::BAND_ROW_MULTIPLE;
 use srt_color::quantize_8bit;
 use srt_scene::message::io_reason;
 

@@ -1,19 +1,21 @@
 //! How the GPU draws a picture larger than it can hold at once: in tiles, each a window of the
 //! supersampled picture ([`srt_gpu::projection::ImageWindow`]: the same ray through each pixel
 //! as in the whole picture), all of one size so that the render targets are made once. A row
-//! of tiles is a band of the picture ([`crate::engine::Engine::band_rows`]); the last column and
+//! of tiles is a band of the picture (`Engine::band_rows` in the engine module); the last column and
 //! the last row of tiles are moved back inside the picture and overlap their neighbours.
 //!
 //! A tile is at most the adapter's largest texture a side, and a tile with the band it fills
 //! holds at most [`GPU_TILE_BYTES`] of host memory, so that the GPU draws every size srt
-//! accepts within [`crate::engine::MEMORY_BOUND`]. A picture that fits one tile is drawn whole,
+//! accepts within `MEMORY_BOUND` (the engine module). A picture that fits one tile is drawn whole,
 //! without a window, exactly as before tiles existed.
 
 use std::ops::Range;
 
 use srt_gpu::projection::ImageWindow;
 
-use crate::engine::BAND_ROW_MULTIPLE;
+/// Bands of a picture written a band at a time, and rows of tiles, are whole multiples of this
+/// many rows: an EXR's ZIP blocks of 16 scan lines.
+pub const BAND_ROW_MULTIPLE: u32 = 16;
 
 /// Host memory per pixel of the GPU's target while it draws and reads back a frame: 86 bytes
 /// measured on lavapipe (`srt render --backend gpu` at 4096×2048: 880 MB, 339 MB at 2048×1024;
@@ -26,7 +28,7 @@ pub const GPU_BYTES_PER_TARGET_PIXEL: u64 = 96;
 pub const GPU_BYTES_PER_OUTPUT_PIXEL: u64 = 72;
 
 /// The most host memory one tile's target and the band it fills may hold (1.5 GiB, leaving the
-/// rest of [`crate::engine::MEMORY_BOUND`] to the scene): 3840×2160 at one sample is one tile.
+/// rest of `MEMORY_BOUND` (the engine module) to the scene): 3840×2160 at one sample is one tile.
 pub const GPU_TILE_BYTES: u64 = 3 << 29;
 
 /// The tile size, in output pixels, of a `width` × `height` picture drawn at `scale`× the size

@@ -128,23 +128,6 @@ impl DeviceLimits {
         )
     }
 
-    /// Checks everything a `width` × `height` render target holds per pixel: the target
-    /// ([`DeviceLimits::check_render_target`]) and the star light a sky splats per pixel
-    /// (`crate::sky`), whether or not the scene has a sky, for choosing a tile size that every
-    /// scene can use.
-    ///
-    /// # Errors
-    /// [`GpuError::ExceedsLimit`] naming the first limit exceeded.
-    pub fn check_per_pixel_resources(
-        &self,
-        width: u32,
-        height: u32,
-        texel_bytes: u32,
-    ) -> Result<(), GpuError> {
-        self.check_render_target(width, height, texel_bytes)?;
-        crate::sky::check_star_light(self, width, height)
-    }
-
     /// The workgroup grid (x, y) that runs `invocations` invocations in workgroups of
     /// `workgroup_size`, x as large as allowed (`what` names the pass).
     ///

@@ -64,16 +64,7 @@ impl super::GpuRenderer {
                 1.0 / width as f32,
                 1.0 / height as f32,
             ],
-            picture: self
-                .window
-                .map_or([width as f32, height as f32, 0.0, 0.0], |window| {
-                    [
-                        window.image_width as f32,
-                        window.image_height as f32,
-                        window.left as f32,
-                        window.top as f32,
-                    ]
-                }),
+            picture: self.picture_uniform(),
             effects: EffectsCode::from(scene.effects),
             footprint_shape: FootprintCode::from(footprint),
             depth_scale: LRT_DEPTH_SCALE,
@@ -305,6 +296,21 @@ impl super::GpuRenderer {
                 }
             })
             .collect()
+    }
+
+    /// `FrameUniforms::picture`: the whole picture's size and the target's first column and
+    /// row in it (the target itself unless it holds a window).
+    fn picture_uniform(&self) -> [f32; 4] {
+        let (width, height) = self.size();
+        self.window
+            .map_or([width as f32, height as f32, 0.0, 0.0], |window| {
+                [
+                    window.image_width as f32,
+                    window.image_height as f32,
+                    window.left as f32,
+                    window.top as f32,
+                ]
+            })
     }
 
     /// The indices of the objects of `scene` that may be seen in this frame, nearest first

@@ -201,6 +201,23 @@ pub struct FragmentCounts {
     pub nearer_than_footprint: u64,
 }
 
+/// Checks, against `limits`, everything a `width` × `height` render target holds per pixel:
+/// the target itself ([`DeviceLimits::check_render_target`], texels of `texel_bytes`) and the
+/// star light a sky splats per pixel, whether or not the scene has a sky, for choosing a tile
+/// size that every scene can use.
+///
+/// # Errors
+/// [`GpuError::ExceedsLimit`] naming the first limit exceeded.
+pub fn check_per_pixel_resources(
+    limits: &DeviceLimits,
+    width: u32,
+    height: u32,
+    texel_bytes: u32,
+) -> Result<(), GpuError> {
+    limits.check_render_target(width, height, texel_bytes)?;
+    crate::sky::check_star_light(limits, width, height)
+}
+
 /// A scene uploaded to the GPU, ready to render.
 pub struct GpuRenderer {
     /// The context's pipelines, shared with its other renderers ([`GpuContext::pipelines`]).
