@@ -32,10 +32,12 @@ pub const OUT_DIR: &str = "target/web";
 const PAGE_DIR: &str = "crates/srt-web/web";
 
 /// The browser test's cases: a scene and more of the address, at [`TEST_SIZE`].
-const TEST_CASES: [&str; 3] = [
+const TEST_CASES: [&str; 4] = [
     "scene=fig7",
     "scene=teaser&effects=searchlight",
     "scene=rolling-wheel",
+    // A full-sky embed: the ray tracer on WebGPU, every pixel in the equirectangular projection.
+    "scene=rolling-wheel&projection=equirectangular",
 ];
 
 /// The canvas size of the browser test, in pixels.

@@ -17,6 +17,8 @@ const state = {
   effects: null,
   colour: null,
   exposure: null,
+  projection: null,       // 'equirectangular', 'fisheye:FOV', …
+  set: [],                // the address's `set=KEY=VALUE` entries, in order
   method: 'auto',
   split: false,
   playing: false,
@@ -56,6 +58,8 @@ function query() {
   if (state.effects) q.set('effects', state.effects);
   if (state.colour) q.set('colour', state.colour);
   if (state.exposure !== null) q.set('exposure', String(state.exposure));
+  if (state.projection) q.set('projection', state.projection);
+  for (const entry of state.set) q.append('set', entry);
   q.set('method', state.method);
   if (state.split) q.set('split', '1');
   return q.toString();
@@ -379,6 +383,8 @@ async function main() {
   if (params.has('effects')) state.effects = params.get('effects');
   if (params.has('colour')) state.colour = params.get('colour');
   if (params.has('exposure')) state.exposure = Number(params.get('exposure'));
+  if (params.has('projection')) state.projection = params.get('projection');
+  state.set = params.getAll('set');
   state.method = settings.method;
   state.split = settings.split;
 
