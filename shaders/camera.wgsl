@@ -1,16 +1,20 @@
-// camera.wgsl — the pinhole camera of frame_uniforms (declared by the module that binds it:
-// render_bindings.wgsl or sky.wgsl): the viewing direction through a pixel and its inverse.
+// camera.wgsl — the camera of frame_uniforms (declared by the module that binds it:
+// render_bindings.wgsl or sky.wgsl): the viewing direction through a pixel and its inverse, in
+// the frame's projection (PROJECTION_*): the pinhole, or a wide projection of the whole picture
+// (equirectangular, fisheye), whose conventions are srt_scene::Projection's.
 
-// The pinhole camera as view_direction uses it, from frame_uniforms or carried to a fragment
-// shader in flat varyings (lrt.wgsl: llvmpipe reads a storage buffer in a fragment shader one
-// lane at a time).
+// The camera as view_direction uses it, from frame_uniforms or carried to a fragment shader in
+// flat varyings (lrt.wgsl: llvmpipe reads a storage buffer in a fragment shader one lane at a
+// time). For a wide projection forward, right and up are the observer's unit basis.
 struct ViewCamera {
-    // Through the target's centre: the observer's forward, moved by the window's offset where
-    // the target holds a window of a larger picture (srt_gpu::projection::TargetCamera).
+    // The pinhole's ray through the target's centre: the observer's forward, moved by the
+    // window's offset where the target holds a window of a larger picture
+    // (srt_gpu::projection::TargetCamera).
     forward: vec3<f32>,
-    // Scaled by tan(fov/2)·aspect (and by the target's share of the picture's width).
+    // The pinhole's: scaled by tan(fov/2)·aspect (and by the target's share of the picture's
+    // width).
     right: vec3<f32>,
-    // Scaled by tan(fov/2) (and by the target's share of the picture's height).
+    // The pinhole's: scaled by tan(fov/2) (and by the target's share of the picture's height).
     up: vec3<f32>,
     // 1/width and 1/height in pixels⁻¹ (frame_uniforms.viewport.zw).
     inverse_size: vec2<f32>,
@@ -35,8 +39,12 @@ fn view_direction(pixel: vec2<f32>) -> vec3<f32> {
     return camera_view_direction(frame_camera(), pixel);
 }
 
-// view_direction for `camera`.
+// view_direction for `camera`; for a wide projection the unit direction, or 0 where the picture
+// sees nothing (sees_nothing).
 fn camera_view_direction(camera: ViewCamera, pixel: vec2<f32>) -> vec3<f32> {
+    if (frame_uniforms.projection != PROJECTION_PERSPECTIVE) {
+        return wide_direction(picture_ndc(pixel), camera.forward, camera.right, camera.up);
+    }
     let ndc = vec2<f32>(
         2.0 * pixel.x * camera.inverse_size.x - 1.0,
         1.0 - 2.0 * pixel.y * camera.inverse_size.y,
@@ -45,12 +53,15 @@ fn camera_view_direction(camera: ViewCamera, pixel: vec2<f32>) -> vec3<f32> {
 }
 
 // Pixel position (x right, y down, pixel centres at half-integers) of the direction `d` in S in
-// xy; z = 1 in front of the camera, 0 behind. The inverse of view_direction; mirror of
+// xy; z = 1 in front of the camera, 0 behind (outside a fisheye's field). The inverse of view_direction; mirror of
 // srt_trace::project.
 fn project_direction(d: vec3<f32>) -> vec3<f32> {
     let forward = frame_uniforms.camera_forward.xyz;
     let right = frame_uniforms.camera_right.xyz;
     let up = frame_uniforms.camera_up.xyz;
+    if (frame_uniforms.projection != PROJECTION_PERSPECTIVE) {
+        return wide_image_point(d, forward, right, up);
+    }
     let depth = dot(d, forward);
     if (depth <= 0.0) {
         return vec3<f32>(0.0);
@@ -62,6 +73,73 @@ fn project_direction(d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(
         0.5 * (ndc.x + 1.0) * frame_uniforms.viewport.x,
         0.5 * (1.0 - ndc.y) * frame_uniforms.viewport.y,
+        1.0,
+    );
+}
+
+// The point of the whole picture (normalised device coordinates, x right, y up) at the target's
+// framebuffer position `pixel`: the target is the picture's window from
+// (frame_uniforms.picture.zw) on, in a picture of frame_uniforms.picture.xy pixels.
+fn picture_ndc(pixel: vec2<f32>) -> vec2<f32> {
+    let p = pixel + frame_uniforms.picture.zw;
+    return vec2<f32>(2.0 * p.x / frame_uniforms.picture.x - 1.0, 1.0 - 2.0 * p.y / frame_uniforms.picture.y);
+}
+
+// Whether the picture sees nothing at the framebuffer position `pixel` (outside a fisheye's
+// circle): the background there, and no object.
+fn sees_nothing(pixel: vec2<f32>) -> bool {
+    return frame_uniforms.projection == PROJECTION_FISHEYE && length(picture_ndc(pixel)) > 1.0;
+}
+
+// The unit direction through the point `ndc` of a wide projection for the unit basis (forward,
+// right, up), or 0 outside a fisheye's circle; mirror of srt_scene::Projection::wide_direction.
+fn wide_direction(ndc: vec2<f32>, forward: vec3<f32>, right: vec3<f32>, up: vec3<f32>) -> vec3<f32> {
+    if (frame_uniforms.projection == PROJECTION_EQUIRECTANGULAR) {
+        let longitude = PI * ndc.x;
+        let latitude = 0.5 * PI * ndc.y;
+        let horizontal = cos(longitude) * forward + sin(longitude) * right;
+        return cos(latitude) * horizontal + sin(latitude) * up;
+    }
+    let rho = length(ndc);
+    if (rho > 1.0) {
+        return vec3<f32>(0.0);
+    }
+    let angle = rho * frame_uniforms.fisheye_half_fov;
+    var across = vec3<f32>(0.0);
+    if (rho > 0.0) {
+        across = (ndc.x * right + ndc.y * up) / rho;
+    }
+    return cos(angle) * forward + sin(angle) * across;
+}
+
+// project_direction for a wide projection: the target pixel where `d` is seen (z = 1), or z = 0
+// outside a fisheye's field; mirror of srt_scene::Projection::wide_image_point. Angles come from
+// atan2 alone: llvmpipe's asin and acos are far less precise (a star's tent weights moved by a
+// few hundredths of a pixel with asin).
+fn wide_image_point(d: vec3<f32>, forward: vec3<f32>, right: vec3<f32>, up: vec3<f32>) -> vec3<f32> {
+    let unit = normalize(d);
+    let along = dot(unit, forward);
+    let across = dot(unit, right);
+    let above = dot(unit, up);
+    var ndc: vec2<f32>;
+    if (frame_uniforms.projection == PROJECTION_EQUIRECTANGULAR) {
+        ndc = vec2<f32>(atan2(across, along) / PI, atan2(above, length(vec2<f32>(along, across))) / (0.5 * PI));
+    } else {
+        let sideways = vec2<f32>(across, above);
+        let rho = atan2(length(sideways), along) / frame_uniforms.fisheye_half_fov;
+        if (rho > 1.0) {
+            return vec3<f32>(0.0);
+        }
+        var azimuth = vec2<f32>(1.0, 0.0);
+        if (dot(sideways, sideways) > 0.0) {
+            azimuth = normalize(sideways);
+        }
+        ndc = rho * azimuth;
+    }
+    let picture = frame_uniforms.picture;
+    return vec3<f32>(
+        0.5 * (ndc.x + 1.0) * picture.x - picture.z,
+        0.5 * (1.0 - ndc.y) * picture.y - picture.w,
         1.0,
     );
 }

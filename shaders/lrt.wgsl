@@ -286,6 +286,15 @@ fn lrt_shade_lean(in: LeanVarying) -> @location(0) vec4<f32> {
     return shaded(full_varying(in, false));
 }
 
+// The viewing direction through the pixel `step` away from `pixel`, for texture differentials;
+// beyond a fisheye's rim, `pixel`'s own (no footprint that way, as the CPU takes it).
+fn neighbour_direction(pixel: vec2<f32>, step: vec2<f32>) -> vec3<f32> {
+    if (sees_nothing(pixel + step)) {
+        return view_direction(pixel);
+    }
+    return view_direction(pixel + step);
+}
+
 // The colour of the shading pass's fragment: the kept triangle's, shaded.
 fn shaded(in: LrtVarying) -> vec4<f32> {
     let pixel = in.position.xy;
@@ -327,8 +336,8 @@ fn shaded(in: LrtVarying) -> vec4<f32> {
         if (object.style.x <= 0.0) {
             // The neighbours' rays start where this pixel's does; only their directions differ.
             let plane = plane_rays(h.ray.origin, corners);
-            let hx = plane_barycentric(plane, rest_propagation_unscaled(object.frame, view_direction(pixel + vec2<f32>(1.0, 0.0))));
-            let hy = plane_barycentric(plane, rest_propagation_unscaled(object.frame, view_direction(pixel + vec2<f32>(0.0, 1.0))));
+            let hx = plane_barycentric(plane, rest_propagation_unscaled(object.frame, neighbour_direction(pixel, vec2<f32>(1.0, 0.0))));
+            let hy = plane_barycentric(plane, rest_propagation_unscaled(object.frame, neighbour_direction(pixel, vec2<f32>(0.0, 1.0))));
             uv.ddx = select(vec2<f32>(0.0), uv_at(uvs, hx.zeta, hx.xi) - uv.uv, hx.found);
             uv.ddy = select(vec2<f32>(0.0), uv_at(uvs, hy.zeta, hy.xi) - uv.uv, hy.found);
         }

@@ -616,6 +616,18 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         return;
     }
     let rest = triangle_corners(t);
+    // A wide projection has no screen-space footprint of the pinhole: only the ray tracer's
+    // boxes come here (srt_gpu::Method::cannot_draw), and the box's first triangle covers the
+    // whole picture, so that each pixel traces the object's BVH once, whatever its direction.
+    if (frame_uniforms.projection != PROJECTION_PERSPECTIVE) {
+        footprint_depth = nearest_depth(rest);
+        if (t == 0u) {
+            store_footprint(t, t, whole_screen_footprint());
+        } else {
+            store_footprint(t, t, Footprint());
+        }
+        return;
+    }
     // Back-face culling in S′, exact for closed meshes: every viewing ray starts at the
     // observer's rest-frame position, so a triangle facing away from it is hidden behind the
     // rest of the solid. An empty footprint draws nothing.

@@ -192,6 +192,9 @@ fn rt_visible(in: LrtVarying) -> VisibilityOutput {
     if (COUNT_FRAGMENTS) {
         atomicAdd(&fragment_count[0], 1u);
     }
+    if (sees_nothing(in.position.xy)) {
+        discard;
+    }
     let ray = varying_ray(in);
     var hit: BvhHit;
     if (motion_kind() == MOTION_REST) {

@@ -37,8 +37,6 @@ override WORKGROUP_SIZE: u32;
 // The colour temperature of a sky image's light (srt_scene::sky::SKY_IMAGE_WHITE_K).
 override SKY_IMAGE_WHITE_K: f32;
 
-const PI: f32 = 3.14159265358979;
-
 // u32 words of star light per pixel: the peak, then R, G, B (twin of
 // srt_gpu::sky::STAR_LIGHT_WORDS_PER_PIXEL).
 const STAR_LIGHT_WORDS_PER_PIXEL: u32 = 4u;
@@ -277,6 +275,10 @@ fn sky_compose(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32>
     // Where no object is seen, the seen-event outputs write their "nothing" (the background).
     if (frame_uniforms.output == OUTPUT_SEEN_EVENT || frame_uniforms.output == OUTPUT_SEEN_OBJECT) {
         return frame_uniforms.background;
+    }
+    // Outside a fisheye's circle the picture sees nothing: the background alone.
+    if (sees_nothing(position.xy)) {
+        return output_pixel(frame_uniforms.background.rgb);
     }
     let stars = star_light_at(u32(position.y) * u32(frame_uniforms.viewport.x) + u32(position.x));
     let image = arriving_output(sky_image_light(view_direction(position.xy)));

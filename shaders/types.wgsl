@@ -55,6 +55,15 @@ const DRAW_ARGS_PIECES_TAKEN: u32 = 8u;
 const DRAW_ARGS_BOUND: u32 = 9u;
 const DRAW_ARGS_WORDS: u32 = 13u;
 
+// How the picture's points map to viewing directions (FrameUniforms.projection; twins of
+// srt_gpu::types::ProjectionCode, after srt_scene::Projection): the pinhole, the full sphere
+// (longitude across, latitude up) and the azimuthal equidistant fisheye.
+const PROJECTION_PERSPECTIVE: u32 = 0u;
+const PROJECTION_EQUIRECTANGULAR: u32 = 1u;
+const PROJECTION_FISHEYE: u32 = 2u;
+
+const PI: f32 = 3.14159265358979;
+
 // Per image: camera, observer, light, shading and colour-table parameters.
 struct FrameUniforms {
     // S → clip space (NDC depth in [0, 1], y up).
@@ -103,6 +112,12 @@ struct FrameUniforms {
     searchlight_ln_y: f32,
     // One of OUTPUT_* (light.wgsl): display colours or radiance.
     output: u32,
+    // One of PROJECTION_*: how the picture's points map to viewing directions (camera.wgsl).
+    projection: u32,
+    // Half the fisheye's field of view in radians (PROJECTION_FISHEYE; 0 otherwise).
+    fisheye_half_fov: f32,
+    // Unused: keeps `radiance` on its 16-byte boundary.
+    projection_padding: vec2<u32>,
     // How light becomes radiance (light.wgsl, arriving_radiance): ln Y of the lamp's black body,
     // 1/g, 1 where brightness follows luminance else 0, the largest value the target holds.
     radiance: vec4<f32>,

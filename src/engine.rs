@@ -15,7 +15,7 @@ use srt_gpu::renderer::check_per_pixel_resources;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 
 use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
-use srt_scene::Scene;
+use srt_scene::{Projection, Scene};
 use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
@@ -215,6 +215,13 @@ impl Engine {
         };
         // Each output pixel averages scale² rendered pixels; a star lights all of them.
         renderer.set_supersampling(scale);
+        let projection = scene.observer.projection;
+        let note = (method == Method::Auto && projection != Projection::Perspective).then(|| {
+            format!(
+                "auto traces every object by the ray tracer (rt) in the {projection} projection: \
+                 the local ray tracer's footprints are drawn through the pinhole"
+            )
+        });
         Ok(Chosen {
             engine: Self::Gpu {
                 context,
@@ -222,7 +229,7 @@ impl Engine {
                 tiling,
                 method,
             },
-            note: None,
+            note,
         })
     }
 

@@ -724,6 +724,67 @@ fn a_picture_beyond_the_texture_limit_is_drawn_on_the_gpu_in_tiles() {
     );
 }
 
+/// A wide projection renders on the GPU by the ray tracer: `auto` says it traces every object
+/// and gives the CPU's picture to within validate's tolerance (2 steps, 0.1 % of the pixels);
+/// the local ray tracer refuses it on the GPU with the reason, and `auto` backend hands it to
+/// the CPU saying why.
+#[test]
+fn a_wide_projection_is_traced_on_the_gpu() {
+    let dir = folder();
+    let args = [
+        "render",
+        "flythrough",
+        "--projection",
+        "equirectangular",
+        "--width",
+        "256",
+        "--height",
+        "128",
+    ];
+    let on_gpu = srt(
+        &[&args[..], &["--backend", "gpu", "-o", "gpu.png"]].concat(),
+        dir.path(),
+    );
+    if skipped_for_want_of_an_adapter("a_wide_projection_is_traced_on_the_gpu", &on_gpu) {
+        return;
+    }
+    assert!(on_gpu.status.success(), "{}", stderr(&on_gpu));
+    assert!(String::from_utf8_lossy(&on_gpu.stdout).contains(", gpu auto "));
+    assert!(
+        stderr(&on_gpu).contains(
+            "auto traces every object by the ray tracer (rt) in the equirectangular projection"
+        ),
+        "{}",
+        stderr(&on_gpu)
+    );
+    let on_cpu = srt(
+        &[&args[..], &["--backend", "cpu", "-o", "cpu.png"]].concat(),
+        dir.path(),
+    );
+    assert!(on_cpu.status.success(), "{}", stderr(&on_cpu));
+    let gpu = image::open(dir.path().join("gpu.png")).unwrap().into_rgb8();
+    let cpu = image::open(dir.path().join("cpu.png")).unwrap().into_rgb8();
+    let differing = (gpu.pixels().zip(cpu.pixels()))
+        .filter(|(g, c)| (0..3).any(|k| g.0[k].abs_diff(c.0[k]) > 2))
+        .count();
+    assert!(differing * 1000 <= 256 * 128, "{differing} pixels differ");
+
+    let lrt = [&args[..], &["--method", "lrt", "-o", "lrt.png"]].concat();
+    let refused = srt(&[&lrt[..], &["--backend", "gpu"]].concat(), dir.path());
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    assert!(
+        stderr(&refused).contains(
+            "the lrt method draws triangles through the pinhole, not the equirectangular projection"
+        ),
+        "{}",
+        stderr(&refused)
+    );
+    assert!(!dir.path().join("lrt.png").exists());
+    let handed_over = srt(&lrt, dir.path());
+    assert!(handed_over.status.success(), "{}", stderr(&handed_over));
+    assert!(stderr(&handed_over).contains("rendering on the CPU instead"));
+}
+
 /// A missing scene file or model is named with the reason in words, said once, without the OS
 /// error number.
 #[test]

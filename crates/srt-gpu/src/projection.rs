@@ -4,7 +4,7 @@
 //! tile): [`target_camera`] gives the camera and matrix of that window.
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
-use srt_scene::Observer;
+use srt_scene::{Observer, Projection};
 
 /// Near plane of the projection (distance in scene units).
 pub const NEAR_PLANE: f64 = 1e-3;
@@ -49,10 +49,12 @@ impl ImageWindow {
     }
 }
 
-/// The pinhole camera of a render target as the frame uniforms hold it (WGSL `FrameUniforms`,
-/// camera.wgsl): a pixel (x, y) of a `width` × `height` target, with
+/// The camera of a render target as the frame uniforms hold it (WGSL `FrameUniforms`,
+/// camera.wgsl): through the pinhole, a pixel (x, y) of a `width` × `height` target, with
 /// ndc = (2x/width − 1, 1 − 2y/height), looks along
-/// `forward + (ndc.x + offset.x) right + (ndc.y + offset.y) up`.
+/// `forward + (ndc.x + offset.x) right + (ndc.y + offset.y) up`; for a wide projection
+/// `forward`, `right` and `up` are the observer's unit basis and the shaders map the whole
+/// picture's points to directions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TargetCamera {
     /// S → clip space of the target.
@@ -69,7 +71,7 @@ pub struct TargetCamera {
 }
 
 /// The camera of a `width` × `height` target of `observer`'s picture: the whole picture, or
-/// `window` of it. For a window the target is an off-centre part of the picture's view: the
+/// `window` of it (for a wide projection, the unit basis whatever the window). For a window the target is an off-centre part of the picture's view: the
 /// same ray through each pixel as in the whole picture, and the projection matrix followed by
 /// the map of the window's part of clip space onto the target's.
 ///
@@ -83,6 +85,20 @@ pub fn target_camera(
     window: Option<ImageWindow>,
 ) -> TargetCamera {
     let (forward, right, up) = observer.basis();
+    if observer.projection != Projection::Perspective {
+        // A wide projection maps the whole picture's points to directions (camera.wgsl's
+        // wide_direction, through FrameUniforms::picture): the shaders take the unit basis.
+        if let Some(window) = window {
+            window.check_holds(width, height);
+        }
+        return TargetCamera {
+            view_projection: view_projection(observer, width, height),
+            forward,
+            right,
+            up,
+            offset: DVec2::ZERO,
+        };
+    }
     let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
     let Some(window) = window else {
         let aspect = f64::from(width) / f64::from(height);

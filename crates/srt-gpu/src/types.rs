@@ -211,6 +211,12 @@ pub struct FrameUniforms {
     pub searchlight_ln_y: f32,
     /// What the passes write: display colours or radiance.
     pub output: OutputCode,
+    /// How the picture's points map to viewing directions.
+    pub projection: ProjectionCode,
+    /// Half the fisheye's field of view in radians (0 for the other projections).
+    pub fisheye_half_fov: f32,
+    /// Unused: keeps `radiance` on its 16-byte boundary.
+    pub projection_padding: [u32; 2],
     /// How light becomes radiance: ln Y of the lamp, 1/g, 1 where brightness follows luminance
     /// else 0, and the largest value the colour target holds ([`radiance_params`]).
     pub radiance: [f32; 4],
@@ -241,6 +247,31 @@ impl From<Output> for OutputCode {
         match output {
             Output::Display => Self::DISPLAY,
             Output::Radiance => Self::RADIANCE,
+        }
+    }
+}
+
+/// `FrameUniforms::projection`: how the picture's points map to viewing directions (WGSL
+/// `PROJECTION_*` in types.wgsl, after [`srt_scene::Projection`]).
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct ProjectionCode(pub u32);
+
+impl ProjectionCode {
+    /// The pinhole (WGSL `PROJECTION_PERSPECTIVE`).
+    pub const PERSPECTIVE: Self = Self(0);
+    /// The full sphere (WGSL `PROJECTION_EQUIRECTANGULAR`).
+    pub const EQUIRECTANGULAR: Self = Self(1);
+    /// The azimuthal equidistant fisheye (WGSL `PROJECTION_FISHEYE`).
+    pub const FISHEYE: Self = Self(2);
+}
+
+impl From<srt_scene::Projection> for ProjectionCode {
+    fn from(projection: srt_scene::Projection) -> Self {
+        match projection {
+            srt_scene::Projection::Perspective => Self::PERSPECTIVE,
+            srt_scene::Projection::Equirectangular => Self::EQUIRECTANGULAR,
+            srt_scene::Projection::Fisheye { .. } => Self::FISHEYE,
         }
     }
 }

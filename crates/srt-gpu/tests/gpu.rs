@@ -9,6 +9,7 @@ mod layout;
 mod limits;
 mod moving;
 mod probe;
+mod projections;
 mod readback;
 mod reflect;
 mod shaders;

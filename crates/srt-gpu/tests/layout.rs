@@ -12,8 +12,8 @@ use srt_gpu::types::{
     EffectsCode, FootprintCode, FrameUniforms, GpuBvhNode, GpuFootprint, GpuFrame, GpuMovingLight,
     GpuPhysicsProbeInput, GpuPhysicsProbeOutput, GpuRtTriangle, GpuShadowObject,
     GpuSpectralProbeInput, GpuSpectralProbeOutput, GpuStar, GpuVertex, LightUniforms,
-    ObjectUniforms, OutputCode, PartFlags, PartUniforms, SkyUniforms, SurfaceColourCode,
-    ToneMapCode,
+    ObjectUniforms, OutputCode, PartFlags, PartUniforms, ProjectionCode, SkyUniforms,
+    SurfaceColourCode, ToneMapCode,
 };
 
 /// What a member's components are, as both sides can tell.
@@ -57,6 +57,9 @@ impl HasLeaf for ToneMapCode {
     const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for OutputCode {
+    const LEAF: Leaf = Leaf::U32;
+}
+impl HasLeaf for ProjectionCode {
     const LEAF: Leaf = Leaf::U32;
 }
 impl HasLeaf for PartFlags {
@@ -113,7 +116,7 @@ macro_rules! twin {
 fn table() -> Vec<Twin> {
     vec![
         twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
-        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, picture, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, output, radiance, lights }),
+        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, picture, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, output, projection, fisheye_half_fov, projection_padding, radiance, lights }),
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics, time, world_time, blink, clock, clock_face, clock_ink, motion, motion_axis, motion_centre, motion_low, motion_high }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, frames, frame_height, frame_rate, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),

@@ -17,8 +17,8 @@ use srt_gpu::shaders::{self, ObjectVariant, Shader, WORKGROUP_SIZE};
 use srt_gpu::types::{
     BVH_STACK_SIZE, DRAW_ARGS_BOUND, DRAW_ARGS_FOOTPRINT_VERTICES, DRAW_ARGS_PIECES_TAKEN,
     DRAW_ARGS_SHADE_VERTICES, DRAW_ARGS_WORDS, EffectsCode, FOOTPRINT_HULL_POINTS,
-    FOOTPRINT_VERTICES, FootprintCode, MAX_MOVING_LIGHTS, OutputCode, PartFlags, SHADOW_NODE_ROWS,
-    SHADOW_OBJECT_ROWS, SHADOW_TRIANGLE_ROWS, SurfaceColourCode, ToneMapCode,
+    FOOTPRINT_VERTICES, FootprintCode, MAX_MOVING_LIGHTS, OutputCode, PartFlags, ProjectionCode,
+    SHADOW_NODE_ROWS, SHADOW_OBJECT_ROWS, SHADOW_TRIANGLE_ROWS, SurfaceColourCode, ToneMapCode,
 };
 
 /// Every WGSL const with a Rust twin, and the twin's value.
@@ -50,6 +50,12 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
         ("OUTPUT_RADIANCE", OutputCode::RADIANCE.0),
         ("OUTPUT_SEEN_EVENT", OutputCode::SEEN_EVENT.0),
         ("OUTPUT_SEEN_OBJECT", OutputCode::SEEN_OBJECT.0),
+        ("PROJECTION_PERSPECTIVE", ProjectionCode::PERSPECTIVE.0),
+        (
+            "PROJECTION_EQUIRECTANGULAR",
+            ProjectionCode::EQUIRECTANGULAR.0,
+        ),
+        ("PROJECTION_FISHEYE", ProjectionCode::FISHEYE.0),
         (
             "STAR_LIGHT_WORDS_PER_PIXEL",
             srt_gpu::sky::STAR_LIGHT_WORDS_PER_PIXEL,
@@ -73,7 +79,7 @@ fn shared_consts() -> Vec<(&'static str, u32)> {
 }
 
 /// Name prefixes of WGSL consts that must all have a Rust twin.
-const SHARED_FAMILIES: [&str; 13] = [
+const SHARED_FAMILIES: [&str; 14] = [
     "BVH_",
     "MOTION_",
     "DRAW_ARGS_",
@@ -82,6 +88,7 @@ const SHARED_FAMILIES: [&str; 13] = [
     "MAX_MOVING_LIGHTS",
     "OUTPUT_",
     "PART_",
+    "PROJECTION_",
     "SHADOW_",
     "SPECTRAL_HEADER_",
     "STAR_LIGHT_WORDS_",

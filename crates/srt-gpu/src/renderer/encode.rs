@@ -8,6 +8,8 @@ use crate::culling::{
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
 use crate::sky::SkyPlacement;
+use crate::types::ProjectionCode;
+use srt_scene::Projection;
 
 impl super::GpuRenderer {
     /// Writes the per-frame uniforms for `scene` (observer, light, effects, velocities) and
@@ -73,6 +75,12 @@ impl super::GpuRenderer {
             exposure: scene.exposure as f32,
             searchlight_ln_y: searchlight_reference_ln_y() as f32,
             output,
+            projection: ProjectionCode::from(observer.projection),
+            fisheye_half_fov: match observer.projection {
+                Projection::Fisheye { fov_deg } => (0.5 * fov_deg.to_radians()) as f32,
+                _ => 0.0,
+            },
+            projection_padding: [0; 2],
             radiance: radiance_params(
                 &scene.radiance_scale(RadianceTable::shared()),
                 largest_value(ctx.color_format),
@@ -265,7 +273,8 @@ impl super::GpuRenderer {
     /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
     /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
     /// [`Method::Polygon`], and for [`Method::Auto`] those for which
-    /// [`ObjectRayTracing::preferred`] says so. A body that spins or thrusts in its rest frame
+    /// [`ObjectRayTracing::preferred`] says so; every object in a wide projection (no
+    /// footprint of the pinhole serves it). A body that spins or thrusts in its rest frame
     /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
     /// triangles do not hold a moving body's image); the polygon method moves its vertices.
     ///
@@ -280,17 +289,20 @@ impl super::GpuRenderer {
         if let Some(why) = method.cannot_draw(scene) {
             return Err(GpuError::Unsupported(why));
         }
+        let wide = scene.observer.projection != Projection::Perspective;
         self.objects
             .iter()
             .zip(&scene.objects)
             .map(|(object, seen)| {
                 let moving = !seen.motion.is_rest();
+                // A wide projection is traced: footprints are drawn through the pinhole.
+                let traced = moving || wide;
                 match (method, &object.ray_tracing) {
                     (Method::Polygon, _) => Ok(None),
                     (Method::Rt, Ok(rt)) => Ok(Some(rt)),
-                    (_, Ok(rt)) if moving => Ok(Some(rt)),
+                    (_, Ok(rt)) if traced => Ok(Some(rt)),
                     (Method::Rt, Err(error)) => Err(error.clone()),
-                    (_, Err(error)) if moving => Err(error.clone()),
+                    (_, Err(error)) if traced => Err(error.clone()),
                     (Method::Auto, Ok(rt)) => Ok(rt.preferred(self.auto_layers).then_some(rt)),
                     _ => Ok(None),
                 }
@@ -336,8 +348,12 @@ impl super::GpuRenderer {
                         ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
                     });
                 let (frame, observer) = (&object.frame, &scene.observer);
-                let unseen = ball_out_of_view(centre, radius, frame, observer, aspect)
-                    || ball_between_pixel_centres(centre, radius, frame, observer, width, height);
+                // A wide projection's view is no pinhole's frustum: every object is drawn.
+                let unseen = observer.projection == Projection::Perspective
+                    && (ball_out_of_view(centre, radius, frame, observer, aspect)
+                        || ball_between_pixel_centres(
+                            centre, radius, frame, observer, width, height,
+                        ));
                 (!unseen).then(|| {
                     let nearest = ball_nearest_apparent_distance(centre, radius, frame, event);
                     (nearest, index)

@@ -74,7 +74,9 @@ pub enum Method {
     /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is faster
     /// for it on this adapter (by the layers of its triangles, `ObjectRayTracing::preferred`,
     /// and the adapter's kind, [`crate::ray_tracing::auto_layers`]); the two compose
-    /// through the depth test. A body that spins or thrusts in its rest frame is always traced.
+    /// through the depth test. A body that spins or thrusts in its rest frame is always traced,
+    /// and so is every object in a wide projection (equirectangular, fisheye), which no
+    /// footprint of the pinhole serves.
     #[default]
     Auto,
     /// Local ray tracing (the paper's method, exact per pixel): one footprint per triangle. A
@@ -83,7 +85,8 @@ pub enum Method {
     Lrt,
     /// Ray tracing through a BVH per batch of parts in its rest frame (the reference's
     /// algorithm on the GPU), exact per pixel like LRT; its cost does not grow with the layers
-    /// of a deep model or with footprints swept beside the camera.
+    /// of a deep model or with footprints swept beside the camera. It traces every projection:
+    /// in a wide one each object's box covers the whole picture.
     Rt,
     /// Per-vertex photo-object polygon rendering (§3.2), the approximate baseline; a spinning
     /// or thrusting body's vertices each show their point's emission event on the observer's
@@ -92,17 +95,23 @@ pub enum Method {
 }
 
 impl Method {
-    /// Why this method cannot draw `scene` on the GPU, if it cannot: a projection other than the
-    /// pinhole (the GPU's passes draw footprints through the pinhole's projection), or late
-    /// shadows of moving lights cast by a body that spins or thrusts (the GPU's shadow walk meets
-    /// static triangles only). The CPU reference draws both exactly.
+    /// Why this method cannot draw `scene` on the GPU, if it cannot: a wide projection
+    /// (equirectangular, fisheye) by the local ray tracer or the polygon method, which draw
+    /// triangles through the pinhole's projection (the ray tracer, and so `auto`, traces any
+    /// pixel's ray), or late shadows of moving lights cast by a body that spins or thrusts (the
+    /// GPU's shadow walk meets static triangles only). The CPU reference draws all of them
+    /// exactly.
     #[must_use]
     pub fn cannot_draw(self, scene: &Scene) -> Option<String> {
         let projection = scene.observer.projection;
-        if projection != srt_scene::Projection::Perspective {
+        if projection != srt_scene::Projection::Perspective
+            && matches!(self, Self::Lrt | Self::Polygon)
+        {
             return Some(format!(
-                "the GPU draws the perspective projection only, not {projection}; use --backend \
-                 cpu (the exact CPU renderer traces every projection)"
+                "the {} method draws triangles through the pinhole, not the {projection} \
+                 projection; use --method rt or auto (the GPU's ray tracer traces every \
+                 projection), or --backend cpu",
+                self.name()
             ));
         }
         let moving = scene.objects.iter().find(|o| !o.motion.is_rest())?;
