@@ -8,7 +8,9 @@ use anyhow::Context as _;
 use srt_physics::Frame;
 use srt_scene::placement::{VIEW_DISTANCE, approach_velocity};
 use srt_scene::sky::SkyImage;
-use srt_scene::{Effects, Scene, SceneDescription, SurfaceColour, View, builtin_scenes};
+use srt_scene::{
+    Effects, Projection, Scene, SceneDescription, SurfaceColour, View, builtin_scenes,
+};
 
 /// Where Debian's assimp-testmodels package puts its models.
 pub const ASSIMP_MODELS: &str = "/usr/share/assimp/models";
@@ -203,7 +205,8 @@ pub fn enclosing_case() -> anyhow::Result<Case> {
 /// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine
 /// passing through and beside the camera, the flythrough's observer further on (columns and
 /// ground passing beside and under it), bodies spinning and thrusting in their frames
-/// ([`moving_body_cases`]), and the camera inside a sphere and inside a long box.
+/// ([`moving_body_cases`]), the camera inside a sphere and inside a long box, and the wide
+/// projections ([`projection_cases`]).
 ///
 /// # Errors
 /// If the engine model is missing.
@@ -235,7 +238,53 @@ pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
     cases.push(corridor_case()?);
     cases.extend(sky_cases()?);
     cases.extend(spectral_cases()?);
+    cases.extend(projection_cases()?);
     Ok(cases)
+}
+
+/// The wide projections (docs/scene-format.md, "Projections"), drawn by the ray tracer (and
+/// `auto`): the flythrough's whole sky as the full sphere (stars folded forward, columns
+/// passing on both sides and behind) and through a 220° fisheye, the teaser after the spider
+/// has passed the camera (seen behind the observer, at the picture's edges) as the full
+/// sphere, the teaser's dome master (a 180° fisheye) and the rolling wheel (a body moving in
+/// its frame) as the full sphere.
+///
+/// # Errors
+/// If a built-in scene does not build (a bug).
+pub fn projection_cases() -> anyhow::Result<Vec<Case>> {
+    let builtin = |name: &str| -> anyhow::Result<Scene> {
+        let built = srt_scene::builtin::find_builtin(name)
+            .with_context(|| format!("{name} is a built-in scene"))?;
+        Ok(built.build()?.0)
+    };
+    let teaser_after = *teaser_sweep_times().last().context("the sweep has times")?;
+    let teaser = at_time("teaser", &builtin("teaser")?, teaser_after).scene;
+    let fisheye = |fov_deg| Projection::Fisheye { fov_deg };
+    let cases = [
+        (
+            "flythrough",
+            builtin("flythrough")?,
+            Projection::Equirectangular,
+        ),
+        ("flythrough", builtin("flythrough")?, fisheye(220.0)),
+        ("teaser-passed", teaser.clone(), Projection::Equirectangular),
+        ("teaser", teaser, fisheye(180.0)),
+        (
+            "rolling-wheel",
+            builtin("rolling-wheel")?,
+            Projection::Equirectangular,
+        ),
+    ];
+    Ok(cases
+        .into_iter()
+        .map(|(name, mut scene, projection)| {
+            scene.observer.projection = projection;
+            Case {
+                name: format!("{name}-{projection}"),
+                scene,
+            }
+        })
+        .collect())
 }
 
 /// Bodies moving within their frames, in motion past the camera: the rolling wheel passing
