@@ -618,11 +618,14 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     let rest = triangle_corners(t);
     // A wide projection has no screen-space footprint of the pinhole: only the ray tracer's
     // boxes come here (srt_gpu::Method::cannot_draw), and the box's first triangle covers the
-    // whole picture, so that each pixel traces the object's BVH once, whatever its direction.
+    // rectangle of the picture where the object may be seen (object.view_bound), so that each
+    // pixel there traces the object's BVH once, whatever its direction.
     if (frame_uniforms.projection != PROJECTION_PERSPECTIVE) {
         footprint_depth = nearest_depth(rest);
         if (t == 0u) {
-            store_footprint(t, t, whole_screen_footprint());
+            let picture = picture_rect();
+            let bound = object.view_bound - vec4<f32>(frame_uniforms.picture.zw, frame_uniforms.picture.zw);
+            store_footprint(t, t, rectangle_footprint(max(bound.xy, picture.xy), min(bound.zw, picture.zw)));
         } else {
             store_footprint(t, t, Footprint());
         }

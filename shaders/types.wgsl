@@ -165,6 +165,10 @@ struct ObjectUniforms {
     motion_low: vec4<f32>,
     // The body's box at rest, upper corner (xyz); a spinning body's highest height (w).
     motion_high: vec4<f32>,
+    // In a wide projection, the rectangle of the whole picture (pixels: min x, min y, max x,
+    // max y) where the object may be seen (srt_gpu::culling::ball_wide_bound): its box's
+    // footprint there.
+    view_bound: vec4<f32>,
 }
 
 // How a body moves in its rest frame: the value of motion.wgsl's MOTION_VARIANT

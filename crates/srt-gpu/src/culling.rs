@@ -3,19 +3,21 @@
 //! frame, and `cargo xtask validate` checks every culled triangle against it), the ray tracer's
 //! box faces ([`box_near_faces_cullable`]), and whole objects out of view
 //! ([`ball_out_of_view`]) or between pixel centres ([`ball_between_pixel_centres`]; the
-//! renderer then skips the object's footprints and draws, whatever the method); and the
-//! order objects are drawn in, nearest first ([`ball_nearest_apparent_distance`]).
+//! renderer then skips the object's footprints and draws, whatever the method); where an
+//! object's image lies in a wide projection's picture ([`ball_wide_bound`], the rectangle its
+//! box's footprint covers there); and the order objects are drawn in, nearest first
+//! ([`ball_nearest_apparent_distance`]).
 //!
 //! In S′ every viewing ray starts at the observer's rest-frame position, so the rest-frame
 //! picture is an ordinary pinhole view from there: for a closed solid with outward fronts and
 //! the observer outside it, a triangle facing away from the observer is hidden. The proxy pass
 //! (`proxy.wgsl`) then gives such a triangle an empty footprint.
 
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use glam::DVec3;
 use srt_physics::{Event, Frame, aberrate};
-use srt_scene::{Mesh, Observer};
+use srt_scene::{Mesh, Observer, Projection};
 
 /// How far (radians, about) outside the field of view an object's image must lie to be culled:
 /// room for the rounding of [`ball_out_of_view`]'s f64 arithmetic.
@@ -200,6 +202,117 @@ pub fn ball_between_pixel_centres(
 /// common rasterisers snap vertices.
 const PIXEL_CENTRE_MARGIN: f64 = 1.0 / 64.0;
 
+/// How far (radians) a wide projection's bound of an object's image reaches beyond its cap: room
+/// for the GPU's f32 viewing directions.
+const WIDE_ANGLE_MARGIN: f64 = 1e-4;
+/// How many pixels a wide projection's bound reaches beyond the cap's image: room for the
+/// rasteriser's coverage of the bound's edges.
+const WIDE_PIXEL_MARGIN: f64 = 1.5;
+
+/// The rectangle (pixels of a `width` × `height` picture: min x, min y, max x, max y, pixel
+/// centres at half-integers) holding every pixel whose viewing ray in `observer`'s wide
+/// projection (equirectangular or fisheye) may reach the ball of `radius` around `centre` at
+/// rest in `frame`; empty (min ≥ max) when none does (outside a fisheye's field), and the whole
+/// picture where the image may be anywhere (the observer inside the ball, a cap around a pole
+/// of the projection, non-finite input) or for the pinhole.
+///
+/// The ball's image is a cap on the sphere of viewing directions ([`ball_out_of_view`] says
+/// why), of axis m and angular radius r. In the equirectangular picture a cap around latitude
+/// θ_c that holds no pole spans latitudes θ_c ± r and longitudes φ_c ± asin(sin r / cos θ_c)
+/// (the tangent great circles through the poles); in a fisheye, where the angle from the
+/// viewing direction plays the colatitude, it spans angles θ_c ± r and azimuths
+/// ± asin(sin r / sin θ_c) around its own, a sector of an annulus whose box is taken. A range
+/// of longitudes across ±180° takes the whole width.
+#[must_use]
+pub fn ball_wide_bound(
+    centre: DVec3,
+    radius: f64,
+    frame: &Frame,
+    observer: &Observer,
+    width: u32,
+    height: u32,
+) -> [f64; 4] {
+    let (width, height) = (f64::from(width), f64::from(height));
+    let whole = [0.0, 0.0, width, height];
+    let Some(cap) = ImageCap::of_ball(centre, radius, frame, observer) else {
+        return whole;
+    };
+    let r = cap.height.clamp(-1.0, 1.0).acos() + WIDE_ANGLE_MARGIN;
+    let (forward, right, up) = observer.basis();
+    let m = cap.axis;
+    // An empty bound, in normalised device coordinates.
+    const NOTHING: [f64; 4] = [2.0, 2.0, -2.0, -2.0];
+    // Normalised device coordinates (x right, y up) of the bound, or None for the whole picture.
+    let ndc: Option<[f64; 4]> = match observer.projection {
+        Projection::Perspective => None,
+        Projection::Equirectangular => {
+            let latitude = m.dot(up).clamp(-1.0, 1.0).asin();
+            let longitude = m.dot(right).atan2(m.dot(forward));
+            let (low, high) = (latitude - r, latitude + r);
+            let half_width = (r.sin() / latitude.cos()).min(1.0).asin();
+            let (west, east) = (longitude - half_width, longitude + half_width);
+            let around = high >= FRAC_PI_2 || low <= -FRAC_PI_2 || west <= -PI || east >= PI;
+            let (west, east) = if around { (-PI, PI) } else { (west, east) };
+            Some([
+                west / PI,
+                low.max(-FRAC_PI_2) / FRAC_PI_2,
+                east / PI,
+                high.min(FRAC_PI_2) / FRAC_PI_2,
+            ])
+        }
+        Projection::Fisheye { fov_deg } => {
+            let half_fov = 0.5 * fov_deg.to_radians();
+            let polar = m.dot(forward).clamp(-1.0, 1.0).acos();
+            let azimuth = m.dot(up).atan2(m.dot(right));
+            let (inner, outer) = ((polar - r) / half_fov, (polar + r) / half_fov);
+            if polar + r >= PI {
+                // Around the direction behind: every azimuth, from the inner angle on; beyond
+                // the field, nothing.
+                (inner <= 1.0)
+                    .then_some([-1.0, -1.0, 1.0, 1.0])
+                    .or(Some(NOTHING))
+            } else if polar <= r {
+                Some([-outer, -outer, outer, outer])
+            } else {
+                let spread = (r.sin() / polar.sin()).min(1.0).asin();
+                let (from, to) = (azimuth - spread, azimuth + spread);
+                let at = |rho: f64, angle: f64| [rho * angle.cos(), rho * angle.sin()];
+                let mut points = vec![
+                    at(inner, from),
+                    at(inner, to),
+                    at(outer, from),
+                    at(outer, to),
+                ];
+                // The outer arc's extremes along the axes that fall within the sector.
+                for quarter in -4..=4 {
+                    let angle = f64::from(quarter) * FRAC_PI_2;
+                    if (from..=to).contains(&angle) {
+                        points.push(at(outer, angle));
+                    }
+                }
+                let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+                for p in points {
+                    for k in 0..2 {
+                        lo[k] = lo[k].min(p[k]);
+                        hi[k] = hi[k].max(p[k]);
+                    }
+                }
+                Some([lo[0], lo[1], hi[0], hi[1]])
+            }
+        }
+    };
+    let Some([x0, y0, x1, y1]) = ndc.filter(|b| b.iter().all(|v| v.is_finite())) else {
+        return whole;
+    };
+    // Pixels: x = (ndc.x + 1) W / 2, y = (1 − ndc.y) H / 2 (y down).
+    [
+        ((x0 + 1.0) * 0.5 * width - WIDE_PIXEL_MARGIN).max(0.0),
+        ((1.0 - y1) * 0.5 * height - WIDE_PIXEL_MARGIN).max(0.0),
+        ((x1 + 1.0) * 0.5 * width + WIDE_PIXEL_MARGIN).min(width),
+        ((1.0 - y0) * 0.5 * height + WIDE_PIXEL_MARGIN).min(height),
+    ]
+}
+
 /// The viewing directions in S (unit vectors x with m·x ≥ h) whose backward rays reach a ball
 /// at rest in S′, as [`ball_out_of_view`] derives them.
 struct ImageCap {
@@ -270,7 +383,7 @@ fn highest_on_cap(n: DVec3, m: DVec3, h: f64) -> f64 {
 mod tests {
     use super::{
         ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view,
-        box_near_faces_cullable,
+        ball_wide_bound, box_near_faces_cullable,
     };
     use glam::{DVec2, DVec3};
     use proptest::prelude::*;
@@ -516,6 +629,84 @@ mod tests {
             }
             if ball_between_pixel_centres(centre, radius, &frame, &observer, width, height) {
                 prop_assert_eq!(pixels_hit(centre, radius, &frame, &observer, (width, height)), 0);
+            }
+        }
+    }
+
+    proptest! {
+        /// A wide projection's bound holds every pixel whose viewing ray (traced exactly in
+        /// S′, through the pixel's centre on a 96 × 48 grid) hits the ball, for the full sphere
+        /// and fisheyes of any field, at any velocity, for balls beside, behind and around the
+        /// observer's poles; and it is not the whole picture for every ball.
+        #[test]
+        fn a_wide_bound_holds_every_pixel_that_sees_the_ball(
+            centre in prop::array::uniform3(-20.0f64..20.0),
+            radius in 0.001f64..5.0,
+            beta in prop::array::uniform3(-0.57f64..0.57),
+            offset in prop::array::uniform3(-10.0f64..10.0),
+            direction in prop::array::uniform3(-1.0f64..1.0),
+            fisheye_fov in prop::option::of(10.0f64..360.0),
+            ct in -20.0f64..20.0,
+        ) {
+            let direction = DVec3::from_array(direction);
+            prop_assume!(direction.length() > 0.1 && direction.cross(DVec3::Y).length() > 0.1);
+            let frame = Frame::new(DVec3::from_array(beta), DVec3::from_array(offset)).unwrap();
+            let projection = fisheye_fov.map_or(srt_scene::Projection::Equirectangular, |fov_deg| {
+                srt_scene::Projection::Fisheye { fov_deg }
+            });
+            let observer = Observer { direction, projection, ..looking_along_z(ct) };
+            let centre = DVec3::from_array(centre);
+            let (width, height) = (96u32, 48u32);
+            let [x0, y0, x1, y1] =
+                ball_wide_bound(centre, radius, &frame, &observer, width, height);
+            let rays = observer.view_rays(f64::from(width) / f64::from(height));
+            for k in 0..width * height {
+                let (x, y) = (f64::from(k % width) + 0.5, f64::from(k / width) + 0.5);
+                let ndc = DVec2::new(
+                    2.0 * x / f64::from(width) - 1.0,
+                    1.0 - 2.0 * y / f64::from(height),
+                );
+                let Some(view) = rays.direction(ndc) else { continue };
+                let ray = frame.backward_ray(observer.event(), view);
+                let along = (centre - ray.origin).dot(ray.direction).max(0.0);
+                if (ray.origin + along * ray.direction - centre).length() <= radius {
+                    prop_assert!(
+                        (x0..=x1).contains(&x) && (y0..=y1).contains(&y),
+                        "pixel ({x}, {y}) sees the ball outside {:?}", [x0, y0, x1, y1]
+                    );
+                }
+            }
+        }
+    }
+
+    /// A small ball ahead in the full sphere and in a fisheye is bounded by a small rectangle
+    /// around its image; one behind a 180° fisheye has an empty bound.
+    #[test]
+    fn a_wide_bound_is_tight_around_a_small_ball() {
+        let frame = Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+        let ahead = DVec3::new(0.0, 0.0, 10.0);
+        for projection in [
+            srt_scene::Projection::Equirectangular,
+            srt_scene::Projection::Fisheye { fov_deg: 180.0 },
+        ] {
+            let observer = Observer {
+                projection,
+                ..looking_along_z(0.0)
+            };
+            let [x0, y0, x1, y1] = ball_wide_bound(ahead, 0.1, &frame, &observer, 200, 200);
+            // The ball subtends 0.01 rad: about 0.6 pixels of the equirectangular picture
+            // (200 px / 2π rad across), 1.3 of the fisheye's (200 px / π rad), plus margins.
+            assert!(
+                x1 - x0 < 6.0 && y1 - y0 < 6.0,
+                "{projection}: {x0} {y0} {x1} {y1}"
+            );
+            assert!((x0..=x1).contains(&100.0) && (y0..=y1).contains(&100.0));
+            let behind = ball_wide_bound(-ahead, 0.1, &frame, &observer, 200, 200);
+            if projection != srt_scene::Projection::Equirectangular {
+                assert!(
+                    behind[0] >= behind[2] || behind[1] >= behind[3],
+                    "{behind:?}"
+                );
             }
         }
     }

@@ -321,6 +321,9 @@ pub struct ObjectUniforms {
     pub motion_low: [f32; 4],
     /// The body's box at rest, upper corner (xyz), and its highest height along the spin axis (w).
     pub motion_high: [f32; 4],
+    /// In a wide projection, the rectangle of the whole picture (pixels: min x, min y, max x,
+    /// max y) where the object may be seen ([`crate::culling::ball_wide_bound`]).
+    pub view_bound: [f32; 4],
 }
 
 /// `ObjectUniforms::clock`, `clock_face` and `clock_ink` of a clock face, or zeros for none.

@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::culling::{
-    ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view,
+    ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view, ball_wide_bound,
 };
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
@@ -109,6 +109,19 @@ impl super::GpuRenderer {
                 ..bytemuck::Zeroable::zeroed()
             };
             MotionUniforms::new(object, &resources.extent, event).apply(&mut uniforms);
+            if observer.projection != Projection::Perspective {
+                let (centre, radius) = object_ball(object, resources, event);
+                let (picture_width, picture_height) = self.picture_size();
+                uniforms.view_bound = ball_wide_bound(
+                    centre,
+                    radius,
+                    &object.frame,
+                    observer,
+                    picture_width,
+                    picture_height,
+                )
+                .map(|v| v as f32);
+            }
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
             for batch in &resources.parts {
@@ -310,6 +323,14 @@ impl super::GpuRenderer {
             .collect()
     }
 
+    /// The whole picture's width and height: the target's, unless it holds a window.
+    fn picture_size(&self) -> (u32, u32) {
+        self.window.map_or_else(
+            || self.size(),
+            |window| (window.image_width, window.image_height),
+        )
+    }
+
     /// `FrameUniforms::picture`: the whole picture's size and the target's first column and
     /// row in it (the target itself unless it holds a window).
     fn picture_uniform(&self) -> [f32; 4] {
@@ -334,26 +355,25 @@ impl super::GpuRenderer {
     pub fn objects_in_view(&self, scene: &Scene) -> Vec<usize> {
         // Culled against the whole picture (its view and its grid of pixel centres): an object
         // outside the window but in the picture is drawn and clipped.
-        let (width, height) = self.window.map_or_else(
-            || self.size(),
-            |window| (window.image_width, window.image_height),
-        );
+        let (width, height) = self.picture_size();
         let aspect = f64::from(width) / f64::from(height);
         let event = scene.observer.event();
         // Zipped, not indexed: a scene of another structure is refused later (SceneChanged).
         let mut shown: Vec<(f64, usize)> = (scene.objects.iter().zip(&self.objects).enumerate())
             .filter_map(|(index, (object, resources))| {
-                let (centre, radius) = sweep_bounds(object, &resources.extent, event)
-                    .map_or(resources.extent.ball, |(lo, hi)| {
-                        ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
-                    });
+                let (centre, radius) = object_ball(object, resources, event);
                 let (frame, observer) = (&object.frame, &scene.observer);
-                // A wide projection's view is no pinhole's frustum: every object is drawn.
-                let unseen = observer.projection == Projection::Perspective
-                    && (ball_out_of_view(centre, radius, frame, observer, aspect)
+                let unseen = if observer.projection == Projection::Perspective {
+                    ball_out_of_view(centre, radius, frame, observer, aspect)
                         || ball_between_pixel_centres(
                             centre, radius, frame, observer, width, height,
-                        ));
+                        )
+                } else {
+                    // Outside a fisheye's field: an empty rectangle.
+                    let [x0, y0, x1, y1] =
+                        ball_wide_bound(centre, radius, frame, observer, width, height);
+                    x0 >= x1 || y0 >= y1
+                };
                 (!unseen).then(|| {
                     let nearest = ball_nearest_apparent_distance(centre, radius, frame, event);
                     (nearest, index)
@@ -814,4 +834,16 @@ impl PipelineVariant {
             self.0 = Some(variant);
         }
     }
+}
+
+/// The ball (centre and radius in S′) that holds `object` at every event a backward ray can meet
+/// it: around its vertices at rest, or around the box its motion sweeps ([`sweep_bounds`]).
+fn object_ball(
+    object: &Object,
+    resources: &ObjectResources,
+    event: srt_physics::Event,
+) -> (DVec3, f64) {
+    sweep_bounds(object, &resources.extent, event).map_or(resources.extent.ball, |(lo, hi)| {
+        ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
+    })
 }
