@@ -21,6 +21,10 @@
 //!   move in their rest frame: the spinning `rolling-wheel` and the thrusting `rocket` (traced
 //!   along each ray's body-space curve; the polygon method moves each vertex).
 //!
+//! - the full sky: the `flythrough` as the full sphere at 2048×1024 ([`FULL_SKY_SIZE`]), drawn
+//!   by the ray tracer and `auto` (LRT and the polygon method draw through the pinhole only),
+//!   beside the CPU reference's time for the same frame.
+//!
 //! `--size WxH` (repeatable) measures the static cases at other sizes instead, the sweeps at
 //! the first. `--throughput` measures instead how many frames per second each method sustains
 //! on the static cases, at 1280×720 or at each `--size` ([`throughput`]).
@@ -47,7 +51,7 @@ use anyhow::Context as _;
 use glam::DVec3;
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use srt_physics::Frame;
-use srt_scene::{MovingLight, Scene, SurfaceColour};
+use srt_scene::{MovingLight, Projection, Scene, SurfaceColour};
 use srt_trace::{RenderSettings, Tracer};
 
 use crate::cases::{
@@ -55,7 +59,9 @@ use crate::cases::{
     flythrough_sweep_times, model_case, shifted, teaser_sweep_times,
 };
 use crate::renderers::KeptRenderer;
-use results::{CaseResult, Machine, Measurement, Results, SweepFrame, SweepResult, median};
+use results::{
+    CaseResult, FullSkyResult, Machine, Measurement, Results, SweepFrame, SweepResult, median,
+};
 
 /// Image sizes of the static cases unless `--size` names others; the first is also that of the
 /// sweeps (and `--throughput` measures at the first alone).
@@ -531,7 +537,64 @@ pub fn timed_frames(sizes: &[(u32, u32)]) -> anyhow::Result<Vec<(Case, (u32, u32
                 .map(|&ct| (at_time(name, &scene, ct), sizes[0])),
         );
     }
+    frames.push((full_sky_case()?, FULL_SKY_SIZE));
     Ok(frames)
+}
+
+/// The full-sky line's picture size, whatever `--size` says: the usual 2 : 1 of a 360° frame.
+pub const FULL_SKY_SIZE: (u32, u32) = (2048, 1024);
+
+/// The full-sky line: the `flythrough`'s observer at 0.9c as the full sphere, the sky folded
+/// into the forward cone, columns passing on both sides and behind.
+fn full_sky_case() -> anyhow::Result<Case> {
+    let mut case = builtin("flythrough")?;
+    case.scene.observer.projection = Projection::Equirectangular;
+    case.name = format!("flythrough-{}", Projection::Equirectangular);
+    Ok(case)
+}
+
+/// Times the full-sky line at [`FULL_SKY_SIZE`]: the ray tracer and `auto` (which traces every
+/// object there) taking turns, their fragments against the covered pixels, and the CPU
+/// reference's render of the same frame (median of three, its BVHs built once before).
+fn full_sky(ctx: &GpuContext, frames: u32) -> anyhow::Result<FullSkyResult> {
+    let case = full_sky_case()?;
+    let scene = &case.scene;
+    let (width, height) = FULL_SKY_SIZE;
+    let mut renderer = GpuRenderer::new(ctx, scene, width, height)?;
+    let [(rt_ms, _), (auto_ms, _)] =
+        frame_times(ctx, &renderer, scene, [Method::Rt, Method::Auto], frames)?;
+    let tracer = Tracer::new(scene);
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    let mut cpu_times = Vec::new();
+    let mut covered = 0;
+    for _ in 0..3 {
+        let start = Instant::now();
+        let image = tracer.render(settings, &|_| {});
+        cpu_times.push(start.elapsed().as_secs_f64() * 1e3);
+        covered = image.coverage.iter().filter(|&&c| c != 0).count().max(1);
+    }
+    renderer.set_fragment_counting(true);
+    let counts = renderer
+        .render(ctx, scene, Method::Rt, FootprintShape::Hull)?
+        .1
+        .fragments
+        .context("the renderer counts fragments")?;
+    renderer.set_fragment_counting(false);
+    Ok(FullSkyResult {
+        name: case.name,
+        width,
+        height,
+        triangles: scene.triangle_count(),
+        auto_ms,
+        rt_ms,
+        cpu_ms: median(cpu_times),
+        overdraw_rt: counts.run as f64 / covered as f64,
+        shaded_per_pixel: counts.shaded as f64 / covered as f64,
+    })
 }
 
 /// Measures the static cases whose name `selected` accepts, each at each of `sizes` in turn,
@@ -595,6 +658,7 @@ pub fn run(
         max_frames: MAX_FRAMES,
         cases: Vec::new(),
         sweeps: Vec::new(),
+        full_sky: Vec::new(),
     };
     let save = |measured: &Results| results.map_or(Ok(()), |path| measured.save(path));
     static_results(&ctx, frames, sizes, selected, |case| {
@@ -608,6 +672,12 @@ pub fn run(
             measured.sweeps.push(result);
             save(&measured)?;
         }
+    }
+    if selected(&full_sky_case()?.name) {
+        let line = full_sky(&ctx, frames)?;
+        println!("{}", line.text());
+        measured.full_sky.push(line);
+        save(&measured)?;
     }
     if let Some(path) = results {
         measured.save(path)?;

@@ -8,7 +8,7 @@ use anyhow::Context as _;
 use srt_gpu::Method;
 
 use super::report::{Markers, Report};
-use super::results::{CaseResult, METHODS, Results, SweepResult};
+use super::results::{CaseResult, FullSkyResult, METHODS, Results, SweepResult};
 use super::summary::summary;
 
 /// The document the bench updates, relative to the workspace.
@@ -65,7 +65,7 @@ impl Validation {
 
     /// The table cell for a line timing `frames`: validated (and when) only if every frame
     /// passed in a record made at the commit being measured.
-    fn cell<'a>(&self, frames: impl IntoIterator<Item = &'a CaseResult>) -> String {
+    fn cell<'a>(&self, frames: impl IntoIterator<Item = (&'a str, u32, u32)>) -> String {
         let Some((commit, date)) = &self.made else {
             return "no (run `cargo xtask validate --bench-frames`)".to_owned();
         };
@@ -73,13 +73,13 @@ impl Validation {
             return format!("no (the record is of {commit})");
         }
         let (mut passed, mut total) = (0, 0);
-        for case in frames {
-            let size = format!("{}x{}", case.width, case.height);
+        for (name, width, height) in frames {
+            let size = format!("{width}x{height}");
             total += 1;
             passed += usize::from(
                 self.frames
                     .iter()
-                    .any(|(n, s, pass)| *n == case.name && *s == size && *pass),
+                    .any(|(n, s, pass)| n == name && *s == size && *pass),
             );
         }
         if passed == total {
@@ -134,6 +134,24 @@ fn sweep_row(sweep: &SweepResult) -> Option<String> {
     ))
 }
 
+/// A full-sky line's row, without its last cell: LRT and the polygon method draw through the
+/// pinhole only, so their cells and the ratios are empty; the CPU reference's time is named.
+fn full_sky_row(line: &FullSkyResult) -> String {
+    format!(
+        "| {} (full sky; CPU {:.0} ms) | {}×{} | {} | {:.2} | — | {:.2} | — | — | — | — | {:.2} | {:.2} | — | {:.2} |",
+        line.name,
+        line.cpu_ms,
+        line.width,
+        line.height,
+        line.triangles,
+        line.auto_ms,
+        line.rt_ms,
+        line.shaded_per_pixel,
+        line.overdraw_rt,
+        line.overdraw_rt
+    )
+}
+
 /// The table block between `markers`.
 fn table(results: &Results, validation: &Validation, markers: Markers) -> String {
     let mut table = format!(
@@ -145,13 +163,17 @@ fn table(results: &Results, validation: &Validation, markers: Markers) -> String
         results.timing
     );
     for case in &results.cases {
-        table += &format!("{} {} |\n", case_row(case), validation.cell([case]));
+        table += &format!("{} {} |\n", case_row(case), validation.cell([case.frame()]));
     }
     for sweep in &results.sweeps {
         if let Some(row) = sweep_row(sweep) {
-            let frames = sweep.frames.iter().map(|f| &f.case);
+            let frames = sweep.frames.iter().map(|f| f.case.frame());
             table += &format!("{row} {} |\n", validation.cell(frames));
         }
+    }
+    for line in &results.full_sky {
+        let frame = [(line.name.as_str(), line.width, line.height)];
+        table += &format!("{} {} |\n", full_sky_row(line), validation.cell(frame));
     }
     table + markers.end
 }
@@ -243,6 +265,9 @@ mod tests {
         assert!(text.contains("| 1.50 | 1.50 | 1.20 | no: 0 of 1 frames passed |"));
         assert!(text.contains(
             "| fly (sweep, 2 frames) | 1280×720 | 300 | ≤ 25.00 | ≤ 20.00 | ≤ 40.00 | | worst 2.50 | worst 2.00 | worst 4.00 | | | | | yes, 2026-01-01 (abc) |"
+        ));
+        assert!(text.contains(
+            "| sky (full sky; CPU 90 ms) | 2048×1024 | 300 | 40.00 | — | 40.00 | — | — | — | — | 1.00 | 1.50 | — | 1.50 | no: 0 of 1 frames passed |"
         ));
         assert_eq!(update(&text, &results(), &validation, SOFTWARE), text);
     }

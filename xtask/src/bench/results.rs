@@ -110,6 +110,12 @@ pub struct CaseResult {
 }
 
 impl CaseResult {
+    /// The frame as `validate --bench-frames` records it: name, width, height.
+    #[must_use]
+    pub fn frame(&self) -> (&str, u32, u32) {
+        (&self.name, self.width, self.height)
+    }
+
     /// The image size as `W×H`.
     #[must_use]
     pub fn size(&self) -> String {
@@ -271,6 +277,52 @@ pub struct Results {
     pub cases: Vec<CaseResult>,
     /// The fly-by sweeps.
     pub sweeps: Vec<SweepResult>,
+    /// The full-sky lines (none in results saved before they were measured).
+    #[serde(default)]
+    pub full_sky: Vec<FullSkyResult>,
+}
+
+/// A full-sky line: a scene in a wide projection, which the ray tracer (and `auto`) and the CPU
+/// reference draw; LRT and the polygon method draw through the pinhole only.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FullSkyResult {
+    /// The case's name (`validate --bench-frames` names its frame so).
+    pub name: String,
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Triangles in the scene.
+    pub triangles: usize,
+    /// Median frame time of `auto` (every object by the ray tracer), ms.
+    pub auto_ms: f64,
+    /// Median frame time of the ray tracer, ms.
+    pub rt_ms: f64,
+    /// Median time of the CPU reference's render of the frame (its BVHs built before), ms.
+    pub cpu_ms: f64,
+    /// Ray-tracer visibility fragments per covered pixel.
+    pub overdraw_rt: f64,
+    /// Pixels shaded per covered pixel.
+    pub shaded_per_pixel: f64,
+}
+
+impl FullSkyResult {
+    /// The report's line.
+    #[must_use]
+    pub fn text(&self) -> String {
+        format!(
+            "full_sky={} size={}x{} tris={} auto_ms={:.2} rt_ms={:.2} cpu_ms={:.2} shaded_per_pixel={:.2} overdraw_rt={:.2}",
+            self.name,
+            self.width,
+            self.height,
+            self.triangles,
+            self.auto_ms,
+            self.rt_ms,
+            self.cpu_ms,
+            self.shaded_per_pixel,
+            self.overdraw_rt
+        )
+    }
 }
 
 impl Results {
@@ -335,7 +387,9 @@ pub fn median(mut values: Vec<f64>) -> f64 {
 pub mod tests {
     //! Hand-built results for the tests of the modules that read them.
 
-    use super::{CaseResult, Machine, Measurement, Results, SweepFrame, SweepResult};
+    use super::{
+        CaseResult, FullSkyResult, Machine, Measurement, Results, SweepFrame, SweepResult,
+    };
 
     /// A measurement with the given auto, LRT and polygon times (RT twice LRT) and shading.
     #[must_use]
@@ -398,6 +452,17 @@ pub mod tests {
                     frame(0.0, measurement(12.0, 12.0, 10.0, 1.0)),
                     frame(6.0, measurement(25.0, 20.0, 10.0, 1.0)),
                 ],
+            }],
+            full_sky: vec![FullSkyResult {
+                name: "sky".to_owned(),
+                width: 2048,
+                height: 1024,
+                triangles: 300,
+                auto_ms: 40.0,
+                rt_ms: 40.0,
+                cpu_ms: 90.0,
+                overdraw_rt: 1.5,
+                shaded_per_pixel: 1.0,
             }],
         }
     }
