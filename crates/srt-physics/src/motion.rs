@@ -266,6 +266,34 @@ impl Thrust {
         end.position + (ct - end.ct) * self.final_rapidity.tanh() * self.direction
     }
 
+    /// The origin's event in S′ and its velocity (units of c) when its own clock, which reads
+    /// S′ time until the start, shows `proper_time`: at rest before the start; on the hyperbola
+    /// (start + sinh η / α, (cosh η − 1)/α · â), η = α (τ − start), during the thrust; coasting
+    /// at tanh(ατ_end) · â after it, its clock running 1/cosh(ατ_end) as fast as S′ time. What an
+    /// observer riding the thrust sees is drawn from this event and velocity alone.
+    #[must_use]
+    pub fn origin_at_proper_time(&self, proper_time: f64) -> (Event, DVec3) {
+        let since = proper_time - self.start;
+        if since <= 0.0 {
+            return (Event::new(proper_time, DVec3::ZERO), DVec3::ZERO);
+        }
+        let eta = self.alpha * since;
+        if eta <= self.final_rapidity {
+            let event = self.event_at_rapidity(DVec3::ZERO, eta);
+            return (event, eta.tanh() * self.direction);
+        }
+        let end = self.event_at_rapidity(DVec3::ZERO, self.final_rapidity);
+        let coasting = since - self.final_rapidity / self.alpha;
+        let (gamma, gamma_beta) = (self.final_rapidity.cosh(), self.final_rapidity.sinh());
+        (
+            Event::new(
+                end.ct + gamma * coasting,
+                end.position + gamma_beta * coasting * self.direction,
+            ),
+            self.final_rapidity.tanh() * self.direction,
+        )
+    }
+
     /// The velocity (units of c) in S′ of the body point `body` at S′ time `ct`.
     #[must_use]
     pub fn velocity(&self, body: DVec3, ct: f64) -> DVec3 {
@@ -429,6 +457,37 @@ mod tests {
             max_global_rejects: 1 << 20,
             ..ProptestConfig::default()
         })]
+
+        /// The origin's event at a proper time lies on its worldline (Thrust::position at
+        /// that S′ time), its clock there reads that proper time (Motion::proper_time), and its
+        /// velocity is the worldline's slope; during the thrust the event is the closed-form
+        /// hyperbola (sinh(ατ)/α, (cosh(ατ) − 1)/α) after the start.
+        #[test]
+        fn the_origin_at_a_proper_time_rides_its_hyperbola(
+            acceleration in vector(2.0), start in -5.0..5.0f64, duration in 0.0..4.0f64,
+            proper_time in -10.0..10.0f64,
+        ) {
+            prop_assume!(acceleration.length() > 1e-2);
+            let thrust = Thrust::new(acceleration, start, duration).unwrap();
+            let (event, velocity) = thrust.origin_at_proper_time(proper_time);
+            let scale = 1.0 + event.ct.abs() + event.position.length();
+            prop_assert!((thrust.position(DVec3::ZERO, event.ct) - event.position).length() <= 1e-9 * scale);
+            let clock = Motion::Thrust(thrust).proper_time(DVec3::ZERO, event.ct);
+            prop_assert!((clock - proper_time).abs() <= 1e-9 * scale, "{clock} {proper_time}");
+            let dt = 1e-6;
+            let slope = (thrust.position(DVec3::ZERO, event.ct + dt) - thrust.position(DVec3::ZERO, event.ct - dt)) / (2.0 * dt);
+            prop_assert!((slope - velocity).length() <= 1e-5, "{slope} {velocity}");
+            let (alpha, tau) = (thrust.alpha(), proper_time - start);
+            if tau > 0.0 && tau <= duration {
+                let hyperbola = Event::new(
+                    start + (alpha * tau).sinh() / alpha,
+                    ((alpha * tau).cosh() - 1.0) / alpha * thrust.direction(),
+                );
+                prop_assert!((event.ct - hyperbola.ct).abs() <= 1e-9 * scale);
+                prop_assert!((event.position - hyperbola.position).length() <= 1e-9 * scale);
+                prop_assert!((velocity.length() - (alpha * tau).tanh()).abs() <= 1e-12);
+            }
+        }
 
         #[test]
         fn spin_points_turn_by_the_stated_angle_below_light_speed(

@@ -183,6 +183,7 @@ impl SceneDescription {
                 ct: 0.0,
                 time: None,
                 projection: None,
+                thrust: None,
             },
             light: Some(LightsDescription::Lamp(LightDescription::lamp(
                 (position + DVec3::new(-1.0, 0.0, 2.0) * FIT_RADIUS * 2.0).to_array(),

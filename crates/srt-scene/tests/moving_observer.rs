@@ -193,3 +193,130 @@ fn kinematics_are_what_the_build_places_the_scene_with() {
     let without_sky = parse(&scene("[0.3, 0.4, 0.0]"));
     assert_eq!(without_sky.kinematics().unwrap().sky_beta, None);
 }
+
+/// The scene with a riding observer: starting at rest (or with `beta`), thrusting along +y with
+/// proper acceleration 0.5 from its clock's `start` for `duration`, looking when its clock reads
+/// `time`.
+fn ride(beta: &str, start: f64, duration: f64, time: f64) -> SceneDescription {
+    let text = scene_with_sky(beta).replace(
+        "ct = 2.0\n",
+        &format!(
+            "ct = 2.0\ntime = {time:?}\nthrust = {{ proper_acceleration = [0.0, 0.5, 0.0], start = {start:?}, duration = {duration:?} }}\n"
+        ),
+    );
+    parse(&text)
+}
+
+/// Whether two built scenes agree to rounding: the observer, the lamp, every object's frame
+/// and the sky's velocity.
+fn assert_close(a: &srt_scene::Scene, b: &srt_scene::Scene) {
+    let close = |x: DVec3, y: DVec3| (x - y).length() <= 1e-9 * (1.0 + x.length());
+    assert!(
+        close(a.observer.position, b.observer.position),
+        "{:?} {:?}",
+        a.observer,
+        b.observer
+    );
+    assert!((a.observer.ct - b.observer.ct).abs() <= 1e-9 * (1.0 + a.observer.ct.abs()));
+    assert_eq!(a.observer.direction, b.observer.direction);
+    assert!(
+        close(a.light.position, b.light.position),
+        "{:?} {:?}",
+        a.light,
+        b.light
+    );
+    assert!(
+        close(a.sky.beta, b.sky.beta),
+        "{} {}",
+        a.sky.beta,
+        b.sky.beta
+    );
+    for (x, y) in a.objects.iter().zip(&b.objects) {
+        assert!(close(x.frame.beta(), y.frame.beta()), "{}", x.name);
+        assert!(close(x.frame.offset(), y.frame.offset()), "{}", x.name);
+    }
+}
+
+/// A riding observer is drawn from its event and velocity alone: at each clock reading its
+/// scene is the scene of the inertial observer on the closed-form hyperbolic worldline —
+/// event (start + sinh(ατ)/α, (cosh(ατ) − 1)/α ŷ) and velocity tanh(ατ) ŷ, τ the clock since the
+/// start — before the thrust, during it and coasting after it; the lamp rides along at its
+/// offset in the ship's frame.
+#[test]
+fn a_riding_observer_sees_from_its_hyperbolic_worldline() {
+    let (alpha, start, duration) = (0.5, 3.0, 4.0);
+    for time in [1.0, 3.0, 4.5, 7.0, 9.5] {
+        let riding = ride("[0.0, 0.0, 0.0]", start, duration, time);
+        let (ridden, _) = riding.build(Path::new(".")).unwrap();
+        // The closed form, in W (the ship starts at rest at (ct 2, (0, −5, 1)), its clock
+        // reading W's time until the start).
+        let tau = (time - start).clamp(0.0, duration);
+        let eta = alpha * tau;
+        let coasting = (time - start - duration).max(0.0);
+        let ct = start.min(time) + eta.sinh() / alpha + eta.cosh() * coasting;
+        let y = -5.0 + (eta.cosh() - 1.0) / alpha + eta.sinh() * coasting;
+        let beta = eta.tanh();
+        let inertial = parse(
+            &scene_with_sky(&format!("[0.0, {beta:?}, 0.0]"))
+                .replace(
+                    "position = [0.0, -5.0, 1.0]\ndirection = [0.0, 1.0, 0.0]",
+                    &format!("position = [0.0, {y:?}, 1.0]\ndirection = [0.0, 1.0, 0.0]"),
+                )
+                .replace("ct = 2.0\n", &format!("ct = {ct:?}\n"))
+                // The lamp, 1 to the side, 1 behind and 3 above the ship in its frame: in W at ct,
+                // its offset along the motion is shorter by γ.
+                .replace(
+                    "[light]\nposition = [1.0, -6.0, 4.0]",
+                    &format!("[light]\nposition = [1.0, {:?}, 4.0]", y - 1.0 / eta.cosh()),
+                ),
+        );
+        let (expected, _) = inertial.build(Path::new(".")).unwrap();
+        assert_close(&ridden, &expected);
+        let event = riding.observation_event().unwrap();
+        assert!(
+            (event.ct - ct).abs() < 1e-9 && (event.position.y - y).abs() < 1e-9,
+            "{event:?}"
+        );
+    }
+}
+
+/// A ride's bad input is named: a zero or non-finite acceleration, a negative duration, a
+/// thrust across a moving observer's velocity, a lamp beyond the ship's Rindler horizon.
+#[test]
+fn bad_rides_are_named() {
+    let cases = [
+        (
+            ride("[0.0, 0.0, 0.0]", 0.0, 1.0, 1.0)
+                .to_toml_string()
+                .replace("0.5, 0.0]", "0.0, 0.0]"),
+            "zero vector",
+        ),
+        (
+            ride("[0.0, 0.0, 0.0]", 0.0, -1.0, 1.0).to_toml_string(),
+            "must be ≥ 0",
+        ),
+        (
+            ride("[0.3, 0.0, 0.0]", 0.0, 1.0, 1.0).to_toml_string(),
+            "must be along observer.beta",
+        ),
+        (
+            ride("[0.0, 0.0, 0.0]", 0.0, 1.0, 1.0)
+                .to_toml_string()
+                .replace("position = [1.0, -6.0, 4.0]", "position = [1.0, -8.0, 4.0]"),
+            "Rindler horizon",
+        ),
+    ];
+    for (text, reason) in cases {
+        let description = parse(&text);
+        let error = description.validate().expect_err(reason).to_string();
+        assert!(
+            error.contains("observer.thrust") && error.contains(reason),
+            "{error}"
+        );
+        let built = description
+            .build(Path::new("."))
+            .expect_err(reason)
+            .to_string();
+        assert!(built.contains("observer.thrust"), "{built}");
+    }
+}

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{DMat3, DMat4, DVec3};
-use srt_physics::motion::Motion;
+use srt_physics::motion::{Motion, Thrust};
 use srt_physics::{Event, Frame, FrameError, MovingObserver, RelativeFrame};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
@@ -158,30 +158,114 @@ impl SceneDescription {
 impl SceneDescription {
     /// The observer's rest frame S relative to the world frame W: velocity `observer.beta`,
     /// origin event (`observer.ct`, `observer.position`), where S's clocks read `observer.ct`.
+    /// A riding observer (`observer.thrust`) is drawn from its momentary rest frame when it
+    /// looks: the inertial observer with the ship's velocity at the ship's event
+    /// ([`SceneDescription::looking_observer`]).
     ///
     /// # Errors
     /// [`SceneErrorKind::Value`] naming `observer.beta` when it is not a velocity (|β| ≥ 1,
-    /// not finite) or the observation event is not finite.
+    /// not finite) or the observation event is not finite; `observer.thrust` as
+    /// [`SceneDescription::looking_observer`] says.
     pub fn moving_observer(&self) -> Result<MovingObserver, SceneErrorKind> {
-        let observer = &self.observer;
-        let event = Event::new(observer.ct, DVec3::from_array(observer.position));
-        let beta = DVec3::from_array(observer.beta);
-        MovingObserver::new(beta, event)
-            .map_err(|error| invalid_velocity(ValueName::Key("observer.beta"), beta, &error))
+        let (looking, _) = self.looking_observer()?;
+        inertial_observer(&looking)
     }
 
     /// The observation event in W: where the observer is when its own clock reads
     /// `observer.time` (`observer.ct` when absent), having moved along its worldline from
-    /// (`observer.ct`, `observer.position`).
+    /// (`observer.ct`, `observer.position`) — inertially, or riding its `thrust`.
     ///
     /// # Errors
     /// As [`SceneDescription::moving_observer`].
     pub fn observation_event(&self) -> Result<Event, SceneErrorKind> {
-        let observer = &self.observer;
-        let motion = self.moving_observer()?;
+        let (observer, _) = self.looking_observer()?;
+        let motion = inertial_observer(&observer)?;
         let time = observer.time.unwrap_or(observer.ct);
         let at_rest_in_s = Event::new(time, DVec3::from_array(observer.position));
         Ok(motion.observer_to_world().apply(at_rest_in_s))
+    }
+
+    /// The observer as the inertial observer it is when it looks, and for a riding observer
+    /// the lamp's position in W then (`None`: the description's).
+    ///
+    /// Without a `thrust`, the description's observer. With one, the ship rests in its
+    /// starting frame S₀ (velocity `observer.beta`, its clock reading S₀ time, at `position`)
+    /// until its clock reads `start`, then follows the Born-rigid hyperbola along the thrust
+    /// (srt_physics::motion::Thrust::origin_at_proper_time) and coasts: when its clock reads
+    /// `observer.time` it is at the event E with velocity v in S₀. Aberration and the Doppler
+    /// shift depend on nothing else, so the picture is the one an inertial observer with the
+    /// composed velocity (collinear: rapidities add) sees at E; that observer is returned with
+    /// E as its origin event. The lamp rides along Born-rigidly: its offset from the observer
+    /// in the ship's rest frame stays the one it had in S₀.
+    ///
+    /// # Errors
+    /// [`SceneErrorKind::Value`] naming `observer.thrust` for an unusable thrust (zero or not
+    /// finite acceleration, negative duration), one across a moving observer's velocity (the
+    /// camera would turn by a Thomas–Wigner rotation), or a lamp beyond the ship's Rindler
+    /// horizon (1/α behind it, where no Born-rigid ship reaches); as
+    /// [`SceneDescription::moving_observer`] for the velocity.
+    pub fn looking_observer(&self) -> Result<(ObserverDescription, Option<DVec3>), SceneErrorKind> {
+        let observer = &self.observer;
+        let Some(ride) = observer.thrust else {
+            return Ok((observer.clone(), None));
+        };
+        let thrust_error = |reason: String| value_error("observer.thrust", reason);
+        let thrust = Thrust::new(
+            DVec3::from_array(ride.proper_acceleration),
+            ride.start,
+            ride.duration,
+        )
+        .map_err(|e| thrust_error(e.to_string()))?;
+        let start = inertial_observer(observer)?;
+        let beta0 = DVec3::from_array(observer.beta);
+        if beta0.cross(thrust.direction()).length() > 1e-9 * beta0.length() {
+            return Err(thrust_error(format!(
+                "must be along observer.beta {:?} when the observer moves (a thrust across it \
+                 would turn the camera by a Thomas–Wigner rotation)",
+                observer.beta
+            )));
+        }
+        let position = DVec3::from_array(observer.position);
+        let lamp_offset = self
+            .light
+            .as_ref()
+            .and_then(LightsDescription::lamp)
+            .map(|lamp| {
+                let lamp = Event::new(observer.ct, DVec3::from_array(lamp.position));
+                start.to_observer(lamp).position - position
+            });
+        if let Some(offset) = lamp_offset
+            && offset.dot(thrust.direction()) <= thrust.horizon_height()
+        {
+            return Err(thrust_error(format!(
+                "carries the lamp {:.6} behind the observer, beyond the ship's Rindler horizon at \
+                 1/α = {:.6}: no Born-rigid ship reaches that far back",
+                -offset.dot(thrust.direction()),
+                -thrust.horizon_height()
+            )));
+        }
+        let (ship, velocity) = thrust.origin_at_proper_time(observer.time.unwrap_or(observer.ct));
+        let event = start
+            .observer_to_world()
+            .apply(Event::new(ship.ct, position + ship.position));
+        let beta = (beta0 + velocity) / (1.0 + beta0.dot(velocity));
+        // The lamp's offset in the ship's frame is `lamp_offset`: in W, at E's time, its
+        // component along β is longer by γ.
+        let lamp = lamp_offset.map(|offset| {
+            let along = beta.normalize_or_zero();
+            let parallel = offset.dot(along);
+            let gamma = 1.0 / (1.0 - beta.length_squared()).sqrt();
+            event.position + offset + (parallel / gamma - parallel) * along
+        });
+        let looking = ObserverDescription {
+            position: event.position.to_array(),
+            beta: beta.to_array(),
+            ct: event.ct,
+            time: None,
+            thrust: None,
+            ..observer.clone()
+        };
+        Ok((looking, lamp))
     }
 
     /// Each object's frame relative to the observer and the Wigner rotation of its rest-frame
@@ -216,8 +300,9 @@ impl SceneDescription {
     /// As [`SceneDescription::relative_frames`].
     pub fn kinematics(&self) -> Result<Kinematics, SceneError> {
         let fail = |kind| SceneError::new(self.origin(), kind);
-        let motion = self.moving_observer().map_err(fail)?;
-        let observer = self.observer.to_observer();
+        let (looking, riding_lamp) = self.looking_observer().map_err(fail)?;
+        let motion = inertial_observer(&looking).map_err(fail)?;
+        let observer = looking.to_observer();
         let light = match &self.light {
             None => Light {
                 position: observer.position,
@@ -235,7 +320,10 @@ impl SceneDescription {
                     // At rest relative to the observer, where W says it is at W's observation
                     // time.
                     position: motion
-                        .to_observer(Event::new(self.observer.ct, DVec3::from_array(l.position)))
+                        .to_observer(Event::new(
+                            looking.ct,
+                            riding_lamp.unwrap_or(DVec3::from_array(l.position)),
+                        ))
                         .position,
                     temperature_k: l.temperature_k,
                     strength: l.strength,
@@ -412,6 +500,15 @@ pub fn build_scene_file(
         scene.name = stem.to_string_lossy().into_owned();
     }
     Ok((scene, description, warnings))
+}
+
+/// The rest frame of the inertial `observer`: velocity `beta`, origin event (`ct`,
+/// `position`), where its clocks read `ct`.
+fn inertial_observer(observer: &ObserverDescription) -> Result<MovingObserver, SceneErrorKind> {
+    let event = Event::new(observer.ct, DVec3::from_array(observer.position));
+    let beta = DVec3::from_array(observer.beta);
+    MovingObserver::new(beta, event)
+        .map_err(|error| invalid_velocity(ValueName::Key("observer.beta"), beta, &error))
 }
 
 impl ObserverDescription {

@@ -129,6 +129,13 @@ pub struct ObserverDescription {
     /// `fov_y_deg`); docs/scene-format.md, "Projections".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub projection: Option<Projection>,
+    /// The ride: from its own clock's `start` on, the observer accelerates Born-rigidly (the
+    /// hyperbolic worldline of an object's `thrust`, in the observer's rest frame at
+    /// (`ct`, `position`), along `observer.beta` when it moves), then coasts; each picture is
+    /// drawn from its event and velocity when its clock reads `time` (docs/scene-format.md,
+    /// "The ride").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thrust: Option<ThrustDescription>,
 }
 
 /// One light table: a point light radiating a Planck spectrum. The lamp (`[light]`, or a

@@ -58,6 +58,8 @@ impl SceneDescription {
         if let Some(lights) = &self.light {
             check_lights(lights)?;
         }
+        // A ride's thrust, its direction and the lamp it carries.
+        self.looking_observer()?;
         self.render.check(names)?;
         if let Some(sky) = &self.sky {
             if sky.star_field > crate::sky::MAX_STARS {

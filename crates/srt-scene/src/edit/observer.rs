@@ -23,8 +23,15 @@ impl Editor {
     pub fn set_observer(&mut self, observer: Observer) -> Result<(), EditError> {
         let clock_moved = observer.ct != self.time();
         self.move_observer(|description| {
+            // A riding observer's runtime position is where the ride has taken it: its start
+            // stays the description's.
+            let position = if description.thrust.is_some() {
+                description.position
+            } else {
+                observer.position.to_array()
+            };
             *description = ObserverDescription {
-                position: observer.position.to_array(),
+                position,
                 look_at: None,
                 direction: Some(observer.direction.to_array()),
                 beta: description.beta,
@@ -38,6 +45,7 @@ impl Editor {
                 },
                 projection: (observer.projection != Projection::Perspective)
                     .then_some(observer.projection),
+                thrust: description.thrust,
             };
         })
     }
