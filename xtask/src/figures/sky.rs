@@ -7,16 +7,12 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
-use image::imageops;
 use srt_scene::{SurfaceColour, builtin::find_builtin};
 
-use super::render_panel;
-use crate::plot::{BLACK, Canvas, WHITE};
+use super::{render_panel, write_panel_grid};
 
 const PANEL_WIDTH: u32 = 480;
 const PANEL_HEIGHT: u32 = 300;
-const TITLE_HEIGHT: u32 = 50;
-const CAPTION_HEIGHT: u32 = 40;
 
 /// Writes `flythrough_sky.png`.
 pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
@@ -31,37 +27,20 @@ pub fn write(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         (flying, "0.9c, the paper's colour"),
         (spectral, "0.9c, spectral colour"),
     ];
-    let mut canvas = Canvas::new(
-        3 * PANEL_WIDTH + 40,
-        PANEL_HEIGHT + TITLE_HEIGHT + CAPTION_HEIGHT,
-        WHITE,
-    );
-    canvas.text(
-        20.0,
-        12.0,
-        20.0,
-        BLACK,
-        "flythrough: the observer at rest, and flying at 0.9c through the same world and stars",
-    );
-    for (index, (description, caption)) in panels.iter().enumerate() {
+    let mut rendered = Vec::new();
+    for (description, caption) in &panels {
         let (scene, _) = builtin.build_description(description)?;
-        let panel = render_panel(&scene, PANEL_WIDTH, PANEL_HEIGHT);
-        let left = 10 + index as u32 * (PANEL_WIDTH + 10);
-        imageops::replace(
-            canvas.image_mut(),
-            &panel,
-            i64::from(left),
-            i64::from(TITLE_HEIGHT),
-        );
-        canvas.text_centred(
-            left as f32 + PANEL_WIDTH as f32 / 2.0,
-            (TITLE_HEIGHT + PANEL_HEIGHT + 10) as f32,
-            18.0,
-            BLACK,
-            caption,
-        );
+        rendered.push((
+            render_panel(&scene, PANEL_WIDTH, PANEL_HEIGHT),
+            (*caption).to_owned(),
+        ));
     }
     let path = out_dir.join("flythrough_sky.png");
-    canvas.save(&path)?;
+    write_panel_grid(
+        &path,
+        "flythrough: the observer at rest, and flying at 0.9c through the same world and stars",
+        &rendered,
+        3,
+    )?;
     Ok(vec![path])
 }
