@@ -174,7 +174,8 @@ fn varying_ray(in: LrtVarying) -> RestRay {
         in.up_inverse_height.xyz,
         vec2<f32>(in.right_inverse_width.w, in.up_inverse_height.w),
     );
-    return backward_ray_of(in.beta_gamma, in.observer_rest, camera_view_direction(camera, in.position.xy));
+    let observer_rest = in.observer_rest + rest_displacement(in.beta_gamma, eye_offset(in.position.xy));
+    return backward_ray_of(in.beta_gamma, observer_rest, camera_view_direction(camera, in.position.xy));
 }
 
 // A backward viewing ray in S′, the rest-frame corners of a triangle and the ray's hit with it.
@@ -286,18 +287,22 @@ fn lrt_shade_lean(in: LeanVarying) -> @location(0) vec4<f32> {
     return shaded(full_varying(in, false));
 }
 
-// The viewing direction through the pixel `step` away from `pixel`, for texture differentials;
-// beyond a fisheye's rim, `pixel`'s own (no footprint that way, as the CPU takes it).
+// The viewing direction through the pixel `step` away from `pixel` (from the same eye of a
+// stereo pair), for texture differentials; beyond a fisheye's rim, `pixel`'s own (no footprint
+// that way, as the CPU takes it).
 fn neighbour_direction(pixel: vec2<f32>, step: vec2<f32>) -> vec3<f32> {
-    if (sees_nothing(pixel + step)) {
+    let neighbour = neighbour_view_direction(pixel, step);
+    if (all(neighbour == vec3<f32>(0.0))) {
         return view_direction(pixel);
     }
-    return view_direction(pixel + step);
+    return neighbour;
 }
 
 // The colour of the shading pass's fragment: the kept triangle's, shaded.
 fn shaded(in: LrtVarying) -> vec4<f32> {
     let pixel = in.position.xy;
+    // The eye this pixel's ray leaves from (surface.wgsl's directions towards the observer).
+    stereo_eye = eye_offset(pixel);
     // The depth test let only this part's pixels through (the header's step 3). The counting
     // variant's atomic is a side effect, which makes the test run after the shader: there the id
     // decides (and only there: a discard would keep the test late in the normal variant too).

@@ -103,6 +103,20 @@ struct RestRay {
     ct_origin: f32,
 }
 
+// The change (Δct′, Δx′) in S′ of an event moved by the spatial displacement `shift` in S at
+// the same S time: the pure boost Λ_−β of (0, shift) (Eq. 2), from β and γ (`beta_gamma`).
+fn rest_displacement(beta_gamma: vec4<f32>, shift: vec3<f32>) -> vec4<f32> {
+    let beta = beta_gamma.xyz;
+    let gamma = beta_gamma.w;
+    let along = dot(beta, shift);
+    let b2 = dot(beta, beta);
+    var stretch = 0.0;
+    if (b2 > 0.0) {
+        stretch = (gamma - 1.0) / b2;
+    }
+    return vec4<f32>(-gamma * along, shift + stretch * along * beta);
+}
+
 // The backward viewing ray in S′ for the observer looking along `view_direction` (in S).
 fn backward_ray(frame: Frame, view_direction: vec3<f32>) -> RestRay {
     return backward_ray_of(frame.beta_gamma, frame.observer_rest, view_direction);

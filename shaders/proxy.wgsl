@@ -620,8 +620,11 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     // boxes come here (srt_gpu::Method::cannot_draw), and the box's first triangle covers the
     // rectangle of the picture where the object may be seen (object.view_bound), so that each
     // pixel there traces the object's BVH once, whatever its direction.
-    if (frame_uniforms.projection != PROJECTION_PERSPECTIVE) {
-        footprint_depth = nearest_depth(rest);
+    // A stereo pair's rays leave from two eyes: the same, over the whole picture, drawn at
+    // depth 0 (the bound is the observer's, not the eyes').
+    let stereo = frame_uniforms.eye_separation >= 0.0;
+    if (frame_uniforms.projection != PROJECTION_PERSPECTIVE || stereo) {
+        footprint_depth = select(nearest_depth(rest), 0.0, stereo);
         if (t == 0u) {
             let picture = picture_rect();
             let bound = object.view_bound - vec4<f32>(frame_uniforms.picture.zw, frame_uniforms.picture.zw);

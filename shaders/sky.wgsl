@@ -70,18 +70,21 @@ struct StarSplat {
     base: vec2<f32>,
     fraction: vec2<f32>,
     light: vec3<f32>,
+    // The target pixels it may light (min x, min y, max x, max y): its eye's picture.
+    bounds: vec4<f32>,
 }
 
-// The splat of star `i` (see StarSplat).
-fn star_splat(i: u32) -> StarSplat {
+// The splat of star `i` in the picture of `eye` (0: the whole picture; −1, +1: that eye's half
+// of a stereo pair; see StarSplat).
+fn star_splat(i: u32, eye: f32) -> StarSplat {
     let star = stars[i];
     let rest = normalize(sky.direction_map * star.direction_temperature.xyz);
     let image = distant_source_image(sky.beta_saturation.xyz, rest);
-    let projected = project_direction(image.direction);
+    let projected = project_direction(image.direction, eye);
     let corner = projected.xy / f32(sky.supersampling.x) - vec2<f32>(0.5);
     let base = floor(corner);
     let light = arriving_output(star_arriving(star, image.doppler));
-    return StarSplat(projected.z != 0.0, base, corner - base, light);
+    return StarSplat(projected.z != 0.0, base, corner - base, light, eye_bounds(eye));
 }
 
 // Target pixel `k` of the splat `s`, and what the star adds there; index = −1 outside the
@@ -107,7 +110,7 @@ fn splat_pixel(s: StarSplat, k: u32) -> SplatPixel {
     let offset = vec2<f32>(f32(corner & 1u), f32(corner >> 1u));
     let p = (s.base + offset) * f32(scale) + vec2<f32>(f32(sub % scale), f32(sub / scale));
     let size = frame_uniforms.viewport.xy;
-    if (any(p < vec2<f32>(0.0)) || any(p >= size)) {
+    if (any(p < max(s.bounds.xy, vec2<f32>(0.0))) || any(p >= min(s.bounds.zw, size))) {
         return SplatPixel(-1, vec3<f32>(0.0));
     }
     let w = select(1.0 - s.fraction, s.fraction, offset == vec2<f32>(1.0));
@@ -120,13 +123,20 @@ fn peak_exponent(peak: f32) -> i32 {
     return i32((bitcast<u32>(peak) >> 23u) & 0xffu) - 126;
 }
 
-// The splat of the star invocation `id` handles (see StarSplat); not visible past the last star.
+// The splat of the star invocation `id` handles (see StarSplat): one per star, or per star and
+// eye of a stereo pair (the pass is dispatched for twice the stars); not visible past the last.
 fn invocation_splat(id: vec3<u32>, groups: vec3<u32>) -> StarSplat {
     let i = id.x + id.y * groups.x * WORKGROUP_SIZE;
-    if (i >= sky.counts.x) {
-        return StarSplat(false, vec2<f32>(0.0), vec2<f32>(0.0), vec3<f32>(0.0));
+    let count = sky.counts.x;
+    let eyes = select(1u, 2u, is_stereo());
+    if (i >= count * eyes) {
+        return StarSplat(false, vec2<f32>(0.0), vec2<f32>(0.0), vec3<f32>(0.0), vec4<f32>(0.0));
     }
-    return star_splat(i);
+    var eye = 0.0;
+    if (is_stereo()) {
+        eye = select(-1.0, 1.0, i >= count);
+    }
+    return star_splat(i % count, eye);
 }
 
 // Pass 1: each pixel's peak, the largest channel magnitude of any star's contribution there.

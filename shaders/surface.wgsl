@@ -15,6 +15,11 @@ override CLOCK_VARIANT: bool;
 override WIREFRAME_VARIANT: bool;
 override SEEN_VARIANT: bool;
 
+// The offset (in S) from the observer of the eye the shaded pixel's ray leaves from: 0 but in
+// a stereo pair, where the shading pass sets it per pixel (lrt.wgsl's `shaded`, camera.wgsl's
+// eye_offset); the directions towards the observer start there.
+var<private> stereo_eye: vec3<f32>;
+
 struct TriangleHit {
     found: bool,
     distance: f32,
@@ -260,7 +265,7 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
     let beta = local.beta;
     let proper_time = local.proper_time;
     let incident = normalize(apparent - frame_uniforms.light.xyz);
-    let outgoing = normalize(frame_uniforms.observer.xyz - apparent);
+    let outgoing = normalize(frame_uniforms.observer.xyz + stereo_eye - apparent);
     let relativistic = frame_uniforms.effects != EFFECTS_GEOMETRY;
     var d_in = 1.0;
     var d_out = 1.0;
@@ -385,7 +390,7 @@ fn seen_pixel(emission_rest: vec4<f32>, local: LocalFrame) -> vec4<f32> {
         return vec4<f32>(object.time.x, 0.0, 0.0, 0.0);
     }
     let event = to_observer(object.frame, emission_rest);
-    let towards_observer = frame_uniforms.observer.xyz - event.yzw;
+    let towards_observer = frame_uniforms.observer.xyz + stereo_eye - event.yzw;
     return vec4<f32>(
         dot(object.world_time, emission_rest) + object.time.z,
         local.proper_time,

@@ -116,8 +116,11 @@ struct FrameUniforms {
     projection: u32,
     // Half the fisheye's field of view in radians (PROJECTION_FISHEYE; 0 otherwise).
     fisheye_half_fov: f32,
+    // A stereo pair's eye separation (srt_scene::Stereo; camera.wgsl's eye_point), or −1 for
+    // one picture from the observer.
+    eye_separation: f32,
     // Unused: keeps `radiance` on its 16-byte boundary.
-    projection_padding: vec2<u32>,
+    projection_padding: u32,
     // How light becomes radiance (light.wgsl, arriving_radiance): ln Y of the lamp's black body,
     // 1/g, 1 where brightness follows luminance else 0, the largest value the target holds.
     radiance: vec4<f32>,

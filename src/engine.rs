@@ -215,11 +215,17 @@ impl Engine {
         };
         // Each output pixel averages scale² rendered pixels; a star lights all of them.
         renderer.set_supersampling(scale);
-        let projection = scene.observer.projection;
-        let note = (method == Method::Auto && projection != Projection::Perspective).then(|| {
+        let observer = &scene.observer;
+        let what = match (observer.projection, observer.stereo) {
+            (Projection::Perspective, None) => None,
+            (Projection::Perspective, Some(_)) => Some("for the stereo pair".to_owned()),
+            (projection, None) => Some(format!("in the {projection} projection")),
+            (projection, Some(_)) => Some(format!("in the {projection} projection's stereo pair")),
+        };
+        let note = what.filter(|_| method == Method::Auto).map(|what| {
             format!(
-                "auto traces every object by the ray tracer (rt) in the {projection} projection: \
-                 the local ray tracer's footprints are drawn through the pinhole"
+                "auto traces every object by the ray tracer (rt) {what}: the local ray tracer's \
+                 footprints are drawn through one pinhole"
             )
         });
         Ok(Chosen {

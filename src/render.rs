@@ -16,7 +16,7 @@ use image::RgbImage;
 use srt::empty::OneColour;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
-use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, ValueName, View};
+use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, Stereo, ValueName, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::cli::RenderArgs;
@@ -70,6 +70,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     };
     let settings = settings_of(args);
+    if scene.observer.stereo.is_some() {
+        Stereo::check_size(scene.observer.projection, settings.width, settings.height)
+            .map_err(|reason| anyhow::anyhow!("{}: {reason}", scene.name))?;
+    }
     let view = args.view;
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
@@ -422,8 +426,13 @@ fn render_video(
     let settings = settings_of(args);
     let mut video = VideoWriter::create(output, settings.width, settings.height, args.video.fps())?;
     if editor.scene().observer.projection == Projection::Equirectangular {
-        // 360° players show it around the viewer (the Spherical Video V2 boxes of an MP4).
-        video.set_spherical(StereoMode::Mono);
+        // 360° players show it around the viewer (the Spherical Video V2 boxes of an MP4), the
+        // left eye's picture above the right eye's for a stereo pair.
+        video.set_spherical(if editor.scene().observer.stereo.is_some() {
+            StereoMode::TopBottom
+        } else {
+            StereoMode::Mono
+        });
     }
     let bar = DelayedBar::new(
         u64::from(sweep.frames),

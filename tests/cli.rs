@@ -774,7 +774,7 @@ fn a_wide_projection_is_traced_on_the_gpu() {
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
     assert!(
         stderr(&refused).contains(
-            "the lrt method draws triangles through the pinhole, not the equirectangular projection"
+            "the lrt method draws triangles through one pinhole, not the equirectangular projection"
         ),
         "{}",
         stderr(&refused)

@@ -635,7 +635,8 @@ fn mp4_boxes(data: &[u8], start: usize, end: usize, parent: &str) -> Vec<(String
 
 /// An equirectangular video carries the Spherical Video V2 boxes in its sample entry — `st3d`
 /// (mono) and `sv3d` with `svhd` and `proj` (`prhd`, `equi`) — so that 360° players show it
-/// around the viewer, and still decodes to its frames; a perspective video has none.
+/// around the viewer, and still decodes to its frames; a perspective video has none; a stereo
+/// pair's says top-bottom.
 #[test]
 fn a_360_video_carries_the_spherical_boxes_and_still_plays() {
     let dir = folder();
@@ -703,4 +704,30 @@ fn a_360_video_carries_the_spherical_boxes_and_still_plays() {
             .any(|(p, ..)| p.ends_with("sv3d")),
         "a perspective video is not 360°"
     );
+    // A stereo pair, the left eye above the right: st3d's mode 1 (top-bottom).
+    let output = srt(
+        &[
+            &[
+                "render",
+                "fig7",
+                "--projection",
+                "equirectangular",
+                "--set",
+                "observer.stereo={eye_separation=0.1}",
+                "-o",
+                "pair.mp4",
+            ][..],
+            &common,
+        ]
+        .concat(),
+        dir.path(),
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let pair = std::fs::read(dir.path().join("pair.mp4")).unwrap();
+    let boxes = mp4_boxes(&pair, 0, pair.len(), "");
+    let &(_, st3d, size) = boxes
+        .iter()
+        .find(|(p, ..)| *p == format!("{entry}/st3d"))
+        .expect("st3d");
+    assert_eq!((size, pair[st3d + 12]), (13, 1), "st3d: top-bottom");
 }

@@ -9,7 +9,7 @@ use srt_physics::Frame;
 use srt_scene::placement::{VIEW_DISTANCE, approach_velocity};
 use srt_scene::sky::SkyImage;
 use srt_scene::{
-    Effects, Projection, Scene, SceneDescription, SurfaceColour, View, builtin_scenes,
+    Effects, Projection, Scene, SceneDescription, Stereo, SurfaceColour, View, builtin_scenes,
 };
 
 /// Where Debian's assimp-testmodels package puts its models.
@@ -247,7 +247,8 @@ pub fn fly_by_cases() -> anyhow::Result<Vec<Case>> {
 /// passing on both sides and behind) and through a 220° fisheye, the teaser after the spider
 /// has passed the camera (seen behind the observer, at the picture's edges) as the full
 /// sphere, the teaser's dome master (a 180° fisheye) and the rolling wheel (a body moving in
-/// its frame) as the full sphere.
+/// its frame) as the full sphere; and stereo pairs, top-bottom as the full sphere (the
+/// flythrough) and side by side (the teaser).
 ///
 /// # Errors
 /// If a built-in scene does not build (a bug).
@@ -275,7 +276,7 @@ pub fn projection_cases() -> anyhow::Result<Vec<Case>> {
             Projection::Equirectangular,
         ),
     ];
-    Ok(cases
+    let mut cases: Vec<Case> = cases
         .into_iter()
         .map(|(name, mut scene, projection)| {
             scene.observer.projection = projection;
@@ -284,7 +285,24 @@ pub fn projection_cases() -> anyhow::Result<Vec<Case>> {
                 scene,
             }
         })
-        .collect())
+        .collect();
+    // Stereo pairs: omni-directional top-bottom (the flythrough) and side by side (the teaser).
+    let stereo = Some(Stereo {
+        eye_separation: 1.0,
+    });
+    for (name, projection) in [
+        ("flythrough", Projection::Equirectangular),
+        ("teaser", Projection::Perspective),
+    ] {
+        let mut scene = builtin(name)?;
+        scene.observer.projection = projection;
+        scene.observer.stereo = stereo;
+        cases.push(Case {
+            name: format!("{name}-{projection}-stereo"),
+            scene,
+        });
+    }
+    Ok(cases)
 }
 
 /// Bodies moving within their frames, in motion past the camera: the rolling wheel passing

@@ -289,12 +289,9 @@ fn validate_footprints(
     case: &Case,
 ) -> anyhow::Result<Vec<String>> {
     let scene = &case.scene;
-    if scene.observer.projection != srt_scene::Projection::Perspective {
-        // Every object is traced, through a box footprint over the whole picture.
-        println!(
-            "scene={}: no footprints to check in the {} projection",
-            case.name, scene.observer.projection
-        );
+    if let Some(why) = Method::Lrt.cannot_draw(scene) {
+        // A wide projection or a stereo pair: every object is traced, through a box footprint.
+        println!("scene={}: no footprints to check: {why}", case.name);
         return Ok(Vec::new());
     }
     let (width, height) = renderer.size();

@@ -394,6 +394,7 @@ mod tests {
     fn looking_along_z(ct: f64) -> Observer {
         Observer {
             projection: srt_scene::Projection::Perspective,
+            stereo: None,
             position: DVec3::ZERO,
             direction: DVec3::Z,
             up: DVec3::Y,

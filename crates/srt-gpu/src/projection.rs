@@ -85,6 +85,24 @@ pub fn target_camera(
     window: Option<ImageWindow>,
 ) -> TargetCamera {
     let (forward, right, up) = observer.basis();
+    if observer.stereo.is_some() && observer.projection == Projection::Perspective {
+        // Side by side: each eye's half is a pinhole picture of half the width (camera.wgsl's
+        // eye_point maps the whole picture's points, windows included).
+        if let Some(window) = window {
+            window.check_holds(width, height);
+        }
+        let (picture_width, picture_height) =
+            window.map_or((width, height), |w| (w.image_width, w.image_height));
+        let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
+        let eye_aspect = 0.5 * f64::from(picture_width) / f64::from(picture_height);
+        return TargetCamera {
+            view_projection: view_projection(observer, width, height),
+            forward,
+            right: right * tan_half * eye_aspect,
+            up: up * tan_half,
+            offset: DVec2::ZERO,
+        };
+    }
     if observer.projection != Projection::Perspective {
         // A wide projection maps the whole picture's points to directions (camera.wgsl's
         // wide_direction, through FrameUniforms::picture): the shaders take the unit basis.

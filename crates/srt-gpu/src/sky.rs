@@ -127,9 +127,11 @@ impl SkyResources {
         }
         let star_bytes = (stars.len() * size_of::<GpuStar>()) as u64;
         limits.check_storage_buffer(|| format!("the sky's {} stars", stars.len()), star_bytes)?;
+        // An invocation per star and eye of a stereo pair (sky.wgsl's invocation_splat; the
+        // second half returns at once for one picture).
         let workgroups = limits.workgroup_grid(
             || "the sky's star pass".to_owned(),
-            u64::from(star_count),
+            2 * u64::from(star_count),
             WORKGROUP_SIZE,
         )?;
         if let Some(image) = &scene.sky.image {

@@ -215,8 +215,10 @@ pub struct FrameUniforms {
     pub projection: ProjectionCode,
     /// Half the fisheye's field of view in radians (0 for the other projections).
     pub fisheye_half_fov: f32,
+    /// A stereo pair's eye separation, or −1 for one picture from the observer.
+    pub eye_separation: f32,
     /// Unused: keeps `radiance` on its 16-byte boundary.
-    pub projection_padding: [u32; 2],
+    pub projection_padding: u32,
     /// How light becomes radiance: ln Y of the lamp, 1/g, 1 where brightness follows luminance
     /// else 0, and the largest value the colour target holds ([`radiance_params`]).
     pub radiance: [f32; 4],

@@ -116,7 +116,7 @@ macro_rules! twin {
 fn table() -> Vec<Twin> {
     vec![
         twin!(GpuFrame => "Frame" { rest_to_observer, observer_to_rest, beta_gamma, offset, observer_rest }),
-        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, picture, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, output, projection, fisheye_half_fov, projection_padding, radiance, lights }),
+        twin!(FrameUniforms => "FrameUniforms" { view_projection, camera_forward, camera_right, camera_up, observer, light, shading, background, lut, viewport, picture, effects, footprint_shape, depth_scale, colour, tone_map, exposure, searchlight_ln_y, output, projection, fisheye_half_fov, eye_separation, projection_padding, radiance, lights }),
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics, time, world_time, blink, clock, clock_face, clock_ink, motion, motion_axis, motion_centre, motion_low, motion_high, view_bound }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, frames, frame_height, frame_rate, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),

@@ -115,6 +115,51 @@ fn the_full_sphere_draws_what_is_behind_the_observer() {
     assert!(mismatch.fraction() <= MAX_MISMATCH, "{mismatch:?}");
 }
 
+/// A stereo pair on the GPU is the CPU's: side by side through the pinhole (teaser, the
+/// flythrough's stars split between the eyes) and top-bottom as omni-directional stereo (the
+/// flythrough, the rolling wheel), by the ray tracer and `auto`, under validate's rules.
+#[test]
+fn the_ray_tracer_draws_stereo_pairs_as_the_cpu_does() {
+    let Some(ctx) = context_or_skip("the_ray_tracer_draws_stereo_pairs_as_the_cpu_does") else {
+        return;
+    };
+    let cases = [
+        ("teaser", Projection::Perspective, 192, 54),
+        ("flythrough", Projection::Perspective, 192, 54),
+        ("flythrough", Projection::Equirectangular, 128, 128),
+        ("rolling-wheel", Projection::Equirectangular, 128, 128),
+    ];
+    for (name, projection, width, height) in cases {
+        let mut scene = scene_in(name, projection);
+        scene.observer.stereo = Some(srt_scene::Stereo {
+            eye_separation: 1.5,
+        });
+        let reference = Tracer::new(&scene).render(
+            RenderSettings {
+                width,
+                height,
+                samples: 1,
+            },
+            &|_| {},
+        );
+        let renderer = GpuRenderer::new(&ctx, &scene, width, height).unwrap();
+        for method in [Method::Rt, Method::Auto] {
+            let (image, _) = renderer
+                .render(&ctx, &scene, method, FootprintShape::Hull)
+                .unwrap();
+            let mismatch = compare(&reference, &image.to_rgb8(), TOLERANCE, EDGE_MARGIN);
+            assert!(
+                mismatch.fraction() <= MAX_MISMATCH,
+                "{name} {projection} stereo {method:?}: {mismatch:?}"
+            );
+        }
+        for method in [Method::Lrt, Method::Polygon] {
+            let why = method.cannot_draw(&scene).unwrap();
+            assert!(why.contains("--method rt"), "{why}");
+        }
+    }
+}
+
 /// The local ray tracer and the polygon method draw through the pinhole: they refuse a wide
 /// projection, naming it and what to use instead.
 #[test]

@@ -32,7 +32,7 @@ pub use description::{
 pub use edit::{EditError, Editor};
 pub use import::{ImportError, ImportFailure, Model, load_model};
 pub use mesh::{Material, Mesh, MeshError, Part, Texture};
-pub use projection::Projection;
+pub use projection::{EyePoint, Projection, Stereo};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{
     Blink, BodyExtent, Clock, Effects, Emission, Kinematics, Light, MAX_MOVING_LIGHTS, MovingLight,

@@ -184,6 +184,7 @@ impl SceneDescription {
                 time: None,
                 projection: None,
                 thrust: None,
+                stereo: None,
             },
             light: Some(LightsDescription::Lamp(LightDescription::lamp(
                 (position + DVec3::new(-1.0, 0.0, 2.0) * FIT_RADIUS * 2.0).to_array(),

@@ -44,6 +44,135 @@ pub enum Projection {
     },
 }
 
+/// Two eyes in one picture (`[observer] stereo = { eye_separation = d }`): top (left eye) over
+/// bottom (right eye) for the equirectangular projection — omni-directional stereo, each
+/// column's rays leaving from the point ±d/2 along the horizontal direction perpendicular to
+/// the column's, as 360° players expect — and side by side (left eye on the left) for the
+/// pinhole, whose eyes sit ±d/2 along the observer's right axis and look parallel. Each eye's
+/// half is a picture of its own in the projection ([`Stereo::eye_at`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Stereo {
+    /// The distance between the eyes (scene units, ≥ 0).
+    pub eye_separation: f64,
+}
+
+/// Which eye sees a point of a stereo picture, and where in that eye's own picture.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EyePoint {
+    /// −1 for the left eye, +1 for the right.
+    pub eye: f64,
+    /// The point in the eye's picture (normalised device coordinates).
+    pub ndc: DVec2,
+}
+
+impl Stereo {
+    /// Why the stereo pair is not usable with `projection`, if it is not: a separation that is
+    /// negative or not finite, or a fisheye (a dome has no stereo layout).
+    ///
+    /// # Errors
+    /// The reason, naming the value.
+    pub fn check(self, projection: Projection) -> Result<Self, String> {
+        if !(self.eye_separation.is_finite() && self.eye_separation >= 0.0) {
+            return Err(format!(
+                "eye_separation must be a finite distance ≥ 0, got {:?}",
+                self.eye_separation
+            ));
+        }
+        if matches!(projection, Projection::Fisheye { .. }) {
+            return Err(
+                "a fisheye has no stereo layout; use the equirectangular projection \
+                 (top-bottom) or the pinhole (side by side)"
+                    .to_owned(),
+            );
+        }
+        Ok(self)
+    }
+
+    /// Why a `width` × `height` picture cannot hold the pair in `projection`, if it cannot:
+    /// the side the eyes share (the height top-bottom, the width side by side) must be even,
+    /// so that each eye's half is a whole number of pixels.
+    ///
+    /// # Errors
+    /// The reason, naming the size.
+    pub fn check_size(projection: Projection, width: u32, height: u32) -> Result<(), String> {
+        let (side, value) = if projection == Projection::Equirectangular {
+            ("height", height)
+        } else {
+            ("width", width)
+        };
+        if value % 2 == 0 {
+            Ok(())
+        } else {
+            Err(format!(
+                "a stereo picture's {side} is split between the eyes and must be even, got \
+                 {width}x{height}"
+            ))
+        }
+    }
+
+    /// The eye seeing the point `ndc` of the whole picture in `projection`, and the point in
+    /// that eye's half: the top half (y > 0) is the left eye's for the equirectangular
+    /// projection, the left half (x < 0) for the pinhole; each half is stretched over [−1, 1]².
+    #[must_use]
+    pub fn eye_at(projection: Projection, ndc: DVec2) -> EyePoint {
+        if projection == Projection::Equirectangular {
+            if ndc.y > 0.0 {
+                EyePoint {
+                    eye: -1.0,
+                    ndc: DVec2::new(ndc.x, 2.0 * ndc.y - 1.0),
+                }
+            } else {
+                EyePoint {
+                    eye: 1.0,
+                    ndc: DVec2::new(ndc.x, 2.0 * ndc.y + 1.0),
+                }
+            }
+        } else if ndc.x < 0.0 {
+            EyePoint {
+                eye: -1.0,
+                ndc: DVec2::new(2.0 * ndc.x + 1.0, ndc.y),
+            }
+        } else {
+            EyePoint {
+                eye: 1.0,
+                ndc: DVec2::new(2.0 * ndc.x - 1.0, ndc.y),
+            }
+        }
+    }
+
+    /// The point of the whole picture where `eye` (−1 left, +1 right) sees the point `ndc` of
+    /// its own half: the inverse of [`Stereo::eye_at`].
+    #[must_use]
+    pub fn picture_point(projection: Projection, eye: f64, ndc: DVec2) -> DVec2 {
+        if projection == Projection::Equirectangular {
+            DVec2::new(ndc.x, 0.5 * (ndc.y - eye))
+        } else {
+            DVec2::new(0.5 * (ndc.x + eye), ndc.y)
+        }
+    }
+
+    /// The offset from the observer (in S) of the eye that sees `point`, for the basis
+    /// (`forward`, `right`, `up`): ±d/2 along `right` for the pinhole; for the
+    /// equirectangular projection ±d/2 along the horizontal direction perpendicular to the
+    /// point's column, to its right (omni-directional stereo): the column at longitude φ looks
+    /// along cos φ f + sin φ r, so the offset is ±d/2 (cos φ r − sin φ f).
+    #[must_use]
+    pub fn eye_offset(
+        self,
+        projection: Projection,
+        point: EyePoint,
+        [forward, right, _up]: [DVec3; 3],
+    ) -> DVec3 {
+        let half = 0.5 * self.eye_separation * point.eye;
+        if projection != Projection::Equirectangular {
+            return half * right;
+        }
+        let longitude = PI * point.ndc.x;
+        half * (longitude.cos() * right - longitude.sin() * forward)
+    }
+}
+
 /// [`DEFAULT_FISHEYE_FOV_DEG`], for serde.
 const fn default_fisheye_fov() -> f64 {
     DEFAULT_FISHEYE_FOV_DEG

@@ -3,7 +3,7 @@
 //! moves through its world frame is brought into S by
 //! [`SceneDescription::build`](crate::SceneDescription::build).
 
-use crate::projection::Projection;
+use crate::projection::{Projection, Stereo};
 use crate::sky::Sky;
 use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_to_mat4;
@@ -159,6 +159,8 @@ pub struct Observer {
     pub ct: f64,
     /// How the image maps its points to viewing directions ([`Projection`]).
     pub projection: Projection,
+    /// Two eyes in one picture ([`Stereo`]; `None`: one eye at `position`).
+    pub stereo: Option<Stereo>,
 }
 
 impl Observer {
@@ -184,6 +186,7 @@ impl Observer {
     pub fn view_direction(&self, ndc: DVec2, aspect: f64) -> DVec3 {
         ViewRays {
             projection: Projection::Perspective,
+            stereo: None,
             ..self.view_rays(aspect)
         }
         .pinhole(ndc)
@@ -201,6 +204,7 @@ impl Observer {
             tan_half: (0.5 * self.fov_y_deg.to_radians()).tan(),
             aspect,
             projection: self.projection,
+            stereo: self.stereo,
         }
     }
 
@@ -227,12 +231,105 @@ pub struct ViewRays {
     aspect: f64,
     /// The observer's projection.
     projection: Projection,
+    /// The observer's stereo pair, if any.
+    stereo: Option<Stereo>,
 }
 
 impl ViewRays {
+    /// The ray through the point `ndc` of normalised device coordinates (x right, y up, both
+    /// in [−1, 1]) of the whole picture: the offset (in S) from the observer of the eye it
+    /// leaves from (zero without stereo) and its (unnormalised) viewing direction; `None`
+    /// where the picture sees nothing (outside a fisheye's circle). With stereo each eye's half
+    /// is a picture of its own ([`Stereo::eye_at`]).
+    #[must_use]
+    pub fn ray(&self, ndc: DVec2) -> Option<(DVec3, DVec3)> {
+        let Some(stereo) = self.stereo else {
+            return self.direction(ndc).map(|d| (DVec3::ZERO, d));
+        };
+        let point = Stereo::eye_at(self.projection, ndc);
+        let direction = self.eye_rays().direction(point.ndc)?;
+        let basis = [self.forward, self.right, self.up];
+        Some((stereo.eye_offset(self.projection, point, basis), direction))
+    }
+
+    /// Whether the picture holds a stereo pair.
+    #[must_use]
+    pub const fn is_stereo(&self) -> bool {
+        self.stereo.is_some()
+    }
+
+    /// The direction through the point `step` (normalised device coordinates of the whole
+    /// picture, a pixel's size) beyond `ndc`, from the same eye: for texture filtering (ray
+    /// differentials). In a stereo picture the neighbour of a pixel at the edge of its eye's
+    /// half lies beyond that half, in the eye's own picture, not in the other eye's half.
+    #[must_use]
+    pub fn neighbour(&self, ndc: DVec2, step: DVec2) -> Option<DVec3> {
+        if self.stereo.is_none() {
+            return self.direction(ndc + step);
+        }
+        let point = Stereo::eye_at(self.projection, ndc);
+        // Each half is stretched over [−1, 1] along the axis the halves share.
+        let stretch = if self.projection == Projection::Equirectangular {
+            DVec2::new(1.0, 2.0)
+        } else {
+            DVec2::new(2.0, 1.0)
+        };
+        self.eye_rays().direction(point.ndc + step * stretch)
+    }
+
+    /// The points of the whole picture (normalised device coordinates) where a direction far
+    /// away (a star: the same for both eyes) is seen: one without stereo, one in each eye's
+    /// half with it; `None` where it is not in the picture.
+    #[must_use]
+    pub fn image_points(&self, direction: DVec3) -> [Option<DVec2>; 2] {
+        if self.stereo.is_none() {
+            return [self.image_point(direction), None];
+        }
+        let eye = self.eye_rays();
+        [-1.0, 1.0].map(|side| {
+            eye.image_point(direction)
+                .map(|ndc| Stereo::picture_point(self.projection, side, ndc))
+        })
+    }
+
+    /// The pictures a `width` × `height` picture is made of, each as (left, top, width,
+    /// height) in pixels with the rays of that picture alone: the whole picture, or each eye's
+    /// half of a stereo picture (left eye first; the split side is even,
+    /// [`Stereo::check_size`]).
+    #[must_use]
+    pub fn eye_pictures(&self, width: u32, height: u32) -> Vec<([u32; 4], Self)> {
+        if self.stereo.is_none() {
+            return vec![([0, 0, width, height], *self)];
+        }
+        let eye = self.eye_rays();
+        if self.projection == Projection::Equirectangular {
+            let half = height / 2;
+            vec![([0, 0, width, half], eye), ([0, half, width, half], eye)]
+        } else {
+            let half = width / 2;
+            vec![([0, 0, half, height], eye), ([half, 0, half, height], eye)]
+        }
+    }
+
+    /// The rays of one eye's half of a stereo picture, as a picture of its own: for the
+    /// pinhole, half as wide (side by side).
+    fn eye_rays(&self) -> Self {
+        let aspect = if self.projection == Projection::Perspective {
+            0.5 * self.aspect
+        } else {
+            self.aspect
+        };
+        Self {
+            stereo: None,
+            aspect,
+            ..*self
+        }
+    }
+
     /// The (unnormalised) viewing direction in S through the point `ndc` of normalised device
-    /// coordinates (x right, y up, both in [−1, 1]) in the observer's projection; `None` where
-    /// the image sees nothing (outside a fisheye's circle).
+    /// coordinates (x right, y up, both in [−1, 1]) in the observer's projection, from one eye
+    /// at the observer (a stereo pair's rays are [`ViewRays::ray`]'s); `None` where the image
+    /// sees nothing (outside a fisheye's circle).
     #[must_use]
     pub fn direction(&self, ndc: DVec2) -> Option<DVec3> {
         match self.projection {

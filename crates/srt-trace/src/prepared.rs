@@ -255,6 +255,7 @@ impl<'a> PreparedObject<'a> {
                 emission_rest,
                 emission: self.frame.to_observer(emission_rest),
                 apparent_distance,
+                eye: DVec3::ZERO,
             }
         })
     }
@@ -291,4 +292,7 @@ pub struct Hit {
     pub emission: Event,
     /// Apparent distance from the observer (= light travel time, ct_obs − ct_emission).
     pub apparent_distance: f64,
+    /// The offset (in S) from the observer of the eye whose ray found it: zero but for a
+    /// stereo pair ([`srt_scene::Stereo`]).
+    pub eye: DVec3,
 }

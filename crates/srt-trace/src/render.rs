@@ -132,25 +132,44 @@ impl<'a> Tracer<'a> {
     /// The closest surface seen along `view_direction` (in S) from the observation event.
     #[must_use]
     pub fn trace(&self, view_direction: DVec3) -> Option<Hit> {
+        self.trace_from(DVec3::ZERO, view_direction)
+    }
+
+    /// The closest surface seen along `view_direction` (in S) from the eye `eye` away from the
+    /// observer (in S, at the observation time: a stereo pair's, [`srt_scene::ViewRays::ray`];
+    /// zero for the observer itself).
+    #[must_use]
+    pub fn trace_from(&self, eye: DVec3, view_direction: DVec3) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         for group in &self.velocity_groups {
             let direction = self.objects[group[0]].frame.rest_direction(view_direction);
             let inverse_direction = direction.recip();
             for &object_index in group {
                 let object = &self.objects[object_index];
+                let origin = if eye == DVec3::ZERO {
+                    object.observer_rest
+                } else {
+                    object.frame.to_rest(self.eye_event(eye))
+                };
                 let ray = RestRay {
-                    origin: object.observer_rest.position,
+                    origin: origin.position,
                     direction,
-                    ct_origin: object.observer_rest.ct,
+                    ct_origin: origin.ct,
                 };
                 if let Some(hit) =
                     object.closest_hit_seen(object_index, &ray, inverse_direction, best)
                 {
-                    best = Some(hit);
+                    best = Some(Hit { eye, ..hit });
                 }
             }
         }
         best
+    }
+
+    /// The observation event of the eye `eye` away from the observer (in S).
+    fn eye_event(&self, eye: DVec3) -> Event {
+        let observer = self.scene.observer.event();
+        Event::new(observer.ct, observer.position + eye)
     }
 
     /// The closest surface seen through the centre of pixel (`x`, `y`) (0-based, from the
@@ -163,8 +182,8 @@ impl<'a> Tracer<'a> {
         }
         let centre = sample_offsets(1)[0];
         let (sx, sy) = (f64::from(x) + centre.x, f64::from(y) + centre.y);
-        let direction = ImageRays::new(self.scene, width, height).direction(sx, sy)?;
-        self.trace(direction)
+        let (eye, direction) = ImageRays::new(self.scene, width, height).ray(sx, sy)?;
+        self.trace_from(eye, direction)
     }
 
     /// Display colour of a hit. `neighbour_directions` are the viewing directions one pixel to
@@ -254,7 +273,7 @@ impl<'a> Tracer<'a> {
                 (1.0 - zeta - xi) * uvs[indices[0]] + zeta * uvs[indices[1]] + xi * uvs[indices[2]]
             };
             let uv = uv_at((hit.rest_hit.zeta, hit.rest_hit.xi));
-            let observer = self.scene.observer.event();
+            let observer = self.eye_event(hit.eye);
             let differential = |direction: DVec3| -> DVec2 {
                 let ray = object.frame.backward_ray(observer, direction);
                 plane_hit(ray.origin, ray.direction, placed)
@@ -278,7 +297,7 @@ impl<'a> Tracer<'a> {
             }
         }
         let illumination = Illumination {
-            observer: self.scene.observer.position,
+            observer: self.scene.observer.position + hit.eye,
             light_position: self.scene.light.position,
             light_temperature_k: self.scene.light.temperature_k,
             light_strength: self.scene.light.strength,
@@ -406,7 +425,6 @@ impl<'a> Tracer<'a> {
         } = settings;
         assert!(rows.end <= height, "rows {rows:?} of a {height}-row image");
         let image_rays = ImageRays::new(self.scene, width, height);
-        let direction_at = |x: f64, y: f64| image_rays.direction(x, y);
         let offsets = sample_offsets(samples.max(1));
         let table = RadianceTable::shared();
         let scale = self.scene.radiance_scale(table);
@@ -433,11 +451,11 @@ impl<'a> Tracer<'a> {
                 for (k, offset) in offsets.iter().enumerate() {
                     let (sx, sy) = (f64::from(x) + offset.x, f64::from(y) + offset.y);
                     // Outside a fisheye's circle the image sees nothing: the background.
-                    let Some(direction) = direction_at(sx, sy) else {
+                    let Some((eye, direction)) = image_rays.ray(sx, sy) else {
                         sum += finish(background);
                         continue;
                     };
-                    let hit = self.trace(direction);
+                    let hit = self.trace_from(eye, direction);
                     if k == 0 {
                         first_object = hit.map_or(0, |h| h.object as u32 + 1);
                     }
@@ -448,8 +466,9 @@ impl<'a> Tracer<'a> {
                         },
                         |h| {
                             // A neighbour beyond the fisheye's rim: no footprint that way.
-                            let neighbours = [(sx + 1.0, sy), (sx, sy + 1.0)]
-                                .map(|(nx, ny)| direction_at(nx, ny).unwrap_or(direction));
+                            let neighbours = [(1.0, 0.0), (0.0, 1.0)].map(|step| {
+                                image_rays.neighbour(sx, sy, step).unwrap_or(direction)
+                            });
                             value(&self.light(&h, neighbours))
                         },
                     ));
@@ -480,7 +499,8 @@ impl Tracer<'_> {
     pub fn seen_event(&self, hit: &Hit) -> SeenEvent {
         let scene = self.scene();
         let surface = self.surface_at(hit);
-        let towards_observer = (scene.observer.position - hit.emission.position).normalize();
+        let towards_observer =
+            (scene.observer.position + hit.eye - hit.emission.position).normalize();
         SeenEvent {
             object: hit.object,
             emission_ct: scene.world.apply(hit.emission).ct,
@@ -575,12 +595,27 @@ impl ImageRays {
         }
     }
 
-    /// The direction through the point (`x`, `y`), in pixels from the top-left corner (pixel
-    /// centres at +0.5), in the observer's projection; `None` where the image sees nothing
-    /// (outside a fisheye's circle).
-    fn direction(&self, x: f64, y: f64) -> Option<DVec3> {
-        let ndc = DVec2::new(2.0 * x / self.width - 1.0, 1.0 - 2.0 * y / self.height);
-        self.rays.direction(ndc)
+    /// The ray through the point (`x`, `y`), in pixels from the top-left corner (pixel centres
+    /// at +0.5), in the observer's projection: its eye's offset from the observer (zero but
+    /// for stereo) and its direction; `None` where the image sees nothing (outside a fisheye's
+    /// circle).
+    fn ray(&self, x: f64, y: f64) -> Option<(DVec3, DVec3)> {
+        self.rays.ray(self.ndc(x, y))
+    }
+
+    /// The direction through the point `step` (pixels, y down) beyond (`x`, `y`), from the same
+    /// eye ([`ViewRays::neighbour`]); `None` where the image sees nothing there.
+    fn neighbour(&self, x: f64, y: f64, (dx, dy): (f64, f64)) -> Option<DVec3> {
+        if !self.rays.is_stereo() {
+            return self.rays.direction(self.ndc(x + dx, y + dy));
+        }
+        let step = DVec2::new(2.0 * dx / self.width, -2.0 * dy / self.height);
+        self.rays.neighbour(self.ndc(x, y), step)
+    }
+
+    /// The normalised device coordinates of the point (`x`, `y`) in pixels.
+    fn ndc(&self, x: f64, y: f64) -> DVec2 {
+        DVec2::new(2.0 * x / self.width - 1.0, 1.0 - 2.0 * y / self.height)
     }
 }
 
@@ -676,8 +711,8 @@ mod tests {
         let mut hits = 0;
         for y in 0..height {
             for x in 0..width {
-                let direction = ImageRays::new(scene, width, height)
-                    .direction(f64::from(x) + 0.5, f64::from(y) + 0.5)
+                let (_, direction) = ImageRays::new(scene, width, height)
+                    .ray(f64::from(x) + 0.5, f64::from(y) + 0.5)
                     .expect("a pinhole sees through every pixel");
                 // Every triangle of every part of every object, in its own rest frame.
                 let brute = (scene.objects.iter().enumerate())

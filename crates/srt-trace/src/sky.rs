@@ -17,11 +17,12 @@ use srt_scene::{Effects, Observer, Scene, Sky, Star, SurfaceColour};
 use crate::shade::{Arriving, grey_value};
 
 /// Where one star lands in an image and with what colour.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct StarImage {
-    /// Position in pixels (x right, y down; pixel centres at half-integers).
-    pub pixel: DVec2,
-    /// The light the star adds, spread over the four pixels around `pixel`
+    /// Its positions in pixels (x right, y down; pixel centres at half-integers): one, or one
+    /// in each eye's half of a stereo picture.
+    pub pixels: Vec<DVec2>,
+    /// The light the star adds at each position, spread over the four pixels around it
     /// ([`star_light`]).
     pub light: Arriving,
     /// Doppler factor of its light.
@@ -59,17 +60,25 @@ pub fn star_colour(
 }
 
 /// Where `star` is seen from `observer` in an image of `width` × `height` pixels (`None` when it
-/// is behind the camera), with its light.
+/// is not in the picture: behind the camera, outside a fisheye), with its light.
 #[must_use]
 pub fn star_image(star: &Star, scene: &Scene, width: u32, height: u32) -> Option<StarImage> {
-    let rest_direction = (scene.sky.direction_map * star.direction).normalize();
-    let (direction, doppler) = distant_source_image(scene.sky.beta, rest_direction);
-    let pixel = project(&scene.observer, direction, width, height)?;
-    Some(StarImage {
-        pixel,
+    let (direction, doppler) = star_seen(star, scene);
+    let pixels: Vec<DVec2> = project(&scene.observer, direction, width, height)
+        .into_iter()
+        .flatten()
+        .collect();
+    (!pixels.is_empty()).then(|| StarImage {
+        pixels,
         light: star_light(star, doppler, &scene.sky, scene.effects),
         doppler,
     })
+}
+
+/// The direction (in S) `star` is seen in and the Doppler factor of its light.
+fn star_seen(star: &Star, scene: &Scene) -> (DVec3, f64) {
+    let rest_direction = (scene.sky.direction_map * star.direction).normalize();
+    distant_source_image(scene.sky.beta, rest_direction)
 }
 
 /// The light the sky image shows in the viewing direction `direction` (in S; any length);
@@ -133,17 +142,30 @@ pub fn sky_image_colour(scene: &Scene, lut: &TemperatureLut, direction: DVec3) -
     sky_image_light(scene, direction).display(lut, scene.exposure)
 }
 
-/// The pixel position of the direction `direction` (in S) in the image of `observer`, in its
-/// projection: the inverse of the pixel's viewing ray ([`srt_scene::ViewRays::image_point`]);
-/// `None` where the direction is not in the picture (behind a pinhole, outside a fisheye).
+/// The pixel positions of a direction far away, `direction` (in S), in the image of `observer`,
+/// in its projection: the inverse of the pixel's viewing ray
+/// ([`srt_scene::ViewRays::image_points`]), one position, or one in each eye's half of a
+/// stereo picture; `None` where the direction is not in the picture (behind a pinhole, outside
+/// a fisheye).
 #[must_use]
-pub fn project(observer: &Observer, direction: DVec3, width: u32, height: u32) -> Option<DVec2> {
+pub fn project(
+    observer: &Observer,
+    direction: DVec3,
+    width: u32,
+    height: u32,
+) -> [Option<DVec2>; 2] {
     let aspect = f64::from(width) / f64::from(height);
-    let ndc = observer.view_rays(aspect).image_point(direction)?;
-    Some(DVec2::new(
-        0.5 * (ndc.x + 1.0) * f64::from(width),
-        0.5 * (1.0 - ndc.y) * f64::from(height),
-    ))
+    observer
+        .view_rays(aspect)
+        .image_points(direction)
+        .map(|point| {
+            point.map(|ndc| {
+                DVec2::new(
+                    0.5 * (ndc.x + 1.0) * f64::from(width),
+                    0.5 * (1.0 - ndc.y) * f64::from(height),
+                )
+            })
+        })
 }
 
 /// The four pixels around `pixel` (centres at half-integers) and their tent weights, which sum
@@ -184,11 +206,27 @@ pub fn star_layer(
     value: &dyn Fn(&Arriving) -> DVec3,
 ) -> StarLayer {
     let mut lit = BTreeMap::new();
+    let aspect = f64::from(width) / f64::from(height);
+    // Each eye's half of a stereo picture is a picture of its own: a star's splat stays in it.
+    let pictures = scene.observer.view_rays(aspect).eye_pictures(width, height);
     for star in &scene.sky.stars {
-        if let Some(image) = star_image(star, scene, width, height) {
-            let colour = value(&image.light);
-            for (index, weight) in tent_splat(image.pixel, width, height) {
-                *lit.entry(index).or_insert(DVec3::ZERO) += weight * colour;
+        let (direction, doppler) = star_seen(star, scene);
+        let colour = value(&star_light(star, doppler, &scene.sky, scene.effects));
+        for ([left, top, picture_width, picture_height], rays) in &pictures {
+            let Some(ndc) = rays.image_point(direction) else {
+                continue;
+            };
+            let pixel = DVec2::new(
+                0.5 * (ndc.x + 1.0) * f64::from(*picture_width),
+                0.5 * (1.0 - ndc.y) * f64::from(*picture_height),
+            );
+            for (index, weight) in tent_splat(pixel, *picture_width, *picture_height) {
+                let (x, y) = (
+                    index % *picture_width as usize,
+                    index / *picture_width as usize,
+                );
+                let whole = (y + *top as usize) * width as usize + x + *left as usize;
+                *lit.entry(whole).or_insert(DVec3::ZERO) += weight * colour;
             }
         }
     }

@@ -140,6 +140,7 @@ fn penrose_a_moving_sphere_has_a_circular_outline() {
             .length();
         let observer = Observer {
             projection: srt_scene::Projection::Perspective,
+            stereo: None,
             position: DVec3::ZERO,
             direction: axis,
             up: DVec3::new(0.1, 1.0, 0.05),
@@ -176,6 +177,7 @@ fn penrose_check_detects_a_non_circular_outline() {
     let ellipsoid = object(mesh, DVec3::ZERO, DVec3::new(0.0, 0.0, -6.0), [1.0; 4]);
     let observer = Observer {
         projection: srt_scene::Projection::Perspective,
+        stereo: None,
         position: DVec3::ZERO,
         direction: -DVec3::Z,
         up: DVec3::Y,
@@ -224,6 +226,7 @@ fn terrell_a_passing_cube_appears_rotated_by_arcsin_beta() {
         let cube_object = object(cube(1.0, 1), DVec3::new(b, 0.0, 0.0), DVec3::ZERO, [1.0; 4]);
         let observer = Observer {
             projection: srt_scene::Projection::Perspective,
+            stereo: None,
             position: DVec3::new(0.0, 0.0, distance),
             direction: -DVec3::Z,
             up: DVec3::Y,
@@ -243,6 +246,7 @@ fn terrell_a_passing_cube_appears_rotated_by_arcsin_beta() {
     let at_rest = object(cube(1.0, 1), DVec3::ZERO, DVec3::ZERO, [1.0; 4]);
     let observer = Observer {
         projection: srt_scene::Projection::Perspective,
+        stereo: None,
         position: DVec3::new(0.0, 0.0, distance),
         direction: -DVec3::Z,
         up: DVec3::Y,
@@ -347,6 +351,7 @@ fn at_rest_the_renderer_is_an_ordinary_ray_tracer() {
     ];
     let observer = Observer {
         projection: srt_scene::Projection::Perspective,
+        stereo: None,
         position: DVec3::new(0.37, 1.21, 3.43),
         direction: DVec3::new(-0.05, -0.33, -1.0),
         up: DVec3::Y,

@@ -114,3 +114,143 @@ fn a_full_fisheye_puts_the_side_halfway_to_the_rim() {
     let tracer = Tracer::new(&scene);
     assert!(tracer.hit_at_pixel(size, size, 0, 0).is_none());
 }
+
+/// The teaser's objects seen by an observer `shift` (in S) away from the scene's, with the
+/// observer's other settings as `scene`'s and no stereo.
+fn moved(scene: &srt_scene::Scene, shift: glam::DVec3) -> srt_scene::Scene {
+    let mut moved = scene.clone();
+    moved.observer.position += shift;
+    moved.observer.stereo = None;
+    moved
+}
+
+/// The image of `scene` at `width` × `height`, one sample per pixel.
+fn pixels(scene: &srt_scene::Scene, width: u32, height: u32) -> Vec<glam::DVec3> {
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    Tracer::new(scene).render(settings, &|_| {}).pixels
+}
+
+/// Whether two pixel values agree to rounding (the rays' points are computed in another order).
+fn same(a: glam::DVec3, b: glam::DVec3) -> bool {
+    (a - b).abs().max_element() <= 1e-9
+}
+
+/// A side-by-side stereo picture is two pictures of half the width: its left half is what an
+/// observer d/2 to the left (along the camera's right axis) sees, its right half what one d/2
+/// to the right sees — pixel for pixel, the stars included; the two halves differ (parallax).
+#[test]
+fn side_by_side_stereo_is_two_shifted_pinholes() {
+    for name in ["teaser", "flythrough"] {
+        let built = srt_scene::builtin::find_builtin(name).unwrap();
+        let mut scene = built.build().unwrap().0;
+        let separation = 2.0;
+        scene.observer.stereo = Some(srt_scene::Stereo {
+            eye_separation: separation,
+        });
+        let (width, height) = (96, 36);
+        let both = pixels(&scene, width, height);
+        let (_, right, _) = scene.observer.basis();
+        let left_eye = pixels(&moved(&scene, -0.5 * separation * right), width / 2, height);
+        let right_eye = pixels(&moved(&scene, 0.5 * separation * right), width / 2, height);
+        let half = (width / 2) as usize;
+        for y in 0..height as usize {
+            for x in 0..half {
+                let row = y * width as usize;
+                assert!(
+                    same(both[row + x], left_eye[y * half + x]),
+                    "{name} left ({x}, {y})"
+                );
+                assert!(
+                    same(both[row + half + x], right_eye[y * half + x]),
+                    "{name} right ({x}, {y})"
+                );
+            }
+        }
+        assert_ne!(left_eye, right_eye, "{name}: the eyes see the same");
+    }
+}
+
+/// Omni-directional stereo: the top half is the left eye's full sphere, the bottom the right
+/// eye's, and each column's rays leave from ±d/2 perpendicular to its direction — so the centre
+/// column (looking along f) of each half is what an observer d/2 along ∓r sees there, and the
+/// column looking along −r (longitude −90°) what one d/2 along ±f sees.
+#[test]
+fn omni_directional_stereo_moves_each_column_sideways() {
+    let built = srt_scene::builtin::find_builtin("flythrough").unwrap();
+    let mut scene = built.build().unwrap().0;
+    scene.observer.projection = Projection::Equirectangular;
+    let separation = 4.0;
+    scene.observer.stereo = Some(srt_scene::Stereo {
+        eye_separation: separation,
+    });
+    let (width, height) = (64, 64);
+    let both = pixels(&scene, width, height);
+    let (forward, right, _) = scene.observer.basis();
+    // Column 32 looks along f (longitude (32.5/64 − ½)·360° ≈ 0), column 16 along −r
+    // (longitude ≈ −90°); a mono picture of half the height has the same longitudes.
+    for (column, left_shift) in [
+        (32u32, -0.5 * separation * right),
+        (16, -0.5 * separation * forward),
+    ] {
+        let longitude =
+            std::f64::consts::TAU * ((f64::from(column) + 0.5) / f64::from(width) - 0.5);
+        let offset_right = longitude.cos() * right - longitude.sin() * forward;
+        let left_eye = pixels(
+            &moved(&scene, -0.5 * separation * offset_right),
+            width,
+            height / 2,
+        );
+        let right_eye = pixels(
+            &moved(&scene, 0.5 * separation * offset_right),
+            width,
+            height / 2,
+        );
+        assert!((-0.5 * separation * offset_right - left_shift).length() < 0.1 * separation);
+        for y in 0..(height / 2) as usize {
+            let (top, bottom) = (
+                both[y * width as usize + column as usize],
+                both[(y + (height / 2) as usize) * width as usize + column as usize],
+            );
+            let index = y * width as usize + column as usize;
+            assert!(same(top, left_eye[index]), "top ({column}, {y})");
+            assert!(same(bottom, right_eye[index]), "bottom ({column}, {y})");
+        }
+    }
+}
+
+/// Bad stereo is named: a fisheye has no stereo layout, and the separation must be a finite
+/// distance ≥ 0.
+#[test]
+fn bad_stereo_is_named() {
+    for (projection, separation, reason) in [
+        (
+            "{ type = \"fisheye\" }",
+            "0.1",
+            "a fisheye has no stereo layout",
+        ),
+        (
+            "{ type = \"equirectangular\" }",
+            "-0.1",
+            "finite distance ≥ 0",
+        ),
+        ("{ type = \"perspective\" }", "nan", "finite distance ≥ 0"),
+    ] {
+        let text = format!(
+            "[observer]\nposition = [0.0, 0.0, 0.0]\ndirection = [0.0, 1.0, 0.0]\n\
+             projection = {projection}\nstereo = {{ eye_separation = {separation} }}\n"
+        );
+        let error = SceneDescription::from_toml_str(&text, "stereo.toml")
+            .unwrap()
+            .validate()
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("observer.stereo") && error.contains(reason),
+            "{error}"
+        );
+    }
+}

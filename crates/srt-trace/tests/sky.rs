@@ -20,6 +20,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
         objects: Vec::new(),
         observer: Observer {
             projection: srt_scene::Projection::Perspective,
+            stereo: None,
             position: DVec3::ZERO,
             direction: DVec3::Y,
             up: DVec3::Z,

@@ -76,6 +76,7 @@ mod tests {
     fn observer() -> Observer {
         Observer {
             projection: srt_scene::Projection::Perspective,
+            stereo: None,
             position: DVec3::new(0.0, -10.0, 1.0),
             direction: DVec3::Y,
             up: DVec3::Z,

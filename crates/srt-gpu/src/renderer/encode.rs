@@ -80,7 +80,8 @@ impl super::GpuRenderer {
                 Projection::Fisheye { fov_deg } => (0.5 * fov_deg.to_radians()) as f32,
                 _ => 0.0,
             },
-            projection_padding: [0; 2],
+            eye_separation: observer.stereo.map_or(-1.0, |s| s.eye_separation as f32),
+            projection_padding: 0,
             radiance: radiance_params(
                 &scene.radiance_scale(RadianceTable::shared()),
                 largest_value(ctx.color_format),
@@ -109,9 +110,12 @@ impl super::GpuRenderer {
                 ..bytemuck::Zeroable::zeroed()
             };
             MotionUniforms::new(object, &resources.extent, event).apply(&mut uniforms);
-            if observer.projection != Projection::Perspective {
+            let (picture_width, picture_height) = self.picture_size();
+            if observer.stereo.is_some() {
+                // Two eyes: the whole picture (the bound is the observer's view).
+                uniforms.view_bound = [0.0, 0.0, picture_width as f32, picture_height as f32];
+            } else if observer.projection != Projection::Perspective {
                 let (centre, radius) = object_ball(object, resources, event);
-                let (picture_width, picture_height) = self.picture_size();
                 uniforms.view_bound = ball_wide_bound(
                     centre,
                     radius,
@@ -302,13 +306,14 @@ impl super::GpuRenderer {
         if let Some(why) = method.cannot_draw(scene) {
             return Err(GpuError::Unsupported(why));
         }
-        let wide = scene.observer.projection != Projection::Perspective;
+        // A wide projection or a stereo pair is traced: footprints are drawn through one pinhole.
+        let wide =
+            scene.observer.projection != Projection::Perspective || scene.observer.stereo.is_some();
         self.objects
             .iter()
             .zip(&scene.objects)
             .map(|(object, seen)| {
                 let moving = !seen.motion.is_rest();
-                // A wide projection is traced: footprints are drawn through the pinhole.
                 let traced = moving || wide;
                 match (method, &object.ray_tracing) {
                     (Method::Polygon, _) => Ok(None),
@@ -363,7 +368,10 @@ impl super::GpuRenderer {
             .filter_map(|(index, (object, resources))| {
                 let (centre, radius) = object_ball(object, resources, event);
                 let (frame, observer) = (&object.frame, &scene.observer);
-                let unseen = if observer.projection == Projection::Perspective {
+                let unseen = if observer.stereo.is_some() {
+                    // Two eyes' views: nothing is culled.
+                    false
+                } else if observer.projection == Projection::Perspective {
                     ball_out_of_view(centre, radius, frame, observer, aspect)
                         || ball_between_pixel_centres(
                             centre, radius, frame, observer, width, height,

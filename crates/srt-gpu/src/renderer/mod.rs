@@ -96,23 +96,28 @@ pub enum Method {
 
 impl Method {
     /// Why this method cannot draw `scene` on the GPU, if it cannot: a wide projection
-    /// (equirectangular, fisheye) by the local ray tracer or the polygon method, which draw
-    /// triangles through the pinhole's projection (the ray tracer, and so `auto`, traces any
+    /// (equirectangular, fisheye) or a stereo pair by the local ray tracer or the polygon
+    /// method, which draw triangles through one pinhole's projection (the ray tracer, and so `auto`, traces any
     /// pixel's ray), or late shadows of moving lights cast by a body that spins or thrusts (the
     /// GPU's shadow walk meets static triangles only). The CPU reference draws all of them
     /// exactly.
     #[must_use]
     pub fn cannot_draw(self, scene: &Scene) -> Option<String> {
         let projection = scene.observer.projection;
-        if projection != srt_scene::Projection::Perspective
-            && matches!(self, Self::Lrt | Self::Polygon)
-        {
-            return Some(format!(
-                "the {} method draws triangles through the pinhole, not the {projection} \
-                 projection; use --method rt or auto (the GPU's ray tracer traces every \
-                 projection), or --backend cpu",
-                self.name()
-            ));
+        if matches!(self, Self::Lrt | Self::Polygon) {
+            let what = if projection != srt_scene::Projection::Perspective {
+                Some(format!("the {projection} projection"))
+            } else {
+                scene.observer.stereo.map(|_| "a stereo pair".to_owned())
+            };
+            if let Some(what) = what {
+                return Some(format!(
+                    "the {} method draws triangles through one pinhole, not {what}; use \
+                     --method rt or auto (the GPU's ray tracer traces every projection and \
+                     stereo pair), or --backend cpu",
+                    self.name()
+                ));
+            }
         }
         let moving = scene.objects.iter().find(|o| !o.motion.is_rest())?;
         (scene.shadows && !scene.lights.is_empty()).then(|| {

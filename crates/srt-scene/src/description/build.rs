@@ -525,6 +525,7 @@ impl ObserverDescription {
             fov_y_deg: self.fov_y_deg,
             ct: self.time.unwrap_or(self.ct),
             projection: self.projection.unwrap_or_default(),
+            stereo: self.stereo,
         }
     }
 }

@@ -8,7 +8,7 @@ use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::ser::{SerializeSeq, Serializer};
 use serde::{Deserialize, Serialize};
 
-use crate::projection::Projection;
+use crate::projection::{Projection, Stereo};
 use srt_color::ToneMap;
 use srt_physics::motion::{Motion, Spin, Thrust};
 
@@ -136,6 +136,10 @@ pub struct ObserverDescription {
     /// "The ride").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thrust: Option<ThrustDescription>,
+    /// Two eyes in one picture: top-bottom for the equirectangular projection, side by side for
+    /// the pinhole (docs/scene-format.md, "Projections").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stereo: Option<Stereo>,
 }
 
 /// One light table: a point light radiating a Planck spectrum. The lamp (`[light]`, or a

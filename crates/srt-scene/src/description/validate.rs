@@ -399,6 +399,11 @@ impl ObserverDescription {
                 .check()
                 .map_err(|reason| names.projection.error(names.projection.name(), reason))?;
         }
+        if let Some(stereo) = self.stereo {
+            stereo
+                .check(self.projection.unwrap_or_default())
+                .map_err(|reason| value_error("observer.stereo", reason))?;
+        }
         Ok(())
     }
 }

@@ -46,6 +46,7 @@ impl Editor {
                 projection: (observer.projection != Projection::Perspective)
                     .then_some(observer.projection),
                 thrust: description.thrust,
+                stereo: observer.stereo,
             };
         })
     }
