@@ -334,8 +334,18 @@ def test_a_gpu_renderer_keeps_its_engine_and_gives_each_frame_as_render_does():
 
 
 def test_an_auto_renderer_follows_what_the_gpu_can_draw():
-    # A projection the GPU does not trace goes to the CPU within the loop, and the next frame
-    # back to the GPU (where there is one): every frame is what srt.render gives.
+    # A projection the local ray tracer does not draw goes to the CPU within the loop, and the
+    # next frame back to the GPU (where there is one): every frame is what srt.render gives.
+    renderer = srt.Renderer(**SMALL, method="lrt")
+    for arguments in ({}, {"projection": "equirectangular"}, {}):
+        frame = renderer.render("fig7", **arguments)
+        alone = srt.render("fig7", **SMALL, method="lrt", **arguments)
+        assert np.array_equal(frame, alone), arguments
+
+
+def test_auto_draws_the_whole_sky_on_the_gpu_as_render_does():
+    # The ray tracer traces the wide projections: a kept auto renderer moves between the
+    # pinhole and the full sphere on the GPU, each frame what srt.render gives.
     renderer = srt.Renderer(**SMALL)
     for arguments in ({}, {"projection": "equirectangular"}, {}):
         frame = renderer.render("fig7", **arguments)

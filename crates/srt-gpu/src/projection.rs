@@ -85,30 +85,23 @@ pub fn target_camera(
     window: Option<ImageWindow>,
 ) -> TargetCamera {
     let (forward, right, up) = observer.basis();
-    if observer.stereo.is_some() && observer.projection == Projection::Perspective {
-        // Side by side: each eye's half is a pinhole picture of half the width (camera.wgsl's
-        // eye_point maps the whole picture's points, windows included).
+    if observer.stereo.is_some() || observer.projection != Projection::Perspective {
+        // The shaders map the whole picture's points (camera.wgsl's eye_point and
+        // eye_direction, through FrameUniforms::picture, windows included): a wide projection
+        // takes the unit basis; each eye's half of a side-by-side pair is a pinhole picture of
+        // half the width.
         if let Some(window) = window {
             window.check_holds(width, height);
         }
-        let (picture_width, picture_height) =
-            window.map_or((width, height), |w| (w.image_width, w.image_height));
-        let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
-        let eye_aspect = 0.5 * f64::from(picture_width) / f64::from(picture_height);
-        return TargetCamera {
-            view_projection: view_projection(observer, width, height),
-            forward,
-            right: right * tan_half * eye_aspect,
-            up: up * tan_half,
-            offset: DVec2::ZERO,
+        let (right, up) = if observer.projection == Projection::Perspective {
+            let (picture_width, picture_height) =
+                window.map_or((width, height), |w| (w.image_width, w.image_height));
+            let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();
+            let eye_aspect = 0.5 * f64::from(picture_width) / f64::from(picture_height);
+            (right * tan_half * eye_aspect, up * tan_half)
+        } else {
+            (right, up)
         };
-    }
-    if observer.projection != Projection::Perspective {
-        // A wide projection maps the whole picture's points to directions (camera.wgsl's
-        // wide_direction, through FrameUniforms::picture): the shaders take the unit basis.
-        if let Some(window) = window {
-            window.check_holds(width, height);
-        }
         return TargetCamera {
             view_projection: view_projection(observer, width, height),
             forward,

@@ -25,6 +25,37 @@ fn scene_in(name: &str, projection: Projection) -> Scene {
     scene
 }
 
+/// The CPU reference's picture of `scene`, `width` × `height`, one sample per pixel.
+fn cpu_image(scene: &Scene, width: u32, height: u32) -> srt_trace::RenderedImage {
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    Tracer::new(scene).render(settings, &|_| {})
+}
+
+/// The ray tracer's and `auto`'s pictures of `scene` are the CPU's `reference` under
+/// validate's rules.
+fn assert_traced_as_the_cpu(
+    ctx: &srt_gpu::GpuContext,
+    renderer: &GpuRenderer,
+    scene: &Scene,
+    reference: &srt_trace::RenderedImage,
+    case: &str,
+) {
+    for method in [Method::Rt, Method::Auto] {
+        let (image, _) = renderer
+            .render(ctx, scene, method, FootprintShape::Hull)
+            .unwrap_or_else(|e| panic!("{case} {method:?}: {e}"));
+        let mismatch = compare(reference, &image.to_rgb8(), TOLERANCE, EDGE_MARGIN);
+        assert!(
+            mismatch.fraction() <= MAX_MISMATCH,
+            "{case} {method:?}: {mismatch:?}"
+        );
+    }
+}
+
 /// The projections and the picture sizes they are drawn at.
 fn projections() -> [(Projection, u32, u32); 3] {
     [
@@ -54,14 +85,8 @@ fn the_ray_tracer_draws_every_projection_as_the_cpu_does() {
             let tracer = Tracer::new(&scene);
             let reference = tracer.render(settings, &|_| {});
             let renderer = GpuRenderer::new(&ctx, &scene, width, height).unwrap();
-            for method in [Method::Rt, Method::Auto] {
-                let case = format!("{name} {projection} {method:?}");
-                let (image, _) = renderer
-                    .render(&ctx, &scene, method, FootprintShape::Hull)
-                    .unwrap_or_else(|e| panic!("{case}: {e}"));
-                let mismatch = compare(&reference, &image.to_rgb8(), TOLERANCE, EDGE_MARGIN);
-                assert!(mismatch.fraction() <= MAX_MISMATCH, "{case}: {mismatch:?}");
-            }
+            let case = format!("{name} {projection}");
+            assert_traced_as_the_cpu(&ctx, &renderer, &scene, &reference, &case);
             let events = tracer
                 .render_seen_events(width, height, &|_| {}, &AtomicBool::new(false))
                 .unwrap();
@@ -94,14 +119,7 @@ fn the_full_sphere_draws_what_is_behind_the_observer() {
     let mut scene = scene_in("fig4", Projection::Equirectangular);
     // Turn the observer round: the model is now behind it.
     scene.observer.direction = -scene.observer.direction;
-    let reference = Tracer::new(&scene).render(
-        RenderSettings {
-            width,
-            height,
-            samples: 1,
-        },
-        &|_| {},
-    );
+    let reference = cpu_image(&scene, width, height);
     let renderer = GpuRenderer::new(&ctx, &scene, width, height).unwrap();
     let (image, _) = renderer
         .render(&ctx, &scene, Method::Auto, FootprintShape::Hull)
@@ -134,25 +152,10 @@ fn the_ray_tracer_draws_stereo_pairs_as_the_cpu_does() {
         scene.observer.stereo = Some(srt_scene::Stereo {
             eye_separation: 1.5,
         });
-        let reference = Tracer::new(&scene).render(
-            RenderSettings {
-                width,
-                height,
-                samples: 1,
-            },
-            &|_| {},
-        );
+        let reference = cpu_image(&scene, width, height);
         let renderer = GpuRenderer::new(&ctx, &scene, width, height).unwrap();
-        for method in [Method::Rt, Method::Auto] {
-            let (image, _) = renderer
-                .render(&ctx, &scene, method, FootprintShape::Hull)
-                .unwrap();
-            let mismatch = compare(&reference, &image.to_rgb8(), TOLERANCE, EDGE_MARGIN);
-            assert!(
-                mismatch.fraction() <= MAX_MISMATCH,
-                "{name} {projection} stereo {method:?}: {mismatch:?}"
-            );
-        }
+        let case = format!("{name} {projection} stereo");
+        assert_traced_as_the_cpu(&ctx, &renderer, &scene, &reference, &case);
         for method in [Method::Lrt, Method::Polygon] {
             let why = method.cannot_draw(&scene).unwrap();
             assert!(why.contains("--method rt"), "{why}");

@@ -110,39 +110,10 @@ impl super::GpuRenderer {
                 ..bytemuck::Zeroable::zeroed()
             };
             MotionUniforms::new(object, &resources.extent, event).apply(&mut uniforms);
-            let (picture_width, picture_height) = self.picture_size();
-            if observer.stereo.is_some() {
-                // Two eyes: the whole picture (the bound is the observer's view).
-                uniforms.view_bound = [0.0, 0.0, picture_width as f32, picture_height as f32];
-            } else if observer.projection != Projection::Perspective {
-                let (centre, radius) = object_ball(object, resources, event);
-                uniforms.view_bound = ball_wide_bound(
-                    centre,
-                    radius,
-                    &object.frame,
-                    observer,
-                    picture_width,
-                    picture_height,
-                )
-                .map(|v| v as f32);
-            }
+            uniforms.view_bound = self.view_bound(object, resources, observer);
             ctx.queue
                 .write_buffer(&resources.uniforms, 0, bytemuck::bytes_of(&uniforms));
-            for batch in &resources.parts {
-                // Back faces of a batch of closed solids are hidden when the observer is
-                // outside every one of them.
-                let cull = batch.members.iter().all(|&(index, _)| {
-                    resources.culling[index].applies(
-                        &object.parts[index].mesh,
-                        &object.frame,
-                        event,
-                    )
-                });
-                let mut material = batch.material;
-                material.flags = material.flags.with(PartFlags::CULL_BACK_FACES, cull);
-                ctx.queue
-                    .write_buffer(&batch.uniforms, 0, bytemuck::bytes_of(&material));
-            }
+            write_part_culling(ctx, object, resources, event);
             if let Ok(rt) = &resources.ray_tracing {
                 rt.write_culling(
                     &ctx.queue,
@@ -326,6 +297,23 @@ impl super::GpuRenderer {
                 }
             })
             .collect()
+    }
+
+    /// `ObjectUniforms::view_bound` of `object`: in a wide projection, the rectangle of the
+    /// picture where its ball can be seen ([`ball_wide_bound`]); for a stereo pair the whole
+    /// picture (the bound is the observer's view, not the eyes'); unused for the pinhole.
+    fn view_bound(
+        &self,
+        object: &Object,
+        resources: &ObjectResources,
+        observer: &srt_scene::Observer,
+    ) -> [f32; 4] {
+        let (width, height) = self.picture_size();
+        if observer.stereo.is_some() || observer.projection == Projection::Perspective {
+            return [0.0, 0.0, width as f32, height as f32];
+        }
+        let (centre, radius) = object_ball(object, resources, observer.event());
+        ball_wide_bound(centre, radius, &object.frame, observer, width, height).map(|v| v as f32)
     }
 
     /// The whole picture's width and height: the target's, unless it holds a window.
@@ -854,4 +842,24 @@ fn object_ball(
     sweep_bounds(object, &resources.extent, event).map_or(resources.extent.ball, |(lo, hi)| {
         ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
     })
+}
+
+/// Writes each batch of `object`'s parts' material with its back-face culling for the
+/// observation event `event`: the back faces of a batch of closed solids are hidden when the
+/// observer is outside every one of them.
+fn write_part_culling(
+    ctx: &GpuContext,
+    object: &Object,
+    resources: &ObjectResources,
+    event: srt_physics::Event,
+) {
+    for batch in &resources.parts {
+        let cull = batch.members.iter().all(|&(index, _)| {
+            resources.culling[index].applies(&object.parts[index].mesh, &object.frame, event)
+        });
+        let mut material = batch.material;
+        material.flags = material.flags.with(PartFlags::CULL_BACK_FACES, cull);
+        ctx.queue
+            .write_buffer(&batch.uniforms, 0, bytemuck::bytes_of(&material));
+    }
 }
