@@ -174,7 +174,12 @@ fn varying_ray(in: LrtVarying) -> RestRay {
         in.up_inverse_height.xyz,
         vec2<f32>(in.right_inverse_width.w, in.up_inverse_height.w),
     );
-    let observer_rest = in.observer_rest + rest_displacement(in.beta_gamma, eye_offset(in.position.xy));
+    // A stereo pair's ray leaves from its eye; one picture's (every other frame's, on the hot
+    // path of every visibility fragment) from the observer, with no more work.
+    var observer_rest = in.observer_rest;
+    if (is_stereo()) {
+        observer_rest += rest_displacement(in.beta_gamma, eye_offset(in.position.xy));
+    }
     return backward_ray_of(in.beta_gamma, observer_rest, camera_view_direction(camera, in.position.xy));
 }
 
