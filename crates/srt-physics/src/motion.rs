@@ -474,9 +474,15 @@ mod tests {
             prop_assert!((thrust.position(DVec3::ZERO, event.ct) - event.position).length() <= 1e-9 * scale);
             let clock = Motion::Thrust(thrust).proper_time(DVec3::ZERO, event.ct);
             prop_assert!((clock - proper_time).abs() <= 1e-9 * scale, "{clock} {proper_time}");
-            let dt = 1e-6;
-            let slope = (thrust.position(DVec3::ZERO, event.ct + dt) - thrust.position(DVec3::ZERO, event.ct - dt)) / (2.0 * dt);
-            prop_assert!((slope - velocity).length() <= 1e-5, "{slope} {velocity}");
+            // The step grows with the coordinates (a coasting ship is at ct ~ 10⁵ here), so that
+            // rounding stays ~1e-9 of the slope; a difference across the thrust's start or end,
+            // where the acceleration jumps, is no measure of the velocity and is not taken.
+            let dt = 1e-7 * scale;
+            let end_ct = thrust.event_at_rapidity(DVec3::ZERO, thrust.final_rapidity()).ct;
+            if (event.ct - start).abs() > 2.0 * dt && (event.ct - end_ct).abs() > 2.0 * dt {
+                let slope = (thrust.position(DVec3::ZERO, event.ct + dt) - thrust.position(DVec3::ZERO, event.ct - dt)) / (2.0 * dt);
+                prop_assert!((slope - velocity).length() <= 1e-5, "{slope} {velocity}");
+            }
             let (alpha, tau) = (thrust.alpha(), proper_time - start);
             if tau > 0.0 && tau <= duration {
                 let hyperbola = Event::new(
