@@ -30,6 +30,8 @@ struct PolygonVarying {
     @location(1) barycentric: vec2<f32>,
     // Apparent position in S.
     @location(2) apparent: vec3<f32>,
+    // Texture coordinates, for their screen derivatives only (polygon_uv).
+    @location(3) uv: vec2<f32>,
 }
 
 // The backward ray parameter s of the emission event of the moving body's point `body` on the
@@ -67,61 +69,66 @@ fn polygon_moving_emission(body: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(object.frame.observer_rest.x - s, motion_position(body, s));
 }
 
+// The emission event (rest coordinates) vertex `v` of the current part shows: its point's on
+// the observer's past light cone (Eq. 7 for a body at rest, polygon_moving_emission else).
+fn polygon_vertex_emission(v: u32) -> vec4<f32> {
+    let rest = vertices[indices[v]].position.xyz;
+    if (motion_kind() == MOTION_REST) {
+        return emission_event(object.frame, rest);
+    }
+    return polygon_moving_emission(rest);
+}
+
+// The varyings of vertex `v` at the clip position `position`, its emission event in S
+// (to_observer of polygon_vertex_emission) `event`.
+fn polygon_varying(v: u32, position: vec4<f32>, event: vec4<f32>) -> PolygonVarying {
+    let barycentric = array<vec2<f32>, 3>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 1.0));
+    return PolygonVarying(position, v / 3u, barycentric[v % 3u], event.yzw, vertices[indices[v]].uv.xy);
+}
+
+// Each vertex at its apparent position, the photo-object map R (Eq. 8), through the camera.
 @vertex
 fn polygon_vertex(@builtin(vertex_index) v: u32) -> PolygonVarying {
-    let t = v / 3u;
-    let k = v % 3u;
-    let rest = vertices[indices[v]].position.xyz;
-    var apparent = vec3<f32>(0.0);
-    if (motion_kind() == MOTION_REST) {
-        apparent = apparent_position(object.frame, rest);
-    } else {
-        apparent = to_observer(object.frame, polygon_moving_emission(rest)).yzw;
-    }
-    let barycentric = array<vec2<f32>, 3>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 1.0));
-    return PolygonVarying(frame_uniforms.view_projection * vec4<f32>(apparent, 1.0), t, barycentric[k], apparent);
+    let event = to_observer(object.frame, polygon_vertex_emission(v));
+    return polygon_varying(v, frame_uniforms.view_projection * vec4<f32>(event.yzw, 1.0), event);
 }
 
-// The emission event (rest coordinates) of the rest point a fragment draws: the method's
-// approximation of what the pixel sees.
-fn polygon_emission(in: PolygonVarying) -> vec4<f32> {
-    let p = triangle_corners(in.triangle);
+// The surface point a polygon fragment draws (the method's approximation of what the pixel
+// sees): where it shows in S, its local rest frame and the events it is lit at.
+struct PolygonPoint {
+    apparent: vec3<f32>,
+    local: LocalFrame,
+    receiver: Receiver,
+}
+
+// The point of fragment `in`. For a body at rest: the interpolated apparent position, its
+// emission event (Receiver.rest) solved only where asked (`with_emission`) or where a clock,
+// a flipbook, a blinking emission (its proper time) or moving lights (its event in S) need it.
+// For a spinning or thrusting body: the emission event of its interpolated body point, in the
+// point's local rest frame there with its own proper time (motion.wgsl's moving_frame, which
+// takes the event's backward ray parameter s = ct′_obs − ct′).
+fn polygon_point(in: PolygonVarying, with_emission: bool) -> PolygonPoint {
     let b = in.barycentric;
-    let rest = (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
     if (motion_kind() != MOTION_REST) {
-        return polygon_moving_emission(rest);
+        let p = triangle_corners(in.triangle);
+        let body = (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
+        let s = polygon_light_cone(body);
+        let emission = vec4<f32>(object.frame.observer_rest.x - s, motion_position(body, s));
+        let local = moving_frame(in.triangle, b.x, b.y, s, emission);
+        let event = to_observer(object.frame, emission);
+        return PolygonPoint(event.yzw, local, Receiver(event, emission));
     }
-    return emission_event(object.frame, rest);
-}
-
-// The fragment's texture coordinates, interpolated, and their screen derivatives.
-fn polygon_uv(in: PolygonVarying) -> SurfaceUv {
-    let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
-    return SurfaceUv(uv, dpdx(uv), dpdy(uv));
-}
-
-@fragment
-fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
-    if (motion_kind() != MOTION_REST) {
-        return polygon_moving_fragment(in);
-    }
-    if (writes_seen_events()) {
-        let emission = polygon_emission(in);
-        return seen_pixel(emission, resting_frame(proper_time_at(emission)));
-    }
-    // Only a clock, a flipbook or a blinking emission needs the fragment's proper time, and only
-    // moving lights' shadows its emission event (one light-cone solve).
     let timed = object.blink.x > 0.0 || has_clock() || part.frames > 1u;
     let lit = MOVING_LIGHTS && frame_uniforms.lights.counts.x > 0u;
     var emission = vec4<f32>(0.0);
-    if (timed || lit) {
-        emission = polygon_emission(in);
+    if (timed || lit || with_emission) {
+        let p = triangle_corners(in.triangle);
+        emission = emission_event(object.frame, (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2]);
     }
     var proper_time = 0.0;
-    if (timed) {
+    if (timed || with_emission) {
         proper_time = proper_time_at(emission);
     }
-    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, polygon_uv(in), proper_time);
     // The event the fragment shows, where the method draws it: on the observer's past light
     // cone at the interpolated apparent position (the shadow test of the object itself starts
     // from the interpolated rest point, which lies on its surface).
@@ -130,23 +137,29 @@ fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
         let observer_ct = to_observer(object.frame, object.frame.observer_rest).x;
         receiver.event = vec4<f32>(observer_ct - distance(in.apparent, frame_uniforms.observer.xyz), in.apparent);
     }
-    return shade(in.triangle, in.barycentric.x, in.barycentric.y, in.apparent, albedo, resting_frame(proper_time), receiver);
+    return PolygonPoint(in.apparent, resting_frame(proper_time), receiver);
 }
 
-// A fragment of a spinning or thrusting body: the emission event of its interpolated body
-// point, shaded in the point's local rest frame there with its own proper time (motion.wgsl's
-// moving_frame, which takes the event's backward ray parameter s = ct′_obs − ct′).
-fn polygon_moving_fragment(in: PolygonVarying) -> vec4<f32> {
-    let p = triangle_corners(in.triangle);
-    let b = in.barycentric;
-    let body = (1.0 - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
-    let s = polygon_light_cone(body);
-    let emission = vec4<f32>(object.frame.observer_rest.x - s, motion_position(body, s));
-    let local = moving_frame(in.triangle, in.barycentric.x, in.barycentric.y, s, emission);
+// The fragment's texture coordinates, interpolated, and their screen derivatives. The
+// derivatives are taken of the interpolated varying, not of the coordinates read from the
+// vertex buffer here: llvmpipe's helper invocations at a triangle's edges do not read storage
+// buffers, so derivatives of what they read jumped to the coarsest mip level along every edge.
+fn polygon_uv(in: PolygonVarying) -> SurfaceUv {
+    let uv = triangle_uv(in.triangle, in.barycentric.x, in.barycentric.y);
+    return SurfaceUv(uv, dpdx(in.uv), dpdy(in.uv));
+}
+
+// The albedo of the point `point` fragment `in` draws (surface_albedo at its proper time).
+fn polygon_albedo(in: PolygonVarying, point: PolygonPoint) -> vec4<f32> {
+    return surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, polygon_uv(in), point.local.proper_time);
+}
+
+@fragment
+fn polygon_fragment(in: PolygonVarying) -> @location(0) vec4<f32> {
+    let point = polygon_point(in, writes_seen_events());
     if (writes_seen_events()) {
-        return seen_pixel(emission, local);
+        return seen_pixel(point.receiver.rest, point.local);
     }
-    let albedo = surface_albedo(in.triangle, in.barycentric.x, in.barycentric.y, polygon_uv(in), local.proper_time);
-    let event = to_observer(object.frame, emission);
-    return shade(in.triangle, in.barycentric.x, in.barycentric.y, event.yzw, albedo, local, Receiver(event, emission));
+    let b = in.barycentric;
+    return shade(in.triangle, b.x, b.y, point.apparent, polygon_albedo(in, point), point.local, point.receiver);
 }

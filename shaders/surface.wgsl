@@ -244,26 +244,30 @@ fn phong_terms(normal: vec3<f32>, to_light: vec3<f32>, to_observer: vec3<f32>) -
     return vec2<f32>(diffuse, specular);
 }
 
-// The light a surface point sends to the observer (§4.2), as the frame's output holds it: Phong
-// in S′ with aberrated directions and the Doppler factors of Eq. 17 — D_in light → surface,
-// D_out surface → observer (both 1 for geometry only). The paper's colour: the colour table at
+// The lamp's light a surface point sends to the observer (§4.2), or an emitter's own: Phong in
+// S′ with aberrated directions and the Doppler factors of Eq. 17 — D_in light → surface, D_out
+// surface → observer (both 1 for geometry only). The paper's colour: the colour table at
 // D_in·D_out·T_light with f_ar (Eq. 18); spectral colour (spectral.wgsl): the albedo's
 // reflectance spectrum under the black body at D_in·T_light, shifted by D_out, its factor
 // f_amb + f_diff + f_spec. The lamp's light is all times its strength (LightUniforms.lamp.x).
 // An emitting object sends its black body at D_out·T_e instead, while it shines at the object's
-// proper time (emitter_shines). All of it in the point's local rest frame `local`.
-//
-// Each moving light (shadows.wgsl) that the point faces and no object shadows adds its diffuse
-// and specular terms, from the direction its light arrives in at the point's emission event
-// `receiver.event`, at D_in·T_L, with the strength s / r_L² (times D_in⁻² with the searchlight
-// colour table, whose brightness holds D_in⁴ already; docs/physics.md, "Moving lights"): the
-// lights are then summed as light (light.wgsl, LightSum). With none of them reaching the point
-// the result is the lamp's alone, computed as before moving lights existed.
-//
-// Mirror of srt_trace::shade::arriving_unless_shadowed and Arriving::display / radiance.
-fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, local: LocalFrame, receiver: Receiver) -> vec3<f32> {
+// proper time (emitter_shines). All of it in the point's local rest frame `local`. What the
+// moving lights' terms reuse comes with it (SurfaceLamp).
+struct SurfaceLamp {
+    light: Arriving,
+    // Whether the light is the object's own emission (no reflected light is added to it).
+    emits: bool,
+    // The surface's unit normal in the local rest frame, facing the observer.
+    normal: vec3<f32>,
+    // The unit direction towards the observer there.
+    to_observer: vec3<f32>,
+    // D_out, and the grey value of Eq. 18 (the paper's colour).
+    d_out: f32,
+    grey: f32,
+}
+
+fn surface_lamp(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, local: LocalFrame) -> SurfaceLamp {
     let beta = local.beta;
-    let proper_time = local.proper_time;
     let incident = normalize(apparent - frame_uniforms.light.xyz);
     let outgoing = normalize(frame_uniforms.observer.xyz + stereo_eye - apparent);
     let relativistic = frame_uniforms.effects != EFFECTS_GEOMETRY;
@@ -278,11 +282,14 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
     }
     let spectral = SURFACE_COLOUR_VARIANT == SURFACE_COLOUR_SPECTRAL;
     let optics = object.optics;
-    if (optics.z > 0.0 && emitter_shines(proper_time)) {
+    if (optics.z > 0.0 && emitter_shines(local.proper_time)) {
+        var light: Arriving;
         if (spectral) {
-            return arriving_output(spectrum_light(spectral_emitted(optics.z, d_out), optics.w));
+            light = spectrum_light(spectral_emitted(optics.z, d_out), optics.w);
+        } else {
+            light = table_light(optics.w, d_out * optics.z);
         }
-        return arriving_output(table_light(optics.w, d_out * optics.z));
+        return SurfaceLamp(light, true, vec3<f32>(0.0), vec3<f32>(0.0), d_out, 0.0);
     }
     let to_light = -normalize(aberrate(-beta, incident));
     let to_observer = normalize(aberrate(-beta, outgoing));
@@ -305,9 +312,31 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
     } else {
         lamp = table_light(grey * geometry, combined * frame_uniforms.light.w);
     }
-    if (!MOVING_LIGHTS || frame_uniforms.lights.counts.x == 0u) {
+    return SurfaceLamp(lamp, false, normal, to_observer, d_out, grey);
+}
+
+// The light a surface point sends to the observer, as the frame's output holds it: the lamp's
+// (surface_lamp) and each moving light's (shadows.wgsl) that the point faces and no object
+// shadows: its diffuse and specular terms, from the direction its light arrives in at the
+// point's emission event `receiver.event`, at D_in·T_L, with the strength s / r_L² (times
+// D_in⁻² with the searchlight colour table, whose brightness holds D_in⁴ already;
+// docs/physics.md, "Moving lights"): the lights are then summed as light (light.wgsl,
+// LightSum). With none of them reaching the point the result is the lamp's alone, computed as
+// before moving lights existed.
+//
+// Mirror of srt_trace::shade::arriving_unless_shadowed and Arriving::display / radiance.
+fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<f32>, local: LocalFrame, receiver: Receiver) -> vec3<f32> {
+    let surface = surface_lamp(t, zeta, xi, apparent, albedo, local);
+    let lamp = surface.light;
+    if (surface.emits || !MOVING_LIGHTS || frame_uniforms.lights.counts.x == 0u) {
         return arriving_output(lamp);
     }
+    let beta = local.beta;
+    let normal = surface.normal;
+    let to_observer = surface.to_observer;
+    let optics = object.optics;
+    let spectral = SURFACE_COLOUR_VARIANT == SURFACE_COLOUR_SPECTRAL;
+    let relativistic = frame_uniforms.effects != EFFECTS_GEOMETRY;
     let follows_luminance = relativistic && frame_uniforms.tone_map == TONE_MAP_SEARCHLIGHT;
     let own = u32(object.time.x);
     var sum = light_sum_of(lamp);
@@ -336,10 +365,10 @@ fn surface_output(t: u32, zeta: f32, xi: f32, apparent: vec3<f32>, albedo: vec4<
         let factor = reflected * strength;
         let temperature_k = light.offset_temperature.w;
         if (spectral) {
-            let l = spectral_reflected(albedo.xyz, optics.x, optics.y, temperature_k, light_d_in, d_out);
+            let l = spectral_reflected(albedo.xyz, optics.x, optics.y, temperature_k, light_d_in, surface.d_out);
             sum = light_sum_add(sum, spectrum_light(l, factor));
         } else {
-            sum = light_sum_add(sum, table_light(grey * factor, light_d_in * d_out * temperature_k));
+            sum = light_sum_add(sum, table_light(surface.grey * factor, light_d_in * surface.d_out * temperature_k));
         }
         sources++;
     }
