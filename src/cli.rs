@@ -124,6 +124,10 @@ pub struct RenderArgs {
     /// file's own rules (docs/scene-format.md).
     #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_setting)]
     pub settings: Vec<Setting>,
+    /// Texels a side of each face of the image-based method's cube map (`--method
+    /// image-based`; overrides the scene's `render.cube_map_size`, default 2048, the paper's).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(srt_scene::MAX_CUBE_MAP_SIZE)))]
+    pub cube_map_size: Option<u32>,
     /// Samples per pixel (antialiasing). The GPU renders ⌈√N⌉² samples on a regular grid.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: u32,
@@ -217,6 +221,7 @@ impl Default for RenderArgs {
             observer_beta: None,
             projection: None,
             settings: Vec::new(),
+            cube_map_size: None,
             samples: 1,
             caption: false,
             aov: false,

@@ -124,7 +124,7 @@ impl Engine {
     /// CPU, with a note). The GPU supersamples by rendering at ⌈√samples⌉× the size.
     ///
     /// # Errors
-    /// The polygon method on the CPU or without a GPU, `gpu` without an adapter, or a scene the
+    /// An approximate method (polygon, image-based) on the CPU or without a GPU, `gpu` without an adapter, or a scene the
     /// GPU cannot prepare (a target beyond its limits when `gpu` was asked for).
     pub fn choose(
         backend: Backend,
@@ -146,13 +146,16 @@ impl Engine {
             if backend == Backend::Auto && method.is_exact() {
                 return cpu(Some(format!("{why}; rendering on the CPU instead")));
             }
-            if backend != Backend::Cpu || method == Method::Polygon {
+            if backend != Backend::Cpu || !method.is_exact() {
                 bail!("{why}");
             }
         }
         let context = match backend {
-            Backend::Cpu if method == Method::Polygon => {
-                bail!("the polygon method runs on the GPU only; use --backend gpu or auto")
+            Backend::Cpu if !method.is_exact() => {
+                bail!(
+                    "the {} method runs on the GPU only; use --backend gpu or auto",
+                    method.name()
+                )
             }
             Backend::Cpu => return cpu(None),
             Backend::Gpu => GpuContext::new().context("--backend gpu")?,
@@ -161,7 +164,7 @@ impl Engine {
                 Err(error) if method.is_exact() => {
                     return cpu(Some(format!("{error}; rendering on the CPU instead")));
                 }
-                Err(error) => bail!("the polygon method needs a GPU: {error}"),
+                Err(error) => bail!("the {} method needs a GPU: {error}", method.name()),
             },
         };
         Self::on_gpu(Box::new(context), backend, method, settings, scene)

@@ -16,7 +16,9 @@ use image::RgbImage;
 use srt::empty::OneColour;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
-use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, Stereo, ValueName, View};
+use srt_scene::{
+    Editor, OverrideNames, Overrides, Projection, Scene, Setting, Stereo, ValueName, View,
+};
 use srt_trace::{Output, RenderSettings};
 
 use crate::cli::RenderArgs;
@@ -624,8 +626,15 @@ fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
 }
 
 /// The scene overrides among the options (--set, --effects, --colour, --exposure, --time,
-/// --beta, --observer-beta, --projection), for srt-scene's resolver to apply to the description.
+/// --beta, --observer-beta, --projection, --cube-map-size: a `render.cube_map_size` setting
+/// after the --set ones), for srt-scene's resolver to apply to the description.
 fn overrides(args: &RenderArgs) -> Overrides {
+    let mut settings = args.settings.clone();
+    settings.extend(args.cube_map_size.map(|size| {
+        format!("render.cube_map_size={size}")
+            .parse::<Setting>()
+            .expect("a key and a whole number")
+    }));
     Overrides {
         effects: args.effects,
         colour: args.colour,
@@ -634,7 +643,7 @@ fn overrides(args: &RenderArgs) -> Overrides {
         beta: args.beta,
         observer_beta: args.observer_beta,
         projection: args.projection,
-        settings: args.settings.clone(),
+        settings,
         names: OverrideNames::COMMAND_LINE,
     }
 }

@@ -311,6 +311,18 @@ pub mod slots {
         visibility: ShaderStages::FRAGMENT,
         ty: storage(false),
     };
+    /// Group 3 of the image-based look-up: `ib_cube`, the velocity group's cube map (a 2D
+    /// array of six layers, one per face, read with `textureLoad`).
+    pub const IB_CUBE: Slot = Slot {
+        wgsl_name: "ib_cube",
+        binding: 0,
+        visibility: ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+            multisampled: false,
+        },
+    };
 }
 
 /// Group 0: frame uniforms and colour table.
@@ -409,6 +421,13 @@ pub const RT_INPUT_GROUP: BindGroupSpec = BindGroupSpec {
         slots::BVH_NODES,
         slots::BVH_TRIANGLES,
     ],
+};
+
+/// Group 3 of the image-based look-up: the velocity group's cube map.
+pub const IB_CUBE_GROUP: BindGroupSpec = BindGroupSpec {
+    label: "srt image-based cube map",
+    index: 3,
+    slots: &[slots::IB_CUBE],
 };
 
 /// Group 1 of the sky's star pass: the sky's uniforms, its stars and the star light, written.
@@ -525,6 +544,45 @@ impl Varyings {
 /// Entry points of the polygon pass (vertex, fragment).
 const POLYGON_ENTRIES: [&str; 2] = ["polygon_vertex", "polygon_fragment"];
 
+/// Entry points of the image-based method's face passes (vertex, fragment).
+const IB_FACE_ENTRIES: [&str; 2] = ["ib_face_vertex", "ib_face_fragment"];
+/// Entry points of the image-based method's look-up pass (vertex, fragment).
+const IB_LOOKUP_ENTRIES: [&str; 2] = ["ib_lookup_vertex", "ib_lookup_fragment"];
+
+/// The image-based method's two pipelines as their bindings see them, compiled for `variant`:
+/// the cube map's faces (the polygon pass's groups) and the look-up (with the cube map as
+/// group 3; the part group is bound but not read).
+#[must_use]
+pub fn image_based_specs(variant: ObjectVariant) -> [PipelineSpec; 2] {
+    let variant = ObjectVariant {
+        counting: false,
+        ..variant
+    };
+    let groups = vec![POLYGON_FRAME_GROUP, OBJECT_GROUP, PART_GROUP];
+    [
+        PipelineSpec {
+            label: "srt image-based faces",
+            shader: shaders::image_based(variant),
+            entry_points: &IB_FACE_ENTRIES,
+            groups: groups.clone(),
+        },
+        PipelineSpec {
+            label: "srt image-based look-up",
+            shader: shaders::image_based(variant),
+            entry_points: &IB_LOOKUP_ENTRIES,
+            groups: [&groups[..], &[IB_CUBE_GROUP]].concat(),
+        },
+    ]
+}
+
+/// The image-based method's pipelines for one [`ObjectVariant`].
+pub struct ImageBasedPipelines {
+    /// Draws a part into one face of the cube map (its colour format, the reversed depth test).
+    pub face: wgpu::RenderPipeline,
+    /// Draws a velocity group's light into the colour target, its apparent distance as depth.
+    pub lookup: wgpu::RenderPipeline,
+}
+
 /// The six pipelines of the renderer as their bindings see them: proxy, LRT visibility, LRT
 /// shading, ray-tracer visibility (the three with the fragment counter when `counting`),
 /// polygon, and the LRT part-depth pass between visibility and shading; all compiled for
@@ -640,6 +698,7 @@ pub struct Pipelines {
     visibility: Vec<std::sync::OnceLock<VisibilityPipelines>>,
     shade: Vec<std::sync::OnceLock<wgpu::RenderPipeline>>,
     polygon: Vec<std::sync::OnceLock<wgpu::RenderPipeline>>,
+    image_based: Vec<std::sync::OnceLock<ImageBasedPipelines>>,
     /// The depth of the part kept at each pixel, which the shading pass tests (the same for
     /// every variant).
     pub part_depth: wgpu::RenderPipeline,
@@ -694,6 +753,7 @@ impl Pipelines {
             visibility: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
             shade: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
             polygon: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
+            image_based: (0..ObjectVariant::COUNT).map(|_| OnceLock::new()).collect(),
             part_depth: render_pipeline(
                 device,
                 part_depth_spec,
@@ -756,6 +816,40 @@ impl Pipelines {
         })
     }
 
+    /// The image-based method's pipelines for parts drawn as `variant` (whose `lit` must be the
+    /// renderer's; they never count), created on first use. The cube map has the colour
+    /// target's format.
+    pub fn image_based(
+        &self,
+        device: &wgpu::Device,
+        variant: ObjectVariant,
+    ) -> &ImageBasedPipelines {
+        debug_assert_eq!(variant.lit, self.lit, "the renderer's moving lights");
+        let variant = ObjectVariant {
+            counting: false,
+            ..variant
+        };
+        self.image_based[variant.index()].get_or_init(|| {
+            let [face, lookup] = &image_based_specs(variant);
+            ImageBasedPipelines {
+                face: render_pipeline(
+                    device,
+                    face,
+                    IB_FACE_ENTRIES,
+                    Some(self.color_format),
+                    DepthTest::Farthest,
+                ),
+                lookup: render_pipeline(
+                    device,
+                    lookup,
+                    IB_LOOKUP_ENTRIES,
+                    Some(self.color_format),
+                    DepthTest::Nearest,
+                ),
+            }
+        })
+    }
+
     /// Whether the shading passes draw moving lights (every variant's `lit`).
     #[must_use]
     pub fn lit(&self) -> bool {
@@ -790,6 +884,9 @@ pub(crate) enum DepthTest {
     Equal,
     /// Every fragment writes its depth, whatever was there (LRT's part-depth pass).
     Overwrite,
+    /// The fragment of larger depth wins and writes it (the image-based faces' reversed depth,
+    /// near / z).
+    Farthest,
 }
 
 impl DepthTest {
@@ -800,6 +897,7 @@ impl DepthTest {
             Self::Nearest => (true, wgpu::CompareFunction::Less),
             Self::Equal => (false, wgpu::CompareFunction::Equal),
             Self::Overwrite => (true, wgpu::CompareFunction::Always),
+            Self::Farthest => (true, wgpu::CompareFunction::Greater),
         };
         Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,

@@ -39,6 +39,8 @@ pub const BVH: &str = include_str!("../shaders/bvh.wgsl");
 pub const SHADOWS: &str = include_str!("../shaders/shadows.wgsl");
 /// The polygon-rendering baseline pass.
 pub const POLYGON: &str = include_str!("../shaders/polygon.wgsl");
+/// The image-based method's cube-map faces and look-up (Table 1's "IB").
+pub const IMAGE_BASED: &str = include_str!("../shaders/image_based.wgsl");
 /// The stars and the image of the sky.
 pub const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The pinhole camera: viewing directions through pixels and back.
@@ -575,6 +577,19 @@ pub fn polygon(variant: ObjectVariant) -> Shader {
     }
 }
 
+/// The image-based method's shader: the polygon shader's modules with the camera and the cube
+/// map's faces and look-up (image_based.wgsl), compiled for `variant` as the polygon shader is.
+#[must_use]
+pub fn image_based(variant: ObjectVariant) -> Shader {
+    let polygon = polygon(variant);
+    Shader {
+        name: format!("image-based{}", variant.describe()),
+        source: polygon.source
+            + &compose(&[("camera.wgsl", CAMERA), ("image_based.wgsl", IMAGE_BASED)]),
+        overrides: polygon.overrides,
+    }
+}
+
 /// The sky shader: the stars' compute pass and the background pass.
 #[must_use]
 pub fn sky() -> Shader {
@@ -644,6 +659,12 @@ pub fn all() -> Vec<Shader> {
     ];
     all.extend(variants.iter().map(|&v| lrt(v)));
     all.extend(variants.iter().filter(|v| !v.counting).map(|&v| polygon(v)));
+    all.extend(
+        variants
+            .iter()
+            .filter(|v| !v.counting)
+            .map(|&v| image_based(v)),
+    );
     all.extend([
         sky(),
         Shader {

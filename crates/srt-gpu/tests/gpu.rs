@@ -4,6 +4,7 @@
 #[allow(dead_code)] // each module uses its own share
 mod common;
 mod context;
+mod image_based;
 mod images;
 mod layout;
 mod limits;

@@ -462,9 +462,11 @@ fn kind_matches(module: &Module, var: &naga::GlobalVariable, ty: &wgpu::BindingT
             if access.contains(naga::StorageAccess::STORE) != *read_only),
         wgpu::BindingType::Texture {
             sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2,
+            view_dimension:
+                view_dimension @ (wgpu::TextureViewDimension::D2 | wgpu::TextureViewDimension::D2Array),
             multisampled,
         } => {
+            let expected_arrayed = *view_dimension == wgpu::TextureViewDimension::D2Array;
             let expected_kind = match sample_type {
                 wgpu::TextureSampleType::Float { .. } => naga::ScalarKind::Float,
                 wgpu::TextureSampleType::Uint => naga::ScalarKind::Uint,
@@ -473,9 +475,9 @@ fn kind_matches(module: &Module, var: &naga::GlobalVariable, ty: &wgpu::BindingT
             };
             matches!(inner, TypeInner::Image {
                 dim: ImageDimension::D2,
-                arrayed: false,
+                arrayed,
                 class: ImageClass::Sampled { kind, multi },
-            } if *kind == expected_kind && multi == multisampled)
+            } if *kind == expected_kind && multi == multisampled && *arrayed == expected_arrayed)
         }
         wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering) => {
             matches!(inner, TypeInner::Sampler { comparison: false })
@@ -576,12 +578,19 @@ fn check_bindings(spec: &PipelineSpec) -> Vec<String> {
     failures
 }
 
-/// The renderer's six pipelines in variants that between them compile every piece of code
-/// ([`ObjectVariant::covering`]).
+/// The renderer's six pipelines and the image-based method's two in variants that between
+/// them compile every piece of code ([`ObjectVariant::covering`]).
 fn renderer_specs() -> Vec<PipelineSpec> {
     ObjectVariant::covering()
         .into_iter()
-        .flat_map(srt_gpu::pipelines::specs)
+        .flat_map(|variant| {
+            let [face, lookup] = srt_gpu::pipelines::image_based_specs(variant);
+            [
+                Vec::from(srt_gpu::pipelines::specs(variant)),
+                vec![face, lookup],
+            ]
+            .concat()
+        })
         .collect()
 }
 
@@ -598,9 +607,10 @@ fn bindings_match_the_wgsl() {
     let specs = all_specs();
     assert_eq!(
         specs.len(),
-        6 * ObjectVariant::covering().len() + 6,
-        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth (once per \
-         covering ObjectVariant), three probes, the sky's two passes and the display pass"
+        8 * ObjectVariant::covering().len() + 6,
+        "proxy, lrt visibility, lrt shading, rt visibility, polygon, lrt part depth, the \
+         image-based faces and look-up (once per covering ObjectVariant), three probes, the \
+         sky's two passes and the display pass"
     );
     let mut failures = Vec::new();
     for spec in &specs {

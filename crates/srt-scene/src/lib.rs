@@ -35,8 +35,9 @@ pub use mesh::{Material, Mesh, MeshError, Part, Texture};
 pub use projection::{EyePoint, Projection, Stereo};
 pub use resolve::{LoadedScene, ResolveError, SceneSource};
 pub use scene::{
-    Blink, BodyExtent, Clock, Effects, Emission, Kinematics, Light, MAX_MOVING_LIGHTS, MovingLight,
-    Object, Observer, Scene, Shading, SurfaceColour, SurfaceOptics, ViewRays,
+    Blink, BodyExtent, Clock, DEFAULT_CUBE_MAP_SIZE, Effects, Emission, Kinematics, Light,
+    MAX_CUBE_MAP_SIZE, MAX_MOVING_LIGHTS, MovingLight, Object, Observer, Scene, Shading,
+    SurfaceColour, SurfaceOptics, ViewRays,
 };
 pub use sky::{Sky, SkyError, Star};
 pub use view::{View, ViewError};

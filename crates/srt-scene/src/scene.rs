@@ -379,6 +379,14 @@ pub struct Light {
 /// Most moving lights a scene may have (the GPU's uniform array holds this many).
 pub const MAX_MOVING_LIGHTS: usize = 8;
 
+/// The side in texels of each face of the image-based method's cube map when a scene gives
+/// none: the paper's (Table 1, "IB: cube map of 2048² per face").
+pub const DEFAULT_CUBE_MAP_SIZE: u32 = 2048;
+
+/// The largest side of an image-based cube map face a scene may ask for (WebGPU's guaranteed
+/// texture side is 8192; larger faces are refused by the adapter's own limits).
+pub const MAX_CUBE_MAP_SIZE: u32 = 16384;
+
 /// A point light on its own worldline: at rest at the origin of `frame`, radiating a Planck
 /// spectrum isotropically in its rest frame. A surface is lit by it as it was at the retarded
 /// event, on the past light cone of the surface's event (docs/physics.md, "Moving lights").
@@ -564,6 +572,9 @@ pub struct Scene {
     pub colour: SurfaceColour,
     /// Multiplier on the light before the tone map (spectral colour; 1 for the paper's).
     pub exposure: f64,
+    /// The side in texels of each face of the image-based method's cube map (the GPU's
+    /// `image-based` method; [`DEFAULT_CUBE_MAP_SIZE`] unless the scene says otherwise).
+    pub cube_map_size: u32,
     /// The transformation from the observer's frame S to the scene's world frame W (the frame
     /// the scene file's times and positions are given in): the identity for an observer at rest
     /// in W ([`MovingObserver::observer_to_world`](srt_physics::MovingObserver)).

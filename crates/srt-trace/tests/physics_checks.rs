@@ -31,6 +31,7 @@ fn scene(objects: Vec<Object>, observer: Observer) -> Scene {
         sky: Sky::default(),
         colour: SurfaceColour::Paper,
         exposure: 1.0,
+        cube_map_size: srt_scene::DEFAULT_CUBE_MAP_SIZE,
         world: Poincare::IDENTITY,
     }
 }

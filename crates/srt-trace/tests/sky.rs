@@ -47,6 +47,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
         },
         colour: SurfaceColour::Paper,
         exposure: 1.0,
+        cube_map_size: srt_scene::DEFAULT_CUBE_MAP_SIZE,
         world: srt_physics::Poincare::IDENTITY,
     }
 }

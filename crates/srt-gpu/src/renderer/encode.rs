@@ -188,7 +188,7 @@ impl super::GpuRenderer {
         if self.count_fragments {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
-        if method != Method::Polygon {
+        if method.has_footprints() {
             let no_draw = wgpu::util::DrawIndirectArgs {
                 vertex_count: 0,
                 instance_count: 1,
@@ -232,16 +232,31 @@ impl super::GpuRenderer {
                 ..frame
             })
             .collect();
-        self.encode_render_pass(
-            &ctx.device,
-            encoder,
-            background,
-            method,
-            tone,
-            &traced,
-            &variants,
-            shown,
-        );
+        if method == Method::ImageBased {
+            if frame.seen {
+                return Err(GpuError::Unsupported(
+                    "the image-based method does not write what pixels see of time (--aov); \
+                     use --method auto"
+                        .into(),
+                ));
+            }
+            let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
+            let targets = (&view(&self.targets.color), &view(&self.targets.depth));
+            self.encode_image_based(
+                ctx, encoder, scene, background, tone, &variants, shown, targets,
+            )?;
+        } else {
+            self.encode_render_pass(
+                &ctx.device,
+                encoder,
+                background,
+                method,
+                tone,
+                &traced,
+                &variants,
+                shown,
+            );
+        }
         if let Some(t) = &self.timestamps {
             encoder.resolve_query_set(&t.set, 0..TIMESTAMP_COUNT, &t.resolve, 0);
             encoder.copy_buffer_to_buffer(&t.resolve, 0, &t.readback, 0, t.resolve.size());
@@ -260,7 +275,7 @@ impl super::GpuRenderer {
 
     /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
     /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
-    /// [`Method::Polygon`], and for [`Method::Auto`] those for which
+    /// [`Method::Polygon`] and [`Method::ImageBased`], and for [`Method::Auto`] those for which
     /// [`ObjectRayTracing::preferred`] says so; every object in a wide projection (no
     /// footprint of the pinhole serves it). A body that spins or thrusts in its rest frame
     /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
@@ -287,7 +302,7 @@ impl super::GpuRenderer {
                 let moving = !seen.motion.is_rest();
                 let traced = moving || wide;
                 match (method, &object.ray_tracing) {
-                    (Method::Polygon, _) => Ok(None),
+                    (Method::Polygon | Method::ImageBased, _) => Ok(None),
                     (Method::Rt, Ok(rt)) => Ok(Some(rt)),
                     (_, Ok(rt)) if traced => Ok(Some(rt)),
                     (Method::Rt, Err(error)) => Err(error.clone()),
@@ -610,7 +625,7 @@ impl super::GpuRenderer {
     /// the compose pass. Returns how the object passes load the colour target: over the sky
     /// (own pass), or cleared to `background` (the scene's, as the output holds it; with a
     /// sky drawn in the object pass, [`Self::draw_sky`] then covers every pixel no object does).
-    fn encode_background(
+    pub(super) fn encode_background(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
@@ -649,7 +664,7 @@ impl super::GpuRenderer {
 
     /// Draws the sky's compose triangle into the object pass `pass` at `placement` (after
     /// [`Self::encode_background`] for the same placement), if the scene has a sky.
-    fn draw_sky(
+    pub(super) fn draw_sky(
         &self,
         device: &wgpu::Device,
         pass: &mut wgpu::RenderPass<'_>,
@@ -740,14 +755,16 @@ impl super::GpuRenderer {
         depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
         [beginning, end]: [Option<u32>; 2],
     ) -> wgpu::RenderPass<'a> {
-        let timestamps = self
-            .timestamps
-            .as_ref()
-            .map(|t| wgpu::RenderPassTimestampWrites {
-                query_set: &t.set,
-                beginning_of_pass_write_index: beginning,
-                end_of_pass_write_index: end,
-            });
+        let stamped = beginning.is_some() || end.is_some();
+        let timestamps =
+            self.timestamps
+                .as_ref()
+                .filter(|_| stamped)
+                .map(|t| wgpu::RenderPassTimestampWrites {
+                    query_set: &t.set,
+                    beginning_of_pass_write_index: beginning,
+                    end_of_pass_write_index: end,
+                });
         crate::passes::begin_pass(encoder, label, target, load, depth, timestamps)
     }
 
@@ -805,7 +822,7 @@ fn background_as(output: OutputCode, display: DVec3) -> DVec4 {
 
 /// The variant a part of an object drawn as `object` is drawn as: the object's, textured where
 /// the part has a texture.
-fn variant_of_part(object: ObjectVariant, part: &PartResources) -> ObjectVariant {
+pub(super) fn variant_of_part(object: ObjectVariant, part: &PartResources) -> ObjectVariant {
     ObjectVariant {
         textured: part.material.flags.contains(PartFlags::TEXTURED),
         ..object

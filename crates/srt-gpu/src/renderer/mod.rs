@@ -47,6 +47,7 @@ use crate::types::{
 };
 
 mod encode;
+mod image_based;
 mod targets;
 mod upload;
 
@@ -92,6 +93,11 @@ pub enum Method {
     /// or thrusting body's vertices each show their point's emission event on the observer's
     /// past light cone.
     Polygon,
+    /// The image-based method (Table 1's "IB"): per velocity group a cube map of the objects
+    /// at rest around the observation event, looked up along each pixel's aberrated direction
+    /// and Doppler-shifted; approximate by design (each texel stands for all the directions it
+    /// covers), it draws every projection; the scene's `cube_map_size` sets its resolution.
+    ImageBased,
 }
 
 impl Method {
@@ -119,6 +125,23 @@ impl Method {
                 ));
             }
         }
+        if self == Self::ImageBased {
+            let why = if scene.observer.stereo.is_some() {
+                Some("a stereo pair (its cube map is seen from one point)")
+            } else if scene.colour == srt_scene::SurfaceColour::Spectral {
+                Some("spectral colour (its cube map holds one colour-table light per texel)")
+            } else if !scene.lights.is_empty() {
+                Some("moving lights (its cube map holds one colour-table light per texel)")
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                return Some(format!(
+                    "the image-based method does not draw {why}; use --method auto, or \
+                     --backend cpu"
+                ));
+            }
+        }
         let moving = scene.objects.iter().find(|o| !o.motion.is_rest())?;
         (scene.shadows && !scene.lights.is_empty()).then(|| {
             format!(
@@ -132,7 +155,13 @@ impl Method {
     /// Whether the method is exact per pixel (what the CPU reference computes).
     #[must_use]
     pub const fn is_exact(self) -> bool {
-        !matches!(self, Self::Polygon)
+        !matches!(self, Self::Polygon | Self::ImageBased)
+    }
+
+    /// Whether the method draws footprints (the proxy pass runs): the exact methods.
+    #[must_use]
+    pub const fn has_footprints(self) -> bool {
+        self.is_exact()
     }
 }
 
@@ -145,6 +174,9 @@ srt_scene::choice!(Method, "method", {
         "ray tracing through a BVH per object in its rest frame: exact per pixel like lrt, \
          faster for deep models and objects passing the camera";
     Polygon => "polygon", "per-vertex polygon rendering (§3.2), the approximate baseline; GPU only";
+    ImageBased => "image-based",
+        "the image-based method (a cube map per velocity group, aberrated and Doppler-shifted; \
+         the paper's Table 1 \"IB\"), approximate; GPU only";
 });
 
 /// Which footprint the LRT pass rasterises.
@@ -258,6 +290,9 @@ pub struct GpuRenderer {
     /// The part of a larger picture the target holds, if it holds a part
     /// ([`GpuRenderer::set_window`]).
     window: Option<ImageWindow>,
+    /// The image-based method's cube map (of the scene's `cube_map_size`), made when it first
+    /// draws and kept while the size stays.
+    cube_map: std::sync::Mutex<Option<Arc<image_based::CubeMap>>>,
 }
 
 impl GpuRenderer {
@@ -337,6 +372,7 @@ impl GpuRenderer {
             indirect_draws: ctx.indirect_draws,
             auto_layers: crate::ray_tracing::auto_layers(ctx.adapter_info.device_type),
             window: None,
+            cube_map: std::sync::Mutex::new(None),
         };
         ctx.take_errors()?;
         Ok(renderer)
@@ -519,7 +555,7 @@ impl GpuRenderer {
         // polygon pass) to the end of the last.
         Ok(match method {
             Method::Lrt | Method::Rt | Method::Auto => (Some(ms(0, 3)), Some(ms(0, 1))),
-            Method::Polygon => {
+            Method::Polygon | Method::ImageBased => {
                 let first = if self.sky.is_some() { SKY_TIMESTAMP } else { 2 };
                 (Some(ms(first as usize, 3)), None)
             }

@@ -149,6 +149,7 @@ impl SceneDescription {
             sky,
             colour: render.colour,
             exposure: render.exposure,
+            cube_map_size: render.cube_map_size,
             world,
         };
         Ok((scene, warnings))

@@ -9,6 +9,7 @@ use serde::ser::{SerializeSeq, Serializer};
 use serde::{Deserialize, Serialize};
 
 use crate::projection::{Projection, Stereo};
+use crate::scene::DEFAULT_CUBE_MAP_SIZE;
 use srt_color::ToneMap;
 use srt_physics::motion::{Motion, Spin, Thrust};
 
@@ -288,6 +289,12 @@ pub struct RenderDescription {
     /// Whether objects cast the moving lights' shadows (default true).
     #[serde(default = "default_true", skip_serializing_if = "is_true")]
     pub shadows: bool,
+    /// The side in texels of each face of the image-based method's cube map (≥ 1).
+    #[serde(
+        default = "default_cube_map_size",
+        skip_serializing_if = "is_default_cube_map_size"
+    )]
+    pub cube_map_size: u32,
 }
 
 impl Default for RenderDescription {
@@ -304,6 +311,7 @@ impl Default for RenderDescription {
             colour: SurfaceColour::default(),
             exposure: 1.0,
             shadows: true,
+            cube_map_size: DEFAULT_CUBE_MAP_SIZE,
         }
     }
 }
@@ -687,6 +695,16 @@ fn default_temperature() -> f64 {
 }
 fn default_duration() -> f64 {
     f64::INFINITY
+}
+fn default_cube_map_size() -> u32 {
+    DEFAULT_CUBE_MAP_SIZE
+}
+#[expect(
+    clippy::trivially_copy_pass_by_ref,
+    reason = "serde's skip_serializing_if passes a reference"
+)]
+fn is_default_cube_map_size(size: &u32) -> bool {
+    *size == DEFAULT_CUBE_MAP_SIZE
 }
 fn default_true() -> bool {
     true

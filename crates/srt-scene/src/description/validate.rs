@@ -19,7 +19,7 @@ use super::model::{
     SceneDescription, ShapeDescription, TextureDescription,
 };
 use crate::limits::{MAX_COORDINATE, MAX_SCENE_TRIANGLES};
-use crate::scene::{MAX_MOVING_LIGHTS, SurfaceColour};
+use crate::scene::{MAX_CUBE_MAP_SIZE, MAX_MOVING_LIGHTS, SurfaceColour};
 use crate::shapes::{MAX_CUBE_SUBDIVISIONS, MAX_SPHERE_SEGMENTS, MIN_SPHERE_SEGMENTS};
 use crate::textures::{MAX_CHECKER_SQUARES, MAX_FRAMES};
 
@@ -415,6 +415,15 @@ impl RenderDescription {
         non_negative("render.diffuse", self.diffuse)?;
         non_negative("render.specular", self.specular)?;
         non_negative("render.shininess", self.shininess)?;
+        if !(1..=MAX_CUBE_MAP_SIZE).contains(&self.cube_map_size) {
+            return Err(value_error(
+                "render.cube_map_size",
+                format!(
+                    "must be a whole number of texels from 1 to {MAX_CUBE_MAP_SIZE}, got {}",
+                    self.cube_map_size
+                ),
+            ));
+        }
         let exposure = names.exposure;
         positive(exposure, self.exposure, "")?;
         if self.exposure != 1.0 && self.colour == SurfaceColour::Paper {
