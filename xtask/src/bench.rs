@@ -251,6 +251,12 @@ fn measure(
         [Method::Lrt, Method::Rt, Method::Auto, Method::Polygon],
         frames,
     )?;
+    let image_based_ms = if Method::ImageBased.cannot_draw(scene).is_none() {
+        let [(ms, _)] = frame_times(ctx, renderer, scene, [Method::ImageBased], frames)?;
+        Some(ms)
+    } else {
+        None
+    };
     let (width, height) = renderer.size();
     let covered = Tracer::new(scene)
         .render(
@@ -297,6 +303,7 @@ fn measure(
         rt_ms,
         auto_ms,
         polygon_ms,
+        image_based_ms,
         overdraw_hull: lrt.run as f64 / covered,
         overdraw_rt: rt.run as f64 / covered,
         overdraw_auto: auto.run as f64 / covered,

@@ -94,7 +94,7 @@ impl Validation {
 fn case_row(case: &CaseResult) -> String {
     let m = &case.measurement;
     format!(
-        "| {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | **{:.2}** | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+        "| {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | **{:.2}** | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
         case.name,
         case.size(),
         case.triangles,
@@ -102,6 +102,8 @@ fn case_row(case: &CaseResult) -> String {
         m.lrt_ms,
         m.rt_ms,
         m.polygon_ms,
+        m.image_based_ms
+            .map_or_else(|| "—".to_owned(), |ms| format!("{ms:.2}")),
         m.ratio(),
         m.ratio_of(Method::Lrt),
         m.ratio_of(Method::Rt),
@@ -124,7 +126,7 @@ fn sweep_row(sweep: &SweepResult) -> Option<String> {
         .map(|&method| format!("worst {:.2}", sweep.worst_ratio_of(method)))
         .collect();
     Some(format!(
-        "| {} (sweep, {} frames) | {} | {} | {} | | {} | | | | |",
+        "| {} (sweep, {} frames) | {} | {} | {} | | | {} | | | | |",
         sweep.name,
         sweep.frames.len(),
         first.size(),
@@ -138,7 +140,7 @@ fn sweep_row(sweep: &SweepResult) -> Option<String> {
 /// pinhole only, so their cells and the ratios are empty; the CPU reference's time is named.
 fn full_sky_row(line: &FullSkyResult) -> String {
     format!(
-        "| {} (full sky; CPU {:.0} ms) | {}×{} | {} | {:.2} | — | {:.2} | — | — | — | — | {:.2} | {:.2} | — | {:.2} |",
+        "| {} (full sky; CPU {:.0} ms) | {}×{} | {} | {:.2} | — | {:.2} | — | — | — | — | — | {:.2} | {:.2} | — | {:.2} |",
         line.name,
         line.cpu_ms,
         line.width,
@@ -156,7 +158,7 @@ fn full_sky_row(line: &FullSkyResult) -> String {
 fn table(results: &Results, validation: &Validation, markers: Markers) -> String {
     let mut table = format!(
         "{}\nAdapter: {}; {}, timed by {}.\n\n\
-         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+         | scene | size | triangles | auto ms | LRT ms | RT ms | polygon ms | IB ms | **auto / polygon** | LRT / polygon | RT / polygon | shaded per covered pixel | auto fragments per covered pixel | LRT fragments | RT fragments | frames validated |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
         markers.start,
         results.adapter,
         results.sampling(),
@@ -258,16 +260,16 @@ mod tests {
             assert_eq!(text.matches(kept).count(), 1, "{kept}");
         }
         assert!(text.contains("every sweep frame: missed** at spider 1280×720 (1.50)"));
-        assert!(
-            text.contains("| cube | 1280×720 | 300 | 10.00 | 11.00 | 22.00 | 10.00 | **1.00** |")
-        );
+        assert!(text.contains(
+            "| cube | 1280×720 | 300 | 10.00 | 11.00 | 22.00 | 10.00 | 5.00 | **1.00** |"
+        ));
         assert!(text.contains("| 1.50 | 1.50 | 1.20 | yes, 2026-01-01 (abc) |"));
         assert!(text.contains("| 1.50 | 1.50 | 1.20 | no: 0 of 1 frames passed |"));
         assert!(text.contains(
-            "| fly (sweep, 2 frames) | 1280×720 | 300 | ≤ 25.00 | ≤ 20.00 | ≤ 40.00 | | worst 2.50 | worst 2.00 | worst 4.00 | | | | | yes, 2026-01-01 (abc) |"
+            "| fly (sweep, 2 frames) | 1280×720 | 300 | ≤ 25.00 | ≤ 20.00 | ≤ 40.00 | | | worst 2.50 | worst 2.00 | worst 4.00 | | | | | yes, 2026-01-01 (abc) |"
         ));
         assert!(text.contains(
-            "| sky (full sky; CPU 90 ms) | 2048×1024 | 300 | 40.00 | — | 40.00 | — | — | — | — | 1.00 | 1.50 | — | 1.50 | no: 0 of 1 frames passed |"
+            "| sky (full sky; CPU 90 ms) | 2048×1024 | 300 | 40.00 | — | 40.00 | — | — | — | — | — | 1.00 | 1.50 | — | 1.50 | no: 0 of 1 frames passed |"
         ));
         assert_eq!(update(&text, &results(), &validation, SOFTWARE), text);
     }

@@ -8,7 +8,8 @@ use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
 use srt_gpu::Method;
 
-/// The exact methods and the polygon method, in the order of the tables.
+/// The exact methods and the polygon method, in the order of the tables (the image-based
+/// method, timed on the static lines only, has a column of its own).
 pub const METHODS: [Method; 4] = [Method::Auto, Method::Lrt, Method::Rt, Method::Polygon];
 
 /// How a method is named in tables and reports.
@@ -19,6 +20,7 @@ pub const fn method_name(method: Method) -> &'static str {
         Method::Lrt => "LRT",
         Method::Rt => "RT",
         Method::Polygon => "polygon",
+        Method::ImageBased => "IB",
     }
 }
 
@@ -35,6 +37,10 @@ pub struct Measurement {
     pub auto_ms: f64,
     /// Median frame time of the polygon method, ms.
     pub polygon_ms: f64,
+    /// Median frame time of the image-based method (the paper's "IB", cube maps of the scene's
+    /// `cube_map_size`), ms; `None` where it cannot draw the scene or was not timed.
+    #[serde(default)]
+    pub image_based_ms: Option<f64>,
     /// LRT visibility fragments per covered pixel.
     pub overdraw_hull: f64,
     /// Ray-tracer visibility fragments per covered pixel.
@@ -55,6 +61,10 @@ impl Measurement {
             Method::Lrt => self.lrt_ms,
             Method::Rt => self.rt_ms,
             Method::Polygon => self.polygon_ms,
+            Method::ImageBased => match self.image_based_ms {
+                Some(ms) => ms,
+                None => f64::NAN,
+            },
         }
     }
 
@@ -400,6 +410,7 @@ pub mod tests {
             rt_ms: 2.0 * lrt,
             auto_ms: auto,
             polygon_ms: polygon,
+            image_based_ms: Some(polygon / 2.0),
             overdraw_hull: 1.5,
             overdraw_rt: 1.2,
             overdraw_auto: 1.5,

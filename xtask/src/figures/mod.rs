@@ -2,6 +2,7 @@
 //! or showing what srt adds to them.
 
 mod colorchecker;
+mod fig13;
 mod fig4;
 mod fig5;
 mod fig6;
@@ -34,6 +35,7 @@ pub fn write_all(out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     written.extend(time::write(out_dir)?);
     written.extend(wheel::write(out_dir)?);
     written.extend(whole_sky::write(out_dir)?);
+    written.extend(fig13::write(out_dir)?);
     Ok(written)
 }
 
