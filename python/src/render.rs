@@ -149,11 +149,12 @@ impl Renderer {
     fn new(width: u32, height: u32, samples: u32, backend: &str, method: &str) -> PyResult<Self> {
         let settings = settings(width, height, samples)?;
         let backend = errors::chosen(backend)?;
-        let method = errors::chosen(method)?;
-        if backend == Backend::Cpu && method == Method::Polygon {
-            return Err(errors::value(
-                "the polygon method runs on the GPU only; use backend=\"gpu\" or \"auto\"",
-            ));
+        let method: Method = errors::chosen(method)?;
+        if backend == Backend::Cpu && !method.is_exact() {
+            return Err(errors::value(format!(
+                "the {} method runs on the GPU only; use backend=\"gpu\" or \"auto\"",
+                method.name()
+            )));
         }
         Ok(Self {
             settings,

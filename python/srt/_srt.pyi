@@ -96,7 +96,7 @@ def render(
     set: dict[str, SettingValue] | None = None,
     samples: int = 1,
     backend: Literal["auto", "cpu", "gpu"] = "auto",
-    method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
+    method: Literal["auto", "lrt", "rt", "polygon", "image-based"] = "auto",
     view: Literal["seen", "measured", "newtonian"] = "seen",
     aov: Literal[False] = False,
 ) -> npt.NDArray[np.float32]: ...
@@ -116,7 +116,7 @@ def render(
     set: dict[str, SettingValue] | None = None,
     samples: int = 1,
     backend: Literal["auto", "cpu", "gpu"] = "auto",
-    method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
+    method: Literal["auto", "lrt", "rt", "polygon", "image-based"] = "auto",
     view: Literal["seen", "measured", "newtonian"] = "seen",
     aov: Literal[True],
 ) -> dict[str, npt.NDArray[np.float32] | npt.NDArray[np.int32]]:
@@ -136,7 +136,7 @@ class Renderer:
         height: int = 720,
         samples: int = 1,
         backend: Literal["auto", "cpu", "gpu"] = "auto",
-        method: Literal["auto", "lrt", "rt", "polygon"] = "auto",
+        method: Literal["auto", "lrt", "rt", "polygon", "image-based"] = "auto",
     ) -> None: ...
     def render(
         self,

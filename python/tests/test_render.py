@@ -175,6 +175,7 @@ def test_the_gpu_draws_the_display_the_radiance_and_the_time_near_the_cpu():
         ({"samples": 5000}, "samples must be 1 to 1024, got 5000"),
         ({"backend": "tpu"}, 'unknown backend "tpu"; expected "auto", "cpu" or "gpu"'),
         ({"method": "polygon", "backend": "cpu"}, "the polygon method runs on the GPU only"),
+        ({"method": "image-based", "backend": "cpu"}, "the image-based method runs on the GPU only"),
         ({"view": "sideways"}, 'unknown view "sideways"; expected "seen", "measured" or "newtonian"'),
     ],
 )
@@ -285,6 +286,24 @@ def test_projection_draws_the_whole_sky_as_the_command_does(tmp_path):
     assert not np.array_equal(whole_sky, srt.render("flythrough", **size, backend="cpu"))
     with pytest.raises(srt.SceneError, match=r"fisheye's fov_deg must be in \(0, 360\]"):
         srt.render("fig7", width=8, height=8, backend="cpu", projection="fisheye:0")
+
+
+def test_the_image_based_method_draws_as_the_command_does(tmp_path):
+    # The paper's image-based comparison, its cube map's side set by `set` as the command's
+    # --cube-map-size sets it: the same picture to the bit, and another at another side.
+    size = {"width": 64, "height": 36}
+    arguments = {**size, "backend": "gpu", "method": "image-based"}
+    try:
+        image = srt.render("teaser", **arguments, set={"render.cube_map_size": 128})
+    except srt.GpuError as error:
+        require_gpu(f"no GPU adapter for the image-based method: {error}")
+    expected = cli_render(
+        tmp_path, "teaser", "--width", "64", "--height", "36", "--backend", "gpu",
+        "--method", "image-based", "--cube-map-size", "128",
+    )
+    assert np.array_equal(image, expected["radiance"])
+    finer = srt.render("teaser", **arguments, set={"render.cube_map_size": 1024})
+    assert not np.array_equal(image, finer)
 
 
 def test_set_gives_scene_keys_as_the_commands_set_does(tmp_path):

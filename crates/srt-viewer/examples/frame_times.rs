@@ -20,6 +20,7 @@ fn main() -> anyhow::Result<()> {
         Some("lrt") => ViewMethod::Lrt,
         Some("rt") => ViewMethod::Rt,
         Some("polygon") => ViewMethod::Polygon,
+        Some("image-based") => ViewMethod::ImageBased,
         Some("split") => ViewMethod::Split,
         _ => ViewMethod::Exact,
     };

@@ -31,13 +31,22 @@ pub enum ViewMethod {
     Rt,
     /// The polygon baseline only (§3.2).
     Polygon,
+    /// The image-based method only (cube maps, the paper's Table 1 "IB").
+    ImageBased,
     /// Both, side by side: the exact picture on the left, polygons on the right.
     Split,
 }
 
 impl ViewMethod {
     /// All choices, in the order the panel lists them.
-    pub const ALL: [Self; 5] = [Self::Exact, Self::Lrt, Self::Rt, Self::Polygon, Self::Split];
+    pub const ALL: [Self; 6] = [
+        Self::Exact,
+        Self::Lrt,
+        Self::Rt,
+        Self::Polygon,
+        Self::ImageBased,
+        Self::Split,
+    ];
 
     /// The methods rendered, left to right.
     #[must_use]
@@ -47,6 +56,7 @@ impl ViewMethod {
             Self::Lrt => &[Method::Lrt],
             Self::Rt => &[Method::Rt],
             Self::Polygon => &[Method::Polygon],
+            Self::ImageBased => &[Method::ImageBased],
             Self::Split => &[Method::Auto, Method::Polygon],
         }
     }
@@ -59,6 +69,7 @@ impl ViewMethod {
             Self::Lrt => "Local ray tracing",
             Self::Rt => "Ray tracing (BVH)",
             Self::Polygon => "Polygon",
+            Self::ImageBased => "Image-based (cube maps)",
             Self::Split => "Split screen (both)",
         }
     }
@@ -101,6 +112,7 @@ impl Pane {
             Method::Lrt => "local ray tracing",
             Method::Rt => "ray tracing (BVH)",
             Method::Polygon => "polygon",
+            Method::ImageBased => "image-based",
         });
         match (view, method) {
             (Some(view), Some(method)) => Some(format!("{view} · {method}")),

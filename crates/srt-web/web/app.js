@@ -402,8 +402,8 @@ async function main() {
       }
     }
   }
-  if (!gpu && (state.method === 'polygon' || state.split)) {
-    throw new Error('the polygon method and the split view need WebGPU');
+  if (!gpu && (state.method === 'polygon' || state.method === 'image-based' || state.split)) {
+    throw new Error(`the ${state.split ? 'split view' : state.method + ' method'} needs WebGPU`);
   }
   wireControls();
   await loadInfo();
