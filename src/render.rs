@@ -16,9 +16,7 @@ use image::RgbImage;
 use srt::empty::OneColour;
 use srt::engine::{Engine, Frame};
 use srt_scene::description::observation_time;
-use srt_scene::{
-    Editor, OverrideNames, Overrides, Projection, Scene, Setting, Stereo, ValueName, View,
-};
+use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, Setting, ValueName, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::cli::RenderArgs;
@@ -72,10 +70,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     };
     let settings = settings_of(args);
-    if scene.observer.stereo.is_some() {
-        Stereo::check_size(scene.observer.projection, settings.width, settings.height)
-            .map_err(|reason| anyhow::anyhow!("{}: {reason}", scene.name))?;
-    }
+    scene
+        .check_picture_size(settings.width, settings.height)
+        .map_err(anyhow::Error::msg)?;
     let view = args.view;
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.

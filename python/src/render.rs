@@ -360,6 +360,9 @@ impl Request {
                 )))
             })?
         };
+        scene
+            .check_picture_size(self.settings.width, self.settings.height)
+            .map_err(|reason| Failure::Raise(errors::value(reason)))?;
         // One CPU tracer for every layer that needs it (the CPU engine's display and
         // radiance, the time channels); the engine `srt render` would choose draws the
         // radiance, and with `aov` the display colours too.

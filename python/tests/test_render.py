@@ -176,6 +176,10 @@ def test_the_gpu_draws_the_display_the_radiance_and_the_time_near_the_cpu():
         ({"backend": "tpu"}, 'unknown backend "tpu"; expected "auto", "cpu" or "gpu"'),
         ({"method": "polygon", "backend": "cpu"}, "the polygon method runs on the GPU only"),
         ({"method": "image-based", "backend": "cpu"}, "the image-based method runs on the GPU only"),
+        (
+            {"set": {"observer.stereo": {"eye_separation": 0.065}}, "width": 15},
+            "fig7: a stereo picture's width is split between the eyes and must be even, got 15x",
+        ),
         ({"view": "sideways"}, 'unknown view "sideways"; expected "seen", "measured" or "newtonian"'),
     ],
 )

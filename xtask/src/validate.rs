@@ -456,9 +456,65 @@ enum Compared {
     Everything,
 }
 
+/// Each method's 8-bit picture of a case's scene: `None` where the GPU refuses the method for
+/// it (`Method::cannot_draw`: late shadows cast by spinning or thrusting bodies; a wide
+/// projection by LRT and the polygon method; spectral colour, moving lights or a stereo pair by
+/// the image-based method). The ray tracer and `auto` draw every case.
+struct Drawn {
+    lrt: Option<Vec<[u8; 3]>>,
+    rt: Vec<[u8; 3]>,
+    auto: Vec<[u8; 3]>,
+    polygon: Option<Vec<[u8; 3]>>,
+    image_based: Option<Vec<[u8; 3]>>,
+}
+
+/// Draws `case` with every method ([`Drawn`]) and counts the visibility fragments that found
+/// hits nearer than their footprint's depth bound: the depth the visibility passes declare
+/// must hold, or a GPU that tests depth early would drop visible fragments, which only a
+/// hardware GPU's image could show.
+fn draw_methods(
+    ctx: &GpuContext,
+    renderer: &mut GpuRenderer,
+    case: &Case,
+) -> anyhow::Result<(Drawn, u64)> {
+    renderer.set_fragment_counting(true);
+    let mut nearer_than_footprint = 0;
+    let [lrt, rt, auto, polygon, image_based] = [
+        Method::Lrt,
+        Method::Rt,
+        Method::Auto,
+        Method::Polygon,
+        Method::ImageBased,
+    ]
+    .map(|method| renderer.render(ctx, &case.scene, method, FootprintShape::Hull))
+    .map(|result| {
+        result.map(|(image, stats)| {
+            nearer_than_footprint += stats.fragments.map_or(0, |f| f.nearer_than_footprint);
+            image.to_rgb8()
+        })
+    });
+    renderer.set_fragment_counting(false);
+    let drawn = |method: &str, rgb: Result<Vec<[u8; 3]>, srt_gpu::GpuError>| match rgb {
+        Err(srt_gpu::GpuError::Unsupported(why)) => {
+            println!("scene={}: no {method} image: {why}", case.name);
+            Ok(None)
+        }
+        other => other.map(Some),
+    };
+    let drawn = Drawn {
+        lrt: drawn("lrt", lrt)?,
+        rt: rt?,
+        auto: auto?,
+        polygon: drawn("polygon", polygon)?,
+        image_based: drawn("image-based", image_based)?,
+    };
+    Ok((drawn, nearer_than_footprint))
+}
+
 /// `renderer`'s images (made for `case`'s scene, at its size) of the exact methods (LRT, the ray
-/// tracer and `auto`, which picks one of them per object) and of the polygon method against the
-/// CPU reference; with [`Compared::Everything`], the exact methods' radiance (relative,
+/// tracer and `auto`, which picks one of them per object) and of the polygon and image-based
+/// methods against the CPU reference (the image-based method held to
+/// [`MAX_IMAGE_BASED_MISMATCH`]); with [`Compared::Everything`], the exact methods' radiance (relative,
 /// [`compare_radiance`]) and their `--aov` channels ([`compare_seen`]) too.
 fn validate_image(
     ctx: &GpuContext,
@@ -477,39 +533,16 @@ fn validate_image(
     };
     let tracer = Tracer::new(scene);
     let reference = tracer.render(settings, &|_| {});
-    // Counting fragments, to check the depth the visibility passes declare (a footprint's
-    // nearest_depth bounds its hits): a GPU that tests depth early would drop visible
-    // fragments otherwise, which only a hardware GPU's image could show.
-    renderer.set_fragment_counting(true);
-    let mut nearer_than_footprint = 0;
-    let [lrt_rgb, rt_rgb, auto_rgb, polygon_rgb, image_based_rgb] = [
-        Method::Lrt,
-        Method::Rt,
-        Method::Auto,
-        Method::Polygon,
-        Method::ImageBased,
-    ]
-    .map(|method| renderer.render(ctx, scene, method, FootprintShape::Hull))
-    .map(|result| {
-        result.map(|(image, stats)| {
-            nearer_than_footprint += stats.fragments.map_or(0, |f| f.nearer_than_footprint);
-            image.to_rgb8()
-        })
-    });
-    renderer.set_fragment_counting(false);
-    // The GPU refuses what a method cannot draw (`Method::cannot_draw`: late shadows cast by
-    // spinning or thrusting bodies; a wide projection by LRT and the polygon method): no image
-    // of that method for such scenes. The ray tracer and `auto` draw every case.
-    let drawn = |method: &str, rgb: Result<Vec<[u8; 3]>, srt_gpu::GpuError>| match rgb {
-        Err(srt_gpu::GpuError::Unsupported(why)) => {
-            println!("scene={}: no {method} image: {why}", case.name);
-            Ok(None)
-        }
-        other => other.map(Some),
-    };
-    let (lrt_rgb, polygon_rgb) = (drawn("lrt", lrt_rgb)?, drawn("polygon", polygon_rgb)?);
-    let image_based_rgb = drawn("image-based", image_based_rgb)?;
-    let (rt_rgb, auto_rgb) = (rt_rgb?, auto_rgb?);
+    let (
+        Drawn {
+            lrt: lrt_rgb,
+            rt: rt_rgb,
+            auto: auto_rgb,
+            polygon: polygon_rgb,
+            image_based: image_based_rgb,
+        },
+        nearer_than_footprint,
+    ) = draw_methods(ctx, renderer, case)?;
     let mismatch_of = |rgb: Option<&Vec<[u8; 3]>>| {
         rgb.map_or(f64::NAN, |rgb| {
             compare(&reference, rgb, TOLERANCE, EDGE_MARGIN).fraction()

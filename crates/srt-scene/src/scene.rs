@@ -628,6 +628,20 @@ impl Scene {
         self.objects.iter().map(Object::triangle_count).sum()
     }
 
+    /// Whether a `width` × `height` picture can hold this scene's view: a stereo pair splits its
+    /// picture between the eyes along a side that must be even ([`Stereo::check_size`]); any
+    /// size holds one eye's picture.
+    ///
+    /// # Errors
+    /// The reason, naming the scene and the size.
+    pub fn check_picture_size(&self, width: u32, height: u32) -> Result<(), String> {
+        if self.observer.stereo.is_none() {
+            return Ok(());
+        }
+        Stereo::check_size(self.observer.projection, width, height)
+            .map_err(|reason| format!("{}: {reason}", self.name))
+    }
+
     /// A note for a scene drawn in the paper's colour whose surfaces have colours that it turns
     /// grey ([`Part::has_hue`]): what a user's textured model looks like unless told otherwise.
     #[must_use]

@@ -84,13 +84,14 @@ impl Measurement {
     #[must_use]
     pub fn fields(&self) -> String {
         format!(
-            "method=auto ratio={:.2} auto_ms={:.2} lrt_ms={:.2} proxy_ms={:.2} rt_ms={:.2} polygon_ms={:.2} lrt_ratio={:.2} rt_ratio={:.2} shaded_per_pixel={:.2} overdraw_auto={:.2} overdraw_hull={:.2} overdraw_rt={:.2}",
+            "method=auto ratio={:.2} auto_ms={:.2} lrt_ms={:.2} proxy_ms={:.2} rt_ms={:.2} polygon_ms={:.2} image_based_ms={:.2} lrt_ratio={:.2} rt_ratio={:.2} shaded_per_pixel={:.2} overdraw_auto={:.2} overdraw_hull={:.2} overdraw_rt={:.2}",
             self.ratio(),
             self.auto_ms,
             self.lrt_ms,
             self.proxy_ms,
             self.rt_ms,
             self.polygon_ms,
+            self.ms(Method::ImageBased),
             self.ratio_of(Method::Lrt),
             self.ratio_of(Method::Rt),
             self.shaded_per_pixel,
