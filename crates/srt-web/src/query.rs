@@ -49,7 +49,7 @@ pub struct PageQuery {
     pub embed: bool,
     /// Which renderer (`backend=auto|cpu|webgpu`).
     pub backend: BackendChoice,
-    /// The GPU method (`method=auto|lrt|rt|polygon`).
+    /// The GPU method (`method=auto|lrt|rt|polygon|image-based`).
     pub method: Method,
     /// Split view: the left half exact, the right half the polygon method (`split=1`).
     pub split: bool,
