@@ -13,6 +13,9 @@
 //!   fragment walks the object's BVH in S′ ([`bvh`], [`ray_tracing`]); the LRT's shading pass
 //!   follows. [`Method::Auto`] picks LRT or the ray tracer per object (mirror: `srt-trace`);
 //! - `polygon` — the per-vertex photo-object method of §3.2, for comparison;
+//! - `image_based` — the paper's other comparison (Table 1's IB): per velocity group a cube map
+//!   of the objects at rest, looked up along each pixel's aberrated direction
+//!   ([`Method::ImageBased`]);
 //! - `sky` — the stars of a scene's sky: a compute pass splats each aberrated, Doppler-shifted
 //!   star into a per-pixel buffer, a full-screen pass writes background and stars before the
 //!   objects are drawn (mirror: `srt-trace`'s sky);
