@@ -22,7 +22,9 @@
 
 // The near plane of the faces' projection (S′ units): depth = IB_NEAR / z, reversed (the
 // faces' depth test keeps the larger value), so that f32 depth keeps its relative precision
-// at every distance.
+// at every distance. Surfaces nearer than this to the observation event are clipped from the
+// cube map; a much smaller value would crowd the depths next to −1 where a backend maps clip
+// depth to [−1, 1] (OpenGL without clip control).
 const IB_NEAR: f32 = 1e-2;
 
 // The unit basis (right, up, forward) of face `face`: +x, −x, +y, −y, +z, −z of S′ in turn.

