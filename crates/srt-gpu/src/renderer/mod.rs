@@ -1,5 +1,5 @@
-//! The GPU renderer: uploads a scene once, then renders it (local ray tracing or the polygon
-//! baseline) for any observer, time, velocities and effect mode with the same mesh structure,
+//! The GPU renderer: uploads a scene once, then renders it (local ray tracing, the ray tracer,
+//! or the approximate polygon and image-based methods) for any observer, time, velocities and effect mode with the same mesh structure,
 //! and reads the image back.
 //!
 //! Everything the renderer allocates is checked against the device's limits first
@@ -104,7 +104,8 @@ impl Method {
     /// Why this method cannot draw `scene` on the GPU, if it cannot: a wide projection
     /// (equirectangular, fisheye) or a stereo pair by the local ray tracer or the polygon
     /// method, which draw triangles through one pinhole's projection (the ray tracer, and so `auto`, traces any
-    /// pixel's ray), or late shadows of moving lights cast by a body that spins or thrusts (the
+    /// pixel's ray); a stereo pair, spectral colour or moving lights by the image-based method
+    /// (one eye point, one colour-table light per texel); or late shadows of moving lights cast by a body that spins or thrusts (the
     /// GPU's shadow walk meets static triangles only). The CPU reference draws all of them
     /// exactly.
     #[must_use]
