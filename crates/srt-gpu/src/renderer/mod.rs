@@ -1,6 +1,6 @@
 //! The GPU renderer: uploads a scene once, then renders it (local ray tracing, the ray tracer,
-//! or the approximate polygon and image-based methods) for any observer, time, velocities and effect mode with the same mesh structure,
-//! and reads the image back.
+//! or the approximate polygon and image-based methods) for any observer, time, velocities and
+//! effect mode with the same mesh structure, and reads the image back.
 //!
 //! Everything the renderer allocates is checked against the device's limits first
 //! ([`crate::limits`]), so a scene or image size the adapter cannot serve is a
