@@ -223,32 +223,38 @@ impl Mesh {
     /// viewing rays start at the observer's position).
     #[must_use]
     pub fn is_closed_outward(&self) -> bool {
-        use std::collections::HashMap;
         let (lo, hi) = self.bounds();
         let cell = ((hi - lo).length() * 1e-9).max(f64::MIN_POSITIVE);
-        let mut weld: HashMap<[i64; 3], u32> = HashMap::new();
-        let ids: Vec<u32> = self
+        // Weld: vertices on the same grid cell get one id (sorted, not hashed: a scan of
+        // millions of triangles is checked in a fraction of a second).
+        let cells: Vec<[i64; 3]> = self
             .positions
             .iter()
-            .map(|p| {
-                let next = weld.len() as u32;
-                let key = ((*p - lo) / cell).round().to_array().map(|c| c as i64);
-                *weld.entry(key).or_insert(next)
-            })
+            .map(|p| ((*p - lo) / cell).round().to_array().map(|c| c as i64))
             .collect();
-        let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut order: Vec<u32> = (0..cells.len() as u32).collect();
+        order.sort_unstable_by_key(|&i| cells[i as usize]);
+        let mut ids = vec![0u32; cells.len()];
+        for (rank, pair) in order.iter().enumerate() {
+            let previous = rank.checked_sub(1).map(|r| order[r]);
+            ids[*pair as usize] = match previous {
+                Some(p) if cells[p as usize] == cells[*pair as usize] => ids[p as usize],
+                _ => *pair,
+            };
+        }
+        let mut edges = Vec::with_capacity(3 * self.triangles.len());
         for t in &self.triangles {
             let [a, b, c] = t.map(|i| ids[i as usize]);
             if a == b || b == c || c == a {
                 return false;
             }
-            for edge in [(a, b), (b, c), (c, a)] {
-                *edges.entry(edge).or_insert(0) += 1;
-            }
+            edges.extend([(a, b), (b, c), (c, a)]);
         }
-        let paired = edges
-            .iter()
-            .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1));
+        // Closed and consistently wound: every directed edge once, and its reverse once.
+        edges.sort_unstable();
+        let mut reversed: Vec<(u32, u32)> = edges.iter().map(|&(a, b)| (b, a)).collect();
+        reversed.sort_unstable();
+        let paired = edges.windows(2).all(|w| w[0] != w[1]) && edges == reversed;
         let volume: f64 = (0..self.triangles.len())
             .map(|i| {
                 let [a, b, c] = self.triangle_positions(i);
