@@ -45,10 +45,12 @@ pub fn ball_nearest_apparent_distance(
     (frame.gamma() * (slope.dot(offset) - slope.length() * radius)).max(0.0)
 }
 
-/// Whether a mesh may have its back faces culled at all (computed once per upload).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Whether a mesh may have its back faces culled at all, and its box (computed once per upload).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BackFaceCulling {
     closed_outward: bool,
+    /// The mesh's axis-aligned bounds at rest (min, max).
+    bounds: (DVec3, DVec3),
 }
 
 impl BackFaceCulling {
@@ -57,15 +59,32 @@ impl BackFaceCulling {
     pub fn for_mesh(mesh: &Mesh) -> Self {
         Self {
             closed_outward: mesh.is_closed_outward(),
+            bounds: mesh.bounds(),
         }
+    }
+
+    /// Whether the mesh is a closed solid with outward fronts (so that its back faces may be
+    /// culled wherever the observer is outside it).
+    #[must_use]
+    pub fn closed_outward(self) -> bool {
+        self.closed_outward
     }
 
     /// Whether back faces of `mesh` (the one this rule was made for), at rest in `frame`, may
     /// be culled for the observation event `observer`: the mesh is closed and the observer's
-    /// rest-frame position lies outside it (winding number ≈ 0).
+    /// rest-frame position lies outside it — outside its box (where the winding number is 0,
+    /// decided without a pass over the mesh), or of winding number ≈ 0.
     #[must_use]
     pub fn applies(self, mesh: &Mesh, frame: &Frame, observer: Event) -> bool {
-        self.closed_outward && mesh.winding_number(frame.to_rest(observer).position).abs() < 0.5
+        if !self.closed_outward {
+            return false;
+        }
+        let position = frame.to_rest(observer).position;
+        let (lo, hi) = self.bounds;
+        // Rounding room: a point this far outside the box is outside the mesh.
+        let margin = 1e-9 * (hi - lo).max_element().max(position.abs().max_element());
+        let outside_box = position.cmplt(lo - margin).any() || position.cmpgt(hi + margin).any();
+        outside_box || mesh.winding_number(position).abs() < 0.5
     }
 }
 
@@ -382,13 +401,36 @@ fn highest_on_cap(n: DVec3, m: DVec3, h: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::{
-        ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view,
-        ball_wide_bound, box_near_faces_cullable,
+        BackFaceCulling, ball_between_pixel_centres, ball_nearest_apparent_distance,
+        ball_out_of_view, ball_wide_bound, box_near_faces_cullable,
     };
     use glam::{DVec2, DVec3};
     use proptest::prelude::*;
     use srt_physics::{Event, Frame};
     use srt_scene::Observer;
+
+    proptest! {
+        /// The box's shortcut decides as the winding number does: a moving closed sphere's back
+        /// faces are culled exactly when the observer's rest-frame position is outside it, near
+        /// its surface and its box's faces included; an open mesh's never.
+        #[test]
+        fn back_face_culling_follows_the_winding_number(
+            x in -1.6f64..1.6, y in -1.6f64..1.6, z in -1.6f64..1.6, ct in -3.0f64..3.0,
+        ) {
+            let sphere = srt_scene::shapes::uv_sphere(1.0, 24);
+            let frame = Frame::new(DVec3::new(0.3, -0.5, 0.2), DVec3::new(0.4, 0.1, -0.2)).unwrap();
+            let rule = BackFaceCulling::for_mesh(&sphere);
+            let observer = frame.to_observer(Event { ct, position: DVec3::new(x, y, z) });
+            let rest = frame.to_rest(observer).position;
+            let outside = sphere.winding_number(rest).abs() < 0.5;
+            prop_assert_eq!(rule.applies(&sphere, &frame, observer), outside);
+            let open = srt_scene::Mesh::new(
+                vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+                vec![[0, 1, 2]],
+            ).unwrap();
+            prop_assert!(!BackFaceCulling::for_mesh(&open).applies(&open, &frame, observer));
+        }
+    }
 
     /// An observer at the origin looking along +z with a 60° vertical field of view.
     fn looking_along_z(ct: f64) -> Observer {

@@ -870,9 +870,18 @@ fn write_part_culling(
     resources: &ObjectResources,
     event: srt_physics::Event,
 ) {
+    // Whether each part's back faces may be culled, worked out once however many slices of it
+    // the batches hold (a winding number costs a pass over the mesh).
+    let mut part_culled: Vec<Option<bool>> = vec![None; object.parts.len()];
     for batch in &resources.parts {
-        let cull = batch.members.iter().all(|&(index, _)| {
-            resources.culling[index].applies(&object.parts[index].mesh, &object.frame, event)
+        let cull = batch.members.iter().all(|slice| {
+            *part_culled[slice.part].get_or_insert_with(|| {
+                resources.culling[slice.part].applies(
+                    &object.parts[slice.part].mesh,
+                    &object.frame,
+                    event,
+                )
+            })
         });
         let mut material = batch.material;
         material.flags = material.flags.with(PartFlags::CULL_BACK_FACES, cull);
