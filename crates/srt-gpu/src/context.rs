@@ -39,10 +39,25 @@ impl GpuContext {
     /// # Errors
     /// [`GpuError::NoAdapter`] when there is none, [`GpuError::Device`] when it fails.
     pub fn new() -> Result<Self, GpuError> {
-        pollster::block_on(Self::new_async())
+        pollster::block_on(Self::new_async(|limits| limits))
     }
 
-    async fn new_async() -> Result<Self, GpuError> {
+    /// Opens the adapter [`GpuContext::new`] would, with the device's limits passed through
+    /// `tighten` (e.g. WebGPU's default 128 MiB storage bindings on an adapter that allows more,
+    /// or smaller ones to see how srt splits a scene to fit): a way to try what a smaller
+    /// device draws. Limits can only be lowered: the adapter refuses more than it has.
+    ///
+    /// # Errors
+    /// As [`GpuContext::new`].
+    pub fn with_limits(
+        tighten: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+    ) -> Result<Self, GpuError> {
+        pollster::block_on(Self::new_async(tighten))
+    }
+
+    async fn new_async(
+        tighten: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+    ) -> Result<Self, GpuError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env());
         let adapter = match wgpu::util::initialize_adapter_from_env(&instance, None).await {
@@ -57,7 +72,9 @@ impl GpuContext {
                 .await
                 .map_err(|_| GpuError::NoAdapter)?,
         };
-        Self::from_adapter(&adapter).await
+        let mut descriptor = device_descriptor(&adapter);
+        descriptor.required_limits = tighten(descriptor.required_limits);
+        Self::open(&adapter, &descriptor).await
     }
 
     /// Opens a device on `adapter` with the features srt uses where available.
@@ -65,13 +82,22 @@ impl GpuContext {
     /// # Errors
     /// [`GpuError::Device`] when the adapter refuses.
     pub async fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
-        let (device, queue) = adapter
-            .request_device(&device_descriptor(adapter))
-            .await
-            .map_err(|e| GpuError::Device {
-                adapter: adapter.get_info().name,
-                reason: e.to_string(),
-            })?;
+        Self::open(adapter, &device_descriptor(adapter)).await
+    }
+
+    /// Opens a device described by `descriptor` on `adapter`.
+    async fn open(
+        adapter: &wgpu::Adapter,
+        descriptor: &wgpu::DeviceDescriptor<'_>,
+    ) -> Result<Self, GpuError> {
+        let (device, queue) =
+            adapter
+                .request_device(descriptor)
+                .await
+                .map_err(|e| GpuError::Device {
+                    adapter: adapter.get_info().name,
+                    reason: e.to_string(),
+                })?;
         Ok(Self::from_device(device, queue, adapter))
     }
 

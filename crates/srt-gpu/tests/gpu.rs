@@ -14,5 +14,6 @@ mod projections;
 mod readback;
 mod reflect;
 mod shaders;
+mod slices;
 mod upload;
 mod windows;

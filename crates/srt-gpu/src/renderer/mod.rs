@@ -419,6 +419,14 @@ impl GpuRenderer {
             .count()
     }
 
+    /// Per object, how many batches its triangles were uploaded in (each drawn by its own
+    /// calls): one per texture and culling kind of its parts, more where a part is larger than
+    /// the device's storage bindings allow one batch and was split into slices.
+    #[must_use]
+    pub fn object_batches(&self) -> Vec<usize> {
+        self.objects.iter().map(|o| o.parts.len()).collect()
+    }
+
     /// Image width and height.
     #[must_use]
     pub fn size(&self) -> (u32, u32) {
@@ -651,9 +659,10 @@ impl GpuRenderer {
         ctx.queue.submit([encoder.finish()]);
         let mut footprints = Vec::new();
         for (object, buffers) in self.objects.iter().zip(&readbacks) {
-            // Split each batch's footprints among its parts, back in part order, and hand each
-            // piece to its triangle.
-            let mut parts = vec![Vec::new(); object.culling.len()];
+            // Split each batch's footprints among its slices, hand each piece to its triangle,
+            // and put every part's slices back in triangle order.
+            let mut slices: Vec<Vec<(u32, Vec<TriangleFootprints>)>> =
+                vec![Vec::new(); object.culling.len()];
             for (batch, (slots, draw_args)) in object.parts.iter().zip(buffers) {
                 let all: Vec<GpuFootprint> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(slots)?);
                 let args: Vec<u32> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(draw_args)?);
@@ -661,9 +670,9 @@ impl GpuRenderer {
                 let taken = args[DRAW_ARGS_PIECES_TAKEN as usize] as usize;
                 let pieces = &piece_slots[..taken.min(piece_slots.len())];
                 let mut first = 0;
-                for &(index, triangles) in &batch.members {
-                    let mine = first..first + triangles;
-                    parts[index] = own[mine.start as usize..mine.end as usize]
+                for slice in &batch.members {
+                    let mine = first..first + slice.len();
+                    let drawn = own[mine.start as usize..mine.end as usize]
                         .iter()
                         .enumerate()
                         .map(|(t, &own)| TriangleFootprints {
@@ -675,10 +684,19 @@ impl GpuRenderer {
                                 .collect(),
                         })
                         .collect();
+                    slices[slice.part].push((slice.triangles.start, drawn));
                     first = mine.end;
                 }
             }
-            footprints.push(parts);
+            footprints.push(
+                slices
+                    .into_iter()
+                    .map(|mut part| {
+                        part.sort_by_key(|&(start, _)| start);
+                        part.into_iter().flat_map(|(_, drawn)| drawn).collect()
+                    })
+                    .collect(),
+            );
         }
         ctx.take_errors()?;
         Ok(footprints)

@@ -2,6 +2,8 @@
 //! the device's buffer limits), each batch's vertices, triangles and footprint slots, and an
 //! object's BVH and box for the ray tracer.
 
+use std::ops::Range;
+
 use super::*;
 
 /// One batch's buffer sizes and counts, checked against the device's limits before upload.
@@ -55,10 +57,32 @@ impl PartSizes {
     }
 }
 
-/// Parts of one object uploaded and drawn together ([`batches`]), and their sizes.
+/// A run of one part's triangles uploaded together: the whole part, or — for a part larger
+/// than one batch's buffers may be on the device — one of the slices it is split into.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct PartSlice {
+    /// The part's index in its object.
+    pub(super) part: usize,
+    /// The part's triangles in this slice.
+    pub(super) triangles: Range<u32>,
+}
+
+impl PartSlice {
+    /// How many triangles the slice holds.
+    pub(super) fn len(&self) -> u32 {
+        self.triangles.end - self.triangles.start
+    }
+
+    /// Whether the slice is all of `part`.
+    fn is_whole(&self, part: &Part) -> bool {
+        self.triangles.start == 0 && self.len() as usize == part.mesh.triangles().len()
+    }
+}
+
+/// Slices of an object's parts uploaded and drawn together ([`batches`]), and their sizes.
 pub(super) struct Batch {
-    /// Indices of the parts in the object, ascending.
-    pub(super) members: Vec<usize>,
+    /// The slices, in the order of their parts and, within a part, of their triangles.
+    pub(super) members: Vec<PartSlice>,
     pub(super) sizes: PartSizes,
 }
 
@@ -66,16 +90,19 @@ pub(super) struct Batch {
 /// back-face culling kind are concatenated (their base colours baked into the vertex colours),
 /// as long as the result fits the device's limits. Every draw call costs time of its own — on
 /// lavapipe milliseconds for the LRT shading shader — and models often have many parts (the
-/// 2CylinderEngine has 115, uploaded as one batch; the spider.obj 19, as 5).
+/// 2CylinderEngine has 115, uploaded as one batch; the spider.obj 19, as 5). A part larger than
+/// a batch may be ([`PartSizes::check`]: a storage buffer's binding size, the workgroup grid, the
+/// draws' vertex counts) is first split into slices of triangles that fit ([`part_slices`]), so a
+/// mesh of millions of triangles draws on an adapter with WebGPU's 128 MiB bindings.
 ///
 /// # Errors
-/// [`GpuError::ExceedsLimit`] when a single part does not fit.
+/// [`GpuError::ExceedsLimit`] when not even one triangle of a part fits.
 pub(super) fn batches(
     limits: &DeviceLimits,
     object: &Object,
     culling: &[BackFaceCulling],
 ) -> Result<Vec<Batch>, GpuError> {
-    let describe = |members: &[usize]| describe_parts(object, members);
+    let describe = |members: &[PartSlice]| describe_parts(object, members);
     // Open batches, one per key, with their running counts.
     let mut open: Vec<(BatchKey, Batch, u64, u64)> = Vec::new();
     let mut closed = Vec::new();
@@ -86,36 +113,90 @@ pub(super) fn batches(
                 .texture
                 .as_ref()
                 .map(|t| Arc::as_ptr(t) as usize),
-            culling: culling[index],
+            closed_outward: culling[index].closed_outward(),
         };
-        let (triangles, vertices) = (
-            part.mesh.triangles().len() as u64,
-            part.mesh.positions().len() as u64,
-        );
-        if let Some(position) = open.iter().position(|(k, ..)| *k == key) {
-            let (_, batch, batch_triangles, batch_vertices) = &mut open[position];
-            let mut members = batch.members.clone();
-            members.push(index);
-            let (t, v) = (*batch_triangles + triangles, *batch_vertices + vertices);
-            if let Ok(sizes) = PartSizes::check(limits, &|| describe(&members), t, v) {
-                *batch = Batch { members, sizes };
-                (*batch_triangles, *batch_vertices) = (t, v);
-                continue;
+        for (slice, vertices) in part_slices(limits, object, index)? {
+            let triangles = u64::from(slice.len());
+            if let Some(position) = open.iter().position(|(k, ..)| *k == key) {
+                let (_, batch, batch_triangles, batch_vertices) = &mut open[position];
+                let mut members = batch.members.clone();
+                members.push(slice.clone());
+                let (t, v) = (*batch_triangles + triangles, *batch_vertices + vertices);
+                if let Ok(sizes) = PartSizes::check(limits, &|| describe(&members), t, v) {
+                    *batch = Batch { members, sizes };
+                    (*batch_triangles, *batch_vertices) = (t, v);
+                    continue;
+                }
+                closed.push(open.swap_remove(position).1);
             }
-            closed.push(open.swap_remove(position).1);
+            let members = vec![slice];
+            let sizes = PartSizes::check(limits, &|| describe(&members), triangles, vertices)?;
+            open.push((key, Batch { members, sizes }, triangles, vertices));
         }
-        let members = vec![index];
-        let sizes = PartSizes::check(limits, &|| describe(&members), triangles, vertices)?;
-        open.push((key, Batch { members, sizes }, triangles, vertices));
     }
     closed.extend(open.into_iter().map(|(_, batch, ..)| batch));
     Ok(closed)
 }
 
-/// Names parts `members` of `object` in messages, e.g. `parts 0, 3 of object "ship"`.
-pub(super) fn describe_parts(object: &Object, members: &[usize]) -> String {
-    let list: Vec<String> = members.iter().map(usize::to_string).collect();
-    let noun = if members.len() == 1 { "part" } else { "parts" };
+/// Part `index` of `object` as slices of triangles that each fit one batch on the device, with
+/// a bound on each slice's vertex count (its own vertices: a slice's triangles are uploaded
+/// with the vertices they use, [`batch_geometry`]): the whole part when it fits, else the
+/// fewest slices of equal size (± 1 triangle) that do.
+///
+/// # Errors
+/// [`GpuError::ExceedsLimit`] naming the part when not even one of its triangles fits.
+fn part_slices(
+    limits: &DeviceLimits,
+    object: &Object,
+    index: usize,
+) -> Result<Vec<(PartSlice, u64)>, GpuError> {
+    let mesh = &object.parts[index].mesh;
+    let (triangles, vertices) = (mesh.triangles().len() as u64, mesh.positions().len() as u64);
+    let whole = PartSlice {
+        part: index,
+        triangles: 0..u32::try_from(triangles).unwrap_or(u32::MAX),
+    };
+    let describe = || describe_parts(object, std::slice::from_ref(&whole));
+    let check = |t: u64| PartSizes::check(limits, &describe, t, vertices.min(3 * t));
+    if triangles <= u64::from(u32::MAX)
+        && PartSizes::check(limits, &describe, triangles, vertices).is_ok()
+    {
+        return Ok(vec![(whole, vertices)]);
+    }
+    check(1)?;
+    // The largest slice that fits (the sizes grow with the triangle count), by bisection.
+    let (mut fits, mut too_many) = (1u64, triangles);
+    while too_many - fits > 1 {
+        let middle = fits + (too_many - fits) / 2;
+        if check(middle).is_ok() {
+            fits = middle;
+        } else {
+            too_many = middle;
+        }
+    }
+    let count = triangles.div_ceil(fits);
+    Ok((0..count)
+        .map(|k| {
+            // Slice k's triangles: the k-th of `count` near-equal runs (each ≤ `fits`).
+            let start = (k * triangles / count) as u32;
+            let end = ((k + 1) * triangles / count) as u32;
+            let slice = PartSlice {
+                part: index,
+                triangles: start..end,
+            };
+            let bound = vertices.min(3 * u64::from(slice.len()));
+            (slice, bound)
+        })
+        .collect())
+}
+
+/// Names the parts of slices `members` of `object` in messages, e.g. `parts 0, 3 of object
+/// "ship"` (a part split into several slices is named once).
+pub(super) fn describe_parts(object: &Object, members: &[PartSlice]) -> String {
+    let mut parts: Vec<usize> = members.iter().map(|slice| slice.part).collect();
+    parts.dedup();
+    let list: Vec<String> = parts.iter().map(usize::to_string).collect();
+    let noun = if parts.len() == 1 { "part" } else { "parts" };
     format!("{noun} {} of object {:?}", list.join(", "), object.name)
 }
 
@@ -124,7 +205,8 @@ pub(super) fn describe_parts(object: &Object, members: &[usize]) -> String {
 pub(super) struct BatchKey {
     /// The texture's address (textures are shared between parts by `Arc`), if any.
     pub(super) texture: Option<usize>,
-    pub(super) culling: BackFaceCulling,
+    /// Whether the part's back faces may be culled ([`BackFaceCulling::closed_outward`]).
+    pub(super) closed_outward: bool,
 }
 
 /// Per batch of parts ([`Batch`]): buffers, texture and bind groups.
@@ -139,9 +221,9 @@ pub(super) struct PartResources {
     pub(super) draw_args: wgpu::Buffer,
     pub(super) sizes: PartSizes,
     pub(super) material: PartUniforms,
-    /// The object's parts in this batch, ascending, and their triangle counts (for splitting
-    /// the footprints by part).
-    pub(super) members: Vec<(usize, u32)>,
+    /// The slices of the object's parts in this batch, in upload order (for splitting the
+    /// footprints by part).
+    pub(super) members: Vec<PartSlice>,
 }
 
 /// Per object: its uniform buffer, the culling rule of each of its parts, its batches, and its
@@ -158,17 +240,20 @@ pub(super) struct ObjectResources {
     pub(super) extent: srt_scene::BodyExtent,
 }
 
-/// The vertices of `parts`, one after the other, each colour multiplied by its part's base
-/// colour (so the batch's own base colour is white), and their triangles with indices shifted
-/// to match.
-pub(super) fn batch_geometry(parts: &[&Part]) -> (Vec<GpuVertex>, Vec<[u32; 3]>) {
+/// The vertices of the slices `members` of `object`'s parts, one slice after the other, each
+/// colour multiplied by its part's base colour (so the batch's own base colour is white), and
+/// their triangles with indices shifted to match. A whole part brings all its vertices; a slice
+/// of a part only those its triangles use, in the order they are first used.
+pub(super) fn batch_geometry(
+    object: &Object,
+    members: &[PartSlice],
+) -> (Vec<GpuVertex>, Vec<[u32; 3]>) {
     let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
-    for part in parts {
+    for slice in members {
+        let part = &object.parts[slice.part];
         let mesh = &part.mesh;
         let base = part.material.base_color;
-        // Checked by PartSizes: the batch's vertex count fits in u32.
-        let first = vertices.len() as u32;
-        vertices.extend((0..mesh.positions().len()).map(|i| {
+        let vertex = |i: usize| {
             let color = mesh.colors().map_or([1.0; 4], |c| c[i]);
             GpuVertex {
                 position: vec4(mesh.positions()[i], 1.0),
@@ -176,8 +261,27 @@ pub(super) fn batch_geometry(parts: &[&Part]) -> (Vec<GpuVertex>, Vec<[u32; 3]>)
                 color: [0, 1, 2, 3].map(|k| base[k] * color[k]),
                 uv: [mesh.uvs()[i].x as f32, mesh.uvs()[i].y as f32, 0.0, 0.0],
             }
-        }));
-        triangles.extend(mesh.triangles().iter().map(|t| t.map(|v| v + first)));
+        };
+        let own = &mesh.triangles()[slice.triangles.start as usize..slice.triangles.end as usize];
+        // Checked by PartSizes: the batch's vertex count fits in u32.
+        let first = vertices.len() as u32;
+        if slice.is_whole(part) {
+            vertices.extend((0..mesh.positions().len()).map(vertex));
+            triangles.extend(own.iter().map(|t| t.map(|v| v + first)));
+            continue;
+        }
+        // The slice's own numbering of the part's vertices it uses (u32::MAX: unused).
+        let mut renumbered = vec![u32::MAX; mesh.positions().len()];
+        for triangle in own {
+            triangles.push(triangle.map(|v| {
+                let number = &mut renumbered[v as usize];
+                if *number == u32::MAX {
+                    *number = vertices.len() as u32;
+                    vertices.push(vertex(v as usize));
+                }
+                *number
+            }));
+        }
     }
     (vertices, triangles)
 }
@@ -194,8 +298,7 @@ pub(super) fn upload_batch(
 ) -> PartResources {
     let device = &ctx.device;
     let Batch { members, sizes } = batch;
-    let parts: Vec<&Part> = members.iter().map(|&i| &object.parts[i]).collect();
-    let part = parts[0];
+    let part = &object.parts[members[0].part];
     let image = part.material.texture.as_deref();
     let (texture, frame_height) = part_texture(ctx, image);
     let material = PartUniforms {
@@ -279,11 +382,7 @@ pub(super) fn upload_batch(
         draw_args,
         sizes,
         material,
-        members: parts
-            .iter()
-            .zip(&members)
-            .map(|(part, &index)| (index, part.mesh.triangles().len() as u32))
-            .collect(),
+        members,
     }
 }
 
@@ -319,8 +418,7 @@ pub(super) fn upload_object(
         .into_iter()
         .zip(first_id..)
         .map(|(batch, id)| {
-            let members: Vec<&Part> = batch.members.iter().map(|&i| &object.parts[i]).collect();
-            let geometry = batch_geometry(&members);
+            let geometry = batch_geometry(object, &batch.members);
             let (vertices, triangles) = &geometry;
             rt_triangles.extend(triangles.iter().zip(0..).map(|(&t, number)| {
                 let [p0, p1, p2] = crate::bvh::corners(vertices, t);
@@ -426,14 +524,15 @@ mod tests {
         let mut groups: Vec<Vec<usize>> = batches(&limits(1 << 27), &object, &culling)
             .unwrap()
             .into_iter()
-            .map(|b| b.members)
+            .map(|b| b.members.iter().map(|slice| slice.part).collect())
             .collect();
         groups.sort();
         assert_eq!(groups, vec![vec![0, 2], vec![1, 4], vec![3, 5]]);
     }
 
     /// A batch closes when the next part would exceed a storage-buffer limit; a part that does
-    /// not fit alone is an error naming it.
+    /// not fit alone is split into slices; one whose single triangle does not fit is an error
+    /// naming it.
     #[test]
     fn batches_stay_within_the_device_limits() {
         // A storage-buffer limit of the footprint buffer of two parts (the largest buffer of a
@@ -466,5 +565,54 @@ mod tests {
             error.to_string().contains("part 0 of object \"cubes\""),
             "{error}"
         );
+    }
+
+    /// A part larger than a batch may be is split into near-equal slices, each within the
+    /// limits, covering its triangles once and in order; their geometry holds the vertices each
+    /// slice uses, renumbered, and draws the part's triangles.
+    #[test]
+    fn a_part_too_large_for_a_batch_is_sliced() {
+        let mesh = cube(1.0, 20);
+        let object = Object {
+            name: "big".to_owned(),
+            parts: vec![part(mesh.clone(), None)],
+            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
+            rest_time_shift: 0.0,
+            wireframe: None,
+            optics: SurfaceOptics::default(),
+            clock: None,
+            motion: Default::default(),
+        };
+        let culling = vec![BackFaceCulling::for_mesh(&mesh)];
+        let total = mesh.triangles().len() as u64;
+        // Room for the footprints of a bit over a quarter of the triangles.
+        let limit = crate::types::footprint_slots(total / 4 + 7)
+            * size_of::<crate::types::GpuFootprint>() as u64;
+        let sliced = batches(&limits(limit), &object, &culling).unwrap();
+        let slices: Vec<_> = sliced.iter().flat_map(|b| b.members.clone()).collect();
+        assert_eq!(slices.len(), 4, "{slices:?}");
+        assert_eq!(slices[0].triangles.start, 0);
+        assert_eq!(slices[3].triangles.end as u64, total);
+        assert!(
+            slices
+                .windows(2)
+                .all(|w| w[0].triangles.end == w[1].triangles.start)
+        );
+        let lengths: Vec<u32> = slices.iter().map(super::PartSlice::len).collect();
+        assert!(lengths.iter().max().unwrap() - lengths.iter().min().unwrap() <= 1);
+        for batch in &sliced {
+            assert!(batch.sizes.footprint_bytes <= limit);
+            let (vertices, triangles) = super::batch_geometry(&object, &batch.members);
+            assert!(vertices.len() < mesh.positions().len());
+            let first = batch.members[0].triangles.start as usize;
+            for (k, triangle) in triangles.iter().enumerate() {
+                let original = mesh.triangles()[first + k];
+                for corner in 0..3 {
+                    let position = vertices[triangle[corner] as usize].position;
+                    let expected = mesh.positions()[original[corner] as usize];
+                    assert_eq!(position[..3], expected.as_vec3().to_array());
+                }
+            }
+        }
     }
 }
