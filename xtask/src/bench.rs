@@ -450,6 +450,25 @@ fn two_moving_lights(shadows: bool) -> anyhow::Result<Case> {
     })
 }
 
+/// Fig. 10's cube with 400 × 400 squares a face: one mesh of 1 920 000 triangles, whose
+/// footprints (144 bytes a triangle) are more than a 128 MiB storage binding holds, so the
+/// renderer uploads it in slices (WebGPU's default binding size and the software adapters').
+fn fine_cube() -> anyhow::Result<Case> {
+    let overrides = srt_scene::Overrides {
+        settings: vec![
+            "object.cube.shape.subdivisions=400"
+                .parse()
+                .map_err(anyhow::Error::msg)?,
+        ],
+        ..srt_scene::Overrides::default()
+    };
+    let loaded = srt_scene::SceneSource::resolve("fig10-cube200")?.load_with(&overrides)?;
+    Ok(Case {
+        name: "cube-1.9M".to_owned(),
+        scene: loaded.scene,
+    })
+}
+
 /// `case` with spectral surface colour, named `NAME-spectral`.
 fn with_spectral_colour(case: Case) -> Case {
     let mut scene = case.scene;
@@ -473,6 +492,7 @@ fn static_cases() -> anyhow::Result<Vec<Case>> {
     Ok(vec![
         builtin("fig10-cube50")?,
         builtin("fig10-cube200")?,
+        fine_cube()?,
         model_case("OBJ/spider.obj", 0.9)?,
         model_case(ENGINE, 0.9)?,
         builtin("teaser")?,

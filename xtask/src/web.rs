@@ -32,8 +32,11 @@ pub const OUT_DIR: &str = "target/web";
 const PAGE_DIR: &str = "crates/srt-web/web";
 
 /// The browser test's cases: a scene and more of the address, at [`TEST_SIZE`].
-const TEST_CASES: [&str; 4] = [
+const TEST_CASES: [&str; 5] = [
     "scene=fig7",
+    // One mesh of 1 920 000 triangles: uploaded in slices where WebGPU's storage bindings are
+    // the default 128 MiB.
+    "scene=fig10-cube200&set=object.cube.shape.subdivisions%3D400",
     "scene=teaser&effects=searchlight",
     "scene=rolling-wheel",
     // A full-sky embed: the ray tracer on WebGPU, every pixel in the equirectangular projection.
