@@ -483,6 +483,20 @@ mod tests {
         }
     }
 
+    /// An object at rest at the origin named `name`, of `parts`.
+    fn object(name: &str, parts: Vec<Part>) -> Object {
+        Object {
+            name: name.to_owned(),
+            parts,
+            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
+            rest_time_shift: 0.0,
+            wireframe: None,
+            optics: SurfaceOptics::default(),
+            clock: None,
+            motion: Default::default(),
+        }
+    }
+
     fn part(mesh: Mesh, texture: Option<&Arc<Texture>>) -> Part {
         Part {
             mesh,
@@ -499,9 +513,9 @@ mod tests {
     fn parts_are_batched_by_texture_and_culling_kind() {
         let texture = Arc::new(Texture::still(1, 1, vec![[255; 4]], "test".to_owned()));
         let open = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
-        let object = Object {
-            name: "test".to_owned(),
-            parts: vec![
+        let object = object(
+            "test",
+            vec![
                 part(cube(1.0, 1), None),
                 part(open.clone(), None),
                 part(cube(2.0, 2), None),
@@ -509,13 +523,7 @@ mod tests {
                 part(open, None),
                 part(cube(1.0, 1), Some(&texture)),
             ],
-            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
-            rest_time_shift: 0.0,
-            wireframe: None,
-            optics: SurfaceOptics::default(),
-            clock: None,
-            motion: Default::default(),
-        };
+        );
         let culling: Vec<BackFaceCulling> = object
             .parts
             .iter()
@@ -537,16 +545,7 @@ mod tests {
     fn batches_stay_within_the_device_limits() {
         // A storage-buffer limit of the footprint buffer of two parts (the largest buffer of a
         // batch): two parts fit in a batch, three do not.
-        let object = Object {
-            name: "cubes".to_owned(),
-            parts: (0..3).map(|_| part(cube(1.0, 4), None)).collect(),
-            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
-            rest_time_shift: 0.0,
-            wireframe: None,
-            optics: SurfaceOptics::default(),
-            clock: None,
-            motion: Default::default(),
-        };
+        let object = object("cubes", (0..3).map(|_| part(cube(1.0, 4), None)).collect());
         let culling = vec![BackFaceCulling::for_mesh(&object.parts[0].mesh); 3];
         let triangles = object.parts[0].mesh.triangles().len() as u64;
         let two = crate::types::footprint_slots(2 * triangles)
@@ -573,16 +572,7 @@ mod tests {
     #[test]
     fn a_part_too_large_for_a_batch_is_sliced() {
         let mesh = cube(1.0, 20);
-        let object = Object {
-            name: "big".to_owned(),
-            parts: vec![part(mesh.clone(), None)],
-            frame: Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap(),
-            rest_time_shift: 0.0,
-            wireframe: None,
-            optics: SurfaceOptics::default(),
-            clock: None,
-            motion: Default::default(),
-        };
+        let object = object("big", vec![part(mesh.clone(), None)]);
         let culling = vec![BackFaceCulling::for_mesh(&mesh)];
         let total = mesh.triangles().len() as u64;
         // Room for the footprints of a bit over a quarter of the triangles.
