@@ -2,6 +2,10 @@
 //! through ([`upload_2d`]: the sky image, the colour table, the parts' textures with their mip
 //! chains) and the part texture the shading passes sample.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::sync::Arc;
+
 use srt_scene::Texture;
 use srt_scene::mip::{MipChain, MipLevel};
 use wgpu::util::DeviceExt as _;
@@ -48,6 +52,27 @@ pub fn upload_2d(ctx: &GpuContext, texture: &Texture2d<'_>, data: &[u8]) -> wgpu
         wgpu::util::TextureDataOrder::LayerMajor,
         data,
     )
+}
+
+/// The part textures of one scene's upload, each image uploaded once however many batches show
+/// it (the scene's builder shares one texture among the parts that describe the same one).
+#[derive(Default)]
+pub(crate) struct PartTextures(RefCell<HashMap<*const Texture, (wgpu::TextureView, u32)>>);
+
+impl PartTextures {
+    /// [`part_texture`] of `texture`, uploaded on first use.
+    pub(crate) fn of(
+        &self,
+        ctx: &GpuContext,
+        texture: Option<&Arc<Texture>>,
+    ) -> (wgpu::TextureView, u32) {
+        let key = texture.map_or(std::ptr::null(), Arc::as_ptr);
+        self.0
+            .borrow_mut()
+            .entry(key)
+            .or_insert_with(|| part_texture(ctx, texture.map(Arc::as_ref)))
+            .clone()
+    }
 }
 
 /// `texture` with its mip chain (levels larger than the device allows are skipped), or, for

@@ -3,6 +3,9 @@
 //! the nearest [`Hit`] a backward ray finds on it (Eq. 5, 15–16). `moving.rs` adds the search of
 //! a spinning or thrusting body's triangles to the same object.
 
+use std::collections::HashMap;
+use std::sync::Arc;
+
 use bvh::aabb::{Aabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::Bvh;
@@ -12,7 +15,7 @@ use nalgebra::{Point3, Vector3};
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::mip::MipChain;
-use srt_scene::{Object, Part};
+use srt_scene::{Object, Part, Texture};
 
 use crate::intersect::{TriangleHit, intersect_triangle};
 
@@ -41,19 +44,35 @@ impl BHShape<f64, 3> for TriangleBox {
     }
 }
 
+/// The mip chains of a scene's textures, each made once however many parts share its texture
+/// (the scene's builder shares one texture among the parts that describe the same one).
+#[derive(Default)]
+pub(crate) struct MipChains(HashMap<*const Texture, Arc<MipChain>>);
+
+impl MipChains {
+    /// The chain of `texture`, made on first use.
+    fn of(&mut self, texture: &Arc<Texture>) -> Arc<MipChain> {
+        Arc::clone(
+            self.0
+                .entry(Arc::as_ptr(texture))
+                .or_insert_with(|| Arc::new(MipChain::new(texture))),
+        )
+    }
+}
+
 /// One part's material: its filtered texture and base colour.
 pub(crate) struct PreparedPart<'a> {
     pub(crate) part: &'a Part,
-    pub(crate) texture: Option<MipChain>,
+    pub(crate) texture: Option<Arc<MipChain>>,
     pub(crate) base_color: DVec4,
 }
 
 impl<'a> PreparedPart<'a> {
-    fn new(part: &'a Part) -> Self {
+    fn new(part: &'a Part, chains: &mut MipChains) -> Self {
         let [r, g, b, a] = part.material.base_color.map(f64::from);
         Self {
             part,
-            texture: part.material.texture.as_deref().map(MipChain::new),
+            texture: part.material.texture.as_ref().map(|t| chains.of(t)),
             base_color: DVec4::new(r, g, b, a),
         }
     }
@@ -86,7 +105,7 @@ pub(crate) struct PreparedObject<'a> {
 }
 
 impl<'a> PreparedObject<'a> {
-    pub(crate) fn new(object: &'a Object, observer: Event) -> Self {
+    pub(crate) fn new(object: &'a Object, observer: Event, chains: &mut MipChains) -> Self {
         let meshes = || object.parts.iter().map(|part| &part.mesh);
         let extent = object.body_extent();
         let (lo, hi) = extent.bounds;
@@ -116,7 +135,9 @@ impl<'a> PreparedObject<'a> {
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
-            parts: object.parts.iter().map(PreparedPart::new).collect(),
+            parts: (object.parts.iter())
+                .map(|part| PreparedPart::new(part, chains))
+                .collect(),
             boxes,
             bvh,
             motion: object.motion,

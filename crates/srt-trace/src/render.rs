@@ -22,7 +22,7 @@ use crate::clock::clock_albedo;
 use crate::intersect::plane_hit;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
-use crate::prepared::PreparedObject;
+use crate::prepared::{MipChains, PreparedObject};
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
 use crate::sky::{sky_image_light, star_layer};
@@ -97,8 +97,9 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn new(scene: &'a Scene) -> Self {
         let observer = scene.observer.event();
+        let mut chains = MipChains::default();
         let objects: Vec<PreparedObject<'a>> = (scene.objects.iter())
-            .map(|object| PreparedObject::new(object, observer))
+            .map(|object| PreparedObject::new(object, observer, &mut chains))
             .collect();
         let mut velocity_groups: Vec<Vec<usize>> = Vec::new();
         for (index, object) in objects.iter().enumerate() {

@@ -37,7 +37,7 @@ use crate::shadows::{
 };
 use crate::sky::{SkyResources, sky_shape};
 use crate::spectral::SpectralTables;
-use crate::textures::part_texture;
+use crate::textures::PartTextures;
 use crate::types::{
     ClockUniforms, DRAW_ARGS_BYTES, DRAW_ARGS_PIECES_TAKEN, EffectsCode, FOOTPRINT_VERTICES,
     FRAGMENT_COUNTER_BYTES, FRAME_BOUND_BYTES, FootprintCode, FrameUniforms, GpuFootprint,
@@ -54,7 +54,7 @@ mod upload;
 use targets::{
     FragmentCounter, FrameResources, SKY_TIMESTAMP, TIMESTAMP_COUNT, Targets, Timestamps,
 };
-use upload::{ObjectResources, PartResources, ShadowSource, batches, upload_object};
+use upload::{ObjectResources, PartResources, ShadowSource, Uploader, batches, upload_object};
 
 /// LRT depth = apparent distance × this (apparent distances up to 10⁶ are ordered correctly;
 /// f32 depth has constant relative precision, so the scale costs nothing).
@@ -334,6 +334,12 @@ impl GpuRenderer {
             fragment_count: &counter.counter,
             frame_bound: &frame_bound,
         };
+        let uploader = Uploader {
+            ctx,
+            pipelines: &pipelines,
+            shared,
+            textures: PartTextures::default(),
+        };
         // Batches are numbered from 1 across the scene (0 marks "no triangle" in the LRT's ids).
         let mut first_id = 1u32;
         let (objects, sources): (Vec<ObjectResources>, Vec<Option<ShadowSource>>) = scene
@@ -343,7 +349,7 @@ impl GpuRenderer {
             .map(|(object, sizes)| {
                 let id = first_id;
                 first_id += sizes.1.len() as u32;
-                upload_object(ctx, &pipelines, shared, object, id, sizes, lit)
+                upload_object(&uploader, object, id, sizes, lit)
             })
             .unzip();
         let shadows = if lit {

@@ -286,21 +286,39 @@ pub(super) fn batch_geometry(
     (vertices, triangles)
 }
 
+/// What every object's upload of one scene uses: the device, its pipelines, the frame-wide
+/// buffers, and the part textures uploaded so far (each image once, however many batches show
+/// it).
+pub(super) struct Uploader<'a> {
+    /// The device.
+    pub(super) ctx: &'a GpuContext,
+    /// The pipelines the bind groups are made for.
+    pub(super) pipelines: &'a Pipelines,
+    /// The frame-wide buffers every batch binds.
+    pub(super) shared: FrameShared<'a>,
+    /// The part textures uploaded so far.
+    pub(super) textures: PartTextures,
+}
+
 /// Uploads one batch of `object`'s parts (sizes already checked), whose vertices and triangles
 /// are `geometry`: its buffers, texture and bind groups.
 pub(super) fn upload_batch(
-    ctx: &GpuContext,
-    pipelines: &Pipelines,
-    shared: FrameShared<'_>,
+    uploader: &Uploader<'_>,
     object: &Object,
     (batch, id): (Batch, u32),
     (vertices, triangles): &(Vec<GpuVertex>, Vec<[u32; 3]>),
 ) -> PartResources {
+    let Uploader {
+        ctx,
+        pipelines,
+        shared,
+        textures,
+    } = uploader;
     let device = &ctx.device;
     let Batch { members, sizes } = batch;
     let part = &object.parts[members[0].part];
     let image = part.material.texture.as_deref();
-    let (texture, frame_height) = part_texture(ctx, image);
+    let (texture, frame_height) = textures.of(ctx, part.material.texture.as_ref());
     let material = PartUniforms {
         // The base colours are in the vertex colours.
         base_color: [1.0; 4],
@@ -394,14 +412,18 @@ pub(super) type ShadowSource = Result<(ObjectBvh, Vec<GpuRtTriangle>), GpuError>
 /// from `first_id`, and its BVH for the ray tracer; with `for_shadows` also hands back the BVH
 /// and its triangles for the shadows of moving lights.
 pub(super) fn upload_object(
-    ctx: &GpuContext,
-    pipelines: &Pipelines,
-    shared: FrameShared<'_>,
+    uploader: &Uploader<'_>,
     object: &Object,
     first_id: u32,
     (culling, batches): (Vec<BackFaceCulling>, Vec<Batch>),
     for_shadows: bool,
 ) -> (ObjectResources, Option<ShadowSource>) {
+    let &Uploader {
+        ctx,
+        pipelines,
+        shared,
+        ..
+    } = uploader;
     let uniforms = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("srt object uniforms"),
         size: size_of::<ObjectUniforms>() as u64,
@@ -431,7 +453,7 @@ pub(super) fn upload_object(
                     padding: 0,
                 }
             }));
-            upload_batch(ctx, pipelines, shared, object, (batch, id), &geometry)
+            upload_batch(uploader, object, (batch, id), &geometry)
         })
         .collect();
     let bvh = object_bvh(ctx, &rt_triangles, &format!("object {:?}", object.name));
