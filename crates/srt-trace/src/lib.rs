@@ -30,7 +30,8 @@ mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use render::{
-    Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
+    FrameCost, Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
+    spread_rows,
 };
 pub use seen::SeenEvent;
 pub use shade::{

@@ -10,7 +10,8 @@
 //! ties go to the lowest (object, part, triangle) whatever the order of the search.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::time::Instant;
 
 use glam::{DVec2, DVec3, DVec4};
 use rayon::prelude::*;
@@ -395,7 +396,8 @@ impl<'a> Tracer<'a> {
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> Option<RenderedImage> {
-        self.render_rows(settings, rows, progress, output, Some(stop))
+        let rows: Vec<u32> = rows.collect();
+        self.render_rows(settings, &rows, progress, output, Some(stop), None)
     }
 
     /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says; `None` if `stop` was
@@ -407,24 +409,71 @@ impl<'a> Tracer<'a> {
         output: Output,
         stop: Option<&AtomicBool>,
     ) -> Option<RenderedImage> {
-        self.render_rows(settings, 0..settings.height, progress, output, stop)
+        let rows: Vec<u32> = (0..settings.height).collect();
+        self.render_rows(settings, &rows, progress, output, stop, None)
     }
 
-    /// The rows `rows` of [`Tracer::render_as`]'s image.
+    /// What a frame of `output` at `settings` costs on this machine, measured by rendering
+    /// `sample_rows` of its rows spread evenly over the image ([`spread_rows`]), after two rows
+    /// untimed, and a frame of no rows for the cost that does not grow with the rows: the
+    /// estimate `srt`'s `auto` weighs against a software GPU adapter. Each row is traced at
+    /// full width, its rays as coherent as in a whole frame, and timed by the thread that
+    /// traces it, so that what is measured is the rows' work and not the waking of rayon's
+    /// threads; the rows are traced twice and each counts its shorter time, so that a moment
+    /// in which the machine served another process is not taken for the frame's cost. A frame
+    /// spreads its rows over rayon's threads, and a row costs it that work over their number.
+    #[must_use]
+    pub fn measure_frame_cost(
+        &self,
+        settings: RenderSettings,
+        output: Output,
+        sample_rows: u32,
+    ) -> FrameCost {
+        let render = |rows: &[u32], work: Option<&[AtomicU64]>| {
+            let _ = self.render_rows(settings, rows, &|_| {}, output, None, work);
+        };
+        // The first rows of a process build shared tables and touch the BVHs' memory: costs a
+        // frame pays once, which would weigh on every estimated row.
+        render(&spread_rows(settings.height, 2), None);
+        let start = Instant::now();
+        render(&[], None);
+        let setup_seconds = start.elapsed().as_secs_f64();
+        let rows = spread_rows(settings.height, sample_rows);
+        let timed = || {
+            let work: Vec<AtomicU64> = rows.iter().map(|_| AtomicU64::new(0)).collect();
+            render(&rows, Some(&work));
+            work.into_iter().map(AtomicU64::into_inner)
+        };
+        let (first, second) = (timed(), timed());
+        let nanoseconds: u64 = first.zip(second).map(|(a, b)| a.min(b)).sum();
+        let threads = rayon::current_num_threads().max(1) as f64;
+        FrameCost {
+            setup_seconds,
+            row_seconds: nanoseconds as f64 * 1e-9 / rows.len().max(1) as f64 / threads,
+            rows: settings.height,
+        }
+    }
+
+    /// The rows `rows` (in the order given) of [`Tracer::render_as`]'s image; the nanoseconds
+    /// of work of the `i`-th row are added to `work[i]` when given.
     fn render_rows(
         &self,
         settings: RenderSettings,
-        rows: Range<u32>,
+        rows: &[u32],
         progress: &(dyn Fn(u32) + Sync),
         output: Output,
         stop: Option<&AtomicBool>,
+        work: Option<&[AtomicU64]>,
     ) -> Option<RenderedImage> {
         let RenderSettings {
             width,
             height,
             samples,
         } = settings;
-        assert!(rows.end <= height, "rows {rows:?} of a {height}-row image");
+        assert!(
+            rows.iter().all(|&y| y < height),
+            "rows {rows:?} of a {height}-row image"
+        );
         let image_rays = ImageRays::new(self.scene, width, height);
         let offsets = sample_offsets(samples.max(1));
         let table = RadianceTable::shared();
@@ -443,7 +492,7 @@ impl<'a> Tracer<'a> {
         };
         let stars = star_layer(self.scene, width, height, &value);
         let band_height = rows.len() as u32;
-        let rows = rows_in_parallel(rows, progress, stop, |y| {
+        let rows = rows_in_parallel(rows, progress, stop, work, |y| {
             let mut colours = Vec::with_capacity(width as usize);
             let mut coverage = Vec::with_capacity(width as usize);
             for x in 0..width {
@@ -540,7 +589,8 @@ impl Tracer<'_> {
         stop: &AtomicBool,
     ) -> Option<Vec<Option<SeenEvent>>> {
         assert!(rows.end <= height, "rows {rows:?} of a {height}-row image");
-        let rows = rows_in_parallel(rows, progress, Some(stop), |y| {
+        let rows: Vec<u32> = rows.collect();
+        let rows = rows_in_parallel(&rows, progress, Some(stop), None, |y| {
             (0..width)
                 .map(|x| {
                     self.hit_at_pixel(width, height, x, y)
@@ -552,22 +602,60 @@ impl Tracer<'_> {
     }
 }
 
+/// What a frame of the CPU tracer costs ([`Tracer::measure_frame_cost`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameCost {
+    /// Seconds a frame takes whatever its rows (the rays' basis, the stars' light).
+    pub setup_seconds: f64,
+    /// Seconds a row takes on average, every thread at work.
+    pub row_seconds: f64,
+    /// The frame's rows.
+    pub rows: u32,
+}
+
+impl FrameCost {
+    /// The frame's estimated seconds: its setup and every row.
+    #[must_use]
+    pub fn seconds(&self) -> f64 {
+        self.setup_seconds + self.row_seconds * f64::from(self.rows)
+    }
+}
+
+/// `count` rows of a `height`-row image spread evenly over it (the middle row of each of
+/// `count` equal bands, all of them when `count` ≥ `height`), in order.
+#[must_use]
+pub fn spread_rows(height: u32, count: u32) -> Vec<u32> {
+    let count = count.clamp(1, height.max(1));
+    (0..count)
+        .map(|band| ((2 * u64::from(band) + 1) * u64::from(height) / (2 * u64::from(count))) as u32)
+        .filter(|&row| row < height)
+        .collect()
+}
+
 /// Runs `row` for every row of `rows` on rayon's threads and returns them in order; `progress`
-/// hears the number of finished rows. `None` once `stop` is set: rows not yet begun are skipped.
+/// hears the number of finished rows, and `work[i]` (when given) gains the `i`-th row's
+/// nanoseconds. `None` once `stop` is set: rows not yet begun are skipped.
 fn rows_in_parallel<T: Send>(
-    rows: Range<u32>,
+    rows: &[u32],
     progress: &(dyn Fn(u32) + Sync),
     stop: Option<&AtomicBool>,
+    work: Option<&[AtomicU64]>,
     row: impl Fn(u32) -> T + Sync,
 ) -> Option<Vec<T>> {
     let finished = AtomicU32::new(0);
     let rows: Vec<Option<T>> = rows
-        .into_par_iter()
-        .map(|y| {
+        .par_iter()
+        .enumerate()
+        .map(|(index, &y)| {
             if stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {
                 return None;
             }
+            let start = work.map(|_| Instant::now());
             let done = row(y);
+            if let (Some(work), Some(start)) = (work, start) {
+                let nanoseconds = u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX);
+                work[index].fetch_add(nanoseconds, Ordering::Relaxed);
+            }
             progress(finished.fetch_add(1, Ordering::Relaxed) + 1);
             Some(done)
         })
@@ -672,6 +760,64 @@ mod tests {
         assert!(hits > 0 && hits < width * height, "{hits} pixels hit");
         assert!(tracer.hit_at_pixel(width, height, width, 0).is_none());
         assert!(tracer.hit_at_pixel(0, 0, 0, 0).is_none());
+    }
+
+    /// Rows rendered by themselves, in any order, are those rows of the whole image bit for
+    /// bit: what the cost probe times is what a frame does.
+    #[test]
+    fn rows_apart_are_the_whole_images_rows() {
+        let (scene, _) = srt_scene::builtin::find_builtin("teaser")
+            .unwrap()
+            .build()
+            .unwrap();
+        let tracer = Tracer::new(&scene);
+        let settings = RenderSettings {
+            width: 40,
+            height: 24,
+            samples: 2,
+        };
+        let whole = tracer.render(settings, &|_| {});
+        let rows = [17, 3, 11];
+        let apart = tracer
+            .render_rows(settings, &rows, &|_| {}, Output::Display, None, None)
+            .unwrap();
+        assert_eq!(apart.height, 3);
+        for (band_row, &row) in rows.iter().enumerate() {
+            let (start, width) = (row as usize * 40, 40);
+            assert_eq!(
+                apart.pixels[band_row * width..][..width],
+                whole.pixels[start..][..width],
+                "row {row}"
+            );
+        }
+        let cost = tracer.measure_frame_cost(settings, Output::Display, 4);
+        assert_eq!(cost.rows, 24);
+        assert!(
+            cost.setup_seconds >= 0.0 && cost.row_seconds > 0.0,
+            "{cost:?}"
+        );
+    }
+
+    /// The probe's rows are distinct, in order, inside the image, and as many as asked for
+    /// (all of them when more are asked for than there are), one in each equal band.
+    #[test]
+    fn spread_rows_take_one_row_of_each_band() {
+        for height in [1, 2, 7, 24, 720, 1081] {
+            for count in [1, 3, 16, 30, 2000] {
+                let rows = spread_rows(height, count);
+                assert_eq!(rows.len() as u32, count.min(height), "{height} {count}");
+                assert!(rows.windows(2).all(|w| w[0] < w[1]), "{rows:?}");
+                for (band, &row) in rows.iter().enumerate() {
+                    let band = band as u64;
+                    let bands = rows.len() as u64;
+                    let (top, bottom) = (band * u64::from(height), (band + 1) * u64::from(height));
+                    assert!(
+                        (top..bottom).contains(&(u64::from(row) * bands)),
+                        "row {row} is not in band {band} of {bands} ({height} rows)"
+                    );
+                }
+            }
+        }
     }
 
     /// The BVHs, the box pre-test and the pruning find what a search of every triangle of every
