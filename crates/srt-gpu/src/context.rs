@@ -8,6 +8,18 @@ use crate::error::GpuError;
 use crate::formats::{COLOR_FORMAT, FALLBACK_COLOR_FORMAT};
 use crate::pipelines::{Pipelines, Varyings};
 
+/// The API of a software rasteriser ([`GpuContext::software_api`]): what its start-up costs
+/// depend on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SoftwareApi {
+    /// Vulkan (Mesa's lavapipe, SwiftShader's Vulkan).
+    Vulkan,
+    /// OpenGL through EGL (Mesa's llvmpipe).
+    Gl,
+    /// Any other (WARP on Direct3D 12, a browser's fallback adapter).
+    Other,
+}
+
 /// A device and queue, plus facts about the adapter.
 pub struct GpuContext {
     /// The device.
@@ -161,6 +173,19 @@ impl GpuContext {
                 varyings,
             ))
         }))
+    }
+
+    /// The API this adapter is reached through if it is a software rasteriser running on the
+    /// CPU (Mesa's lavapipe and llvmpipe, SwiftShader, WARP); `None` for a GPU.
+    #[must_use]
+    pub fn software_api(&self) -> Option<SoftwareApi> {
+        (self.adapter_info.device_type == wgpu::DeviceType::Cpu).then_some(
+            match self.adapter_info.backend {
+                wgpu::Backend::Vulkan => SoftwareApi::Vulkan,
+                wgpu::Backend::Gl => SoftwareApi::Gl,
+                _ => SoftwareApi::Other,
+            },
+        )
     }
 
     /// A one-line description of the adapter: name, backend and device type.

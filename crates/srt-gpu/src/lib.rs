@@ -62,7 +62,7 @@ pub mod spectral;
 pub mod textures;
 pub mod types;
 
-pub use context::{GpuContext, context_or_skip};
+pub use context::{GpuContext, SoftwareApi, context_or_skip};
 pub use error::GpuError;
 pub use readback::{TextureReadback, read_texture};
 pub use renderer::{
