@@ -12,8 +12,11 @@ use glam::DVec3;
 use srt_color::srgb_decode;
 use srt_gpu::limits::DeviceLimits;
 use srt_gpu::renderer::check_per_pixel_resources;
-use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
+use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method, SoftwareApi};
 
+use crate::software::{
+    CpuCost, Estimates, Job, MEASURED_WHILE_OPENING, SceneSize, SoftwareCosts, gpu_possible,
+};
 use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
 use srt_scene::{Projection, Scene};
 use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
@@ -46,13 +49,14 @@ pub enum Backend {
     Cpu,
     /// The GPU; an error without an adapter.
     Gpu,
-    /// The GPU if an adapter exists (and can hold the target), otherwise the CPU.
+    /// A GPU that can hold the target; a software adapter (lavapipe, llvmpipe) only where it is
+    /// expected to finish before the CPU ([`crate::software`]); otherwise the CPU.
     #[default]
     Auto,
 }
 
 srt_scene::choice!(Backend, "backend", {
-    Auto => "auto", "the GPU if an adapter exists (and can hold the target), otherwise the CPU";
+    Auto => "auto", "a GPU; a software adapter (lavapipe, llvmpipe) only where it is expected to finish first, otherwise the CPU (a note says which and why)";
     Cpu => "cpu", "the exact CPU ray tracer (srt-trace)";
     Gpu => "gpu", "the GPU; an error without an adapter";
 });
@@ -119,19 +123,24 @@ pub struct Chosen {
 }
 
 impl Engine {
-    /// Picks the renderer for `scene` at `settings`: `cpu`, `gpu` (an error without an adapter)
-    /// or `auto` (the GPU when there is one that can hold the supersampled target, otherwise the
-    /// CPU, with a note). The GPU supersamples by rendering at ⌈√samples⌉× the size.
+    /// Picks the renderer for `job`, whose first frame is `frame`: `cpu`, `gpu` (an error
+    /// without an adapter) or `auto`: a GPU that can hold the supersampled target; a software
+    /// adapter only where it is expected to finish the job before the CPU tracer
+    /// ([`crate::software`]: the CPU's cost is measured on a few rows of `frame`, whose tracer is
+    /// kept); otherwise the CPU. A note says why, when `auto` did not take the GPU or took a
+    /// software adapter. The GPU supersamples by rendering at ⌈√samples⌉× the size.
     ///
     /// # Errors
-    /// An approximate method (polygon, image-based) on the CPU or without a GPU, `gpu` without an adapter, or a scene the
-    /// GPU cannot prepare (a target beyond its limits when `gpu` was asked for).
+    /// An approximate method (polygon, image-based) on the CPU or without a GPU, `gpu` without
+    /// an adapter, or a scene the GPU cannot prepare (a target beyond its limits when `gpu` was
+    /// asked for).
     pub fn choose(
         backend: Backend,
         method: Method,
-        settings: RenderSettings,
-        scene: &Scene,
+        job: &Job,
+        frame: &Frame<'_>,
     ) -> anyhow::Result<Chosen> {
+        let (settings, scene) = (job.settings, frame.scene());
         let cpu = |note: Option<String>| {
             Ok(Chosen {
                 engine: Self::Cpu,
@@ -150,6 +159,25 @@ impl Engine {
                 bail!("{why}");
             }
         }
+        let weighs = backend == Backend::Auto && method.is_exact();
+        let mut measured = None;
+        if weighs && !gpu_possible() {
+            // Only a software rasteriser can open: the CPU need not wait for one to know.
+            let cost = CpuCost::measure(frame, settings);
+            let at_best =
+                Estimates::new(job, SceneSize::of(scene), &cost, &SoftwareCosts::CHEAPEST);
+            if at_best.cpu_is_faster() {
+                return cpu(Some(format!(
+                    "auto renders on the CPU: about {:.2} s ({}), against at least {:.2} s on a \
+                     software rasteriser, the only kind of adapter without a GPU device (none \
+                     under /dev; docs/performance.md, \"auto without a hardware GPU\")",
+                    at_best.cpu_seconds,
+                    cost.describe(),
+                    at_best.gpu_seconds
+                )));
+            }
+            measured = Some(cost);
+        }
         let context = match backend {
             Backend::Cpu if !method.is_exact() => {
                 bail!(
@@ -159,15 +187,74 @@ impl Engine {
             }
             Backend::Cpu => return cpu(None),
             Backend::Gpu => GpuContext::new().context("--backend gpu")?,
-            Backend::Auto => match GpuContext::new() {
-                Ok(context) => context,
-                Err(error) if method.is_exact() => {
-                    return cpu(Some(format!("{error}; rendering on the CPU instead")));
+            Backend::Auto => {
+                let measure = weighs && measured.is_none();
+                match open_measuring(measure, frame, settings) {
+                    (Ok(context), cost) => {
+                        measured = measured.or(cost);
+                        context
+                    }
+                    (Err(error), _) if method.is_exact() => {
+                        return cpu(Some(format!("{error}; rendering on the CPU instead")));
+                    }
+                    (Err(error), _) => {
+                        bail!("the {} method needs a GPU: {error}", method.name())
+                    }
                 }
-                Err(error) => bail!("the {} method needs a GPU: {error}", method.name()),
-            },
+            }
         };
-        Self::on_gpu(Box::new(context), backend, method, settings, scene)
+        let Some(api) = context.software_api().filter(|_| weighs) else {
+            return Self::on_gpu(Box::new(context), backend, method, settings, scene);
+        };
+        let cost = measured.unwrap_or_else(|| CpuCost::measure(frame, settings));
+        Self::weighed(context, api, &cost, job, frame, method)
+    }
+
+    /// `auto`'s choice between the CPU and the software adapter of `context`, reached through
+    /// `api`, for `job` of `frame`, whose CPU cost is `cost` ([`crate::software`]), with the note
+    /// that says which it took and why.
+    ///
+    /// # Errors
+    /// As [`Engine::on_gpu`].
+    fn weighed(
+        context: GpuContext,
+        api: SoftwareApi,
+        cost: &CpuCost,
+        job: &Job,
+        frame: &Frame<'_>,
+        method: Method,
+    ) -> anyhow::Result<Chosen> {
+        let (settings, scene) = (job.settings, frame.scene());
+        let estimates = Estimates::new(job, SceneSize::of(scene), cost, &SoftwareCosts::of(api));
+        let adapter = format!("{} ({api:?})", context.adapter_info.name);
+        if estimates.cpu_is_faster() {
+            return Ok(Chosen {
+                engine: Self::Cpu,
+                note: Some(format!(
+                    "auto renders on the CPU: about {:.2} s ({}), against {:.2} s on {adapter}, \
+                     a software rasteriser (docs/performance.md, \"auto without a hardware \
+                     GPU\")",
+                    estimates.cpu_seconds,
+                    cost.describe(),
+                    estimates.gpu_seconds
+                )),
+            });
+        }
+        let mut chosen = Self::on_gpu(Box::new(context), Backend::Auto, method, settings, scene)?;
+        if matches!(chosen.engine, Self::Gpu { .. }) {
+            let why = format!(
+                "auto renders on {adapter}, a software rasteriser: about {:.2} s, against \
+                 {:.2} s on the CPU ({})",
+                estimates.gpu_seconds,
+                estimates.cpu_seconds,
+                cost.describe()
+            );
+            chosen.note = Some(match chosen.note {
+                Some(note) => format!("{why}; {note}"),
+                None => why,
+            });
+        }
+        Ok(chosen)
     }
 
     /// The GPU engine on `context` for `scene` at `settings` ([`Engine::choose`]'s rules): the
@@ -364,6 +451,27 @@ impl Engine {
     }
 }
 
+/// Opens the GPU for `auto` on another thread and meanwhile, on this one, measures the CPU's
+/// cost of `frame` at `settings` ([`CpuCost::measure`], whose tracer `frame` keeps) when
+/// `measure` is set and the scene has at most [`MEASURED_WHILE_OPENING`] triangles (a larger
+/// one's tracer is built only once the adapter is known to be a software one). The measure then
+/// costs little beyond the adapter's opening.
+fn open_measuring(
+    measure: bool,
+    frame: &Frame<'_>,
+    settings: RenderSettings,
+) -> (Result<GpuContext, GpuError>, Option<CpuCost>) {
+    std::thread::scope(|scope| {
+        let opening = scope.spawn(GpuContext::new);
+        let measured = (measure && frame.scene().triangle_count() <= MEASURED_WHILE_OPENING)
+            .then(|| CpuCost::measure(frame, settings));
+        let opened = opening
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (opened, measured)
+    })
+}
+
 /// An engine kept for a sequence of frames whose scenes may change (Python's `srt.Renderer`):
 /// the GPU's device is made once, and a scene is uploaded again only when its structure
 /// ([`Scene::same_structure`]) or the size changes, or when the GPU cannot draw it (a projection
@@ -376,9 +484,10 @@ pub struct KeptEngine {
     method: Method,
     /// The engine, with the scene whose structure it holds and the settings it was made for.
     kept: Option<(Engine, Scene, RenderSettings)>,
-    /// Whether the GPU was asked for by `auto` and could not serve (no adapter, or a target
-    /// beyond its limits): a CPU engine chosen only because the GPU could not draw a frame
-    /// (a projection it does not trace) gives way to the GPU again when it can.
+    /// Whether the GPU was asked for by `auto` and could not serve (no adapter, a target
+    /// beyond its limits, or a software adapter expected to be slower than the CPU): a CPU
+    /// engine chosen only because the GPU could not draw a frame (a projection it does not
+    /// trace) gives way to the GPU again when it can.
     gpu_unavailable: bool,
 }
 
@@ -394,16 +503,17 @@ impl KeptEngine {
         }
     }
 
-    /// The engine ready to render `scene` at `settings`, and [`Chosen::note`] when it was chosen
+    /// The engine ready to render `job` of `frame`, and [`Chosen::note`] when it was chosen
     /// for this frame.
     ///
     /// # Errors
     /// As [`Engine::choose`].
     pub fn engine_for(
         &mut self,
-        scene: &Scene,
-        settings: RenderSettings,
+        frame: &Frame<'_>,
+        job: &Job,
     ) -> anyhow::Result<(&mut Engine, Option<String>)> {
+        let (scene, settings) = (frame.scene(), job.settings);
         let gpu_can_draw = self.method.cannot_draw(scene).is_none();
         let fits = |(engine, kept, made_for): &(Engine, Scene, RenderSettings)| {
             *made_for == settings
@@ -423,7 +533,7 @@ impl KeptEngine {
                     Some((Engine::Gpu { context, .. }, ..)) if gpu_can_draw => {
                         Engine::on_gpu(context, self.backend, self.method, settings, scene)?
                     }
-                    _ => Engine::choose(self.backend, self.method, settings, scene)?,
+                    _ => Engine::choose(self.backend, self.method, job, frame)?,
                 };
                 self.gpu_unavailable = self.backend == Backend::Auto
                     && gpu_can_draw

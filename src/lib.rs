@@ -9,4 +9,5 @@
 
 pub mod empty;
 pub mod engine;
+pub mod software;
 pub mod tiles;

@@ -15,6 +15,7 @@ use glam::DVec3;
 use image::RgbImage;
 use srt::empty::OneColour;
 use srt::engine::{Engine, Frame};
+use srt::software::Job;
 use srt_scene::description::observation_time;
 use srt_scene::{Editor, OverrideNames, Overrides, Projection, Scene, Setting, ValueName, View};
 use srt_trace::{Output, RenderSettings};
@@ -77,7 +78,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     // The GPU uploads geometry once; a view's shapes do not depend on the time (only offsets
     // do), so the scene viewed at its own time serves every frame.
     let first = viewed(view, scene)?;
-    let mut engine = choose_engine(args, &first, settings)?;
+    let first_frame = Frame::new(&first);
+    let job = Job {
+        settings,
+        frames: args.frames.unwrap_or(1),
+        passes: 1 + u32::from(args.aov),
+    };
+    let mut engine = choose_engine(args, &job, &first_frame)?;
     let record = base_record(
         &loaded.origin,
         loaded.observer_beta,
@@ -91,7 +98,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
         let captioner = captioner(args, loaded.observer_beta, &engine);
         let picture = Picture {
-            frame: &Frame::new(&first),
+            frame: &first_frame,
             captioned: scene,
             captioner: captioner.as_ref(),
             settings,
@@ -665,13 +672,9 @@ fn file_safe(name: &str) -> String {
 }
 
 /// Picks the renderer for --backend and --method (a note on standard error when `auto` falls
-/// back to the CPU).
-fn choose_engine(
-    args: &RenderArgs,
-    scene: &Scene,
-    settings: RenderSettings,
-) -> anyhow::Result<Engine> {
-    let chosen = Engine::choose(args.backend, args.method, settings, scene)?;
+/// back to the CPU or weighs a software adapter against it).
+fn choose_engine(args: &RenderArgs, job: &Job, first: &Frame<'_>) -> anyhow::Result<Engine> {
+    let chosen = Engine::choose(args.backend, args.method, job, first)?;
     if let Some(note) = chosen.note {
         eprintln!("note: {note}");
     }

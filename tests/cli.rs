@@ -673,6 +673,56 @@ fn skipped_for_want_of_an_adapter(test: &str, output: &Output) -> bool {
     true
 }
 
+/// `auto` weighs the CPU against a software adapter and says which it took: a small picture
+/// goes to the CPU, a picture of 256 samples a pixel (about 15 million rays) to the adapter.
+/// Where the adapter is a hardware GPU, `auto` takes it without weighing.
+#[test]
+fn auto_weighs_the_cpu_against_a_software_adapter_and_says_which() {
+    let dir = folder();
+    let render = |size: &[&str]| {
+        let args = [
+            &["render", "teaser", "--backend", "auto"][..],
+            size,
+            &["-o", "t.png"],
+        ];
+        let output = srt(&args.concat(), dir.path());
+        assert!(output.status.success(), "{}", stderr(&output));
+        let wrote = String::from_utf8_lossy(&output.stdout).into_owned();
+        (stderr(&output), wrote)
+    };
+    let (said, wrote) = render(&["--width", "64", "--height", "36"]);
+    if wrote.contains(", gpu ") {
+        assert!(!said.contains("software rasteriser"), "{said}");
+        return;
+    }
+    assert!(
+        said.contains("note: auto renders on the CPU: about")
+            && said.contains("software rasteriser"),
+        "{said}"
+    );
+    assert!(wrote.contains(", cpu,"), "{wrote}");
+    let heavy = ["--width", "320", "--height", "180", "--samples", "256"];
+    let args = [
+        &["render", "teaser", "--backend", "auto"][..],
+        &heavy,
+        &["-o", "h.png"],
+    ];
+    let output = srt(&args.concat(), dir.path());
+    if skipped_for_want_of_an_adapter(
+        "auto_weighs_the_cpu_against_a_software_adapter_and_says_which",
+        &output,
+    ) {
+        return;
+    }
+    let (said, wrote) = (stderr(&output), String::from_utf8_lossy(&output.stdout));
+    assert!(output.status.success(), "{said}");
+    assert!(
+        said.contains(", a software rasteriser: about") && said.contains("s on the CPU"),
+        "{said}"
+    );
+    assert!(wrote.contains(", gpu auto on "), "{wrote}");
+}
+
 /// A picture whose supersampled target is beyond the adapter's texture limit (16384 pixels
 /// wide at 9 samples is a 49152-pixel-wide target; no adapter allows more than 32768) is drawn
 /// on the GPU in tiles: it is the CPU's picture but for the pixels the two sample differently

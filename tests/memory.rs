@@ -163,6 +163,7 @@ fn a_huge_picture_is_written_within_the_memory_bound() {
 #[test]
 fn gpu_tiles_give_the_whole_frame() {
     use srt::engine::{Backend, Engine, Frame};
+    use srt::software::Job;
     use srt::tiles::Tiling;
     use srt_gpu::Method;
     use srt_trace::Output;
@@ -176,9 +177,14 @@ fn gpu_tiles_give_the_whole_frame() {
         samples: 4,
     };
     let engine = || {
-        Engine::choose(Backend::Gpu, Method::Auto, settings, &scene)
-            .unwrap()
-            .engine
+        Engine::choose(
+            Backend::Gpu,
+            Method::Auto,
+            &Job::still(settings),
+            &Frame::new(&scene),
+        )
+        .unwrap()
+        .engine
     };
     let (mut whole, mut tiled) = (engine(), engine());
     let Engine::Gpu {

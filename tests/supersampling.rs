@@ -8,6 +8,7 @@ use std::sync::atomic::AtomicBool;
 
 use crate::common::builtin_scene;
 use srt::engine::{Backend, Engine, Frame};
+use srt::software::Job;
 use srt_gpu::Method;
 use srt_trace::{Output, RenderSettings, Tracer};
 
@@ -25,10 +26,10 @@ fn supersampled_stars_are_as_bright_on_the_gpu_as_on_the_cpu() {
             height: 60,
             samples,
         };
-        let mut gpu = Engine::choose(Backend::Gpu, Method::Auto, settings, &scene)
+        let frame = Frame::new(&scene);
+        let mut gpu = Engine::choose(Backend::Gpu, Method::Auto, &Job::still(settings), &frame)
             .unwrap()
             .engine;
-        let frame = Frame::new(&scene);
         let never = AtomicBool::new(false);
         let drawn = gpu
             .render(&frame, settings, Output::Display, &|_| {}, &never)

@@ -18,6 +18,7 @@ use srt::engine::{
     AOV_CHANNELS, Backend, Frame, KeptEngine, MAX_IMAGE_SIDE, MAX_SAMPLES, channel_f32,
     display_as_linear,
 };
+use srt::software::Job;
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
 use srt_scene::{OverrideNames, Overrides, SceneSource, Setting, View};
@@ -368,7 +369,15 @@ impl Request {
         // radiance, and with `aov` the display colours too.
         let frame = Frame::new(&scene);
         let (engine, note) = kept
-            .engine_for(&scene, self.settings)
+            .engine_for(
+                &frame,
+                &Job {
+                    settings: self.settings,
+                    frames: 1,
+                    // The radiance; with `aov` the display colours and the time channels too.
+                    passes: 1 + 2 * u32::from(self.aov),
+                },
+            )
             .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
         warnings.extend(note.map(|note| format!("note: {note}")));
         let mut render = |output| {

@@ -1,0 +1,367 @@
+//! `auto` on a machine whose only adapter is a software rasteriser (Mesa's lavapipe and
+//! llvmpipe, SwiftShader): the adapter and srt's CPU tracer then run on the same cores, and which
+//! finishes a render first depends on the job. The adapter pays a fixed start (its pipelines are
+//! compiled for the CPU) and an upload that grows with the scene (BVHs, footprint buffers), then
+//! draws a frame in a fraction of the CPU tracer's time; the CPU tracer starts at once but pays
+//! for every row. `auto` measures the CPU's cost on a few rows of the first frame
+//! ([`srt_trace::Tracer::measure_frame_cost`]), estimates both wholes ([`Estimates`]) and takes
+//! the smaller. The constants were measured on the 2-core machine CI runs on, whole process
+//! against whole process; docs/performance.md ("auto without a hardware GPU") gives the rule and
+//! its measurements, and this module's test replays them.
+
+use std::path::Path;
+use std::time::Instant;
+
+use srt_gpu::SoftwareApi;
+use srt_scene::Scene;
+use srt_trace::{FrameCost, Output, RenderSettings};
+
+use crate::engine::Frame;
+
+/// Rows of the first frame the CPU's cost is measured on (each traced twice): about 4 % of a
+/// 720-row picture's work.
+pub const PROBE_ROWS: u32 = 16;
+
+/// The most triangles a scene may have for `auto` to measure the CPU's cost while it opens the
+/// GPU, not knowing yet whether the adapter is a software one: a tracer of this many builds in
+/// about 0.2 s on the 2-core machine CI runs on (the 121 496-triangle 2CylinderEngine in 0.08 s),
+/// time a hardware GPU's user would otherwise wait for nothing.
+pub const MEASURED_WHILE_OPENING: usize = 300_000;
+
+/// What a render asks for: the size, how many frames and how many pictures of each frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Job {
+    /// The picture's size and samples.
+    pub settings: RenderSettings,
+    /// Frames (1 for a still).
+    pub frames: u32,
+    /// Pictures rendered of each frame (display colours, radiance, the time channels).
+    pub passes: u32,
+}
+
+impl Job {
+    /// One picture of one frame at `settings`.
+    #[must_use]
+    pub const fn still(settings: RenderSettings) -> Self {
+        Self {
+            settings,
+            frames: 1,
+            passes: 1,
+        }
+    }
+}
+
+/// What the CPU tracer costs for a job's scene, measured on this machine.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CpuCost {
+    /// Seconds to build the tracer (the objects' BVHs), paid once a frame.
+    pub build_seconds: f64,
+    /// One picture of one frame.
+    pub frame: FrameCost,
+}
+
+impl CpuCost {
+    /// Builds `frame`'s tracer (kept for the frame's render) and measures a picture at
+    /// `settings` on [`PROBE_ROWS`] of its rows.
+    pub fn measure(frame: &Frame<'_>, settings: RenderSettings) -> Self {
+        let start = Instant::now();
+        let tracer = frame.tracer();
+        let build_seconds = start.elapsed().as_secs_f64();
+        Self {
+            build_seconds,
+            frame: tracer.measure_frame_cost(settings, Output::Display, PROBE_ROWS),
+        }
+    }
+
+    /// What the notes report of the measure: "its tracer built in 0.0135 s, a picture traced
+    /// in about 0.1912 s".
+    #[must_use]
+    pub fn describe(&self) -> String {
+        format!(
+            "its tracer built in {:.4} s, a picture traced in about {:.4} s",
+            self.build_seconds,
+            self.frame.seconds()
+        )
+    }
+}
+
+/// A software adapter's costs, whole process against whole process ([`SoftwareCosts::of`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SoftwareCosts {
+    /// Seconds to start: the device opened, pipelines compiled for the CPU, targets made.
+    pub start_seconds: f64,
+    /// Seconds of upload per triangle (the GPU's BVHs and per-triangle buffers).
+    pub triangle_seconds: f64,
+    /// Seconds a frame spends per object (its passes and draws).
+    pub object_seconds: f64,
+    /// Seconds a frame spends per million pixels drawn (⌈√samples⌉² a picture's pixel).
+    pub megapixel_seconds: f64,
+}
+
+/// Mesa's lavapipe (Vulkan), fitted (fit.py) to docs/measurements/2026-11-29-software's
+/// whole-process times.
+pub const LAVAPIPE: SoftwareCosts = SoftwareCosts {
+    start_seconds: 0.363,
+    triangle_seconds: 2.67e-6,
+    object_seconds: 0.0026,
+    megapixel_seconds: 0.0903,
+};
+
+/// Mesa's llvmpipe through EGL (OpenGL), fitted as [`LAVAPIPE`]: it starts in less than half
+/// lavapipe's time and draws a little faster.
+pub const LLVMPIPE_GL: SoftwareCosts = SoftwareCosts {
+    start_seconds: 0.142,
+    triangle_seconds: 2.3e-6,
+    object_seconds: 0.0023,
+    megapixel_seconds: 0.0741,
+};
+
+impl SoftwareCosts {
+    /// The least of every cost of the software adapters measured: what no software adapter is
+    /// expected to beat, for a choice made before one is opened.
+    pub const CHEAPEST: Self = Self {
+        start_seconds: LAVAPIPE.start_seconds.min(LLVMPIPE_GL.start_seconds),
+        triangle_seconds: LAVAPIPE.triangle_seconds.min(LLVMPIPE_GL.triangle_seconds),
+        object_seconds: LAVAPIPE.object_seconds.min(LLVMPIPE_GL.object_seconds),
+        megapixel_seconds: LAVAPIPE
+            .megapixel_seconds
+            .min(LLVMPIPE_GL.megapixel_seconds),
+    };
+
+    /// The costs of a software adapter reached through `api` (lavapipe's for any but GL).
+    #[must_use]
+    pub const fn of(api: SoftwareApi) -> Self {
+        match api {
+            SoftwareApi::Gl => LLVMPIPE_GL,
+            SoftwareApi::Vulkan | SoftwareApi::Other => LAVAPIPE,
+        }
+    }
+}
+
+/// How much of the scene a software adapter uploads and draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneSize {
+    /// Triangles over every object.
+    pub triangles: usize,
+    /// Objects.
+    pub objects: usize,
+}
+
+impl SceneSize {
+    /// The size of `scene`.
+    #[must_use]
+    pub fn of(scene: &Scene) -> Self {
+        Self {
+            triangles: scene.triangle_count(),
+            objects: scene.objects.len(),
+        }
+    }
+}
+
+/// Both estimates of what is left of a job once the CPU's cost is measured (the first frame's
+/// tracer is built by then): the CPU tracer's seconds and a software adapter's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimates {
+    /// The CPU tracer: every later frame's tracer built and every picture traced.
+    pub cpu_seconds: f64,
+    /// The software adapter: its start, the upload, and every picture drawn.
+    pub gpu_seconds: f64,
+}
+
+impl Estimates {
+    /// The estimates of `job` on a scene of `size` from the CPU's measured `cost` and a
+    /// software adapter's `costs`.
+    #[must_use]
+    pub fn new(job: &Job, size: SceneSize, cost: &CpuCost, costs: &SoftwareCosts) -> Self {
+        let frames = f64::from(job.frames.max(1));
+        let pictures = frames * f64::from(job.passes.max(1));
+        let RenderSettings {
+            width,
+            height,
+            samples,
+        } = job.settings;
+        let scale = f64::from(samples.max(1)).sqrt().ceil();
+        let megapixels = f64::from(width) * f64::from(height) * scale * scale * 1e-6;
+        Self {
+            cpu_seconds: (frames - 1.0) * cost.build_seconds + pictures * cost.frame.seconds(),
+            gpu_seconds: costs.start_seconds
+                + costs.triangle_seconds * size.triangles as f64
+                + frames * costs.object_seconds * size.objects as f64
+                + pictures * costs.megapixel_seconds * megapixels,
+        }
+    }
+
+    /// Whether the CPU tracer is expected to finish first (a tie goes to the CPU, whose
+    /// pixels are the reference).
+    #[must_use]
+    pub fn cpu_is_faster(&self) -> bool {
+        self.cpu_seconds <= self.gpu_seconds
+    }
+}
+
+/// Whether this machine may have a GPU: on Linux, whether a GPU's device node exists (DRM's
+/// `/dev/dri`, NVIDIA's `/dev/nvidia*`, WSL's `/dev/dxg`), through which alone a driver reaches
+/// one; elsewhere always, as it cannot be told without opening an adapter. Without one, every
+/// adapter wgpu could open is a software rasteriser.
+#[must_use]
+pub fn gpu_possible() -> bool {
+    if !cfg!(target_os = "linux") {
+        return true;
+    }
+    let dev = Path::new("/dev");
+    dev.join("dri").exists()
+        || dev.join("dxg").exists()
+        || std::fs::read_dir(dev).map_or(true, |entries| {
+            entries
+                .flatten()
+                .any(|entry| entry.file_name().to_string_lossy().starts_with("nvidia"))
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The whole-process measurements the constants were fitted to (collect.py and fit.py
+    /// beside them), and a second collection made with the constants in place.
+    const MEASURED: [&str; 2] = [
+        include_str!("../docs/measurements/2026-11-29-software/fitted.tsv"),
+        include_str!("../docs/measurements/2026-11-29-software/checked.tsv"),
+    ];
+
+    /// Two whole-process times closer than this (relative) are a tie: runs of the same
+    /// command on this machine move by about as much.
+    const TIE: f64 = 0.05;
+
+    /// One measured line: the job, its scene's size, the CPU's cost as auto measured it, and
+    /// the whole process's seconds on the CPU, lavapipe and llvmpipe GL.
+    struct Line {
+        case: String,
+        job: Job,
+        size: SceneSize,
+        cost: CpuCost,
+        cpu: f64,
+        vulkan: f64,
+        gl: f64,
+    }
+
+    /// Every line of both collections.
+    fn lines() -> Vec<Line> {
+        MEASURED
+            .iter()
+            .flat_map(|table| table_lines(table))
+            .collect()
+    }
+
+    /// The lines of one collection.
+    fn table_lines(table: &str) -> Vec<Line> {
+        let mut rows = table.lines();
+        let header: Vec<&str> = rows.next().unwrap().split('\t').collect();
+        rows.map(|row| {
+            let fields: Vec<&str> = row.split('\t').collect();
+            let field = |name: &str| fields[header.iter().position(|h| *h == name).unwrap()];
+            let number = |name: &str| field(name).parse::<f64>().unwrap();
+            let whole = |name: &str| field(name).parse::<u32>().unwrap();
+            let height = whole("height");
+            Line {
+                case: field("case").to_owned(),
+                job: Job {
+                    settings: RenderSettings {
+                        width: whole("width"),
+                        height,
+                        samples: whole("samples"),
+                    },
+                    frames: whole("frames"),
+                    passes: 1,
+                },
+                size: SceneSize {
+                    triangles: whole("triangles") as usize,
+                    objects: whole("objects") as usize,
+                },
+                cost: CpuCost {
+                    build_seconds: number("build_s"),
+                    frame: FrameCost {
+                        setup_seconds: 0.0,
+                        row_seconds: number("picture_s") / f64::from(height),
+                        rows: height,
+                    },
+                },
+                cpu: number("cpu"),
+                vulkan: number("vulkan"),
+                gl: number("gl"),
+            }
+        })
+        .collect()
+    }
+
+    /// The rule replayed on every measured line of both collections, for both software
+    /// adapters: it picks the faster of the CPU and the adapter, whole process against whole
+    /// process, wherever they are more than a tie apart. The lines span still pictures from 640 × 360 to 3840 × 2160,
+    /// 16 samples, sequences of 5 to 30 frames, 1 to 45 objects and 300 to 1.9 M triangles.
+    #[test]
+    fn the_rule_picks_the_faster_on_every_measured_line() {
+        let lines = lines();
+        assert!(lines.len() >= 30, "{} lines", lines.len());
+        let mut wrong = Vec::new();
+        for line in &lines {
+            for (api, gpu) in [
+                (SoftwareApi::Vulkan, line.vulkan),
+                (SoftwareApi::Gl, line.gl),
+            ] {
+                let estimates =
+                    Estimates::new(&line.job, line.size, &line.cost, &SoftwareCosts::of(api));
+                let cpu_faster = line.cpu <= gpu;
+                let tie = (line.cpu - gpu).abs() < TIE * line.cpu.min(gpu);
+                if estimates.cpu_is_faster() != cpu_faster && !tie {
+                    wrong.push(format!(
+                        "{} on {api:?}: measured CPU {} s, GPU {gpu} s; estimated {estimates:?}",
+                        line.case, line.cpu
+                    ));
+                }
+            }
+        }
+        assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+        // Both choices occur: the lines test the rule, not a constant answer.
+        let picks: Vec<bool> = lines
+            .iter()
+            .map(|l| Estimates::new(&l.job, l.size, &l.cost, &LAVAPIPE).cpu_is_faster())
+            .collect();
+        assert!(picks.contains(&true) && picks.contains(&false), "{picks:?}");
+    }
+
+    /// The cheapest costs are no adapter's more than any measured one's: a job the CPU wins
+    /// against them it wins against every software adapter.
+    #[test]
+    fn no_software_adapter_is_cheaper_than_the_cheapest() {
+        let line = &lines()[0];
+        for costs in [LAVAPIPE, LLVMPIPE_GL] {
+            let cheapest =
+                Estimates::new(&line.job, line.size, &line.cost, &SoftwareCosts::CHEAPEST);
+            let adapter = Estimates::new(&line.job, line.size, &line.cost, &costs);
+            assert!(cheapest.gpu_seconds <= adapter.gpu_seconds);
+            assert_eq!(cheapest.cpu_seconds, adapter.cpu_seconds);
+        }
+    }
+
+    /// More frames, samples or pixels move a job from the CPU to a software adapter: the
+    /// adapter's start is paid once, the CPU pays for every ray.
+    #[test]
+    fn a_larger_job_goes_to_the_software_adapter() {
+        let line = lines()
+            .into_iter()
+            .find(|l| l.case == "teaser 1280x720")
+            .unwrap();
+        let at = |frames, samples: u32| {
+            let mut job = line.job;
+            job.frames = frames;
+            job.settings.samples = samples;
+            // The CPU traces every sample: its measured picture grows with them.
+            let mut cost = line.cost;
+            cost.frame.row_seconds *= f64::from(samples);
+            Estimates::new(&job, line.size, &cost, &LAVAPIPE).cpu_is_faster()
+        };
+        assert!(at(1, 1));
+        assert!(!at(30, 1));
+        assert!(!at(1, 64));
+    }
+}
