@@ -6,6 +6,7 @@
 use std::cell::OnceCell;
 use std::ops::Range;
 use std::sync::atomic::AtomicBool;
+use std::time::Instant;
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
@@ -91,6 +92,14 @@ impl<'a> Frame<'a> {
     pub fn tracer(&self) -> &Tracer<'a> {
         self.tracer.get_or_init(|| Tracer::new(self.scene))
     }
+
+    /// The CPU's cost of a picture of this frame at `settings` ([`CpuCost::measure`]), its
+    /// tracer built (and kept) first.
+    pub fn measure_cpu(&self, settings: RenderSettings) -> CpuCost {
+        let start = Instant::now();
+        let tracer = self.tracer();
+        CpuCost::measure(tracer, start.elapsed().as_secs_f64(), settings)
+    }
 }
 
 /// A renderer ready to produce frames of one scene.
@@ -163,7 +172,7 @@ impl Engine {
         let mut measured = None;
         if weighs && !gpu_possible() {
             // Only a software rasteriser can open: the CPU need not wait for one to know.
-            let cost = CpuCost::measure(frame, settings);
+            let cost = frame.measure_cpu(settings);
             let at_best =
                 Estimates::new(job, SceneSize::of(scene), &cost, &SoftwareCosts::CHEAPEST);
             if at_best.cpu_is_faster() {
@@ -206,7 +215,7 @@ impl Engine {
         let Some(api) = context.software_api().filter(|_| weighs) else {
             return Self::on_gpu(Box::new(context), backend, method, settings, scene);
         };
-        let cost = measured.unwrap_or_else(|| CpuCost::measure(frame, settings));
+        let cost = measured.unwrap_or_else(|| frame.measure_cpu(settings));
         Self::weighed(context, api, &cost, job, frame, method)
     }
 
@@ -464,7 +473,7 @@ fn open_measuring(
     std::thread::scope(|scope| {
         let opening = scope.spawn(GpuContext::new);
         let measured = (measure && frame.scene().triangle_count() <= MEASURED_WHILE_OPENING)
-            .then(|| CpuCost::measure(frame, settings));
+            .then(|| frame.measure_cpu(settings));
         let opened = opening
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));

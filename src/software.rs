@@ -10,13 +10,10 @@
 //! its measurements, and this module's test replays them.
 
 use std::path::Path;
-use std::time::Instant;
 
 use srt_gpu::SoftwareApi;
 use srt_scene::Scene;
-use srt_trace::{FrameCost, Output, RenderSettings};
-
-use crate::engine::Frame;
+use srt_trace::{FrameCost, Output, RenderSettings, Tracer};
 
 /// Rows of the first frame the CPU's cost is measured on (each traced twice): about 4 % of a
 /// 720-row picture's work.
@@ -61,12 +58,10 @@ pub struct CpuCost {
 }
 
 impl CpuCost {
-    /// Builds `frame`'s tracer (kept for the frame's render) and measures a picture at
+    /// The cost of a frame whose tracer took `build_seconds` to build and measures a picture at
     /// `settings` on [`PROBE_ROWS`] of its rows.
-    pub fn measure(frame: &Frame<'_>, settings: RenderSettings) -> Self {
-        let start = Instant::now();
-        let tracer = frame.tracer();
-        let build_seconds = start.elapsed().as_secs_f64();
+    #[must_use]
+    pub fn measure(tracer: &Tracer<'_>, build_seconds: f64, settings: RenderSettings) -> Self {
         Self {
             build_seconds,
             frame: tracer.measure_frame_cost(settings, Output::Display, PROBE_ROWS),
