@@ -37,6 +37,7 @@
 
 mod compare;
 mod document;
+mod replay;
 mod report;
 mod results;
 mod summary;
@@ -325,9 +326,67 @@ fn measure_case(
         width,
         height,
         triangles: case.scene.triangle_count(),
-        traced_objects: renderer.auto_traced_objects(),
+        traced_objects: renderer.auto_traced_objects(&case.scene),
+        objects: object_load_records(renderer, &case.scene),
         measurement,
     })
+}
+
+/// What `auto` weighs of each of `scene`'s objects with `renderer`, as the results keep it.
+fn object_load_records(renderer: &GpuRenderer, scene: &Scene) -> Vec<results::ObjectLoadRecord> {
+    renderer
+        .object_loads(scene)
+        .into_iter()
+        .flatten()
+        .map(Into::into)
+        .collect()
+}
+
+/// Copies the results file `input` to `output` with [`CaseResult::objects`] filled in for
+/// every static case and sweep frame, each frame's scene rebuilt by its name and size
+/// ([`timed_frames`]) and uploaded to this machine's adapter.
+///
+/// # Errors
+/// No GPU, a frame this bench no longer times, missing models, unreadable or unwritable files.
+pub fn run_object_loads(input: &Path, output: &Path) -> anyhow::Result<()> {
+    let mut results = Results::load(input)?;
+    let ctx = GpuContext::new().context("filling in object loads needs a GPU adapter")?;
+    // Every frame the bench times at each size met, built once per size.
+    let mut frames_by_size = std::collections::HashMap::new();
+    let mut kept = KeptRenderer::default();
+    let frames = results.cases.iter_mut().chain(
+        results
+            .sweeps
+            .iter_mut()
+            .flat_map(|s| s.frames.iter_mut().map(|f| &mut f.case)),
+    );
+    for line in frames {
+        let size = (line.width, line.height);
+        if let std::collections::hash_map::Entry::Vacant(entry) = frames_by_size.entry(size) {
+            entry.insert(timed_frames(&[size])?);
+        }
+        let (case, _) = frames_by_size[&size]
+            .iter()
+            .find(|(case, _)| case.name == line.name)
+            .with_context(|| {
+                format!(
+                    "{}: the bench times no frame {:?}",
+                    input.display(),
+                    line.name
+                )
+            })?;
+        let renderer = kept.for_scene(&ctx, &case.scene, size)?;
+        line.objects = object_load_records(renderer, &case.scene);
+        println!(
+            "{} {}: {} objects",
+            line.name,
+            line.size(),
+            line.objects.len()
+        );
+    }
+    results.save(output)?;
+    println!("wrote {}", output.display());
+    Ok(())
 }
 
 /// A static case's report line.
@@ -640,12 +699,15 @@ fn static_results(
         for &size in sizes {
             let renderer = kept.for_scene(ctx, &case.scene, size)?;
             let result = measure_case(ctx, renderer, case, frames)?;
-            let layers: Vec<String> = renderer
-                .object_layers()
+            let loads: Vec<String> = result
+                .objects
                 .iter()
-                .map(|l| l.map_or_else(|| "-".to_owned(), |l| format!("{l:.2}")))
+                .map(|o| format!("{}/{:.2}/{:.0}", o.triangles, o.layers, o.seen_pixels))
                 .collect();
-            println!("  layers per object: {}", layers.join(" "));
+            println!(
+                "  triangles/layers/seen pixels per object: {}",
+                loads.join(" ")
+            );
             println!("{}", case_text(&result));
             measured(result)?;
         }
@@ -710,6 +772,7 @@ pub fn run(
         measured.save(path)?;
         println!("wrote {}", path.display());
     }
+    println!("{}", replay::summary(&measured));
     if only.is_none() {
         document::write(workspace, &measured, report::Report::for_adapter(&ctx))?;
     }

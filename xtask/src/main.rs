@@ -95,6 +95,18 @@ enum Command {
             conflicts_with_all = ["frames", "results", "compare"]
         )]
         throughput: Option<u32>,
+        /// Measure nothing: copy the results file IN to OUT with what `auto` weighs of each
+        /// object in each of its frames (triangles, layers, seen pixels) filled in, the frames'
+        /// scenes rebuilt by name and size on this machine's adapter (geometry only: the same
+        /// on every adapter). For files recorded before the bench kept them, e.g. a hardware
+        /// GPU's.
+        #[arg(
+            long,
+            num_args = 2,
+            value_names = ["IN", "OUT"],
+            conflicts_with_all = ["frames", "only", "results", "sizes", "compare", "throughput"]
+        )]
+        object_loads: Option<Vec<PathBuf>>,
     },
     /// Build the web page into target/web (wasm with Debian's wasm toolchain, its JavaScript
     /// glue with wasm-bindgen), then serve it on localhost or test it in headless Chromium.
@@ -182,6 +194,10 @@ fn main() -> anyhow::Result<()> {
             ..
         } => bench::run_compare(&files[0], &files[1])?,
         Command::Bench {
+            object_loads: Some(files),
+            ..
+        } => bench::run_object_loads(&files[0], &files[1])?,
+        Command::Bench {
             throughput: Some(frames),
             only,
             sizes,
@@ -197,6 +213,7 @@ fn main() -> anyhow::Result<()> {
             sizes,
             compare: None,
             throughput: None,
+            object_loads: None,
         } => bench::run(
             &workspace_root(),
             frames,

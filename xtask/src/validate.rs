@@ -559,7 +559,7 @@ fn validate_image(
     } else {
         Vec::new()
     };
-    let traced = renderer.auto_traced_objects();
+    let traced = renderer.auto_traced_objects(scene);
     let further_report: String = further_mismatches
         .iter()
         .map(|(what, m)| format!(" {what}_mismatch={:.6}", m.fraction()))

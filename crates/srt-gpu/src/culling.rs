@@ -332,6 +332,71 @@ pub fn ball_wide_bound(
     ]
 }
 
+/// Samples a side of the grid of viewing directions [`ball_seen_pixels`] counts a ball's
+/// image on (32 × 32 over the picture).
+const SEEN_GRID: u32 = 32;
+/// Fewer grid samples than this in a ball's image and [`ball_seen_pixels`] measures it from
+/// its solid angle instead: a small image falls between the samples.
+const SEEN_GRID_LEAST: u32 = 16;
+
+/// About how many pixels of a `width` × `height` picture see the ball of `radius` around
+/// `centre` at rest in `frame`: its image cap ([`ball_out_of_view`] says why it is a cap)
+/// counted on a 32 × 32 grid of the picture's viewing directions, or, for an image of fewer
+/// than 16 samples whose centre is in the picture, its solid angle 2π(1 − h) times the
+/// picture's pixels per steradian at the centre's image; the whole picture for an observer
+/// inside the ball. An estimate of an object's screen size for `auto`'s choice of method
+/// ([`crate::auto`]), in any projection; no culling depends on it.
+#[must_use]
+pub fn ball_seen_pixels(
+    centre: DVec3,
+    radius: f64,
+    frame: &Frame,
+    observer: &Observer,
+    width: u32,
+    height: u32,
+) -> f64 {
+    let pixels = f64::from(width) * f64::from(height);
+    let Some(cap) = ImageCap::of_ball(centre, radius, frame, observer) else {
+        return pixels;
+    };
+    let rays = observer.view_rays(f64::from(width) / f64::from(height));
+    let at = |k: u32| (f64::from(k) + 0.5) / f64::from(SEEN_GRID) * 2.0 - 1.0;
+    let inside = (0..SEEN_GRID * SEEN_GRID)
+        .filter(|k| {
+            let ndc = glam::DVec2::new(at(k % SEEN_GRID), at(k / SEEN_GRID));
+            rays.direction(ndc)
+                .and_then(DVec3::try_normalize)
+                .is_some_and(|d| cap.axis.dot(d) >= cap.height)
+        })
+        .count() as f64;
+    let counted = inside / f64::from(SEEN_GRID * SEEN_GRID) * pixels;
+    if inside >= f64::from(SEEN_GRID_LEAST) {
+        return counted;
+    }
+    // Pixels per steradian at the centre's image: the picture's area over the solid angle of
+    // a small square of directions around it, from the image points of its corners.
+    let centre_image = cap.centre_image;
+    let Some(middle) = rays
+        .image_point(centre_image)
+        .filter(|p| p.x.abs() <= 1.0 && p.y.abs() <= 1.0)
+    else {
+        // The centre's image is outside the picture: the samples' count, if any.
+        return counted;
+    };
+    let step = 1e-4;
+    let (e1, e2) = centre_image.any_orthonormal_pair();
+    let image_of = |d: DVec3| rays.image_point(d).map(|p| p - middle);
+    let (Some(a), Some(b)) = (
+        image_of(centre_image + step * e1),
+        image_of(centre_image + step * e2),
+    ) else {
+        return 0.0;
+    };
+    let ndc_per_steradian = a.perp_dot(b).abs() / (step * step);
+    let solid_angle = TAU * (1.0 - cap.height);
+    (solid_angle * ndc_per_steradian * pixels / 4.0).min(pixels)
+}
+
 /// The viewing directions in S (unit vectors x with m·x ≥ h) whose backward rays reach a ball
 /// at rest in S′, as [`ball_out_of_view`] derives them.
 struct ImageCap {
@@ -402,7 +467,7 @@ fn highest_on_cap(n: DVec3, m: DVec3, h: f64) -> f64 {
 mod tests {
     use super::{
         BackFaceCulling, ball_between_pixel_centres, ball_nearest_apparent_distance,
-        ball_out_of_view, ball_wide_bound, box_near_faces_cullable,
+        ball_out_of_view, ball_seen_pixels, ball_wide_bound, box_near_faces_cullable,
     };
     use glam::{DVec2, DVec3};
     use proptest::prelude::*;
@@ -771,6 +836,46 @@ mod tests {
         assert!(
             !box_near_faces_cullable(min, max, DVec3::new(5.0, 1.0, 0.0)),
             "in the plane of a face seen edge-on"
+        );
+    }
+
+    /// A ball at rest straight ahead is seen as a disc of radius f·tan θ (f the focal length in
+    /// pixels, sin θ = radius / distance): counted on the grid when large, from its solid
+    /// angle when small; nothing behind the observer, everything from inside; a ball the
+    /// observer approaches at 0.9c is seen smaller (aberration gathers its rays forward).
+    #[test]
+    fn a_balls_seen_pixels_are_its_discs_area() {
+        let observer = looking_along_z(0.0);
+        let (width, height) = (400, 300);
+        let focal = 150.0 / 30f64.to_radians().tan();
+        let at_rest = Frame::new(DVec3::ZERO, DVec3::ZERO).unwrap();
+        let disc = |radius: f64, distance: f64| {
+            let image = focal * (radius / distance).asin().tan();
+            std::f64::consts::PI * image * image
+        };
+        let centre = DVec3::new(0.0, 0.0, 10.0);
+        for radius in [3.0, 0.3] {
+            let seen = ball_seen_pixels(centre, radius, &at_rest, &observer, width, height);
+            let expected = disc(radius, 10.0);
+            assert!(
+                (seen / expected - 1.0).abs() < 0.06,
+                "radius {radius}: {seen} pixels, the disc has {expected}"
+            );
+        }
+        let behind = -centre;
+        assert_eq!(
+            ball_seen_pixels(behind, 3.0, &at_rest, &observer, width, height),
+            0.0
+        );
+        let around = ball_seen_pixels(DVec3::ZERO, 3.0, &at_rest, &observer, width, height);
+        assert_eq!(around, f64::from(width * height));
+        // Approached at 0.9c: the ball's frame moves towards the observer (−z).
+        let approaching = Frame::new(DVec3::new(0.0, 0.0, -0.9), DVec3::ZERO).unwrap();
+        let fast = ball_seen_pixels(centre, 3.0, &approaching, &observer, width, height);
+        let slow = ball_seen_pixels(centre, 3.0, &at_rest, &observer, width, height);
+        assert!(
+            0.0 < fast && fast < 0.5 * slow,
+            "{fast} against {slow} at rest"
         );
     }
 }

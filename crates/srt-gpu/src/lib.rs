@@ -38,6 +38,7 @@
 //! the `probe` feature, which `cargo xtask` and this crate's tests enable; the production modules
 //! never depend on it.
 
+pub mod auto;
 pub mod bvh;
 pub mod context;
 pub mod culling;

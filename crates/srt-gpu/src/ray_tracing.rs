@@ -32,36 +32,6 @@ use crate::types::{
     DRAW_ARGS_BYTES, GpuFootprint, GpuRtTriangle, PartFlags, PartUniforms, footprint_slots,
 };
 
-/// Above this many layers of triangles (an object's surface over its box's surface,
-/// `ObjectRayTracing::preferred`) `auto` traces an object through its BVH on a CPU adapter
-/// (lavapipe, llvmpipe). Chosen from `cargo xtask bench` on lavapipe, whose LRT and RT columns
-/// show the choice per scene (docs/performance.md; the measurements it was chosen from are in
-/// docs/performance-log.md): deep models such as the 2CylinderEngine (2.80 layers) render
-/// faster traced, the fig10 cubes (1.00) and the spider (0.29) faster by LRT.
-pub const AUTO_LAYERS: f64 = 2.0;
-
-/// [`AUTO_LAYERS`] on a hardware GPU: no static object is traced there. On the one hardware
-/// GPU measured (an NVIDIA H200, `cargo xtask bench --throughput` at 1920×1080,
-/// docs/performance-log.md, 2026-11-26 sixth entry and 2026-11-27 sixth entry) LRT with lean
-/// varyings ([`crate::pipelines::Varyings::Lean`]) sustained more frames per second than the ray
-/// tracer on every scene, from the spider (0.29 layers) to the engines (2.80): 217 against 106
-/// fps for the engine, 175 against 102 for three engines, 77.5 against 52.4 for the nine. A
-/// GPU runs LRT's many cheap fragments in parallel, where a CPU adapter pays for each. (Single
-/// frames differ: at the nine engines' first frame the ray tracer took 9.6 ms, LRT with the
-/// flat varyings 31.2.)
-pub const AUTO_LAYERS_HARDWARE: f64 = f64::INFINITY;
-
-/// The layers above which `auto` traces an object on an adapter of `device_type`:
-/// [`AUTO_LAYERS`] on a CPU adapter, [`AUTO_LAYERS_HARDWARE`] on any other.
-#[must_use]
-pub fn auto_layers(device_type: wgpu::DeviceType) -> f64 {
-    if device_type == wgpu::DeviceType::Cpu {
-        AUTO_LAYERS
-    } else {
-        AUTO_LAYERS_HARDWARE
-    }
-}
-
 /// Triangles of an object's box.
 pub(crate) const BOX_TRIANGLES: u32 = 12;
 
@@ -93,7 +63,7 @@ pub(crate) struct ObjectRayTracing {
 }
 
 /// How many layers of triangles an average line of sight through the box `bounds` crosses:
-/// the triangles' total area over the box's surface ([`ObjectRayTracing::preferred`]).
+/// the triangles' total area over the box's surface ([`ObjectRayTracing::layers`]).
 fn layers(corners: &[[[f32; 3]; 3]], bounds: ([f32; 3], [f32; 3])) -> f64 {
     let area = |[a, b, c]: [[f32; 3]; 3]| {
         let [a, b, c] = [a, b, c].map(|p| DVec3::from(p.map(f64::from)));
@@ -272,20 +242,23 @@ impl ObjectRayTracing {
         }
     }
 
-    /// Whether the ray tracer is the faster exact method for this object: when its triangles
-    /// lie in more than `threshold` layers ([`auto_layers`] of the adapter). An LRT fragment
-    /// tests one triangle and there are about as many per pixel as layers; a traced fragment
-    /// walks the BVH, which costs several triangle tests but does not grow with the layers.
-    /// Either is exact; this decides speed only.
-    #[must_use]
-    pub fn preferred(&self, threshold: f64) -> bool {
-        self.layers > threshold
-    }
-
-    /// The object's surface over its box's ([`ObjectRayTracing::preferred`]).
+    /// The object's surface over its box's: how many layers of triangles an average line of
+    /// sight through the box crosses (what `auto` weighs, [`crate::auto::ObjectLoad::layers`]).
     #[must_use]
     pub const fn layers(&self) -> f64 {
         self.layers
+    }
+
+    /// How many layers of its box's footprints the ray tracer draws for an observer at
+    /// `observer` (S′) while the object rests: 1 when the box's near faces are culled (the
+    /// observer outside it, [`box_near_faces_cullable`]), else 2.
+    #[must_use]
+    pub fn box_layers(&self, observer: DVec3) -> u32 {
+        if box_near_faces_cullable(self.bounds.0, self.bounds.1, observer) {
+            1
+        } else {
+            2
+        }
     }
 
     /// Sets, for the observer at `observer` in S′, whether the proxy pass culls the box's faces

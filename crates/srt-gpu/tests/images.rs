@@ -301,16 +301,30 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
     let (mut scene, stack) = teaser_and_object("stack", stack_of_squares(12));
     scene.objects.push(stack);
     let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
-    let layers = renderer.object_layers();
-    assert!(layers.last().unwrap().unwrap() > 2.0, "{layers:?}");
+    let loads = renderer.object_loads(&scene);
+    let stack_load = loads.last().unwrap().unwrap();
+    assert!(stack_load.layers > 2.0, "{loads:?}");
     assert!(
-        layers.iter().rev().skip(1).all(|l| l.unwrap() < 2.0),
-        "{layers:?}"
+        loads.iter().rev().skip(1).flatten().all(|l| l.layers < 2.0),
+        "{loads:?}"
     );
-    // A CPU adapter traces the deep stack; a hardware GPU draws every static object by LRT
-    // (`ray_tracing::auto_layers`).
-    let deep = usize::from(ctx.adapter_info.device_type == wgpu::DeviceType::Cpu);
-    assert_eq!(renderer.auto_traced_objects(), deep);
+    // A CPU adapter traces the deep stack and draws the teaser's spider by LRT: a mix (a
+    // hardware GPU's costs decide by the stack's pixels, `srt_gpu::auto`).
+    let costs = srt_gpu::auto::MethodCosts::for_adapter(ctx.adapter_info.device_type);
+    let traced: Vec<bool> = loads
+        .iter()
+        .map(|l| l.is_some_and(|l| costs.traces(&l)))
+        .collect();
+    assert_eq!(
+        renderer.auto_traced_objects(&scene),
+        traced.iter().filter(|&&t| t).count()
+    );
+    if ctx.adapter_info.device_type == wgpu::DeviceType::Cpu {
+        assert!(
+            traced[traced.len() - 1] && !traced[0],
+            "{traced:?} {loads:?}"
+        );
+    }
     let reference = cpu_image(&scene);
     let images = exact_methods_match(&ctx, &renderer, &scene, &reference, "the mix");
     // Not vacuous: the stack is on screen (removing it changes the picture).

@@ -115,9 +115,50 @@ pub struct CaseResult {
     pub triangles: usize,
     /// Objects `auto` draws by the ray tracer (0: `auto` runs the same code as LRT).
     pub traced_objects: usize,
+    /// What `auto` weighed of each object in this frame (its triangles, layers and seen
+    /// pixels, `srt_gpu::auto::ObjectLoad`), objects without a ray tracer left out; empty in
+    /// files written before it was recorded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<ObjectLoadRecord>,
     /// The times and counts.
     #[serde(flatten)]
     pub measurement: Measurement,
+}
+
+/// An object's [`srt_gpu::auto::ObjectLoad`] as the results file keeps it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ObjectLoadRecord {
+    /// Its triangles.
+    pub triangles: u64,
+    /// Its surface over its box's.
+    pub layers: f64,
+    /// Layers of its box's footprints the ray tracer draws (2 from inside the box).
+    #[serde(default)]
+    pub box_layers: u32,
+    /// About how many pixels its bounding ball's image covers.
+    pub seen_pixels: f64,
+}
+
+impl From<srt_gpu::auto::ObjectLoad> for ObjectLoadRecord {
+    fn from(load: srt_gpu::auto::ObjectLoad) -> Self {
+        Self {
+            triangles: load.triangles,
+            layers: load.layers,
+            box_layers: load.box_layers,
+            seen_pixels: load.seen_pixels,
+        }
+    }
+}
+
+impl From<ObjectLoadRecord> for srt_gpu::auto::ObjectLoad {
+    fn from(record: ObjectLoadRecord) -> Self {
+        Self {
+            triangles: record.triangles,
+            layers: record.layers,
+            box_layers: record.box_layers,
+            seen_pixels: record.seen_pixels,
+        }
+    }
 }
 
 impl CaseResult {
@@ -428,6 +469,7 @@ pub mod tests {
             height: 720,
             triangles: 300,
             traced_objects: 0,
+            objects: Vec::new(),
             measurement,
         }
     }

@@ -2,8 +2,10 @@
 //! (sky, LRT or ray-tracer visibility, shading, or the polygon method), with timestamps.
 
 use super::*;
+use crate::auto::ObjectLoad;
 use crate::culling::{
-    ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view, ball_wide_bound,
+    ball_between_pixel_centres, ball_nearest_apparent_distance, ball_out_of_view, ball_seen_pixels,
+    ball_wide_bound,
 };
 use crate::motion::{MotionCode, MotionUniforms, sweep_bounds};
 use crate::shaders::ObjectVariant;
@@ -275,8 +277,8 @@ impl super::GpuRenderer {
 
     /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
     /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
-    /// [`Method::Polygon`] and [`Method::ImageBased`], and for [`Method::Auto`] those for which
-    /// [`ObjectRayTracing::preferred`] says so; every object in a wide projection (no
+    /// [`Method::Polygon`] and [`Method::ImageBased`], and for [`Method::Auto`] those the
+    /// adapter's [`crate::auto::MethodCosts`] expect cheaper traced this frame ([`Self::auto_traced`]); every object in a wide projection (no
     /// footprint of the pinhole serves it). A body that spins or thrusts in its rest frame
     /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
     /// triangles do not hold a moving body's image); the polygon method moves its vertices.
@@ -295,10 +297,16 @@ impl super::GpuRenderer {
         // A wide projection or a stereo pair is traced: footprints are drawn through one pinhole.
         let wide =
             scene.observer.projection != Projection::Perspective || scene.observer.stereo.is_some();
+        let auto_traced = if method == Method::Auto {
+            self.auto_traced(scene)
+        } else {
+            Vec::new()
+        };
         self.objects
             .iter()
             .zip(&scene.objects)
-            .map(|(object, seen)| {
+            .enumerate()
+            .map(|(index, (object, seen))| {
                 let moving = !seen.motion.is_rest();
                 let traced = moving || wide;
                 match (method, &object.ray_tracing) {
@@ -307,9 +315,68 @@ impl super::GpuRenderer {
                     (_, Ok(rt)) if traced => Ok(Some(rt)),
                     (Method::Rt, Err(error)) => Err(error.clone()),
                     (_, Err(error)) if traced => Err(error.clone()),
-                    (Method::Auto, Ok(rt)) => Ok(rt.preferred(self.auto_layers).then_some(rt)),
+                    (Method::Auto, Ok(rt)) => Ok(auto_traced[index].then_some(rt)),
                     _ => Ok(None),
                 }
+            })
+            .collect()
+    }
+
+    /// What `auto` weighs of each object this frame ([`ObjectLoad`]); `None` where there is no
+    /// choice: an object without a ray tracer (LRT draws it), one out of view (neither method
+    /// draws it, [`GpuRenderer::objects_in_view`]), a body that spins or thrusts in its rest
+    /// frame, every object of a wide projection or a stereo pair (all traced).
+    pub(super) fn loads(&self, scene: &Scene) -> Vec<Option<ObjectLoad>> {
+        self.choices(scene, |_, _| true)
+    }
+
+    /// Per object, whether `auto` traces it this frame ([`crate::auto::MethodCosts::traces`] on its
+    /// [`ObjectLoad`]); objects the costs send to LRT whatever they cover are not measured.
+    pub(super) fn auto_traced(&self, scene: &Scene) -> Vec<bool> {
+        let costs = &self.auto_costs;
+        self.choices(scene, |triangles, layers| {
+            !costs.lrt_whatever_seen(triangles, layers)
+        })
+        .iter()
+        .map(|load| load.is_some_and(|load| costs.traces(&load)))
+        .collect()
+    }
+
+    /// [`Self::loads`] for the objects whose triangles and layers `open` finds the choice open
+    /// for, `None` for the others.
+    fn choices(&self, scene: &Scene, open: impl Fn(u64, f64) -> bool) -> Vec<Option<ObjectLoad>> {
+        let (width, height) = self.picture_size();
+        let observer = &scene.observer;
+        let wide = observer.projection != Projection::Perspective || observer.stereo.is_some();
+        let shown = self.objects_in_view(scene);
+        self.objects
+            .iter()
+            .zip(&scene.objects)
+            .enumerate()
+            .map(|(index, (resources, object))| {
+                if wide || !object.motion.is_rest() || !shown.contains(&index) {
+                    return None;
+                }
+                let rt = resources.ray_tracing.as_ref().ok()?;
+                let triangles = object.triangle_count() as u64;
+                if !open(triangles, rt.layers()) {
+                    return None;
+                }
+                let (centre, radius) = object_ball(object, resources, observer.event());
+                let rest_position = object.frame.to_rest(observer.event()).position;
+                Some(ObjectLoad {
+                    triangles,
+                    layers: rt.layers(),
+                    box_layers: rt.box_layers(rest_position),
+                    seen_pixels: ball_seen_pixels(
+                        centre,
+                        radius,
+                        &object.frame,
+                        observer,
+                        width,
+                        height,
+                    ),
+                })
             })
             .collect()
     }

@@ -72,10 +72,9 @@ pub const SEEN_CHANNELS: [&str; 5] = [
 /// Which rendering method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
-    /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is faster
-    /// for it on this adapter (by the layers of its triangles, `ObjectRayTracing::preferred`,
-    /// and the adapter's kind, [`crate::ray_tracing::auto_layers`]); the two compose
-    /// through the depth test. A body that spins or thrusts in its rest frame is always traced,
+    /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is
+    /// expected faster for it in this frame on this adapter (by its triangles, their layers
+    /// and its seen pixels, [`crate::auto`]); the two compose through the depth test. A body that spins or thrusts in its rest frame is always traced,
     /// and so is every object in a wide projection (equirectangular, fisheye), which no
     /// footprint of the pinhole serves.
     #[default]
@@ -285,9 +284,9 @@ pub struct GpuRenderer {
     /// Whether the LRT draws take their vertex counts from the proxy pass
     /// ([`GpuContext::indirect_draws`]).
     indirect_draws: bool,
-    /// The layers above which `auto` traces a static object on this adapter
-    /// ([`crate::ray_tracing::auto_layers`]).
-    auto_layers: f64,
+    /// How `auto` weighs LRT against the ray tracer on this adapter
+    /// ([`crate::auto::MethodCosts::for_adapter`]).
+    auto_costs: crate::auto::MethodCosts,
     /// The part of a larger picture the target holds, if it holds a part
     /// ([`GpuRenderer::set_window`]).
     window: Option<ImageWindow>,
@@ -377,7 +376,7 @@ impl GpuRenderer {
             counter,
             count_fragments: false,
             indirect_draws: ctx.indirect_draws,
-            auto_layers: crate::ray_tracing::auto_layers(ctx.adapter_info.device_type),
+            auto_costs: crate::auto::MethodCosts::for_adapter(ctx.adapter_info.device_type),
             window: None,
             cube_map: std::sync::Mutex::new(None),
         };
@@ -400,29 +399,21 @@ impl GpuRenderer {
         self.count_fragments = counting;
     }
 
-    /// Per object, its surface over its box's surface (the layers of triangles `auto` weighs,
-    /// `ObjectRayTracing::preferred`), or `None` where it has no ray tracer.
+    /// Per object, what `auto` weighs of it in the frame `scene` shows
+    /// ([`crate::auto::ObjectLoad`]), or `None` where it has no choice to make (no ray tracer,
+    /// out of view, moving in its rest frame, a wide projection).
     #[must_use]
-    pub fn object_layers(&self) -> Vec<Option<f64>> {
-        self.objects
-            .iter()
-            .map(|o| o.ray_tracing.as_ref().ok().map(ObjectRayTracing::layers))
-            .collect()
+    pub fn object_loads(&self, scene: &Scene) -> Vec<Option<crate::auto::ObjectLoad>> {
+        self.loads(scene)
     }
 
-    /// How many objects `auto` traces through their BVH on this adapter because they are deep
-    /// (over [`crate::ray_tracing::auto_layers`]; moving bodies are traced by every exact method
-    /// and not counted here unless deep).
+    /// How many objects `auto` traces through their BVH in the frame `scene` shows because
+    /// the adapter's costs expect the ray tracer faster for them ([`crate::auto`]; moving
+    /// bodies and every object of a wide projection are traced by every exact method and not
+    /// counted here).
     #[must_use]
-    pub fn auto_traced_objects(&self) -> usize {
-        self.objects
-            .iter()
-            .filter(|o| {
-                o.ray_tracing
-                    .as_ref()
-                    .is_ok_and(|rt| rt.preferred(self.auto_layers))
-            })
-            .count()
+    pub fn auto_traced_objects(&self, scene: &Scene) -> usize {
+        self.auto_traced(scene).into_iter().filter(|&t| t).count()
     }
 
     /// Per object, how many batches its triangles were uploaded in (each drawn by its own
