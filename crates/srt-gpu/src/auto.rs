@@ -20,8 +20,8 @@
 //! choice to make (docs/measurements/2026-11-27-h200) for a hardware GPU and lavapipe's 76 for
 //! a CPU adapter, all but teaser@ct=−16.36, where RT was 5.5 % faster (the files with the
 //! loads, `fit.py` and how well each constant is pinned are in
-//! docs/measurements/2026-11-29-auto). `cargo xtask bench` records every line's loads, and the replay test in
-//! xtask (`bench::replay`) holds the rule to the committed lines.
+//! docs/measurements/2026-11-29-auto). `cargo xtask bench` records every line's loads, and the
+//! replay test in xtask (`bench::replay`) holds the rule to the committed lines.
 
 /// What `auto` weighs of one object in one frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,19 +51,19 @@ pub struct MethodCosts {
 }
 
 /// [`MethodCosts`] of a CPU adapter (Mesa's lavapipe and llvmpipe), fitted to lavapipe's 76
-/// bench lines with a choice of 2026-11-29 (two cores): its per-triangle work (proxy pass, footprint set-up
-/// and binning) is dear, and a fragment of a footprint costs about half a traced one, so an
-/// object is traced where its triangles lie in more than 2 layers or are many per pixel (the
-/// 1.9 M-triangle cube at 1280×720 but not at 1920×1080), or when few of its pixels are seen
-/// (an engine passing beside the camera).
+/// bench lines with a choice of 2026-11-29 (two cores): its per-triangle work (proxy pass,
+/// footprint set-up and binning) is dear, and a fragment of a footprint costs about half a
+/// traced one, so an object is traced where its triangles lie in more than 2 layers or are
+/// many per pixel (the 1.9 M-triangle cube at 1280×720 but not at 1920×1080), or when few of
+/// its pixels are seen (an engine passing beside the camera).
 pub const CPU_ADAPTER_COSTS: MethodCosts = MethodCosts {
     per_layer_pixel: 5.3,
     per_traced_pixel: 10.5,
     per_traced_object: 450.0,
 };
 
-/// [`MethodCosts`] of a hardware GPU, fitted to the 83 lines with a choice an NVIDIA H200 recorded on
-/// 2026-11-27 (single frames by GPU timestamps, LRT with the flat varyings of the time): a
+/// [`MethodCosts`] of a hardware GPU, fitted to the 83 lines with a choice an NVIDIA H200
+/// recorded on 2026-11-27 (single frames by GPU timestamps, LRT with the flat varyings of the time): a
 /// fragment costs little either way, so the choice turns on triangles per seen pixel, one to
 /// about 17 pixels or more tracing (the 2CylinderEngine traced at 1920×1080, drawn by LRT at
 /// 3840×2160). The lean varyings now used there ([`crate::pipelines::Varyings::Lean`]) have

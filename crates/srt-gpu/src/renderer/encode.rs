@@ -278,8 +278,9 @@ impl super::GpuRenderer {
     /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
     /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
     /// [`Method::Polygon`] and [`Method::ImageBased`], and for [`Method::Auto`] those the
-    /// adapter's [`crate::auto::MethodCosts`] expect cheaper traced this frame ([`Self::auto_traced`]); every object in a wide projection (no
-    /// footprint of the pinhole serves it). A body that spins or thrusts in its rest frame
+    /// adapter's [`crate::auto::MethodCosts`] expect cheaper traced this frame
+    /// ([`Self::auto_traced`]); every object in a wide projection (no footprint of the pinhole
+    /// serves it). A body that spins or thrusts in its rest frame
     /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
     /// triangles do not hold a moving body's image); the polygon method moves its vertices.
     ///
@@ -330,8 +331,9 @@ impl super::GpuRenderer {
         self.choices(scene, |_, _| true)
     }
 
-    /// Per object, whether `auto` traces it this frame ([`crate::auto::MethodCosts::traces`] on its
-    /// [`ObjectLoad`]); objects the costs send to LRT whatever they cover are not measured.
+    /// Per object, whether `auto` traces it this frame ([`crate::auto::MethodCosts::traces`]
+    /// on its [`ObjectLoad`]); objects the costs send to LRT whatever they cover are not
+    /// measured.
     pub(super) fn auto_traced(&self, scene: &Scene) -> Vec<bool> {
         let costs = &self.auto_costs;
         self.choices(scene, |triangles, layers| {
@@ -348,13 +350,16 @@ impl super::GpuRenderer {
         let (width, height) = self.picture_size();
         let observer = &scene.observer;
         let wide = observer.projection != Projection::Perspective || observer.stereo.is_some();
-        let shown = self.objects_in_view(scene);
+        let mut in_view = vec![false; self.objects.len()];
+        for index in self.objects_in_view(scene) {
+            in_view[index] = true;
+        }
         self.objects
             .iter()
             .zip(&scene.objects)
-            .enumerate()
-            .map(|(index, (resources, object))| {
-                if wide || !object.motion.is_rest() || !shown.contains(&index) {
+            .zip(in_view)
+            .map(|((resources, object), in_view)| {
+                if wide || !object.motion.is_rest() || !in_view {
                     return None;
                 }
                 let rt = resources.ray_tracing.as_ref().ok()?;

@@ -74,9 +74,9 @@ pub const SEEN_CHANNELS: [&str; 5] = [
 pub enum Method {
     /// Exact per pixel, each object by whichever of [`Method::Lrt`] and [`Method::Rt`] is
     /// expected faster for it in this frame on this adapter (by its triangles, their layers
-    /// and its seen pixels, [`crate::auto`]); the two compose through the depth test. A body that spins or thrusts in its rest frame is always traced,
-    /// and so is every object in a wide projection (equirectangular, fisheye), which no
-    /// footprint of the pinhole serves.
+    /// and its seen pixels, [`crate::auto`]); the two compose through the depth test. A body
+    /// that spins or thrusts in its rest frame is always traced, and so is every object in a
+    /// wide projection (equirectangular, fisheye), which no footprint of the pinhole serves.
     #[default]
     Auto,
     /// Local ray tracing (the paper's method, exact per pixel): one footprint per triangle. A
