@@ -186,7 +186,7 @@ impl super::GpuRenderer {
         shown: &[usize],
     ) -> Result<(), GpuError> {
         let tone = self.write_uniforms(ctx, scene, footprint, output)?;
-        let traced = self.traced_objects(scene, method)?;
+        let traced = self.traced_objects(scene, method, shown)?;
         if self.count_fragments {
             encoder.clear_buffer(&self.counter.counter, 0, None);
         }
@@ -278,8 +278,8 @@ impl super::GpuRenderer {
     /// Per object, its ray tracer if `method` traces it through its BVH (`None`: LRT, its
     /// footprints): every object for [`Method::Rt`], none for [`Method::Lrt`] and
     /// [`Method::Polygon`] and [`Method::ImageBased`], and for [`Method::Auto`] those the
-    /// adapter's [`crate::auto::MethodCosts`] expect cheaper traced this frame
-    /// ([`Self::auto_traced`]); every object in a wide projection (no footprint of the pinhole
+    /// adapter's [`crate::auto::MethodCosts`] expect cheaper traced this frame among those
+    /// `shown` ([`Self::auto_traced`]); every object in a wide projection (no footprint of the pinhole
     /// serves it). A body that spins or thrusts in its rest frame
     /// is traced by every exact method ([`Method::Lrt`] included: footprints of static
     /// triangles do not hold a moving body's image); the polygon method moves its vertices.
@@ -291,6 +291,7 @@ impl super::GpuRenderer {
         &self,
         scene: &Scene,
         method: Method,
+        shown: &[usize],
     ) -> Result<Vec<Option<&ObjectRayTracing>>, GpuError> {
         if let Some(why) = method.cannot_draw(scene) {
             return Err(GpuError::Unsupported(why));
@@ -299,7 +300,7 @@ impl super::GpuRenderer {
         let wide =
             scene.observer.projection != Projection::Perspective || scene.observer.stereo.is_some();
         let auto_traced = if method == Method::Auto {
-            self.auto_traced(scene)
+            self.auto_traced(scene, shown)
         } else {
             Vec::new()
         };
@@ -328,15 +329,16 @@ impl super::GpuRenderer {
     /// draws it, [`GpuRenderer::objects_in_view`]), a body that spins or thrusts in its rest
     /// frame, every object of a wide projection or a stereo pair (all traced).
     pub(super) fn loads(&self, scene: &Scene) -> Vec<Option<ObjectLoad>> {
-        self.choices(scene, |_, _| true)
+        self.choices(scene, &self.objects_in_view(scene), |_, _| true)
     }
 
     /// Per object, whether `auto` traces it this frame ([`crate::auto::MethodCosts::traces`]
-    /// on its [`ObjectLoad`]); objects the costs send to LRT whatever they cover are not
-    /// measured.
-    pub(super) fn auto_traced(&self, scene: &Scene) -> Vec<bool> {
+    /// on its [`ObjectLoad`]), of the objects `in_view` ([`GpuRenderer::objects_in_view`],
+    /// which the frame has already found); objects the costs send to LRT whatever they cover
+    /// are not measured.
+    pub(super) fn auto_traced(&self, scene: &Scene, in_view: &[usize]) -> Vec<bool> {
         let costs = &self.auto_costs;
-        self.choices(scene, |triangles, layers| {
+        self.choices(scene, in_view, |triangles, layers| {
             !costs.lrt_whatever_seen(triangles, layers)
         })
         .iter()
@@ -344,20 +346,25 @@ impl super::GpuRenderer {
         .collect()
     }
 
-    /// [`Self::loads`] for the objects whose triangles and layers `open` finds the choice open
-    /// for, `None` for the others.
-    fn choices(&self, scene: &Scene, open: impl Fn(u64, f64) -> bool) -> Vec<Option<ObjectLoad>> {
+    /// [`Self::loads`] for the objects `in_view` whose triangles and layers `open` finds the
+    /// choice open for, `None` for the others.
+    fn choices(
+        &self,
+        scene: &Scene,
+        in_view: &[usize],
+        open: impl Fn(u64, f64) -> bool,
+    ) -> Vec<Option<ObjectLoad>> {
         let (width, height) = self.picture_size();
         let observer = &scene.observer;
         let wide = observer.projection != Projection::Perspective || observer.stereo.is_some();
-        let mut in_view = vec![false; self.objects.len()];
-        for index in self.objects_in_view(scene) {
-            in_view[index] = true;
+        let mut viewed = vec![false; self.objects.len()];
+        for &index in in_view {
+            viewed[index] = true;
         }
         self.objects
             .iter()
             .zip(&scene.objects)
-            .zip(in_view)
+            .zip(viewed)
             .map(|((resources, object), in_view)| {
                 if wide || !object.motion.is_rest() || !in_view {
                     return None;

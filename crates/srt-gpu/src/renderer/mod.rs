@@ -413,7 +413,11 @@ impl GpuRenderer {
     /// counted here).
     #[must_use]
     pub fn auto_traced_objects(&self, scene: &Scene) -> usize {
-        self.auto_traced(scene).into_iter().filter(|&t| t).count()
+        let in_view = self.objects_in_view(scene);
+        self.auto_traced(scene, &in_view)
+            .into_iter()
+            .filter(|&t| t)
+            .count()
     }
 
     /// Per object, how many batches its triangles were uploaded in (each drawn by its own
