@@ -197,6 +197,20 @@ impl TemperatureLut {
         }
     }
 
+    /// The default table of `tone_map` ([`Self::with_defaults`]), built once per process:
+    /// about 7 ms each on the machine CI runs on, which the CPU tracer of every frame and every
+    /// GPU renderer would otherwise pay again.
+    #[must_use]
+    pub fn shared(tone_map: ToneMap) -> &'static Self {
+        static TABLES: [std::sync::OnceLock<TemperatureLut>; ToneMap::ALL.len()] =
+            [const { std::sync::OnceLock::new() }; ToneMap::ALL.len()];
+        let index = ToneMap::ALL
+            .iter()
+            .position(|&t| t == tone_map)
+            .unwrap_or_else(|| unreachable!("ToneMap::ALL holds every tone map"));
+        TABLES[index].get_or_init(|| Self::with_defaults(tone_map))
+    }
+
     /// The RGBA texels, texel 0 at `t_min`; alpha is always 1.
     #[must_use]
     pub fn texels(&self) -> &[[f32; 4]] {

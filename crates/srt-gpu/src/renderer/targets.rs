@@ -151,9 +151,9 @@ impl FrameResources {
         let mut params = Vec::new();
         let mut lut_views = Vec::new();
         for tone_map in ToneMap::ALL {
-            let lut = TemperatureLut::with_defaults(tone_map);
-            params.push(lut_params(&lut));
-            let view = lut_texture(ctx, &lut)?.create_view(&wgpu::TextureViewDescriptor::default());
+            let lut = TemperatureLut::shared(tone_map);
+            params.push(lut_params(lut));
+            let view = lut_texture(ctx, lut)?.create_view(&wgpu::TextureViewDescriptor::default());
             bind_groups.push(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(FRAME_GROUP.label),
                 layout: &pipelines.frame_layout,
