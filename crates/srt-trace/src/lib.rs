@@ -20,6 +20,7 @@
 pub mod clock;
 pub mod compare;
 mod intersect;
+mod measure;
 mod moving;
 mod prepared;
 mod render;
@@ -29,6 +30,7 @@ mod sky;
 mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
+pub use measure::{FrameMeasure, WARM_UP_ROWS};
 pub use render::{
     FrameCost, Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
     spread_rows,

@@ -11,6 +11,7 @@
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 use glam::{DVec2, DVec3, DVec4};
@@ -21,12 +22,13 @@ use srt_scene::{Scene, ViewRays};
 
 use crate::clock::clock_albedo;
 use crate::intersect::plane_hit;
+use crate::measure::FrameMeasure;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
 use crate::prepared::{MipChains, PreparedObject};
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
-use crate::sky::{sky_image_light, star_layer};
+use crate::sky::{StarLayer, sky_image_light, star_layer};
 use crate::texture::sample_trilinear;
 
 /// Image size and sampling.
@@ -90,8 +92,15 @@ pub struct Tracer<'a> {
     /// The objects' indices grouped by velocity: a ray's direction in S′ is computed once per
     /// group (the flythrough's columns and slabs all rest in the world frame).
     velocity_groups: Vec<Vec<usize>>,
-    lut: TemperatureLut,
+    lut: &'static TemperatureLut,
+    /// The stars' light on the last picture's size and output ([`star_layer`]): the same for
+    /// every band and every measure of a picture, and a few milliseconds for a sky of
+    /// thousands of stars.
+    stars: Mutex<Option<(StarsKey, Arc<StarLayer>)>>,
 }
+
+/// What a picture's star layer depends on besides the scene: its size and output.
+type StarsKey = (u32, u32, Output);
 
 impl<'a> Tracer<'a> {
     /// Prepares `scene` (builds one BVH per part, the mip chains and the colour table).
@@ -115,7 +124,8 @@ impl<'a> Tracer<'a> {
             scene,
             objects,
             velocity_groups,
-            lut: TemperatureLut::with_defaults(scene.tone_map),
+            lut: TemperatureLut::shared(scene.tone_map),
+            stars: Mutex::new(None),
         }
     }
 
@@ -127,8 +137,8 @@ impl<'a> Tracer<'a> {
 
     /// The colour table used for shading.
     #[must_use]
-    pub fn lut(&self) -> &TemperatureLut {
-        &self.lut
+    pub const fn lut(&self) -> &TemperatureLut {
+        self.lut
     }
 
     /// The closest surface seen along `view_direction` (in S) from the observation event.
@@ -193,7 +203,7 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn shade(&self, hit: &Hit, neighbour_directions: [DVec3; 2]) -> DVec3 {
         (self.light(hit, neighbour_directions))
-            .display(&self.lut, self.scene.exposure)
+            .display(self.lut, self.scene.exposure)
             .clamp(DVec3::ZERO, DVec3::ONE)
     }
 
@@ -306,7 +316,7 @@ impl<'a> Tracer<'a> {
             moving_lights: &self.scene.lights,
             shading: self.scene.shading,
             effects: self.scene.effects,
-            lut: &self.lut,
+            lut: self.lut,
             colour: self.scene.colour,
             exposure: self.scene.exposure,
         };
@@ -396,8 +406,21 @@ impl<'a> Tracer<'a> {
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> Option<RenderedImage> {
-        let rows: Vec<u32> = rows.collect();
-        self.render_rows(settings, &rows, progress, output, Some(stop), None)
+        self.render_band_reusing(settings, rows, output, progress, stop, None)
+    }
+
+    /// The stars' light on a picture of `key`'s size and output, each star's light made a
+    /// pixel value by `value` ([`star_layer`]), made once for successive calls of the same key.
+    fn stars_of(&self, key: StarsKey, value: &dyn Fn(&Arriving) -> DVec3) -> Arc<StarLayer> {
+        let mut kept = self.stars.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some((kept_key, stars)) = kept.as_ref()
+            && *kept_key == key
+        {
+            return Arc::clone(stars);
+        }
+        let stars = Arc::new(star_layer(self.scene, key.0, key.1, value));
+        *kept = Some((key, Arc::clone(&stars)));
+        stars
     }
 
     /// [`Tracer::render`] or [`Tracer::render_radiance`], as `output` says; `None` if `stop` was
@@ -410,60 +433,19 @@ impl<'a> Tracer<'a> {
         stop: Option<&AtomicBool>,
     ) -> Option<RenderedImage> {
         let rows: Vec<u32> = (0..settings.height).collect();
-        self.render_rows(settings, &rows, progress, output, stop, None)
+        self.render_listed_rows(settings, &rows, progress, output, stop, Rows::Traced)
     }
 
-    /// What a frame of `output` at `settings` costs on this machine, measured by rendering
-    /// `sample_rows` of its rows spread evenly over the image ([`spread_rows`]), after two rows
-    /// untimed, and a frame of no rows for the cost that does not grow with the rows: the
-    /// estimate `srt`'s `auto` weighs against a software GPU adapter. Each row is traced at
-    /// full width, its rays as coherent as in a whole frame, and timed by the thread that
-    /// traces it, so that what is measured is the rows' work and not the waking of rayon's
-    /// threads; the rows are traced twice and each counts its shorter time, so that a moment
-    /// in which the machine served another process is not taken for the frame's cost. A frame
-    /// spreads its rows over rayon's threads, and a row costs it that work over their number.
-    #[must_use]
-    pub fn measure_frame_cost(
-        &self,
-        settings: RenderSettings,
-        output: Output,
-        sample_rows: u32,
-    ) -> FrameCost {
-        let render = |rows: &[u32], work: Option<&[AtomicU64]>| {
-            let _ = self.render_rows(settings, rows, &|_| {}, output, None, work);
-        };
-        // The first rows of a process build shared tables and touch the BVHs' memory: costs a
-        // frame pays once, which would weigh on every estimated row.
-        render(&spread_rows(settings.height, 2), None);
-        let start = Instant::now();
-        render(&[], None);
-        let setup_seconds = start.elapsed().as_secs_f64();
-        let rows = spread_rows(settings.height, sample_rows);
-        let timed = || {
-            let work: Vec<AtomicU64> = rows.iter().map(|_| AtomicU64::new(0)).collect();
-            render(&rows, Some(&work));
-            work.into_iter().map(AtomicU64::into_inner)
-        };
-        let (first, second) = (timed(), timed());
-        let nanoseconds: u64 = first.zip(second).map(|(a, b)| a.min(b)).sum();
-        let threads = rayon::current_num_threads().max(1) as f64;
-        FrameCost {
-            setup_seconds,
-            row_seconds: nanoseconds as f64 * 1e-9 / rows.len().max(1) as f64 / threads,
-            rows: settings.height,
-        }
-    }
-
-    /// The rows `rows` (in the order given) of [`Tracer::render_as`]'s image; the nanoseconds
-    /// of work of the `i`-th row are added to `work[i]` when given.
-    fn render_rows(
+    /// The rows `rows` (in the order given) of [`Tracer::render_as`]'s image, traced or taken
+    /// as `how` says.
+    pub(crate) fn render_listed_rows(
         &self,
         settings: RenderSettings,
         rows: &[u32],
         progress: &(dyn Fn(u32) + Sync),
         output: Output,
         stop: Option<&AtomicBool>,
-        work: Option<&[AtomicU64]>,
+        how: Rows<'_>,
     ) -> Option<RenderedImage> {
         let RenderSettings {
             width,
@@ -476,11 +458,15 @@ impl<'a> Tracer<'a> {
         );
         let image_rays = ImageRays::new(self.scene, width, height);
         let offsets = sample_offsets(samples.max(1));
-        let table = RadianceTable::shared();
-        let scale = self.scene.radiance_scale(table);
-        let value = |light: &Arriving| match output {
-            Output::Display => light.display(&self.lut, self.scene.exposure),
-            Output::Radiance => light.radiance(table, &scale),
+        // The radiance table (built once per process, as long as the colour table) only for
+        // radiance: a display picture need not wait for it.
+        let radiance = (output == Output::Radiance).then(|| {
+            let table = RadianceTable::shared();
+            (table, self.scene.radiance_scale(table))
+        });
+        let value = |light: &Arriving| match &radiance {
+            None => light.display(self.lut, self.scene.exposure),
+            Some((table, scale)) => light.radiance(table, scale),
         };
         let background = match output {
             Output::Display => self.scene.background,
@@ -490,9 +476,20 @@ impl<'a> Tracer<'a> {
             Output::Display => colour.clamp(DVec3::ZERO, DVec3::ONE),
             Output::Radiance => colour,
         };
-        let stars = star_layer(self.scene, width, height, &value);
+        let stars = self.stars_of((width, height, output), &value);
         let band_height = rows.len() as u32;
+        let work = match how {
+            Rows::Timed(work) => Some(work),
+            Rows::Traced | Rows::Reusing(_) => None,
+        };
+        let known = match how {
+            Rows::Reusing(measure) => Some(measure),
+            Rows::Traced | Rows::Timed(_) => None,
+        };
         let rows = rows_in_parallel(rows, progress, stop, work, |y| {
+            if let Some((pixels, coverage)) = known.and_then(|measure| measure.row(y)) {
+                return (pixels.to_vec(), coverage.to_vec());
+            }
             let mut colours = Vec::with_capacity(width as usize);
             let mut coverage = Vec::with_capacity(width as usize);
             for x in 0..width {
@@ -602,10 +599,11 @@ impl Tracer<'_> {
     }
 }
 
-/// What a frame of the CPU tracer costs ([`Tracer::measure_frame_cost`]).
+/// What a frame of the CPU tracer costs ([`Tracer::measure_frame`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameCost {
-    /// Seconds a frame takes whatever its rows (the rays' basis, the stars' light).
+    /// Seconds a frame takes whatever its rows (the rays' basis; the stars' light is made once
+    /// per picture size and kept by the tracer).
     pub setup_seconds: f64,
     /// Seconds a row takes on average, every thread at work.
     pub row_seconds: f64,
@@ -634,7 +632,8 @@ pub fn spread_rows(height: u32, count: u32) -> Vec<u32> {
 
 /// Runs `row` for every row of `rows` on rayon's threads and returns them in order; `progress`
 /// hears the number of finished rows, and `work[i]` (when given) gains the `i`-th row's
-/// nanoseconds. `None` once `stop` is set: rows not yet begun are skipped.
+/// nanoseconds of work ([`WorkClock`]). `None` once `stop` is set: rows not yet begun are
+/// skipped.
 fn rows_in_parallel<T: Send>(
     rows: &[u32],
     progress: &(dyn Fn(u32) + Sync),
@@ -650,17 +649,62 @@ fn rows_in_parallel<T: Send>(
             if stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {
                 return None;
             }
-            let start = work.map(|_| Instant::now());
+            let start = work.map(|_| WorkClock::start());
             let done = row(y);
             if let (Some(work), Some(start)) = (work, start) {
-                let nanoseconds = u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX);
-                work[index].fetch_add(nanoseconds, Ordering::Relaxed);
+                work[index].fetch_add(start.nanoseconds(), Ordering::Relaxed);
             }
             progress(finished.fetch_add(1, Ordering::Relaxed) + 1);
             Some(done)
         })
         .collect();
     rows.into_iter().collect()
+}
+
+/// How [`Tracer::render_listed_rows`] comes by its rows.
+#[derive(Clone, Copy)]
+pub(crate) enum Rows<'r> {
+    /// Every row traced.
+    Traced,
+    /// Every row traced, the nanoseconds of work of the `i`-th row added to the `i`-th counter
+    /// ([`WorkClock`]).
+    Timed(&'r [AtomicU64]),
+    /// The rows the measure holds taken from it (the same pixels, bit for bit, as every row is
+    /// traced alike), the others traced.
+    Reusing(&'r FrameMeasure),
+}
+
+/// The work a thread has done since [`WorkClock::start`]: its CPU time where the system keeps
+/// one (a moment in which another process held the core is not counted, a scheduler's tick of
+/// 4 ms that would add half as much again to a measured picture of 0.2 s), its wall time
+/// elsewhere.
+enum WorkClock {
+    /// The thread's CPU time at the start.
+    #[cfg(not(target_arch = "wasm32"))]
+    Cpu(cpu_time::ThreadTime),
+    /// The wall time at the start.
+    Wall(Instant),
+}
+
+impl WorkClock {
+    /// Starts counting the current thread's work.
+    fn start() -> Self {
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Ok(time) = cpu_time::ThreadTime::try_now() {
+            return Self::Cpu(time);
+        }
+        Self::Wall(Instant::now())
+    }
+
+    /// Nanoseconds of work since the start (on the thread that started it).
+    fn nanoseconds(&self) -> u64 {
+        let elapsed = match self {
+            #[cfg(not(target_arch = "wasm32"))]
+            Self::Cpu(time) => time.try_elapsed().unwrap_or_default(),
+            Self::Wall(start) => start.elapsed(),
+        };
+        u64::try_from(elapsed.as_nanos()).unwrap_or(u64::MAX)
+    }
 }
 
 /// The viewing directions (in S, unnormalised) through the points of a `width` × `height`
@@ -779,7 +823,14 @@ mod tests {
         let whole = tracer.render(settings, &|_| {});
         let rows = [17, 3, 11];
         let apart = tracer
-            .render_rows(settings, &rows, &|_| {}, Output::Display, None, None)
+            .render_listed_rows(
+                settings,
+                &rows,
+                &|_| {},
+                Output::Display,
+                None,
+                Rows::Traced,
+            )
             .unwrap();
         assert_eq!(apart.height, 3);
         for (band_row, &row) in rows.iter().enumerate() {
@@ -790,12 +841,6 @@ mod tests {
                 "row {row}"
             );
         }
-        let cost = tracer.measure_frame_cost(settings, Output::Display, 4);
-        assert_eq!(cost.rows, 24);
-        assert!(
-            cost.setup_seconds >= 0.0 && cost.row_seconds > 0.0,
-            "{cost:?}"
-        );
     }
 
     /// The probe's rows are distinct, in order, inside the image, and as many as asked for

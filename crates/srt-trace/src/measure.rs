@@ -1,0 +1,317 @@
+//! What a frame of the CPU tracer costs on this machine, measured on a few of its rows
+//! ([`Tracer::measure_frame`]): the estimate `srt`'s `auto` weighs against a software GPU
+//! adapter. The rows measured are rows of the frame, traced as the frame traces them, so a
+//! render that follows takes them from the measure instead of tracing them again
+//! ([`Tracer::render_band_reusing`]).
+
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, AtomicU64};
+use std::time::Instant;
+
+use glam::DVec3;
+
+use crate::render::{FrameCost, Output, RenderSettings, RenderedImage, Rows, Tracer, spread_rows};
+
+/// Rows traced untimed before a measure: the first rows of a process build shared tables and
+/// touch the BVHs' memory, costs a frame pays once, which would weigh on every estimated row.
+pub const WARM_UP_ROWS: u32 = 2;
+
+/// A frame's cost measured on some of its rows, with those rows' pixels.
+#[derive(Debug, Clone)]
+pub struct FrameMeasure {
+    /// The frame's size and samples.
+    settings: RenderSettings,
+    /// What the rows hold.
+    output: Output,
+    /// Seconds a frame of no rows took.
+    setup_seconds: f64,
+    /// The timed rows, in order.
+    timed_rows: Vec<u32>,
+    /// Each timed row's shortest time over the passes, in nanoseconds of its thread's work.
+    row_nanoseconds: Vec<u64>,
+    /// How many times the timed rows were traced.
+    passes: u32,
+    /// Every row traced (warm-up and timed), ascending, without repeats.
+    rows: Vec<u32>,
+    /// Those rows' pixels, in the same order (`height` is their number).
+    image: RenderedImage,
+}
+
+impl FrameMeasure {
+    /// The frame's estimated cost: the setup, and every row at the timed rows' mean, the work
+    /// of one row spread over rayon's threads as a frame spreads it.
+    #[must_use]
+    pub fn cost(&self) -> FrameCost {
+        let nanoseconds: u64 = self.row_nanoseconds.iter().sum();
+        let threads = rayon::current_num_threads().max(1) as f64;
+        FrameCost {
+            setup_seconds: self.setup_seconds,
+            row_seconds: nanoseconds as f64 * 1e-9 / self.timed_rows.len().max(1) as f64 / threads,
+            rows: self.settings.height,
+        }
+    }
+
+    /// How many times the timed rows have been traced (1 after [`Tracer::measure_frame`], one
+    /// more for each [`Tracer::measure_again`]).
+    #[must_use]
+    pub const fn passes(&self) -> u32 {
+        self.passes
+    }
+
+    /// The size and samples of the frame measured.
+    #[must_use]
+    pub const fn settings(&self) -> RenderSettings {
+        self.settings
+    }
+
+    /// The rows whose pixels the measure holds, ascending.
+    #[must_use]
+    pub fn rows(&self) -> &[u32] {
+        &self.rows
+    }
+
+    /// The pixels of row `row` of the frame, if the measure traced it.
+    #[must_use]
+    pub fn row_pixels(&self, row: u32) -> Option<&[DVec3]> {
+        self.row(row).map(|(pixels, _)| pixels)
+    }
+
+    /// The pixels and coverage of row `row` of the frame, if the measure traced it.
+    pub(crate) fn row(&self, row: u32) -> Option<(&[DVec3], &[u32])> {
+        let index = self.rows.binary_search(&row).ok()?;
+        let width = self.image.width as usize;
+        Some((
+            &self.image.pixels[index * width..][..width],
+            &self.image.coverage[index * width..][..width],
+        ))
+    }
+
+    /// Whether a render of `output` at `settings` is the frame measured (its rows can be
+    /// taken from the measure).
+    fn serves(&self, settings: RenderSettings, output: Output) -> bool {
+        self.settings == settings && self.output == output
+    }
+}
+
+impl Tracer<'_> {
+    /// Measures what a frame of `output` at `settings` costs on this machine: `sample_rows`
+    /// of its rows spread evenly over the image ([`spread_rows`]) are traced once, timed,
+    /// after [`WARM_UP_ROWS`] rows untimed (which also make the picture's star layer, kept by
+    /// the tracer for the render), and a frame of no rows gives the cost that does not grow
+    /// with the rows. Each row is traced at full width, its rays as coherent as in a whole
+    /// frame, and timed by the thread that traces it, so that what is measured is the rows'
+    /// work and not the waking of rayon's threads. A moment in which the machine served
+    /// another process can only lengthen a row; [`Tracer::measure_again`] traces the rows again
+    /// where that would matter.
+    #[must_use]
+    pub fn measure_frame(
+        &self,
+        settings: RenderSettings,
+        output: Output,
+        sample_rows: u32,
+    ) -> FrameMeasure {
+        let warm_up = spread_rows(settings.height, WARM_UP_ROWS);
+        let warm_pixels = self.rows_of(settings, &warm_up, output, Rows::Traced);
+        let start = Instant::now();
+        let _ = self.rows_of(settings, &[], output, Rows::Traced);
+        let setup_seconds = start.elapsed().as_secs_f64();
+        let timed_rows = spread_rows(settings.height, sample_rows);
+        let (timed_pixels, row_nanoseconds) = self.timed(settings, &timed_rows, output);
+        // Every row traced, ascending (a warm-up row that is also timed, once).
+        let width = settings.width as usize;
+        let mut traced: Vec<(u32, &RenderedImage, usize)> = (warm_up.iter().enumerate())
+            .map(|(index, &row)| (row, &warm_pixels, index))
+            .chain((timed_rows.iter().enumerate()).map(|(index, &row)| (row, &timed_pixels, index)))
+            .collect();
+        traced.sort_by_key(|&(row, _, _)| row);
+        traced.dedup_by_key(|&mut (row, _, _)| row);
+        let image = RenderedImage {
+            width: settings.width,
+            height: traced.len() as u32,
+            pixels: (traced.iter())
+                .flat_map(|&(_, image, index)| &image.pixels[index * width..][..width])
+                .copied()
+                .collect(),
+            coverage: (traced.iter())
+                .flat_map(|&(_, image, index)| &image.coverage[index * width..][..width])
+                .copied()
+                .collect(),
+        };
+        let rows = traced.iter().map(|&(row, _, _)| row).collect();
+        FrameMeasure {
+            settings,
+            output,
+            setup_seconds,
+            timed_rows,
+            row_nanoseconds,
+            passes: 1,
+            rows,
+            image,
+        }
+    }
+
+    /// Traces `measure`'s timed rows once more; each row keeps its shorter time, so that a
+    /// moment in which the machine served another process is not taken for the frame's cost.
+    pub fn measure_again(&self, measure: &mut FrameMeasure) {
+        let (_, again) = self.timed(measure.settings, &measure.timed_rows, measure.output);
+        for (kept, new) in measure.row_nanoseconds.iter_mut().zip(again) {
+            *kept = (*kept).min(new);
+        }
+        measure.passes += 1;
+    }
+
+    /// [`Tracer::render_band`], taking the rows `known` traced when it measured this frame
+    /// ([`Tracer::measure_frame`] at the same settings and output) instead of tracing them
+    /// again: the same pixels, bit for bit, as every row is traced alike.
+    ///
+    /// # Panics
+    /// If `rows` reaches past the image's height.
+    #[must_use]
+    pub fn render_band_reusing(
+        &self,
+        settings: RenderSettings,
+        rows: Range<u32>,
+        output: Output,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+        known: Option<&FrameMeasure>,
+    ) -> Option<RenderedImage> {
+        let rows: Vec<u32> = rows.collect();
+        let how = match known.filter(|measure| measure.serves(settings, output)) {
+            Some(measure) => Rows::Reusing(measure),
+            None => Rows::Traced,
+        };
+        self.render_listed_rows(settings, &rows, progress, output, Some(stop), how)
+    }
+
+    /// The rows `rows` of a frame, traced timed: their pixels and each row's nanoseconds of its
+    /// thread's work.
+    fn timed(
+        &self,
+        settings: RenderSettings,
+        rows: &[u32],
+        output: Output,
+    ) -> (RenderedImage, Vec<u64>) {
+        let work: Vec<AtomicU64> = rows.iter().map(|_| AtomicU64::new(0)).collect();
+        let image = self.rows_of(settings, rows, output, Rows::Timed(&work));
+        (image, work.into_iter().map(AtomicU64::into_inner).collect())
+    }
+
+    /// The rows `rows` of a frame, traced as `how` says.
+    fn rows_of(
+        &self,
+        settings: RenderSettings,
+        rows: &[u32],
+        output: Output,
+        how: Rows<'_>,
+    ) -> RenderedImage {
+        self.render_listed_rows(settings, rows, &|_| {}, output, None, how)
+            .unwrap_or_else(|| unreachable!("rows without a stop flag are all traced"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The teaser at a small size, for the measure's tests.
+    fn teaser() -> srt_scene::Scene {
+        srt_scene::builtin::find_builtin("teaser")
+            .unwrap()
+            .build()
+            .unwrap()
+            .0
+    }
+
+    /// A measure holds its rows' pixels as the frame has them, its estimate grows with the
+    /// rows' work, another pass never raises a row's time, and a render that reuses the
+    /// measure's rows equals one that traces every row, bit for bit, for every band.
+    #[test]
+    fn a_measure_holds_the_frames_rows_and_a_render_reuses_them() {
+        let scene = teaser();
+        let tracer = Tracer::new(&scene);
+        let settings = RenderSettings {
+            width: 40,
+            height: 24,
+            samples: 2,
+        };
+        let whole = tracer.render(settings, &|_| {});
+        let mut measure = tracer.measure_frame(settings, Output::Display, 4);
+        assert_eq!(measure.passes(), 1);
+        assert_eq!(measure.rows(), [3, 6, 9, 15, 18, 21]);
+        for &row in measure.rows() {
+            let start = row as usize * 40;
+            assert_eq!(
+                measure.row_pixels(row).unwrap(),
+                &whole.pixels[start..][..40],
+                "row {row}"
+            );
+        }
+        assert!(measure.row_pixels(4).is_none());
+        let first = measure.cost();
+        assert_eq!(first.rows, 24);
+        assert!(
+            first.setup_seconds >= 0.0 && first.row_seconds > 0.0,
+            "{first:?}"
+        );
+        tracer.measure_again(&mut measure);
+        assert_eq!(measure.passes(), 2);
+        assert!(measure.cost().row_seconds <= first.row_seconds);
+        let never = AtomicBool::new(false);
+        for band in [0..24, 0..7, 5..19, 21..24] {
+            let heard = AtomicU64::new(0);
+            let progress = |done: u32| {
+                heard.fetch_max(u64::from(done), std::sync::atomic::Ordering::Relaxed);
+            };
+            let reused = tracer
+                .render_band_reusing(
+                    settings,
+                    band.clone(),
+                    Output::Display,
+                    &progress,
+                    &never,
+                    Some(&measure),
+                )
+                .unwrap();
+            let traced = tracer
+                .render_band(settings, band.clone(), Output::Display, &|_| {}, &never)
+                .unwrap();
+            assert_eq!(reused, traced, "rows {band:?}");
+            assert_eq!(heard.into_inner(), band.len() as u64, "rows {band:?}");
+        }
+    }
+
+    /// The measure's rows are taken, not traced again: a measure whose pixels were changed
+    /// shows through, and only for the frame it measured (other settings or output trace
+    /// every row).
+    #[test]
+    fn a_render_takes_the_measured_rows_and_only_for_the_same_frame() {
+        let scene = teaser();
+        let tracer = Tracer::new(&scene);
+        let settings = RenderSettings {
+            width: 16,
+            height: 12,
+            samples: 1,
+        };
+        let mut measure = tracer.measure_frame(settings, Output::Display, 3);
+        let marker = DVec3::new(-7.0, -7.0, -7.0);
+        measure.image.pixels.fill(marker);
+        let never = AtomicBool::new(false);
+        let render = |settings, output| {
+            tracer
+                .render_band_reusing(settings, 0..12, output, &|_| {}, &never, Some(&measure))
+                .unwrap()
+        };
+        let reused = render(settings, Output::Display);
+        for row in 0..12 {
+            let marked = reused.pixels[row * 16..][..16].iter().all(|&p| p == marker);
+            assert_eq!(marked, measure.rows().contains(&(row as u32)), "row {row}");
+        }
+        let other = RenderSettings {
+            samples: 2,
+            ..settings
+        };
+        assert!(!render(other, Output::Display).pixels.contains(&marker));
+        assert!(!render(settings, Output::Radiance).pixels.contains(&marker));
+    }
+}
