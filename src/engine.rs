@@ -3,7 +3,7 @@
 //! the output size. One piece of code, so that the command and every other front end produce the same
 //! pixels for the same arguments.
 
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 use std::ops::Range;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -16,11 +16,11 @@ use srt_gpu::renderer::check_per_pixel_resources;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method, SoftwareApi};
 
 use crate::software::{
-    CpuCost, Estimates, Job, MEASURED_WHILE_OPENING, SceneSize, SoftwareCosts, gpu_possible,
+    CpuCost, Job, MEASURED_WHILE_OPENING, PROBE_ROWS, SceneSize, SoftwareCosts, gpu_possible, weigh,
 };
 use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
 use srt_scene::{Projection, Scene};
-use srt_trace::{Output, RenderSettings, SeenEvent, Tracer};
+use srt_trace::{FrameMeasure, Output, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
@@ -64,12 +64,16 @@ srt_scene::choice!(Backend, "backend", {
 
 /// One frame's scene, with the exact CPU tracer (its BVHs, textures and tables) built at most
 /// once for every layer of the frame that needs it: the CPU engine's display colours, the
-/// radiance and the time channels.
+/// radiance and the time channels; and `auto`'s measure of the CPU's cost, whose rows the
+/// CPU's picture takes instead of tracing them again.
 pub struct Frame<'a> {
     /// The scene at the frame's time, in the frame's view.
     scene: &'a Scene,
     /// The tracer, built on first use.
     tracer: OnceCell<Tracer<'a>>,
+    /// The CPU's cost measured on a few rows of the picture ([`Frame::measure_cpu`]), with the
+    /// seconds its tracer took to build.
+    measure: RefCell<Option<(f64, FrameMeasure)>>,
 }
 
 impl<'a> Frame<'a> {
@@ -79,6 +83,7 @@ impl<'a> Frame<'a> {
         Self {
             scene,
             tracer: OnceCell::new(),
+            measure: RefCell::new(None),
         }
     }
 
@@ -93,12 +98,34 @@ impl<'a> Frame<'a> {
         self.tracer.get_or_init(|| Tracer::new(self.scene))
     }
 
-    /// The CPU's cost of a picture of this frame at `settings` ([`CpuCost::measure`]), its
-    /// tracer built (and kept) first.
+    /// The CPU's cost of a display picture of this frame at `settings`, measured once on
+    /// [`PROBE_ROWS`] of its rows ([`Tracer::measure_frame`]), its tracer built (and kept)
+    /// first; the rows are kept for the picture.
     pub fn measure_cpu(&self, settings: RenderSettings) -> CpuCost {
         let start = Instant::now();
         let tracer = self.tracer();
-        CpuCost::measure(tracer, start.elapsed().as_secs_f64(), settings)
+        let build_seconds = start.elapsed().as_secs_f64();
+        let measure = tracer.measure_frame(settings, Output::Display, PROBE_ROWS);
+        let cost = CpuCost::of(build_seconds, &measure);
+        *self.measure.borrow_mut() = Some((build_seconds, measure));
+        cost
+    }
+
+    /// The CPU's cost measured once more ([`Tracer::measure_again`]) on the rows of the last
+    /// [`Frame::measure_cpu`], which must have been called; a measure of two passes already is
+    /// not repeated.
+    ///
+    /// # Panics
+    /// If the CPU was not measured.
+    pub fn measure_cpu_again(&self) -> CpuCost {
+        let mut kept = self.measure.borrow_mut();
+        let (build_seconds, measure) = kept
+            .as_mut()
+            .expect("the CPU is measured again only after a first measure");
+        if measure.passes() < 2 {
+            self.tracer().measure_again(measure);
+        }
+        CpuCost::of(*build_seconds, measure)
     }
 }
 
@@ -172,9 +199,13 @@ impl Engine {
         let mut measured = None;
         if weighs && !gpu_possible() {
             // Only a software rasteriser can open: the CPU need not wait for one to know.
-            let cost = frame.measure_cpu(settings);
-            let at_best =
-                Estimates::new(job, SceneSize::of(scene), &cost, &SoftwareCosts::CHEAPEST);
+            let (cost, at_best) = weigh(
+                job,
+                SceneSize::of(scene),
+                frame.measure_cpu(settings),
+                &SoftwareCosts::CHEAPEST,
+                || frame.measure_cpu_again(),
+            );
             if at_best.cpu_is_faster() {
                 return cpu(Some(format!(
                     "auto renders on the CPU: about {:.2} s ({}), against at least {:.2} s on a \
@@ -234,7 +265,13 @@ impl Engine {
         method: Method,
     ) -> anyhow::Result<Chosen> {
         let (settings, scene) = (job.settings, frame.scene());
-        let estimates = Estimates::new(job, SceneSize::of(scene), cost, &SoftwareCosts::of(api));
+        let (cost, estimates) = weigh(
+            job,
+            SceneSize::of(scene),
+            *cost,
+            &SoftwareCosts::of(api),
+            || frame.measure_cpu_again(),
+        );
         let adapter = format!("{} ({api:?})", context.adapter_info.name);
         if estimates.cpu_is_faster() {
             return Ok(Chosen {
@@ -428,10 +465,14 @@ impl Engine {
     ) -> anyhow::Result<Option<Vec<DVec3>>> {
         let scene = frame.scene();
         Ok(match self {
-            Self::Cpu => frame
-                .tracer()
-                .render_band(settings, rows, output, progress, stop)
-                .map(|image| image.pixels),
+            Self::Cpu => {
+                let measure = frame.measure.borrow();
+                let known = measure.as_ref().map(|(_, measure)| measure);
+                frame
+                    .tracer()
+                    .render_band_reusing(settings, rows, output, progress, stop, known)
+                    .map(|image| image.pixels)
+            }
             Self::Gpu {
                 context,
                 renderer,
