@@ -16,11 +16,11 @@ use srt_gpu::renderer::check_per_pixel_resources;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method, SoftwareApi};
 
 use crate::software::{
-    CpuCost, Job, MEASURED_WHILE_OPENING, PROBE_ROWS, SceneSize, SoftwareCosts, gpu_possible, weigh,
+    CpuCost, Job, MEASURED_WHILE_OPENING, SceneSize, SoftwareCosts, gpu_possible, weigh,
 };
 use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
 use srt_scene::{Projection, Scene};
-use srt_trace::{FrameMeasure, Output, RenderSettings, SeenEvent, Tracer};
+use srt_trace::{FrameMeasure, Output, PROBE_ROWS, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 16384;

@@ -16,10 +16,6 @@ use srt_gpu::SoftwareApi;
 use srt_scene::Scene;
 use srt_trace::{FrameCost, FrameMeasure, RenderSettings};
 
-/// Rows of the first frame the CPU's cost is measured on: about 2 % of a 720-row picture's
-/// work, kept in the picture when the CPU renders it.
-pub const PROBE_ROWS: u32 = 16;
-
 /// How far ahead of the CPU a first measure may put a software adapter and still be measured
 /// again ([`weigh`]): a moment in which the machine served another process can only lengthen
 /// the CPU's rows, and such moments lengthened a picture's estimate by up to half on the
@@ -245,10 +241,12 @@ mod tests {
     use super::*;
 
     /// The whole-process measurements the constants were fitted to (collect.py and fit.py
-    /// beside them), and a second collection made with the constants in place.
-    const MEASURED: [&str; 2] = [
+    /// beside them), a second collection made with the constants in place, and a third with
+    /// the CPU measured once by its threads' CPU time and its rows kept.
+    const MEASURED: [&str; 3] = [
         include_str!("../docs/measurements/2026-11-29-software/fitted.tsv"),
         include_str!("../docs/measurements/2026-11-29-software/checked.tsv"),
+        include_str!("../docs/measurements/2026-11-29-software/checked-measure-once.tsv"),
     ];
 
     /// Two whole-process times closer than this (relative) are a tie: runs of the same

@@ -12,6 +12,13 @@ use glam::DVec3;
 
 use crate::render::{FrameCost, Output, RenderSettings, RenderedImage, Rows, Tracer, spread_rows};
 
+/// Rows of a frame its cost is measured on, by `srt`'s `auto` and the viewer's: about 2 % of a
+/// 720-row picture's work, kept in the picture when the CPU then draws it. Fewer miss more:
+/// 8 rows put the teaser's 1280 × 720 picture up to 18 % low and Fig. 10's 200-square cube up
+/// to 30 % high, where 16 rows stayed within 11 % on the five scenes tried (performance-log.md,
+/// 2026-11-29, fourth entry).
+pub const PROBE_ROWS: u32 = 16;
+
 /// Rows traced untimed before a measure: the first rows of a process build shared tables and
 /// touch the BVHs' memory, costs a frame pays once, which would weigh on every estimated row.
 pub const WARM_UP_ROWS: u32 = 2;
