@@ -14,6 +14,8 @@
 //! - [`probe`]: what one pixel shows, computed exactly by the CPU reference tracer;
 //! - [`view`]: rendering panes (seen, measured or Newtonian; side by side) into textures the UI
 //!   shows;
+//! - [`exact_path`]: whether an exact pane is drawn by the GPU or by the CPU tracer (on a
+//!   software adapter, the faster of the two);
 //! - [`app`]: the panel, the status line and the input handling ([`ViewerApp`]);
 //! - [`run`]: opens the window (eframe on winit, egui drawn with egui-wgpu on the same wgpu
 //!   device the scene is rendered with).
@@ -24,6 +26,7 @@
 pub mod app;
 pub mod camera;
 pub mod edit;
+pub mod exact_path;
 pub mod pilot;
 pub mod probe;
 pub mod record;
@@ -36,6 +39,7 @@ use srt_gpu::GpuContext;
 
 pub use app::{Level, Status, ViewerApp};
 pub use edit::open_arguments;
+pub use exact_path::ExactPath;
 pub use srt_scene::edit::{EditError, Editor, parse_speed};
 pub use view::{Pane, ViewMethod};
 

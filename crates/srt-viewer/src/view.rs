@@ -10,11 +10,17 @@
 //! one has contracted meshes of its own ([`UploadKey`]); a queue submission between panes keeps
 //! their uniforms apart.
 
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
 use eframe::egui;
 use eframe::egui_wgpu;
 use srt_gpu::display::DisplayPass;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_scene::{Scene, View};
+use srt_trace::{FrameMeasure, Output, PROBE_ROWS, RenderSettings, Tracer};
+
+use crate::exact_path::{DrawnBy, ExactPath, PaneTimes};
 
 /// Format of the textures egui shows.
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -197,7 +203,8 @@ impl Display {
             format: DISPLAY_FORMAT,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
@@ -221,6 +228,21 @@ pub struct SceneView {
     /// registered.
     spare_ids: Vec<egui::TextureId>,
     triangles: usize,
+    /// Who draws the exact panes.
+    exact_path: ExactPath,
+    /// Whether the adapter is a software rasteriser, where [`ExactPath::Auto`] weighs the CPU.
+    software: bool,
+    /// Per pane, what its frame times were measured for (its size, meshes and method) and the
+    /// times ([`crate::exact_path`]).
+    times: Vec<(PaneKey, PaneTimes)>,
+}
+
+/// What a pane's frame times hold for: a pane of another size, meshes or method starts again.
+#[derive(Debug, Clone, PartialEq)]
+struct PaneKey {
+    size: (u32, u32),
+    key: UploadKey,
+    method: Method,
 }
 
 impl SceneView {
@@ -233,7 +255,33 @@ impl SceneView {
             displays: Vec::new(),
             spare_ids: Vec::new(),
             triangles: 0,
+            exact_path: ExactPath::default(),
+            software: ctx.software_api().is_some(),
+            times: Vec::new(),
         }
+    }
+
+    /// Who draws the exact panes from the next frame on.
+    pub fn set_exact_path(&mut self, path: ExactPath) {
+        self.exact_path = path;
+    }
+
+    /// Who draws the exact panes.
+    #[must_use]
+    pub const fn exact_path(&self) -> ExactPath {
+        self.exact_path
+    }
+
+    /// Where [`ExactPath::Auto`] weighs the CPU against a software adapter: which path drew the
+    /// first exact pane's last frame, and both paths' running frame times in seconds where
+    /// known; `None` where it does not weigh (a hardware GPU, or a path chosen in the panel).
+    #[must_use]
+    pub fn exact_report(&self) -> Option<(DrawnBy, Option<f64>, Option<f64>)> {
+        (self.exact_path == ExactPath::Auto && self.software).then_some(())?;
+        self.times.iter().find_map(|(key, times)| {
+            let (last, gpu, cpu) = times.report();
+            (key.method == Method::Auto).then_some((last?, gpu, cpu))
+        })
     }
 
     /// Uploads `scene` (the seen view) unless the scene of structure `version` is already
@@ -327,30 +375,87 @@ impl SceneView {
                 }
             }
             let renderer_index = self.ensure(ctx, pane.scene, pane.key)?;
-            let renderer = &mut self.renderers[renderer_index].1;
-            renderer.resize(ctx, each.0, each.1)?;
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("srt-viewer frame"),
-                });
-            renderer.encode(
-                ctx,
-                &mut encoder,
-                pane.scene,
-                pane.method,
-                FootprintShape::Hull,
-            )?;
-            self.display_pass.encode(
-                &ctx.device,
-                &mut encoder,
-                renderer.color_texture(),
-                &self.displays[index].view,
-                None,
-                true,
-            );
-            ctx.queue.submit([encoder.finish()]);
+            let exact = pane.method == Method::Auto;
+            let weighing = exact && self.exact_path == ExactPath::Auto && self.software;
+            let forced_cpu = exact && self.exact_path == ExactPath::Cpu;
+            let pane_key = PaneKey {
+                size: each,
+                key: pane.key.clone(),
+                method: pane.method,
+            };
+            if self
+                .times
+                .get(index)
+                .is_none_or(|(key, _)| *key != pane_key)
+            {
+                self.times.truncate(index);
+                self.times.push((pane_key, PaneTimes::default()));
+            }
+            let times = &mut self.times[index].1;
+            let settings = RenderSettings {
+                width: each.0,
+                height: each.1,
+                samples: 1,
+            };
+            let now = Instant::now();
+            let measured = (weighing && times.wants_cpu_measure(now)).then(|| {
+                let tracer = Tracer::new(pane.scene);
+                let measure = tracer.measure_frame(settings, Output::Display, PROBE_ROWS);
+                times.measured_cpu(now.elapsed().as_secs_f64(), Instant::now());
+                (tracer, measure)
+            });
+            let by = if forced_cpu || (weighing && times.next(Instant::now()) == DrawnBy::Cpu) {
+                DrawnBy::Cpu
+            } else {
+                DrawnBy::Gpu
+            };
+            // A CPU frame after a measure counts it: the frame took the measure's tracer and rows.
+            let start = if by == DrawnBy::Cpu && measured.is_some() {
+                now
+            } else {
+                Instant::now()
+            };
+            match by {
+                DrawnBy::Cpu => {
+                    let display = &self.displays[index];
+                    draw_on_cpu(ctx, pane.scene, settings, measured, &display.texture);
+                }
+                DrawnBy::Gpu => {
+                    let renderer = &mut self.renderers[renderer_index].1;
+                    renderer.resize(ctx, each.0, each.1)?;
+                    let mut encoder =
+                        ctx.device
+                            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                                label: Some("srt-viewer frame"),
+                            });
+                    renderer.encode(
+                        ctx,
+                        &mut encoder,
+                        pane.scene,
+                        pane.method,
+                        FootprintShape::Hull,
+                    )?;
+                    self.display_pass.encode(
+                        &ctx.device,
+                        &mut encoder,
+                        renderer.color_texture(),
+                        &self.displays[index].view,
+                        None,
+                        true,
+                    );
+                    ctx.queue.submit([encoder.finish()]);
+                    if weighing {
+                        // Timed to its end, as a CPU frame is.
+                        ctx.wait()?;
+                    }
+                }
+            }
+            if weighing {
+                let times = &mut self.times[index].1;
+                times.drawn(by, start.elapsed().as_secs_f64(), Instant::now());
+            }
         }
+        self.times.truncate(panes.len());
         if let Some(egui_renderer) = egui_renderer {
             for display in &mut self.displays {
                 match display.id {
@@ -416,6 +521,55 @@ impl SceneView {
         ctx.take_errors()?;
         Ok(image)
     }
+}
+
+/// Draws `scene` at `settings` with srt's CPU tracer into the display `texture` (its 8-bit
+/// display colours, as `srt render --backend cpu` writes them), taking the rows of `measured`
+/// (a tracer of this scene and its measure of this picture) where given.
+fn draw_on_cpu(
+    ctx: &GpuContext,
+    scene: &Scene,
+    settings: RenderSettings,
+    measured: Option<(Tracer<'_>, FrameMeasure)>,
+    texture: &wgpu::Texture,
+) {
+    let (tracer, measure) = match measured {
+        Some((tracer, measure)) => (tracer, Some(measure)),
+        None => (Tracer::new(scene), None),
+    };
+    let never = AtomicBool::new(false);
+    let image = tracer
+        .render_band_reusing(
+            settings,
+            0..settings.height,
+            Output::Display,
+            &|_| {},
+            &never,
+            measure.as_ref(),
+        )
+        .unwrap_or_else(|| unreachable!("a render that is never stopped finishes"));
+    let bytes: Vec<u8> = (image.to_rgb8().into_iter())
+        .flat_map(|[r, g, b]| [r, g, b, u8::MAX])
+        .collect();
+    ctx.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        &bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * settings.width),
+            rows_per_image: Some(settings.height),
+        },
+        wgpu::Extent3d {
+            width: settings.width,
+            height: settings.height,
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 #[cfg(test)]

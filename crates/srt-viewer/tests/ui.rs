@@ -14,6 +14,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use srt_gpu::GpuContext;
 use srt_scene::{Effects, View};
+use srt_viewer::exact_path::{DrawnBy, ExactPath};
 use srt_viewer::view::DISPLAY_FORMAT;
 use srt_viewer::{Level, ViewerApp};
 
@@ -536,5 +537,70 @@ fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
     assert_eq!(decoded, frames);
     assert!(changed, "the objects move while the video plays");
     assert!(!harness.state().is_recording());
+    harness.state().take_gpu_errors().expect("no GPU errors");
+}
+
+/// The exact picture drawn by the CPU tracer is the CPU reference's, byte for byte, and agrees
+/// with the GPU's but at silhouettes; with "the faster", a software adapter's viewer times both
+/// paths and draws by the faster (a hardware GPU always draws).
+#[test]
+fn the_exact_picture_is_drawn_by_the_cpu_tracer_or_the_gpu_whichever_is_faster() {
+    let Some(ctx) = srt_gpu::context_or_skip("viewer_exact_path") else {
+        return;
+    };
+    let software = ctx.software_api().is_some();
+    let mut harness = harness(app("fig7", Some(ctx)));
+    harness.state_mut().set_exact_path(ExactPath::Gpu);
+    harness.run_steps(2);
+    let gpu = image(&harness);
+    assert_eq!(harness.state().exact_report(), None);
+    harness.state_mut().set_exact_path(ExactPath::Cpu);
+    harness.run_steps(2);
+    let cpu = image(&harness);
+    let (width, height) = cpu.dimensions();
+    let scene = harness.state().editor().scene();
+    let settings = srt_trace::RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    let reference = srt_trace::Tracer::new(scene).render(settings, &|_| {});
+    let reference: Vec<u8> = (reference.to_rgb8().into_iter())
+        .flat_map(|[r, g, b]| [r, g, b, u8::MAX])
+        .collect();
+    assert!(
+        cpu.as_raw() == &reference,
+        "the CPU pane is the CPU reference"
+    );
+    let apart = changed_pixels(&gpu, &cpu);
+    assert!(
+        apart < (width * height / 100) as usize,
+        "{apart} of {width}×{height} pixels apart"
+    );
+    assert!(changed_pixels(&gpu, &image::RgbaImage::new(width, height)) > 1000);
+
+    // "The faster": the GPU's frames are timed, then the CPU is measured, and the faster by
+    // the margin draws.
+    for _ in 0..2 {
+        harness.state_mut().set_exact_path(ExactPath::Auto);
+        harness.run_steps(2);
+    }
+    if !software {
+        assert_eq!(harness.state().exact_report(), None);
+        return;
+    }
+    let (drawn_by, gpu_seconds, cpu_seconds) = harness.state().exact_report().expect("weighed");
+    let (gpu_seconds, cpu_seconds) = (
+        gpu_seconds.expect("the GPU timed"),
+        cpu_seconds.expect("the CPU measured"),
+    );
+    let times = format!("GPU {gpu_seconds} s, CPU {cpu_seconds} s");
+    if cpu_seconds < 0.5 * gpu_seconds {
+        assert_eq!(drawn_by, DrawnBy::Cpu, "{times}");
+    } else if cpu_seconds > 2.0 * gpu_seconds {
+        assert_eq!(drawn_by, DrawnBy::Gpu, "{times}");
+    }
+    let shown = image(&harness);
+    assert!(changed_pixels(&shown, &cpu) < (width * height / 100) as usize);
     harness.state().take_gpu_errors().expect("no GPU errors");
 }

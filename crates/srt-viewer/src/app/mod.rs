@@ -21,6 +21,7 @@ use srt_gpu::GpuContext;
 use srt_scene::{Observer, View};
 
 use crate::camera::{self};
+use crate::exact_path::{DrawnBy, ExactPath};
 use crate::pilot::{DEFAULT_ACCELERATION, Engine, Flight};
 use crate::probe::Probe;
 use crate::record::{FRAME_RATES, Recorder};
@@ -227,6 +228,31 @@ impl ViewerApp {
         self.left_view = left;
         self.right_view = right;
         self.needs_render = true;
+    }
+
+    /// Who draws the exact panes ([`ExactPath`]) from the next frame on; nothing without a GPU
+    /// (there is no pane to draw into).
+    pub fn set_exact_path(&mut self, path: ExactPath) {
+        if let Some(gpu) = &mut self.gpu {
+            gpu.view.set_exact_path(path);
+            self.needs_render = true;
+        }
+    }
+
+    /// Who draws the exact panes.
+    #[must_use]
+    pub fn exact_path(&self) -> ExactPath {
+        self.gpu
+            .as_ref()
+            .map_or(ExactPath::default(), |gpu| gpu.view.exact_path())
+    }
+
+    /// Where the viewer weighs the CPU tracer against a software adapter: the path that drew
+    /// the first exact pane's last frame and both paths' frame times in seconds where known
+    /// ([`SceneView::exact_report`](crate::view::SceneView::exact_report)).
+    #[must_use]
+    pub fn exact_report(&self) -> Option<(DrawnBy, Option<f64>, Option<f64>)> {
+        self.gpu.as_ref()?.view.exact_report()
     }
 
     /// The flight in progress, if any.

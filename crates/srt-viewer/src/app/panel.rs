@@ -9,6 +9,7 @@ use srt_color::ToneMap;
 use srt_scene::{Effects, SurfaceColour, View};
 
 use super::{Level, ViewerApp};
+use crate::exact_path::{DrawnBy, ExactPath};
 use crate::view::{ViewMethod, view_label};
 
 impl ViewerApp {
@@ -88,6 +89,23 @@ impl ViewerApp {
         ));
         if self.frame_ms > 0.0 {
             ui.label(format!("last frame rendered in {:.0} ms", self.frame_ms));
+        }
+        if let Some((path, gpu, cpu)) = self.exact_report() {
+            let ms = |seconds: Option<f64>| {
+                seconds.map_or_else(
+                    || "not yet timed".to_owned(),
+                    |s| format!("{:.0} ms", s * 1e3),
+                )
+            };
+            let by = match path {
+                DrawnBy::Gpu => "the GPU",
+                DrawnBy::Cpu => "the CPU tracer",
+            };
+            ui.label(format!(
+                "exact picture drawn by {by} (a frame: GPU {}, CPU {})",
+                ms(gpu),
+                ms(cpu)
+            ));
         }
         ui.label(RichText::new(format!("GPU: {}", self.adapter())).small());
     }
@@ -243,6 +261,25 @@ impl ViewerApp {
                 .changed()
             {
                 self.needs_render = true;
+            }
+        }
+        if self.gpu.is_some() {
+            let before = self.exact_path();
+            let mut chosen = before;
+            egui::ComboBox::from_label("exact picture drawn by")
+                .selected_text(chosen.label())
+                .show_ui(ui, |ui| {
+                    for path in ExactPath::ALL {
+                        ui.selectable_value(&mut chosen, path, path.label());
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "on a software adapter (lavapipe, llvmpipe) srt's CPU tracer can draw a frame \
+                     sooner than the adapter: \"the faster\" times both and draws by the faster",
+                );
+            if chosen != before {
+                self.set_exact_path(chosen);
             }
         }
         let name = |r: f32| match r {
