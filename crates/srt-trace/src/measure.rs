@@ -230,9 +230,11 @@ mod tests {
             .0
     }
 
-    /// A measure holds its rows' pixels as the frame has them, its estimate grows with the
-    /// rows' work, another pass never raises a row's time, and a render that reuses the
-    /// measure's rows equals one that traces every row, bit for bit, for every band.
+    /// Rows traced by themselves, in any order, are those rows of the whole image bit for bit
+    /// (what a measure times is what a frame does); a measure holds its rows' pixels as the
+    /// frame has them, its estimate grows with the rows' work, another pass never raises a
+    /// row's time, and a render that reuses the measure's rows equals one that traces every
+    /// row, bit for bit, for every band.
     #[test]
     fn a_measure_holds_the_frames_rows_and_a_render_reuses_them() {
         let scene = teaser();
@@ -243,14 +245,33 @@ mod tests {
             samples: 2,
         };
         let whole = tracer.render(settings, &|_| {});
+        let row_of_whole = |row: u32| &whole.pixels[row as usize * 40..][..40];
+        let rows = [17, 3, 11];
+        let apart = tracer
+            .render_listed_rows(
+                settings,
+                &rows,
+                &|_| {},
+                Output::Display,
+                None,
+                Rows::Traced,
+            )
+            .unwrap();
+        assert_eq!(apart.height, 3);
+        for (band_row, &row) in rows.iter().enumerate() {
+            assert_eq!(
+                &apart.pixels[band_row * 40..][..40],
+                row_of_whole(row),
+                "row {row}"
+            );
+        }
         let mut measure = tracer.measure_frame(settings, Output::Display, 4);
         assert_eq!(measure.passes(), 1);
         assert_eq!(measure.rows(), [3, 6, 9, 15, 18, 21]);
         for &row in measure.rows() {
-            let start = row as usize * 40;
             assert_eq!(
                 measure.row_pixels(row).unwrap(),
-                &whole.pixels[start..][..40],
+                row_of_whole(row),
                 "row {row}"
             );
         }

@@ -806,43 +806,6 @@ mod tests {
         assert!(tracer.hit_at_pixel(0, 0, 0, 0).is_none());
     }
 
-    /// Rows rendered by themselves, in any order, are those rows of the whole image bit for
-    /// bit: what the cost probe times is what a frame does.
-    #[test]
-    fn rows_apart_are_the_whole_images_rows() {
-        let (scene, _) = srt_scene::builtin::find_builtin("teaser")
-            .unwrap()
-            .build()
-            .unwrap();
-        let tracer = Tracer::new(&scene);
-        let settings = RenderSettings {
-            width: 40,
-            height: 24,
-            samples: 2,
-        };
-        let whole = tracer.render(settings, &|_| {});
-        let rows = [17, 3, 11];
-        let apart = tracer
-            .render_listed_rows(
-                settings,
-                &rows,
-                &|_| {},
-                Output::Display,
-                None,
-                Rows::Traced,
-            )
-            .unwrap();
-        assert_eq!(apart.height, 3);
-        for (band_row, &row) in rows.iter().enumerate() {
-            let (start, width) = (row as usize * 40, 40);
-            assert_eq!(
-                apart.pixels[band_row * width..][..width],
-                whole.pixels[start..][..width],
-                "row {row}"
-            );
-        }
-    }
-
     /// The probe's rows are distinct, in order, inside the image, and as many as asked for
     /// (all of them when more are asked for than there are), one in each equal band.
     #[test]
