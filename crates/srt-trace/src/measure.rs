@@ -10,7 +10,9 @@ use std::time::Instant;
 
 use glam::DVec3;
 
-use crate::render::{FrameCost, Output, RenderSettings, RenderedImage, Rows, Tracer, spread_rows};
+use crate::render::{
+    FrameCost, KnownRows, Output, RenderSettings, RenderedImage, Rows, Tracer, spread_rows,
+};
 
 /// Rows of a frame its cost is measured on, by `srt`'s `auto` and the viewer's: about 2 % of a
 /// 720-row picture's work, kept in the picture when the CPU then draws it. Fewer miss more:
@@ -80,17 +82,15 @@ impl FrameMeasure {
     /// The pixels of row `row` of the frame, if the measure traced it.
     #[must_use]
     pub fn row_pixels(&self, row: u32) -> Option<&[DVec3]> {
-        self.row(row).map(|(pixels, _)| pixels)
+        self.known().row(row).map(|(pixels, _)| pixels)
     }
 
-    /// The pixels and coverage of row `row` of the frame, if the measure traced it.
-    pub(crate) fn row(&self, row: u32) -> Option<(&[DVec3], &[u32])> {
-        let index = self.rows.binary_search(&row).ok()?;
-        let width = self.image.width as usize;
-        Some((
-            &self.image.pixels[index * width..][..width],
-            &self.image.coverage[index * width..][..width],
-        ))
+    /// The rows the measure traced, as a render takes them.
+    fn known(&self) -> KnownRows<'_> {
+        KnownRows {
+            rows: &self.rows,
+            image: &self.image,
+        }
     }
 
     /// Whether a render of `output` at `settings` is the frame measured (its rows can be
@@ -185,7 +185,7 @@ impl Tracer<'_> {
     ) -> Option<RenderedImage> {
         let rows: Vec<u32> = rows.collect();
         let how = match known.filter(|measure| measure.serves(settings, output)) {
-            Some(measure) => Rows::Reusing(measure),
+            Some(measure) => Rows::Reusing(measure.known()),
             None => Rows::Traced,
         };
         self.render_listed_rows(settings, &rows, progress, output, Some(stop), how)

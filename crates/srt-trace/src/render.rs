@@ -22,7 +22,6 @@ use srt_scene::{Scene, ViewRays};
 
 use crate::clock::clock_albedo;
 use crate::intersect::plane_hit;
-use crate::measure::FrameMeasure;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
 use crate::prepared::{MipChains, PreparedObject};
@@ -483,11 +482,11 @@ impl<'a> Tracer<'a> {
             Rows::Traced | Rows::Reusing(_) => None,
         };
         let known = match how {
-            Rows::Reusing(measure) => Some(measure),
+            Rows::Reusing(known) => Some(known),
             Rows::Traced | Rows::Timed(_) => None,
         };
         let rows = rows_in_parallel(rows, progress, stop, work, |y| {
-            if let Some((pixels, coverage)) = known.and_then(|measure| measure.row(y)) {
+            if let Some((pixels, coverage)) = known.and_then(|known| known.row(y)) {
                 return (pixels.to_vec(), coverage.to_vec());
             }
             let mut colours = Vec::with_capacity(width as usize);
@@ -669,9 +668,31 @@ pub(crate) enum Rows<'r> {
     /// Every row traced, the nanoseconds of work of the `i`-th row added to the `i`-th counter
     /// ([`WorkClock`]).
     Timed(&'r [AtomicU64]),
-    /// The rows the measure holds taken from it (the same pixels, bit for bit, as every row is
+    /// The rows already traced taken from them (the same pixels, bit for bit, as every row is
     /// traced alike), the others traced.
-    Reusing(&'r FrameMeasure),
+    Reusing(KnownRows<'r>),
+}
+
+/// Rows of a picture already traced (a measure's, [`crate::FrameMeasure`]): their indices,
+/// ascending, and their pixels in that order.
+#[derive(Clone, Copy)]
+pub(crate) struct KnownRows<'r> {
+    /// The rows, ascending, without repeats.
+    pub(crate) rows: &'r [u32],
+    /// Their pixels and coverage, a row of the picture each.
+    pub(crate) image: &'r RenderedImage,
+}
+
+impl<'r> KnownRows<'r> {
+    /// The pixels and coverage of row `row` of the picture, if it is known.
+    pub(crate) fn row(self, row: u32) -> Option<(&'r [DVec3], &'r [u32])> {
+        let index = self.rows.binary_search(&row).ok()?;
+        let width = self.image.width as usize;
+        Some((
+            &self.image.pixels[index * width..][..width],
+            &self.image.coverage[index * width..][..width],
+        ))
+    }
 }
 
 /// The work a thread has done since [`WorkClock::start`]: its CPU time where the system keeps
