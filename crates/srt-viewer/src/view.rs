@@ -375,85 +375,7 @@ impl SceneView {
                 }
             }
             let renderer_index = self.ensure(ctx, pane.scene, pane.key)?;
-            let exact = pane.method == Method::Auto;
-            let weighing = exact && self.exact_path == ExactPath::Auto && self.software;
-            let forced_cpu = exact && self.exact_path == ExactPath::Cpu;
-            let pane_key = PaneKey {
-                size: each,
-                key: pane.key.clone(),
-                method: pane.method,
-            };
-            if self
-                .times
-                .get(index)
-                .is_none_or(|(key, _)| *key != pane_key)
-            {
-                self.times.truncate(index);
-                self.times.push((pane_key, PaneTimes::default()));
-            }
-            let times = &mut self.times[index].1;
-            let settings = RenderSettings {
-                width: each.0,
-                height: each.1,
-                samples: 1,
-            };
-            let now = Instant::now();
-            let measured = (weighing && times.wants_cpu_measure(now)).then(|| {
-                let tracer = Tracer::new(pane.scene);
-                let measure = tracer.measure_frame(settings, Output::Display, PROBE_ROWS);
-                times.measured_cpu(now.elapsed().as_secs_f64(), Instant::now());
-                (tracer, measure)
-            });
-            let by = if forced_cpu || (weighing && times.next(Instant::now()) == DrawnBy::Cpu) {
-                DrawnBy::Cpu
-            } else {
-                DrawnBy::Gpu
-            };
-            // A CPU frame after a measure counts it: the frame took the measure's tracer and rows.
-            let start = if by == DrawnBy::Cpu && measured.is_some() {
-                now
-            } else {
-                Instant::now()
-            };
-            match by {
-                DrawnBy::Cpu => {
-                    let display = &self.displays[index];
-                    draw_on_cpu(ctx, pane.scene, settings, measured, &display.texture);
-                }
-                DrawnBy::Gpu => {
-                    let renderer = &mut self.renderers[renderer_index].1;
-                    renderer.resize(ctx, each.0, each.1)?;
-                    let mut encoder =
-                        ctx.device
-                            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                                label: Some("srt-viewer frame"),
-                            });
-                    renderer.encode(
-                        ctx,
-                        &mut encoder,
-                        pane.scene,
-                        pane.method,
-                        FootprintShape::Hull,
-                    )?;
-                    self.display_pass.encode(
-                        &ctx.device,
-                        &mut encoder,
-                        renderer.color_texture(),
-                        &self.displays[index].view,
-                        None,
-                        true,
-                    );
-                    ctx.queue.submit([encoder.finish()]);
-                    if weighing {
-                        // Timed to its end, as a CPU frame is.
-                        ctx.wait()?;
-                    }
-                }
-            }
-            if weighing {
-                let times = &mut self.times[index].1;
-                times.drawn(by, start.elapsed().as_secs_f64(), Instant::now());
-            }
+            self.draw_pane(ctx, index, pane, each, renderer_index)?;
         }
         self.times.truncate(panes.len());
         if let Some(egui_renderer) = egui_renderer {
@@ -479,6 +401,102 @@ impl SceneView {
             }
         }
         ctx.take_errors()
+    }
+
+    /// Draws pane `index`, `pane` at `each` pixels, into its display: by the GPU renderer of
+    /// index `renderer_index`, or by the CPU tracer where [`ExactPath`] says so (on a software
+    /// adapter under [`ExactPath::Auto`], the faster of the two by the pane's [`PaneTimes`]).
+    ///
+    /// # Errors
+    /// [`GpuError`] when the GPU's frame fails.
+    fn draw_pane(
+        &mut self,
+        ctx: &GpuContext,
+        index: usize,
+        pane: &PaneScene<'_>,
+        each: (u32, u32),
+        renderer_index: usize,
+    ) -> Result<(), GpuError> {
+        let exact = pane.method == Method::Auto;
+        let weighing = exact && self.exact_path == ExactPath::Auto && self.software;
+        let forced_cpu = exact && self.exact_path == ExactPath::Cpu;
+        let pane_key = PaneKey {
+            size: each,
+            key: pane.key.clone(),
+            method: pane.method,
+        };
+        if self
+            .times
+            .get(index)
+            .is_none_or(|(key, _)| *key != pane_key)
+        {
+            self.times.truncate(index);
+            self.times.push((pane_key, PaneTimes::default()));
+        }
+        let times = &mut self.times[index].1;
+        let settings = RenderSettings {
+            width: each.0,
+            height: each.1,
+            samples: 1,
+        };
+        let now = Instant::now();
+        let measured = (weighing && times.wants_cpu_measure(now)).then(|| {
+            let tracer = Tracer::new(pane.scene);
+            let measure = tracer.measure_frame(settings, Output::Display, PROBE_ROWS);
+            times.measured_cpu(now.elapsed().as_secs_f64(), Instant::now());
+            (tracer, measure)
+        });
+        let by = if forced_cpu || (weighing && times.next(Instant::now()) == DrawnBy::Cpu) {
+            DrawnBy::Cpu
+        } else {
+            DrawnBy::Gpu
+        };
+        // A CPU frame after a measure counts it: the frame took the measure's tracer and rows.
+        let start = if by == DrawnBy::Cpu && measured.is_some() {
+            now
+        } else {
+            Instant::now()
+        };
+        match by {
+            DrawnBy::Cpu => {
+                let display = &self.displays[index];
+                draw_on_cpu(ctx, pane.scene, settings, measured, &display.texture);
+            }
+            DrawnBy::Gpu => {
+                let renderer = &mut self.renderers[renderer_index].1;
+                renderer.resize(ctx, each.0, each.1)?;
+                let mut encoder =
+                    ctx.device
+                        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                            label: Some("srt-viewer frame"),
+                        });
+                renderer.encode(
+                    ctx,
+                    &mut encoder,
+                    pane.scene,
+                    pane.method,
+                    FootprintShape::Hull,
+                )?;
+                self.display_pass.encode(
+                    &ctx.device,
+                    &mut encoder,
+                    renderer.color_texture(),
+                    &self.displays[index].view,
+                    None,
+                    true,
+                );
+                ctx.queue.submit([encoder.finish()]);
+                if weighing {
+                    // Timed to its end, as a CPU frame is.
+                    ctx.wait()?;
+                }
+            }
+        }
+        if weighing {
+            let times = &mut self.times[index].1;
+            times.drawn(by, start.elapsed().as_secs_f64(), Instant::now());
+        }
+        Ok(())
     }
 
     /// The registered textures with their sizes in pixels, left to right.
