@@ -44,6 +44,7 @@ pub mod context;
 pub mod culling;
 pub mod display;
 pub mod error;
+pub mod exact_path;
 pub mod formats;
 pub mod limits;
 pub mod lut;

@@ -30,7 +30,7 @@ mod sky;
 mod texture;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
-pub use measure::{FrameMeasure, PROBE_ROWS, WARM_UP_ROWS};
+pub use measure::{FrameMeasure, MeasuredPicture, PROBE_ROWS, WARM_UP_ROWS, measure_picture};
 pub use render::{
     FrameCost, Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
     spread_rows,

@@ -4,11 +4,11 @@
 //! render that follows takes them from the measure instead of tracing them again
 //! ([`Tracer::render_band_reusing`]).
 
+use glam::DVec3;
+use srt_scene::Scene;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64};
-use std::time::Instant;
-
-use glam::DVec3;
+use web_time::Instant;
 
 use crate::render::{
     FrameCost, KnownRows, Output, RenderSettings, RenderedImage, Rows, Tracer, spread_rows,
@@ -97,6 +97,34 @@ impl FrameMeasure {
     /// taken from the measure).
     fn serves(&self, settings: RenderSettings, output: Output) -> bool {
         self.settings == settings && self.output == output
+    }
+}
+
+/// A tracer built for a scene and its display picture measured ([`measure_picture`]): what the
+/// viewer and the web page weigh against a software GPU adapter's frame.
+pub struct MeasuredPicture<'a> {
+    /// The scene's tracer, to draw the picture with.
+    pub tracer: Tracer<'a>,
+    /// The picture's rows measured, kept for a render that follows.
+    pub measure: FrameMeasure,
+    /// The picture's estimated seconds: the tracer's build and the frame ([`FrameMeasure::cost`]).
+    pub seconds: f64,
+}
+
+/// Builds `scene`'s tracer and measures its display picture at `settings` on [`PROBE_ROWS`]
+/// rows: the CPU's cost of a frame drawn from scratch, the tracer's build timed on the wall
+/// clock (natively the standard library's, in a browser `performance.now()`).
+#[must_use]
+pub fn measure_picture(scene: &Scene, settings: RenderSettings) -> MeasuredPicture<'_> {
+    let start = Instant::now();
+    let tracer = Tracer::new(scene);
+    let build_seconds = start.elapsed().as_secs_f64();
+    let measure = tracer.measure_frame(settings, Output::Display, PROBE_ROWS);
+    let seconds = build_seconds + measure.cost().seconds();
+    MeasuredPicture {
+        tracer,
+        measure,
+        seconds,
     }
 }
 
@@ -307,6 +335,34 @@ mod tests {
             assert_eq!(reused, traced, "rows {band:?}");
             assert_eq!(heard.into_inner(), band.len() as u64, "rows {band:?}");
         }
+    }
+
+    /// A picture measured from scratch holds its tracer and its rows at the settings asked,
+    /// and its seconds are the frame's estimate plus the tracer's build (never less than the
+    /// frame's own estimate).
+    #[test]
+    fn a_picture_measured_from_scratch_counts_its_tracers_build() {
+        let scene = teaser();
+        let settings = RenderSettings {
+            width: 64,
+            height: 36,
+            samples: 1,
+        };
+        let measured = measure_picture(&scene, settings);
+        assert_eq!(measured.measure.settings(), settings);
+        assert_eq!(measured.measure.passes(), 1);
+        let frame = measured.measure.cost().seconds();
+        assert!(
+            frame > 0.0 && measured.seconds >= frame && measured.seconds.is_finite(),
+            "{} against {frame}",
+            measured.seconds
+        );
+        let whole = measured.tracer.render(settings, &|_| {});
+        let row = measured.measure.rows()[1];
+        assert_eq!(
+            measured.measure.row_pixels(row).unwrap(),
+            &whole.pixels[row as usize * 64..][..64]
+        );
     }
 
     /// The measure's rows are taken, not traced again: a measure whose pixels were changed

@@ -12,13 +12,13 @@
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
-use std::time::Instant;
 
 use glam::{DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
 use srt_physics::{Event, RestRay, RetardedLight, doppler_factor};
 use srt_scene::{Scene, ViewRays};
+use web_time::Instant;
 
 use crate::clock::clock_albedo;
 use crate::intersect::plane_hit;

@@ -18,7 +18,7 @@ use eframe::egui_wgpu;
 use srt_gpu::display::DisplayPass;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
 use srt_scene::{Scene, View};
-use srt_trace::{FrameMeasure, Output, PROBE_ROWS, RenderSettings, Tracer};
+use srt_trace::{MeasuredPicture, Output, RenderSettings, Tracer, measure_picture};
 
 use crate::exact_path::{DrawnBy, ExactPath, PaneTimes};
 
@@ -441,10 +441,9 @@ impl SceneView {
         };
         let now = Instant::now();
         let measured = (weighing && times.wants_cpu_measure(now)).then(|| {
-            let tracer = Tracer::new(pane.scene);
-            let measure = tracer.measure_frame(settings, Output::Display, PROBE_ROWS);
-            times.measured_cpu(now.elapsed().as_secs_f64(), Instant::now());
-            (tracer, measure)
+            let measured = measure_picture(pane.scene, settings);
+            times.measured_cpu(measured.seconds, Instant::now());
+            measured
         });
         let by = if forced_cpu || (weighing && times.next(Instant::now()) == DrawnBy::Cpu) {
             DrawnBy::Cpu
@@ -548,11 +547,13 @@ fn draw_on_cpu(
     ctx: &GpuContext,
     scene: &Scene,
     settings: RenderSettings,
-    measured: Option<(Tracer<'_>, FrameMeasure)>,
+    measured: Option<MeasuredPicture<'_>>,
     texture: &wgpu::Texture,
 ) {
     let (tracer, measure) = match measured {
-        Some((tracer, measure)) => (tracer, Some(measure)),
+        Some(MeasuredPicture {
+            tracer, measure, ..
+        }) => (tracer, Some(measure)),
         None => (Tracer::new(scene), None),
     };
     let never = AtomicBool::new(false);
