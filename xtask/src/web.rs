@@ -291,6 +291,7 @@ pub fn test(workspace: &Path, root: &Path) -> anyhow::Result<()> {
             }
         }
     }
+    failures.extend(check_the_faster_draws(&mut browser, &address, &out)?);
     failures.extend(check_controls(&mut browser, &address, &out)?);
     failures.extend(check_model_drop(&mut browser, &address, &out)?);
     if !failures.is_empty() {
@@ -341,8 +342,70 @@ fn check_picture(
     }))
 }
 
+/// `backend=auto` on a software adapter draws by the faster of WebGPU and the CPU tracer
+/// (srt-gpu's `exact_path`): the 1.92 M-triangle cube's first WebGPU frame (its upload) takes
+/// many times what the CPU's measure estimates, so the next frame must be the CPU's, drawn at
+/// the canvas's full size, equal to the reference, with both paths' times on record.
+fn check_the_faster_draws(
+    browser: &mut Browser,
+    address: &str,
+    out: &Path,
+) -> anyhow::Result<Vec<String>> {
+    let (width, height) = TEST_SIZE;
+    let case = TEST_CASES[1];
+    let query = format!("{case}&width={width}&height={height}&embed=1");
+    browser.open(&format!("{address}index.html?{query}"))?;
+    browser.wait_for_title(|title| title == "srt ready (webgpu)", FIRST_FRAME_TIMEOUT)?;
+    let weighed = browser.evaluate("document.body.dataset.paths || null")?;
+    if weighed.is_null() {
+        return Ok(vec![format!(
+            "auto {query}: the page did not weigh its paths on this adapter ({})",
+            browser.evaluate("document.getElementById('renderer').textContent")?
+        )]);
+    }
+    browser.evaluate("window.dispatchEvent(new Event('resize')), true")?;
+    let shown = browser.wait_for(
+        "[Number(document.body.dataset.frames), document.body.dataset.drawnBy, \
+         document.body.dataset.paths]",
+        |value| value[0].as_u64().unwrap_or(0) >= 2,
+        FIRST_FRAME_TIMEOUT,
+    )?;
+    let paths: serde_json::Value =
+        serde_json::from_str(shown[2].as_str().unwrap_or("null")).unwrap_or_default();
+    let (gpu_ms, cpu_ms) = (paths["webgpu_ms"].as_f64(), paths["cpu_ms"].as_f64());
+    println!(
+        "web auto {query}: second frame drawn by {} ({paths})",
+        shown[1]
+    );
+    let mut failures = Vec::new();
+    match (gpu_ms, cpu_ms) {
+        (Some(gpu), Some(cpu)) if cpu * srt_gpu::exact_path::MARGIN < gpu => {
+            if shown[1] != "cpu" {
+                failures.push(format!(
+                    "auto {query}: the CPU ({cpu:.0} ms) is faster than WebGPU ({gpu:.0} ms) by \
+                     the margin, but the second frame was drawn by {}",
+                    shown[1]
+                ));
+            }
+        }
+        _ => failures.push(format!(
+            "auto {query}: expected both paths timed and the CPU the faster by the margin on \
+             the cube's upload frame, got {paths}"
+        )),
+    }
+    let png = browser.screenshot((0.0, 0.0), width, height)?;
+    let reference = reference_image(case, width, height)?;
+    failures.extend(check_picture(
+        out,
+        &format!("auto {query}"),
+        &png,
+        &reference,
+    )?);
+    Ok(failures)
+}
+
 /// The page with its controls reacts to them: on the teaser, the velocity, effect and time
-/// controls are moved as a person moves them, and the next frame (on WebGPU) must equal
+/// controls are moved as a person moves them, and the next frame (by whichever path draws) must equal
 /// the CPU reference of the address the page reports drawing.
 fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::Result<Vec<String>> {
     let (width, height) = TEST_SIZE;
@@ -400,7 +463,10 @@ fn check_controls(browser: &mut Browser, address: &str, out: &Path) -> anyhow::R
     );
     browser.evaluate("document.getElementById('play').click(), true")?;
     match later {
-        Ok(now) => println!("web Play: (frames, ct) {before} -> {now}"),
+        Ok(now) => println!(
+            "web Play: (frames, ct) {before} -> {now}, paths {}",
+            browser.evaluate("document.body.dataset.paths || null")?
+        ),
         Err(error) => failures.push(format!("Play did not run the clock: {error}")),
     }
     Ok(failures)

@@ -8,7 +8,7 @@ use glam::DVec3;
 use srt_color::quantize_8bit;
 use srt_scene::resolve::ResolveError;
 use srt_scene::{EditError, Editor, Overrides, Scene, SceneError, SceneSource, builtin_scenes};
-use srt_trace::{RenderSettings, Tracer};
+use srt_trace::{RenderSettings, Tracer, measure_picture};
 
 use crate::query::QUERY_NAMES;
 
@@ -214,6 +214,20 @@ impl Session {
                 [r, g, b, u8::MAX]
             })
             .collect())
+    }
+
+    /// The seconds the exact CPU picture at `width`×`height` is estimated to take: its
+    /// tracer's build and the frame measured on a few rows ([`measure_picture`]).
+    ///
+    /// # Errors
+    /// As [`Session::scene`].
+    pub fn measure_cpu(&mut self, width: u32, height: u32) -> Result<f64, SessionError> {
+        let settings = RenderSettings {
+            width,
+            height,
+            samples: 1,
+        };
+        Ok(measure_picture(self.scene()?, settings).seconds)
     }
 }
 

@@ -7,8 +7,10 @@ use std::cell::RefCell;
 use std::rc::Rc;
 
 use srt_gpu::display::DisplayPass;
+use srt_gpu::exact_path::{DrawnBy, PaneTimes};
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
 use wasm_bindgen::prelude::*;
+use web_time::Instant;
 
 use crate::query::{PageQuery, parse_query};
 use crate::session::{Session, SessionError, scene_names as builtin_names};
@@ -127,6 +129,15 @@ impl CpuPage {
     pub fn render(&mut self, width: u32, height: u32) -> Result<Vec<u8>, JsError> {
         self.session.render_cpu(width, height).map_err(js_error)
     }
+
+    /// The seconds an exact picture at `width`×`height` is estimated to take here: the tracer's
+    /// build and the frame measured on a few rows (`srt_trace::measure_picture`).
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn measure(&mut self, width: u32, height: u32) -> Result<f64, JsError> {
+        self.session.measure_cpu(width, height).map_err(js_error)
+    }
 }
 
 /// The scene a page opens with.
@@ -158,6 +169,9 @@ pub struct GpuPage {
     split: bool,
     /// The exact (or the chosen) method's renderer, and the polygon method's in split view.
     renderers: Vec<Uploaded>,
+    /// Both paths' frame times for the picture [`GpuPage::weighs`] weighs, and what they were
+    /// timed on (upload version, size, method): a new picture starts them again.
+    times: (PaneTimes, Option<(u64, u32, u32, Method)>),
 }
 
 #[wasm_bindgen]
@@ -219,6 +233,7 @@ impl GpuPage {
             method: Method::Auto,
             split: false,
             renderers: Vec::new(),
+            times: (PaneTimes::default(), None),
         })
     }
 
@@ -374,6 +389,85 @@ impl GpuPage {
         Ok(None)
     }
 
+    /// Whether the page weighs who draws its picture (under `backend=auto`): the adapter is a
+    /// software one (the browser's fallback adapter, such as SwiftShader) and the picture is one
+    /// exact method's (not the split view, not an approximate method, which only WebGPU draws).
+    /// Both paths then draw at the canvas's size, and the faster draws ([`PaneTimes`], the rule
+    /// of the viewer's panes).
+    #[must_use]
+    pub fn weighs(&self) -> bool {
+        self.context.software_api().is_some() && !self.split && self.method.is_exact()
+    }
+
+    /// Whether the CPU's cost is to be measured (`CpuPage::measure`) before the next frame.
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn wants_cpu_measure(&mut self) -> Result<bool, JsError> {
+        Ok(self.picture_times()?.wants_cpu_measure(Instant::now()))
+    }
+
+    /// The CPU's measured cost of the picture, in seconds.
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn measured_cpu(&mut self, seconds: f64) -> Result<(), JsError> {
+        self.picture_times()?.measured_cpu(seconds, Instant::now());
+        Ok(())
+    }
+
+    /// Who draws the next frame: `"webgpu"` or `"cpu"`.
+    ///
+    /// # Errors
+    /// A scene that does not build, or a value it refuses.
+    pub fn next_path(&mut self) -> Result<String, JsError> {
+        Ok(path_name(self.picture_times()?.next(Instant::now())).to_owned())
+    }
+
+    /// A frame drawn by `path` (`"webgpu"` or `"cpu"`) took `seconds`, to its end.
+    ///
+    /// # Errors
+    /// Another path's name, a scene that does not build, or a value it refuses.
+    pub fn drawn(&mut self, path: &str, seconds: f64) -> Result<(), JsError> {
+        let by = match path {
+            "webgpu" => DrawnBy::Gpu,
+            "cpu" => DrawnBy::Cpu,
+            other => return Err(js_error(format!("no path named {other:?}"))),
+        };
+        self.picture_times()?.drawn(by, seconds, Instant::now());
+        Ok(())
+    }
+
+    /// The weighed picture's times as JSON: `drawn_by` (the last frame's path), `webgpu_ms`
+    /// and `cpu_ms` (each path's running time, `null` where not yet timed).
+    #[must_use]
+    pub fn path_times(&self) -> String {
+        let (last, gpu, cpu) = self.times.0.report();
+        let ms = |seconds: Option<f64>| seconds.map(|s| s * 1e3);
+        serde_json::json!({
+            "drawn_by": last.map(path_name),
+            "webgpu_ms": ms(gpu),
+            "cpu_ms": ms(cpu),
+        })
+        .to_string()
+    }
+
+    /// The times of the picture the page shows now, started again when its meshes or sky, its
+    /// size or its method changed.
+    fn picture_times(&mut self) -> Result<&mut PaneTimes, JsError> {
+        self.session.scene().map_err(js_error)?;
+        let key = (
+            self.session.upload_version(),
+            self.config.width,
+            self.config.height,
+            self.method,
+        );
+        if self.times.1 != Some(key) {
+            self.times = (PaneTimes::default(), Some(key));
+        }
+        Ok(&mut self.times.0)
+    }
+
     /// The WebGPU errors reported since the last call (validation errors arrive after the
     /// frame that caused them), or `undefined`.
     #[must_use]
@@ -427,6 +521,14 @@ impl GpuPage {
                     }
                 });
         })
+    }
+}
+
+/// A path's name on the page.
+const fn path_name(by: DrawnBy) -> &'static str {
+    match by {
+        DrawnBy::Gpu => "webgpu",
+        DrawnBy::Cpu => "cpu",
     }
 }
 

@@ -121,15 +121,31 @@ async function drawOnce() {
   const [width, height] = sizeCanvas();
   $('split-labels').style.height = `${canvas.clientHeight}px`;
   const shown = query();
-  const started = performance.now();
+  let started = performance.now();
   let drawnBy = backend;
   let note = '';
+  let weighed = false;
   if (backend === 'webgpu') {
-    gpu.set_query(query());
+    gpu.set_query(shown);
     gpu.resize(width, height);
-    const reason = gpu.draw();
-    if (reason !== undefined) {
-      note = `${reason}: drawn by the CPU tracer`;
+    // `auto` on a software adapter: the faster of WebGPU and the CPU tracer draws, both at the
+    // canvas's size (the rule of the viewer's panes, srt-gpu's exact_path).
+    weighed = settings.backend === 'auto' && gpu.weighs();
+    let path = 'webgpu';
+    if (weighed) {
+      if (gpu.wants_cpu_measure()) {
+        const reply = await workerCall({ kind: 'measure', query: shown, width, height });
+        gpu.measured_cpu(reply.seconds);
+      }
+      path = gpu.next_path();
+      started = performance.now();
+    }
+    const reason = path === 'webgpu' ? gpu.draw() : undefined;
+    if (path === 'cpu' || reason !== undefined) {
+      if (reason !== undefined) {
+        note = `${reason}: drawn by the CPU tracer`;
+        weighed = false;
+      }
       await drawWithCpu(width, height, true);
       drawnBy = 'cpu';
     } else {
@@ -140,15 +156,26 @@ async function drawOnce() {
       }
       const late = gpu.errors();
       if (late !== undefined) throw new Error(late);
+      if (overlay) overlay.hidden = true;
     }
   } else {
     await drawWithCpu(width, height, false);
   }
   const ms = performance.now() - started;
-  $('renderer').textContent = rendererText(drawnBy, width, height, ms);
+  let text = rendererText(drawnBy, width, height, ms);
+  if (weighed) {
+    gpu.drawn(drawnBy, ms / 1000);
+    const times = JSON.parse(gpu.path_times());
+    const time = (value) => (value === null ? 'not yet timed' : `${value.toFixed(0)} ms`);
+    text += `; the faster draws: WebGPU ${time(times.webgpu_ms)}, CPU ${time(times.cpu_ms)}`;
+    // For tests: both paths' running times and the last frame's path.
+    document.body.dataset.paths = JSON.stringify(times);
+  }
+  $('renderer').textContent = text;
   if (note) showNote(note);
   // For tests and embedding pages: what the last frame shows, and how many were drawn.
   document.body.dataset.query = shown;
+  document.body.dataset.drawnBy = drawnBy;
   document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);
   return drawnBy;
 }
@@ -196,7 +223,6 @@ async function frameLoop(now) {
     dirty = false;
     busy = true;
     try {
-      if (overlay && backend === 'webgpu') overlay.hidden = true;
       const drawnBy = await drawOnce();
       if (!firstFrameDone) {
         firstFrameDone = true;

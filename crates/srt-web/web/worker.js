@@ -1,5 +1,5 @@
 // The exact CPU tracer (srt-trace, compiled to WebAssembly) off the page's main thread: it
-// renders what the page asks and sends the RGBA bytes back.
+// renders what the page asks and sends the RGBA bytes back, or measures what a picture costs.
 import init, { CpuPage } from './srt_web.js';
 
 const ready = init().then(() => new CpuPage());
@@ -14,6 +14,9 @@ self.onmessage = async (event) => {
     } else if (message.kind === 'info') {
       page.set_query(message.query);
       self.postMessage({ id: message.id, info: page.info() });
+    } else if (message.kind === 'measure') {
+      page.set_query(message.query);
+      self.postMessage({ id: message.id, seconds: page.measure(message.width, message.height) });
     } else if (message.kind === 'render') {
       page.set_query(message.query);
       const pixels = page.render(message.width, message.height);
