@@ -172,6 +172,9 @@ pub struct GpuPage {
     /// Both paths' frame times for the picture [`GpuPage::weighs`] weighs, and what they were
     /// timed on (upload version, size, method): a new picture starts them again.
     times: (PaneTimes, Option<(u64, u32, u32, Method)>),
+    /// Whether the last [`GpuPage::draw`] made a renderer (the scene uploaded, its pipelines
+    /// compiled): that frame's time is not a frame's of the picture and is not weighed.
+    uploaded: bool,
 }
 
 #[wasm_bindgen]
@@ -234,6 +237,7 @@ impl GpuPage {
             split: false,
             renderers: Vec::new(),
             times: (PaneTimes::default(), None),
+            uploaded: false,
         })
     }
 
@@ -312,6 +316,7 @@ impl GpuPage {
         }
         let context = &self.context;
         self.renderers.truncate(methods.len());
+        self.uploaded = false;
         for (index, &method) in methods.iter().enumerate() {
             match self.renderers.get_mut(index) {
                 Some(uploaded) if uploaded.version == version => {
@@ -322,6 +327,7 @@ impl GpuPage {
                         .map_err(js_error)?;
                 }
                 _ => {
+                    self.uploaded = true;
                     let renderer =
                         GpuRenderer::new(context, scene, width, height).map_err(js_error)?;
                     let uploaded = Uploaded {
@@ -424,12 +430,16 @@ impl GpuPage {
         Ok(path_name(self.picture_times()?.next(Instant::now())).to_owned())
     }
 
-    /// A frame drawn by `path` (`"webgpu"` or `"cpu"`) took `seconds`, to its end.
+    /// A frame drawn by `path` (`"webgpu"` or `"cpu"`) took `seconds`, to its end. A WebGPU
+    /// frame that made its renderer is not counted: the upload and the pipelines' compilation
+    /// (seconds on a software adapter) are paid once, not by every frame that follows, as the
+    /// viewer's renderers are made before its frames are timed.
     ///
     /// # Errors
     /// Another path's name, a scene that does not build, or a value it refuses.
     pub fn drawn(&mut self, path: &str, seconds: f64) -> Result<(), JsError> {
         let by = match path {
+            "webgpu" if self.uploaded => return Ok(()),
             "webgpu" => DrawnBy::Gpu,
             "cpu" => DrawnBy::Cpu,
             other => return Err(js_error(format!("no path named {other:?}"))),

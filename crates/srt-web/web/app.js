@@ -138,6 +138,8 @@ async function drawOnce() {
         gpu.measured_cpu(reply.seconds);
       }
       path = gpu.next_path();
+      // For tests: the path chosen and the times it was chosen on.
+      document.body.dataset.choice = JSON.stringify({ path, ...JSON.parse(gpu.path_times()) });
       started = performance.now();
     }
     const reason = path === 'webgpu' ? gpu.draw() : undefined;
@@ -176,6 +178,7 @@ async function drawOnce() {
   // For tests and embedding pages: what the last frame shows, and how many were drawn.
   document.body.dataset.query = shown;
   document.body.dataset.drawnBy = drawnBy;
+  document.body.dataset.frameMs = String(ms);
   document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);
   return drawnBy;
 }
