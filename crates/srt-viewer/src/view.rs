@@ -442,7 +442,8 @@ impl SceneView {
         let now = Instant::now();
         let measured = (weighing && times.wants_cpu_measure(now)).then(|| {
             let measured = measure_picture(pane.scene, settings);
-            times.measured_cpu(measured.seconds, Instant::now());
+            let took = now.elapsed().as_secs_f64();
+            times.measured_cpu(measured.seconds, took, Instant::now());
             measured
         });
         let by = if forced_cpu || (weighing && times.next(Instant::now()) == DrawnBy::Cpu) {

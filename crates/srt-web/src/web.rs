@@ -413,12 +413,14 @@ impl GpuPage {
         Ok(self.picture_times()?.wants_cpu_measure(Instant::now()))
     }
 
-    /// The CPU's measured cost of the picture, in seconds.
+    /// The CPU's measured cost of the picture, in seconds, by a measure that took `took`
+    /// seconds (the worker's reply awaited).
     ///
     /// # Errors
     /// A scene that does not build, or a value it refuses.
-    pub fn measured_cpu(&mut self, seconds: f64) -> Result<(), JsError> {
-        self.picture_times()?.measured_cpu(seconds, Instant::now());
+    pub fn measured_cpu(&mut self, seconds: f64, took: f64) -> Result<(), JsError> {
+        self.picture_times()?
+            .measured_cpu(seconds, took, Instant::now());
         Ok(())
     }
 

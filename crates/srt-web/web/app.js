@@ -134,8 +134,9 @@ async function drawOnce() {
     let path = 'webgpu';
     if (weighed) {
       if (gpu.wants_cpu_measure()) {
+        const asked = performance.now();
         const reply = await workerCall({ kind: 'measure', query: shown, width, height });
-        gpu.measured_cpu(reply.seconds);
+        gpu.measured_cpu(reply.seconds, (performance.now() - asked) / 1000);
       }
       path = gpu.next_path();
       // For tests: the path chosen and the times it was chosen on.
