@@ -207,8 +207,10 @@ impl Frame {
 
     /// The unit direction in S′ back along the light seen looking along `view_direction` (in S,
     /// need not be normalised): Eq. 3 applied to the incoming light. It depends on the velocity
-    /// alone, so a renderer computes it once per ray for all objects moving alike.
+    /// alone, so a renderer computes it once per ray for all objects moving alike. Inlined
+    /// across crates: the CPU tracer calls it for every ray and velocity.
     #[must_use]
+    #[inline]
     pub fn rest_direction(&self, view_direction: DVec3) -> DVec3 {
         // Light arrives travelling opposite to the viewing direction; in S′ it travels along the
         // aberrated direction, and we follow it backwards.

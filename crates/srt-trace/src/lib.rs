@@ -19,6 +19,7 @@
 
 pub mod clock;
 pub mod compare;
+mod group;
 mod intersect;
 mod measure;
 mod moving;

@@ -236,30 +236,26 @@ impl<'a> PreparedObject<'a> {
         })
     }
 
-    /// The hit of this object (number `index` in the scene) along `ray` if it is seen in front
-    /// of `best`, the closest hit of the objects searched so far: nearer, or as near and of a
-    /// lower index, so that the result does not depend on the order objects are searched in.
-    /// `inverse_direction` is 1 / `ray.direction` per component.
+    /// Whether a ray from `origin` (`inverse_direction` = 1 / its direction per component) can
+    /// meet this object no farther than `limit` along it: a body at rest only if it meets its
+    /// box by then; a moving one always (its search bounds itself).
+    pub(crate) fn may_be_met(&self, origin: DVec3, inverse_direction: DVec3, limit: f64) -> bool {
+        let (lo, hi) = self.bounds;
+        !self.motion.is_rest()
+            || box_entry(origin, inverse_direction, lo, hi).is_some_and(|entry| entry <= limit)
+    }
+
+    /// The hit of this object (number `index` in the scene) along `ray`, searched no farther
+    /// than `limit` along it, if it is seen in front of `best`, the closest hit of the objects
+    /// searched so far: nearer, or as near and of a lower index, so that the result does not
+    /// depend on the order objects are searched in.
     pub(crate) fn closest_hit_seen(
         &self,
         index: usize,
         ray: &RestRay,
-        inverse_direction: DVec3,
-        best: Option<Hit>,
+        limit: f64,
+        best: Option<&Hit>,
     ) -> Option<Hit> {
-        // The apparent distance grows linearly along the ray (γ s (1 − β·d′)), so a hit beyond
-        // `best` need not be searched for; the bound is widened by a relative 1e-12 so that
-        // rounding never prunes a closer hit.
-        let limit = best.map_or(f64::INFINITY, |b| {
-            b.apparent_distance / self.frame.apparent_distance(ray, 1.0) * (1.0 + 1e-12)
-        });
-        let (lo, hi) = self.bounds;
-        let resting = self.motion.is_rest();
-        if resting
-            && box_entry(ray.origin, inverse_direction, lo, hi).is_none_or(|entry| entry > limit)
-        {
-            return None;
-        }
         let (part, triangle, rest_hit) =
             self.closest_hit_moving(ray, self.rest_time_shift, limit)?;
         let apparent_distance = self.frame.apparent_distance(ray, rest_hit.distance);

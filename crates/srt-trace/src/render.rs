@@ -16,11 +16,12 @@ use std::sync::{Arc, Mutex, PoisonError};
 use glam::{DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
-use srt_physics::{Event, RestRay, RetardedLight, doppler_factor};
+use srt_physics::{Event, RetardedLight, doppler_factor};
 use srt_scene::{Scene, ViewRays};
 use web_time::Instant;
 
 use crate::clock::clock_albedo;
+use crate::group::VelocityGroup;
 use crate::intersect::plane_hit;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
@@ -88,9 +89,10 @@ pub struct SurfaceState {
 pub struct Tracer<'a> {
     scene: &'a Scene,
     objects: Vec<PreparedObject<'a>>,
-    /// The objects' indices grouped by velocity: a ray's direction in S′ is computed once per
-    /// group (the flythrough's columns and slabs all rest in the world frame).
-    velocity_groups: Vec<Vec<usize>>,
+    /// The objects grouped by velocity: a ray's direction in S′ is computed once per group,
+    /// and a group's resting objects are searched through one BVH over their boxes (the
+    /// flythrough's columns and slabs all rest in the world frame).
+    velocity_groups: Vec<VelocityGroup>,
     lut: &'static TemperatureLut,
     /// The stars' light on the last picture's size and output ([`star_layer`]): the same for
     /// every band and every measure of a picture, and a few milliseconds for a sky of
@@ -110,15 +112,7 @@ impl<'a> Tracer<'a> {
         let objects: Vec<PreparedObject<'a>> = (scene.objects.iter())
             .map(|object| PreparedObject::new(object, observer, &mut chains))
             .collect();
-        let mut velocity_groups: Vec<Vec<usize>> = Vec::new();
-        for (index, object) in objects.iter().enumerate() {
-            let beta = object.frame.beta();
-            match (velocity_groups.iter_mut()).find(|group| objects[group[0]].frame.beta() == beta)
-            {
-                Some(group) => group.push(index),
-                None => velocity_groups.push(vec![index]),
-            }
-        }
+        let velocity_groups = VelocityGroup::of_objects(&objects);
         Self {
             scene,
             objects,
@@ -152,29 +146,17 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn trace_from(&self, eye: DVec3, view_direction: DVec3) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        for group in &self.velocity_groups {
-            let direction = self.objects[group[0]].frame.rest_direction(view_direction);
-            let inverse_direction = direction.recip();
-            for &object_index in group {
-                let object = &self.objects[object_index];
-                let origin = if eye == DVec3::ZERO {
-                    object.observer_rest
-                } else {
-                    object.frame.to_rest(self.eye_event(eye))
-                };
-                let ray = RestRay {
-                    origin: origin.position,
-                    direction,
-                    ct_origin: origin.ct,
-                };
-                if let Some(hit) =
-                    object.closest_hit_seen(object_index, &ray, inverse_direction, best)
-                {
-                    best = Some(Hit { eye, ..hit });
-                }
+        let origin_of = |object: &PreparedObject<'_>| {
+            if eye == DVec3::ZERO {
+                object.observer_rest
+            } else {
+                object.frame.to_rest(self.eye_event(eye))
             }
+        };
+        for group in &self.velocity_groups {
+            group.search(&self.objects, view_direction, &origin_of, &mut best);
         }
-        best
+        best.map(|hit| Hit { eye, ..hit })
     }
 
     /// The observation event of the eye `eye` away from the observer (in S).

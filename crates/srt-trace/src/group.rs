@@ -1,0 +1,178 @@
+//! Velocity groups: the objects of a scene that move with one velocity. Their rest frames
+//! differ only by a translation, so a backward ray has one direction in all of them and one
+//! origin up to a fixed shift per object. The group's bodies at rest are found along a ray
+//! through one BVH over their boxes, shifted into the first member's rest coordinates and taken
+//! nearest first: a ray past many objects (the flythrough's 45 columns and slabs) searches the
+//! few whose boxes it meets before a nearer hit, not every one.
+//!
+//! The group's BVH only chooses which objects to search and stops the search early; each
+//! object chosen is searched in its own coordinates as before ([`PreparedObject`]), so the hit
+//! found does not depend on the grouping.
+
+use bvh::aabb::{Aabb, Bounded};
+use bvh::bounding_hierarchy::BHShape;
+use bvh::bvh::Bvh;
+use bvh::ray::Ray;
+use glam::DVec3;
+use nalgebra::{Point3, Vector3};
+use srt_physics::{Event, RestRay};
+
+use crate::prepared::{Hit, PreparedObject};
+
+/// A velocity group of a scene's objects.
+pub(crate) struct VelocityGroup {
+    /// The member whose rest coordinates are the group's (its lowest index).
+    first: usize,
+    /// Members that spin or thrust: searched along every ray, as their bodies leave any box.
+    moving: Vec<usize>,
+    /// The resting members' boxes in the group's rest coordinates.
+    boxes: Vec<MemberBox>,
+    /// A BVH over `boxes`; `None` for a group of one resting member, whose own box test is
+    /// the whole cull.
+    bvh: Option<Bvh<f64, 3>>,
+}
+
+/// A resting member's box, as a leaf of its group's BVH.
+struct MemberBox {
+    aabb: Aabb<f64, 3>,
+    object: usize,
+    node: usize,
+}
+
+impl Bounded<f64, 3> for MemberBox {
+    fn aabb(&self) -> Aabb<f64, 3> {
+        self.aabb
+    }
+}
+
+impl BHShape<f64, 3> for MemberBox {
+    fn set_bh_node_index(&mut self, index: usize) {
+        self.node = index;
+    }
+
+    fn bh_node_index(&self) -> usize {
+        self.node
+    }
+}
+
+impl VelocityGroup {
+    /// The groups of `objects`, in the order of their first members.
+    pub(crate) fn of_objects(objects: &[PreparedObject<'_>]) -> Vec<Self> {
+        let mut members: Vec<Vec<usize>> = Vec::new();
+        for (index, object) in objects.iter().enumerate() {
+            let beta = object.frame.beta();
+            match (members.iter_mut()).find(|group| objects[group[0]].frame.beta() == beta) {
+                Some(group) => group.push(index),
+                None => members.push(vec![index]),
+            }
+        }
+        members
+            .into_iter()
+            .map(|group| Self::new(objects, &group))
+            .collect()
+    }
+
+    /// The group of `members` (indices into `objects`, ascending, one velocity).
+    fn new(objects: &[PreparedObject<'_>], members: &[usize]) -> Self {
+        let first = members[0];
+        let origin = objects[first].observer_rest.position;
+        let (resting, moving): (Vec<usize>, Vec<usize>) =
+            (members.iter()).partition(|&&index| objects[index].motion.is_rest());
+        let mut boxes: Vec<MemberBox> = (resting.iter())
+            .map(|&index| {
+                let object = &objects[index];
+                // The same event has coordinates shifted by `shift` in the group's rest frame
+                // (the frames' Lorentz parts are equal); the box is padded well beyond the
+                // rounding of the shift, so that it never culls a body the ray meets.
+                let shift = origin - object.observer_rest.position;
+                let (lo, hi) = object.bounds;
+                let scale = 1.0 + origin.abs().max_element() + lo.abs().max(hi.abs()).max_element();
+                let pad = DVec3::splat(1e-9 * scale);
+                let (lo, hi) = (lo + shift - pad, hi + shift + pad);
+                MemberBox {
+                    aabb: Aabb::with_bounds(
+                        Point3::new(lo.x, lo.y, lo.z),
+                        Point3::new(hi.x, hi.y, hi.z),
+                    ),
+                    object: index,
+                    node: 0,
+                }
+            })
+            .collect();
+        let bvh = (boxes.len() > 1).then(|| Bvh::build(&mut boxes));
+        Self {
+            first,
+            moving,
+            boxes,
+            bvh,
+        }
+    }
+
+    /// Searches the group's members along the viewing direction `view_direction` (in S) from
+    /// the observation event whose rest-frame coordinates in a member's frame are
+    /// `origin_of(member)`, keeping in `best` the hit seen in front of all others so far.
+    pub(crate) fn search(
+        &self,
+        objects: &[PreparedObject<'_>],
+        view_direction: DVec3,
+        origin_of: &impl Fn(&PreparedObject<'_>) -> Event,
+        best: &mut Option<Hit>,
+    ) {
+        let frame = &objects[self.first].frame;
+        let direction = frame.rest_direction(view_direction);
+        let inverse_direction = direction.recip();
+        // The apparent distance grows linearly along the ray (γ s (1 − β·d′), the same for
+        // every member), so a hit beyond `best` need not be searched for; the bound is
+        // widened by a relative 1e-12 so that rounding never prunes a closer hit.
+        let along = RestRay {
+            origin: DVec3::ZERO,
+            direction,
+            ct_origin: 0.0,
+        };
+        let per_unit = frame.apparent_distance(&along, 1.0);
+        let limit = |best: &Option<Hit>| {
+            (best.as_ref()).map_or(f64::INFINITY, |b| {
+                b.apparent_distance / per_unit * (1.0 + 1e-12)
+            })
+        };
+        let search_member = |index: usize, best: &mut Option<Hit>| {
+            let object = &objects[index];
+            let origin = origin_of(object);
+            let limit = limit(best);
+            if !object.may_be_met(origin.position, inverse_direction, limit) {
+                return;
+            }
+            let ray = RestRay {
+                origin: origin.position,
+                direction,
+                ct_origin: origin.ct,
+            };
+            if let Some(hit) = object.closest_hit_seen(index, &ray, limit, best.as_ref()) {
+                *best = Some(hit);
+            }
+        };
+        match &self.bvh {
+            Some(bvh) => {
+                let origin = origin_of(&objects[self.first]).position;
+                let query = Ray::new(
+                    Point3::new(origin.x, origin.y, origin.z),
+                    Vector3::new(direction.x, direction.y, direction.z),
+                );
+                // Boxes come in increasing order of their entry distance: stop at the first
+                // that starts beyond the best hit.
+                for member in bvh.nearest_traverse_iterator(&query, &self.boxes) {
+                    if let Some((entry, _)) = query.intersection_slice_for_aabb(&member.aabb)
+                        && entry > limit(best)
+                    {
+                        break;
+                    }
+                    search_member(member.object, best);
+                }
+            }
+            None => (self.boxes.iter()).for_each(|member| search_member(member.object, best)),
+        }
+        for &index in &self.moving {
+            search_member(index, best);
+        }
+    }
+}
