@@ -206,9 +206,14 @@ impl Engine {
                 &SoftwareCosts::CHEAPEST,
                 || frame.measure_cpu_again(),
             );
-            if at_best.cpu_is_faster() {
+            if !at_best.worth_opening() {
+                let against = if at_best.cpu_is_faster() {
+                    "against at least"
+                } else {
+                    "too close to opening's cost to open one for, against at least"
+                };
                 return cpu(Some(format!(
-                    "auto renders on the CPU: about {:.2} s ({}), against at least {:.2} s on a \
+                    "auto renders on the CPU: about {:.2} s ({}), {against} {:.2} s on a \
                      software rasteriser, the only kind of adapter without a GPU device (none \
                      under /dev; docs/performance.md, \"auto without a hardware GPU\")",
                     at_best.cpu_seconds,
