@@ -12,12 +12,12 @@
 use bvh::aabb::{Aabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::Bvh;
-use bvh::ray::Ray;
 use glam::DVec3;
-use nalgebra::{Point3, Vector3};
+use nalgebra::Point3;
 use srt_physics::{Event, RestRay};
 
 use crate::prepared::{Hit, PreparedObject};
+use crate::walk::nearest_first;
 
 /// A velocity group of a scene's objects.
 pub(crate) struct VelocityGroup {
@@ -154,20 +154,11 @@ impl VelocityGroup {
         match &self.bvh {
             Some(bvh) => {
                 let origin = origin_of(&objects[self.first]).position;
-                let query = Ray::new(
-                    Point3::new(origin.x, origin.y, origin.z),
-                    Vector3::new(direction.x, direction.y, direction.z),
-                );
-                // Boxes come in increasing order of their entry distance: stop at the first
-                // that starts beyond the best hit.
-                for member in bvh.nearest_traverse_iterator(&query, &self.boxes) {
-                    if let Some((entry, _)) = query.intersection_slice_for_aabb(&member.aabb)
-                        && entry > limit(best)
-                    {
-                        break;
-                    }
-                    search_member(member.object, best);
-                }
+                // Members come nearer box first; none whose box starts beyond the best hit.
+                nearest_first(bvh, origin, inverse_direction, limit(best), |member, _| {
+                    search_member(self.boxes[member].object, best);
+                    limit(best)
+                });
             }
             None => (self.boxes.iter()).for_each(|member| search_member(member.object, best)),
         }

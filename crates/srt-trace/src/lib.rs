@@ -29,6 +29,7 @@ mod seen;
 mod shade;
 mod sky;
 mod texture;
+mod walk;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
 pub use measure::{FrameMeasure, MeasuredPicture, PROBE_ROWS, WARM_UP_ROWS, measure_picture};

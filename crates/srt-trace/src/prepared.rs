@@ -9,15 +9,15 @@ use std::sync::Arc;
 use bvh::aabb::{Aabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::Bvh;
-use bvh::ray::Ray;
 use glam::{DVec3, DVec4};
-use nalgebra::{Point3, Vector3};
+use nalgebra::Point3;
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::mip::MipChain;
 use srt_scene::{Object, Part, Texture};
 
 use crate::intersect::{TriangleHit, intersect_triangle};
+use crate::walk::{box_entry, nearest_first};
 
 /// A triangle of one of an object's parts, as a leaf of the object's BVH.
 #[derive(Debug, Clone)]
@@ -160,34 +160,30 @@ impl<'a> PreparedObject<'a> {
         limit: f64,
     ) -> Option<(u32, u32, TriangleHit)> {
         let bvh = self.bvh.as_ref()?;
-        let query = Ray::new(
-            Point3::new(ray.origin.x, ray.origin.y, ray.origin.z),
-            Vector3::new(ray.direction.x, ray.direction.y, ray.direction.z),
-        );
         let mut best: Option<(u32, u32, TriangleHit)> = None;
-        // Leaves come in increasing order of their box's entry distance: stop once a box
-        // starts beyond the best hit.
-        for leaf in bvh.nearest_traverse_iterator(&query, &self.boxes) {
-            let bound = best.map_or(limit, |(_, _, hit)| hit.distance.min(limit));
-            if let Some((entry, _)) = query.intersection_slice_for_aabb(&leaf.aabb)
-                && entry > bound
-            {
-                break;
-            }
-            let mesh = &self.parts[leaf.part as usize].part.mesh;
-            let corners = mesh.triangle_positions(leaf.triangle as usize);
-            let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
-                .filter(|hit| hit.distance >= from)
-            else {
-                continue;
-            };
-            let closer = best.is_none_or(|(part, triangle, b)| {
-                (hit.distance, leaf.part, leaf.triangle) < (b.distance, part, triangle)
-            });
-            if closer {
-                best = Some((leaf.part, leaf.triangle, hit));
-            }
-        }
+        // Nothing beyond the best hit (or `limit`) is searched for.
+        nearest_first(
+            bvh,
+            ray.origin,
+            ray.direction.recip(),
+            limit,
+            |shape, bound| {
+                let leaf = &self.boxes[shape];
+                let mesh = &self.parts[leaf.part as usize].part.mesh;
+                let corners = mesh.triangle_positions(leaf.triangle as usize);
+                if let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
+                    .filter(|hit| hit.distance >= from)
+                {
+                    let closer = best.is_none_or(|(part, triangle, b)| {
+                        (hit.distance, leaf.part, leaf.triangle) < (b.distance, part, triangle)
+                    });
+                    if closer {
+                        best = Some((leaf.part, leaf.triangle, hit));
+                    }
+                }
+                best.map_or(bound, |(_, _, hit)| hit.distance.min(bound))
+            },
+        );
         best
     }
 
@@ -221,19 +217,20 @@ impl<'a> PreparedObject<'a> {
         if box_entry(from, direction.recip(), lo, hi).is_none_or(|entry| entry > length) {
             return false;
         }
-        let query = Ray::new(
-            Point3::new(from.x, from.y, from.z),
-            Vector3::new(direction.x, direction.y, direction.z),
-        );
-        bvh.traverse_iterator(&query, &self.boxes).any(|leaf| {
+        // The walk stops (its bound below every entry) at the first triangle crossed.
+        let mut crossed = false;
+        nearest_first(bvh, from, direction.recip(), length, |shape, bound| {
+            let leaf = &self.boxes[shape];
             let mesh = &self.parts[leaf.part as usize].part.mesh;
-            intersect_triangle(
+            crossed = intersect_triangle(
                 from,
                 direction,
                 mesh.triangle_positions(leaf.triangle as usize),
             )
-            .is_some_and(|hit| hit.distance > margin && hit.distance < length - margin)
-        })
+            .is_some_and(|hit| hit.distance > margin && hit.distance < length - margin);
+            if crossed { f64::NEG_INFINITY } else { bound }
+        });
+        crossed
     }
 
     /// Whether a ray from `origin` (`inverse_direction` = 1 / its direction per component) can
@@ -276,18 +273,6 @@ impl<'a> PreparedObject<'a> {
             }
         })
     }
-}
-
-/// Where the ray `origin` + s · direction (s ≥ 0; `inverse_direction` = 1 / direction per
-/// component) enters the box [`lo`, `hi`] (0 when it starts inside), `None` when it misses it:
-/// the slab test. Conservative: where rounding gives NaN (an origin on a slab's plane with a
-/// direction parallel to it) the box counts as met.
-fn box_entry(origin: DVec3, inverse_direction: DVec3, lo: DVec3, hi: DVec3) -> Option<f64> {
-    let to_lo = (lo - origin) * inverse_direction;
-    let to_hi = (hi - origin) * inverse_direction;
-    let near = to_lo.min(to_hi).max_element().max(0.0);
-    let far = to_lo.max(to_hi).min_element();
-    if near > far { None } else { Some(near) }
 }
 
 /// The closest surface point along one viewing direction.
