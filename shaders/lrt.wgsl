@@ -89,18 +89,12 @@ struct VisibilityOutput {
     @builtin(frag_depth) depth: f32,
 }
 
-// Footprint corner `v` (0 to FOOTPRINT_VERTICES − 1: the fan of the hull, or the two triangles
-// of the rectangle) in pixels.
+// Footprint corner `v` (0 to FOOTPRINT_VERTICES − 1: the fan of the hull, a rectangle's two
+// triangles first) in pixels; the fan's spare triangles are degenerate at hull point 0.
 fn footprint_corner(f: Footprint, v: u32) -> vec2<f32> {
-    let use_rect = frame_uniforms.footprint_shape == FOOTPRINT_RECTANGLE || f.whole_screen == 1u || f.hull_len < 3u;
     let triangle = v / 3u;
     let corner = v % 3u;
-    if (use_rect) {
-        let r = f.rect;
-        let quad = array<vec2<f32>, 6>(r.xy, vec2<f32>(r.z, r.y), r.zw, r.xy, r.zw, vec2<f32>(r.x, r.w));
-        return select(r.xy, quad[min(v, 5u)], v < 6u);
-    }
-    if (triangle + 2u >= f.hull_len) {
+    if (triangle + 2u >= (f.flags & FOOTPRINT_HULL_LEN)) {
         return f.hull[0];
     }
     return f.hull[select(0u, triangle + corner, corner > 0u)];

@@ -9,6 +9,20 @@
 // of split triangles (split_footprint), taken in turn by draw_args[DRAW_ARGS_PIECES_TAKEN]. Each footprint names its
 // triangle, so the LRT pass draws all of them in one draw.
 @group(3) @binding(0) var<storage, read_write> footprints: array<Footprint>;
+
+// A footprint as this pass makes it (srt_proxy::Footprint): the hull (a rectangle as its four
+// corners) and, apart from what is stored (types.wgsl's Footprint), the rectangle of the six
+// points, which bounds the triangle's image and so the screen bounds the footprint grows.
+struct ProxyFootprint {
+    hull: array<vec2<f32>, FOOTPRINT_HULL_POINTS>,
+    // Rectangle min.xy, max.xy (zero for the zero value, which draws nothing).
+    rect: vec4<f32>,
+    // Valid hull points; 0 for a footprint that draws nothing.
+    hull_len: u32,
+    whole_screen: bool,
+    // In a triangle's own slot: the piece slots ran out (split_footprint).
+    pieces_overflowed: bool,
+}
 // The frame's screen bound, the union of every footprint's rectangle in whole pixels (of every
 // part the pass is run over), for the LRT part-depth pass: (!min x, !min y, max x, max y) as
 // draw_args[DRAW_ARGS_BOUND..] holds the part's. One buffer for the whole frame, cleared to 0
@@ -95,22 +109,21 @@ fn turns_left(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> bool {
 }
 
 // The footprint whose rectangle and hull are the rectangle from `lo` to `hi`.
-fn rectangle_footprint(lo: vec2<f32>, hi: vec2<f32>) -> Footprint {
-    var f: Footprint;
+fn rectangle_footprint(lo: vec2<f32>, hi: vec2<f32>) -> ProxyFootprint {
+    var f: ProxyFootprint;
     f.rect = vec4<f32>(lo, hi);
     f.hull[0] = lo;
     f.hull[1] = vec2<f32>(hi.x, lo.y);
     f.hull[2] = hi;
     f.hull[3] = vec2<f32>(lo.x, hi.y);
     f.hull_len = 4u;
-    f.whole_screen = 0u;
     return f;
 }
 
-fn whole_screen_footprint() -> Footprint {
+fn whole_screen_footprint() -> ProxyFootprint {
     let picture = picture_rect();
     var f = rectangle_footprint(picture.xy, picture.zw);
-    f.whole_screen = 1u;
+    f.whole_screen = true;
     return f;
 }
 
@@ -289,9 +302,9 @@ fn polygon_area(points: array<vec2<f32>, 6>, len: u32) -> f32 {
 
 // The paper's footprint of the six points P1, G12, P2, G23, P3, G31 (pixels): their rectangle
 // and convex hull, both dilated by FOOTPRINT_MARGIN.
-fn hull_footprint(six: array<vec2<f32>, 6>) -> Footprint {
+fn hull_footprint(six: array<vec2<f32>, 6>) -> ProxyFootprint {
     var points = six;
-    var f: Footprint;
+    var f: ProxyFootprint;
     var lo = points[0];
     var hi = points[0];
     for (var i = 1u; i < 6u; i++) {
@@ -361,14 +374,13 @@ fn hull_footprint(six: array<vec2<f32>, 6>) -> Footprint {
         f.hull[i] = here + FOOTPRINT_MARGIN * miter;
     }
     f.hull_len = len;
-    f.whole_screen = 0u;
     return f;
 }
 
 // srt_proxy::Footprint::worth_splitting: footprint `f` of the six points `six` covers more than
 // SPLIT_AREA_FRACTION of the screen and its hull is loose (LOOSE_HULL_FACTOR times the area of
 // the triangle of the projected corners).
-fn worth_splitting(f: Footprint, six: array<vec2<f32>, 6>) -> bool {
+fn worth_splitting(f: ProxyFootprint, six: array<vec2<f32>, 6>) -> bool {
     let picture = picture_rect();
     let screen = frame_uniforms.picture.xy;
     let on_screen = vec4<f32>(max(f.rect.xy, picture.xy), min(f.rect.zw, picture.zw));
@@ -401,14 +413,42 @@ fn bisect(piece: array<vec3<f32>, 3>) -> array<array<vec3<f32>, 3>, 2> {
     return array<array<vec3<f32>, 3>, 2>(array<vec3<f32>, 3>(a, middle, c), array<vec3<f32>, 3>(middle, b, c));
 }
 
-// Stores footprint `f` of triangle `triangle` in slot `slot`, grows the part's and the frame's
-// screen bounds by its rectangle clamped to the screen and the draw's vertex count past `slot`
-// (an empty footprint adds nothing).
-fn store_footprint(slot: u32, triangle: u32, f: Footprint) {
-    var named = f;
-    named.triangle = triangle;
-    named.nearest_depth = footprint_depth;
-    footprints[slot] = named;
+// The footprint `f` as the visibility passes draw it: with the paper's rectangle footprints
+// (FOOTPRINT_RECTANGLE) its rectangle, as four hull points; else its hull.
+fn drawn_footprint(f: ProxyFootprint) -> ProxyFootprint {
+    if (frame_uniforms.footprint_shape != FOOTPRINT_RECTANGLE || f.hull_len == 0u) {
+        return f;
+    }
+    var r = rectangle_footprint(f.rect.xy, f.rect.zw);
+    r.whole_screen = f.whole_screen;
+    r.pieces_overflowed = f.pieces_overflowed;
+    return r;
+}
+
+// The rectangle of the points of `f`'s hull: what the visibility passes draw of it lies inside.
+fn hull_bounds(f: ProxyFootprint) -> vec4<f32> {
+    var lo = f.hull[0];
+    var hi = f.hull[0];
+    for (var i = 1u; i < f.hull_len; i++) {
+        lo = min(lo, f.hull[i]);
+        hi = max(hi, f.hull[i]);
+    }
+    return vec4<f32>(lo, hi);
+}
+
+// Stores footprint `f` of triangle `triangle` in slot `slot` as it is drawn (drawn_footprint),
+// grows the part's and the frame's screen bounds by its rectangle clamped to the screen and the
+// draw's vertex count past `slot` (an empty footprint adds nothing).
+fn store_footprint(slot: u32, triangle: u32, f: ProxyFootprint) {
+    let drawn = drawn_footprint(f);
+    var flags = drawn.hull_len;
+    if (f.whole_screen) {
+        flags |= FOOTPRINT_WHOLE_SCREEN;
+    }
+    if (f.pieces_overflowed) {
+        flags |= FOOTPRINT_PIECES_OVERFLOWED;
+    }
+    footprints[slot] = Footprint(drawn.hull, triangle, footprint_depth, flags, 0u);
     let screen = frame_uniforms.viewport.xy;
     let lo = max(floor(f.rect.xy), vec2<f32>(0.0));
     let hi = min(ceil(f.rect.zw), screen);
@@ -510,7 +550,7 @@ fn box_nearest_distance() -> f32 {
 }
 
 // Stores `f` as a piece of triangle `t` in the next free piece slot; false when none is left.
-fn store_piece(t: u32, f: Footprint) -> bool {
+fn store_piece(t: u32, f: ProxyFootprint) -> bool {
     let slot = part.triangle_count + atomicAdd(&draw_args[DRAW_ARGS_PIECES_TAKEN], 1u);
     if (slot >= arrayLength(&footprints)) {
         return false;
@@ -525,7 +565,7 @@ const SPLIT_STACK: u32 = MAX_SPLIT_DEPTH + 1u;
 // Splits triangle `t` (corners `rest` in S′) as srt_proxy::split_pieces does, whose
 // documentation says why the pieces are conservative, and stores them: the first in the
 // triangle's own slot, the others in piece slots. When the piece slots run out, the triangle's
-// own slot gets the rectangle holding all its pieces instead (srt_proxy::split_footprint); when
+// own slot gets the rectangle holding all its pieces as drawn instead (srt_proxy::split_footprint); when
 // a piece MAX_SPLIT_DEPTH deep may reach the camera, the whole screen.
 fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
     let picture = picture_rect();
@@ -537,14 +577,14 @@ fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
     var size = 1u;
     var union_lo = vec2<f32>(3.0e38);
     var union_hi = vec2<f32>(-3.0e38);
-    var own = Footprint();
+    var own = ProxyFootprint();
     var kept = 0u;
     var all_stored = true;
     while (size > 0u) {
         size--;
         let piece = stack[size];
         let depth = depths[size];
-        var f: Footprint;
+        var f: ProxyFootprint;
         var split = false;
         var points: array<vec2<f32>, 6>;
         if (tangent_outline(piece, &points)) {
@@ -592,8 +632,10 @@ fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
         if (!all(lo < hi)) {
             continue;
         }
-        union_lo = min(union_lo, lo);
-        union_hi = max(union_hi, hi);
+        // The fallback holds what the piece would have drawn.
+        let drawn = hull_bounds(drawn_footprint(f));
+        union_lo = min(union_lo, max(drawn.xy, vec2<f32>(0.0)));
+        union_hi = max(union_hi, min(drawn.zw, frame_uniforms.viewport.xy));
         if (kept == 0u) {
             own = f;
         } else if (all_stored) {
@@ -603,7 +645,7 @@ fn split_footprint(t: u32, rest: array<vec3<f32>, 3>) {
     }
     if (!all_stored) {
         own = rectangle_footprint(union_lo, union_hi);
-        own.pieces_overflowed = 1u;
+        own.pieces_overflowed = true;
     }
     store_footprint(t, t, own);
 }
@@ -630,7 +672,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
             let bound = object.view_bound - vec4<f32>(frame_uniforms.picture.zw, frame_uniforms.picture.zw);
             store_footprint(t, t, rectangle_footprint(max(bound.xy, picture.xy), min(bound.zw, picture.zw)));
         } else {
-            store_footprint(t, t, Footprint());
+            store_footprint(t, t, ProxyFootprint());
         }
         return;
     }
@@ -638,7 +680,7 @@ fn footprint_main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     // observer's rest-frame position, so a triangle facing away from it is hidden behind the
     // rest of the solid. An empty footprint draws nothing.
     if (part_has(PART_CULL_BACK_FACES) && dot(cross(rest[1] - rest[0], rest[2] - rest[0]), object.frame.observer_rest.yzw - rest[0]) <= 0.0) {
-        store_footprint(t, t, Footprint());
+        store_footprint(t, t, ProxyFootprint());
         return;
     }
     footprint_depth = nearest_depth(rest);

@@ -36,7 +36,7 @@ const FOOTPRINT_HULL_POINTS: u32 = 6u;
 // the spare triangles of smaller hulls are degenerate. The LRT draws this many vertices per
 // triangle, and the proxy pass counts them into the indirect draw.
 const FOOTPRINT_VERTICES: u32 = 3u * (FOOTPRINT_HULL_POINTS - 2u);
-// The same vertices cover a rectangle footprint with two triangles (corners 0 to 5).
+// A rectangle, stored as four hull points, is the fan's first two triangles.
 const_assert FOOTPRINT_VERTICES >= 6u;
 
 // A part's draw_args (proxy.wgsl writes it, lrt.wgsl reads it; twins of
@@ -277,27 +277,34 @@ const SHADOW_OBJECT_ROWS: u32 = 6u;
 const SHADOW_NODE_ROWS: u32 = 2u;
 const SHADOW_TRIANGLE_ROWS: u32 = 3u;
 
-// The image-space footprint of one apparent triangle (srt_proxy::Footprint), in pixels.
+// The image-space footprint of one apparent triangle (srt_proxy::Footprint) as the proxy pass
+// stores it and the visibility passes draw it: the convex polygon drawn, in pixels (a
+// rectangle is stored as its four corners), and what names and orders it; 64 bytes.
 struct Footprint {
     hull: array<vec2<f32>, FOOTPRINT_HULL_POINTS>,
-    // Rectangle min.xy, max.xy.
-    rect: vec4<f32>,
-    // Valid hull points; 0 (and a zero rect: the zero value Footprint()) for a footprint that
-    // draws nothing: a culled back face, or a triangle nothing of which is on screen.
-    hull_len: u32,
-    // 1 for a whole-screen footprint.
-    whole_screen: u32,
     // The triangle of the batch it is a footprint of (itself, or a piece of it).
     triangle: u32,
-    // 1 in a triangle's own slot when the batch's piece slots ran out while storing its pieces:
-    // the footprint is then the rectangle holding all of them (proxy.wgsl, split_footprint).
-    pieces_overflowed: u32,
     // The depth the footprint is drawn at: at most that of any hit its fragments can find
     // (proxy.wgsl, nearest_depth), so that the visibility passes may declare the depth they
     // write "greater or equal" (srt_gpu::shaders::ConservativeDepth).
     nearest_depth: f32,
-    padding: array<u32, 3>,
+    // The hull's valid points (FOOTPRINT_HULL_LEN; 0 for a footprint that draws nothing: a
+    // culled back face, or a triangle nothing of which is on screen) and the flags
+    // FOOTPRINT_WHOLE_SCREEN and FOOTPRINT_PIECES_OVERFLOWED.
+    flags: u32,
+    padding: u32,
 }
+
+// Footprint.flags: the bits that hold the hull's number of valid points (at most
+// FOOTPRINT_HULL_POINTS).
+const FOOTPRINT_HULL_LEN: u32 = 7u;
+const_assert FOOTPRINT_HULL_POINTS <= FOOTPRINT_HULL_LEN;
+// Footprint.flags: a whole-screen footprint.
+const FOOTPRINT_WHOLE_SCREEN: u32 = 8u;
+// Footprint.flags: in a triangle's own slot, the batch's piece slots ran out while its pieces
+// were stored, and the footprint is the rectangle holding all of them (proxy.wgsl,
+// split_footprint).
+const FOOTPRINT_PIECES_OVERFLOWED: u32 = 16u;
 
 // One star of the sky (srt_scene::Star), at rest in the world frame W.
 struct Star {

@@ -510,7 +510,7 @@ fn two_moving_lights(shadows: bool) -> anyhow::Result<Case> {
 }
 
 /// Fig. 10's cube with 400 × 400 squares a face: one mesh of 1 920 000 triangles, whose
-/// footprints (144 bytes a triangle) are more than a 128 MiB storage binding holds, so the
+/// footprints (96 bytes a triangle) are more than a 128 MiB storage binding holds, so the
 /// renderer uploads it in slices (WebGPU's default binding size and the software adapters').
 fn fine_cube() -> anyhow::Result<Case> {
     let overrides = srt_scene::Overrides {

@@ -328,7 +328,7 @@ fn validate_footprints(
                 triangles += 1;
                 let corners = part.mesh.triangle_positions(t);
                 let cpu = footprint(&object.frame, corners, observer, view_projection, viewport);
-                if g.hull_len == 0 && g.whole_screen == 0 && drawn.pieces.is_empty() {
+                if g.hull_len() == 0 && !g.whole_screen() && drawn.pieces.is_empty() {
                     // Empty: a culled back face (up to f32 rounding of edge-on ones), or a
                     // triangle nothing of which is on screen (the samples below check it).
                     let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
@@ -340,7 +340,7 @@ fn validate_footprints(
                     }
                     empty += 1;
                 }
-                if g.whole_screen == 1 {
+                if g.whole_screen() {
                     whole += 1;
                     extra_whole += usize::from(!cpu.whole_screen);
                     continue;
@@ -358,16 +358,19 @@ fn validate_footprints(
                 if outside && std::env::var_os("SRT_VALIDATE_DEBUG").is_some() {
                     eprintln!("triangle {t}: outside\n  gpu {drawn:?}\n  cpu {cpu:?}");
                 }
-                if cpu.split || cpu.whole_screen || g.hull_len == 0 || !drawn.pieces.is_empty() {
+                let Some(bounds) = g.bounds() else {
+                    continue;
+                };
+                if cpu.split || cpu.whole_screen || !drawn.pieces.is_empty() {
                     // Clamped to the screen, split, or empty: no margin to measure.
                     continue;
                 }
-                worst_excess = worst_excess.max(rect_excess(&cpu.rect, g.rect, viewport));
+                worst_excess = worst_excess.max(bounds_excess(&cpu.rect, bounds, viewport));
             }
         }
     }
     println!(
-        "proxy scene={} triangles={triangles} culled={culled} empty={empty} split={split} pieces={pieces} whole_screen={whole} not_conservative={not_conservative} extra_whole_screen={extra_whole} worst_rect_margin_px={worst_excess:.3}",
+        "proxy scene={} triangles={triangles} culled={culled} empty={empty} split={split} pieces={pieces} whole_screen={whole} not_conservative={not_conservative} extra_whole_screen={extra_whole} worst_bounds_margin_px={worst_excess:.3}",
         case.name
     );
     Ok(if not_conservative > 0 {
@@ -391,13 +394,12 @@ fn escapes_footprints<'a>(
     (view_projection, viewport): (DMat4, Viewport),
     footprints: impl Iterator<Item = &'a GpuFootprint>,
 ) -> bool {
-    let shapes: Vec<(Vec<DVec2>, [f32; 4])> = footprints
+    // What the visibility passes draw of each footprint: its hull (a rectangle as four points).
+    let shapes: Vec<Vec<DVec2>> = footprints
         .map(|f| {
-            let hull = f.hull[..f.hull_len as usize]
-                .iter()
+            (f.hull_points().iter())
                 .map(|h| DVec2::new(f64::from(h[0]), f64::from(h[1])))
-                .collect();
-            (hull, f.rect)
+                .collect()
         })
         .collect();
     let boundary = (0..3).flat_map(|k| {
@@ -415,13 +417,7 @@ fn escapes_footprints<'a>(
     });
     let on_screen =
         |q: DVec2| q.x >= 0.0 && q.y >= 0.0 && q.x <= viewport.width && q.y <= viewport.height;
-    let inside = |q: DVec2, (hull, rect): &(Vec<DVec2>, [f32; 4])| {
-        srt_proxy::hull_contains(hull, q, HULL_TOLERANCE)
-            && q.x >= f64::from(rect[0]) - HULL_TOLERANCE
-            && q.y >= f64::from(rect[1]) - HULL_TOLERANCE
-            && q.x <= f64::from(rect[2]) + HULL_TOLERANCE
-            && q.y <= f64::from(rect[3]) + HULL_TOLERANCE
-    };
+    let inside = |q: DVec2, hull: &[DVec2]| srt_proxy::hull_contains(hull, q, HULL_TOLERANCE);
     boundary.chain(interior).any(|rest| {
         let seen = frame.apparent_position(rest, observer);
         srt_proxy::project(view_projection, viewport, seen)
@@ -429,9 +425,9 @@ fn escapes_footprints<'a>(
     })
 }
 
-/// How much larger the GPU's rectangle `gpu` is than the f64 one, `cpu`, on the screen: the
-/// largest of its four margins, in pixels.
-fn rect_excess(cpu: &srt_proxy::Rect, gpu: [f32; 4], viewport: Viewport) -> f64 {
+/// How much larger the rectangle `gpu` of what the GPU draws of a footprint is than the f64
+/// footprint's rectangle, `cpu`, on the screen: the largest of its four margins, in pixels.
+fn bounds_excess(cpu: &srt_proxy::Rect, gpu: [f32; 4], viewport: Viewport) -> f64 {
     let cpu_rect = cpu.clamped(viewport);
     let gpu_rect = srt_proxy::Rect {
         min: DVec2::new(f64::from(gpu[0]), f64::from(gpu[1])),

@@ -656,32 +656,77 @@ pub const SHADOW_NODE_ROWS: u32 = (size_of::<GpuBvhNode>() / 16) as u32;
 /// Rows of one triangle ([`GpuRtTriangle`]) in `shadow_scene` (WGSL `SHADOW_TRIANGLE_ROWS`).
 pub const SHADOW_TRIANGLE_ROWS: u32 = (size_of::<GpuRtTriangle>() / 16) as u32;
 
-/// Twin of WGSL `Footprint`.
+/// Twin of WGSL `Footprint`: a footprint as the proxy pass stores it and the visibility passes
+/// draw it, 64 bytes.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuFootprint {
-    /// Hull points in pixels.
+    /// The convex polygon drawn, in pixels: the first [`GpuFootprint::hull_len`] points (a
+    /// rectangle, whole-screen footprints and the paper's rectangle footprints included, as its
+    /// four corners).
     pub hull: [[f32; 2]; FOOTPRINT_HULL_POINTS],
-    /// Rectangle min x, min y, max x, max y.
-    pub rect: [f32; 4],
-    /// Valid hull points (0, with a zero rectangle, for a footprint that draws nothing: a culled
-    /// back face or a triangle nothing of which is on screen).
-    pub hull_len: u32,
-    /// 1 for a whole-screen footprint.
-    pub whole_screen: u32,
     /// The triangle of the batch it is a footprint of: the triangle of its slot, or the one it
     /// is a piece of.
     pub triangle: u32,
-    /// 1 in a triangle's own slot when the batch's piece slots ran out while its pieces were
-    /// stored: the footprint is then the rectangle holding all its pieces (0 otherwise).
-    pub pieces_overflowed: u32,
     /// The depth at which the footprint is drawn: at most the depth of any hit its fragments
     /// can find (the apparent distance bound of [`srt_proxy::nearest_apparent_distance`], less
     /// a margin for f32 rounding, times the frame's depth scale), so that the visibility passes
     /// may declare the depth they write "greater or equal" ([`crate::shaders::ConservativeDepth`]).
     pub nearest_depth: f32,
-    /// Pads the footprint to 16 bytes.
-    pub padding: [u32; 3],
+    /// The hull's number of points ([`FOOTPRINT_HULL_LEN`]) and the flags
+    /// [`FOOTPRINT_WHOLE_SCREEN`] and [`FOOTPRINT_PIECES_OVERFLOWED`].
+    pub flags: u32,
+    /// Pads the footprint to the hull's alignment.
+    pub padding: u32,
+}
+
+/// Bits of [`GpuFootprint::flags`] holding the hull's number of points, 0 for a footprint that
+/// draws nothing (a culled back face, or a triangle nothing of which is on screen) (WGSL
+/// `FOOTPRINT_HULL_LEN`).
+pub const FOOTPRINT_HULL_LEN: u32 = 7;
+/// [`GpuFootprint::flags`]: a whole-screen footprint (WGSL `FOOTPRINT_WHOLE_SCREEN`).
+pub const FOOTPRINT_WHOLE_SCREEN: u32 = 8;
+/// [`GpuFootprint::flags`]: in a triangle's own slot, the batch's piece slots ran out while its
+/// pieces were stored, and the footprint is the rectangle holding all of them as drawn (WGSL
+/// `FOOTPRINT_PIECES_OVERFLOWED`).
+pub const FOOTPRINT_PIECES_OVERFLOWED: u32 = 16;
+
+impl GpuFootprint {
+    /// The hull's number of points (0: the footprint draws nothing).
+    #[must_use]
+    pub const fn hull_len(&self) -> usize {
+        (self.flags & FOOTPRINT_HULL_LEN) as usize
+    }
+
+    /// The hull's points, in pixels.
+    #[must_use]
+    pub fn hull_points(&self) -> &[[f32; 2]] {
+        &self.hull[..self.hull_len().min(FOOTPRINT_HULL_POINTS)]
+    }
+
+    /// Whether it is a whole-screen footprint.
+    #[must_use]
+    pub const fn whole_screen(&self) -> bool {
+        self.flags & FOOTPRINT_WHOLE_SCREEN != 0
+    }
+
+    /// Whether it is a triangle's fallback rectangle around its pieces (the piece slots ran out).
+    #[must_use]
+    pub const fn pieces_overflowed(&self) -> bool {
+        self.flags & FOOTPRINT_PIECES_OVERFLOWED != 0
+    }
+
+    /// The rectangle (min x, min y, max x, max y) of the hull's points, which holds what is drawn
+    /// of the footprint; `None` for one that draws nothing.
+    #[must_use]
+    pub fn bounds(&self) -> Option<[f32; 4]> {
+        let points = self.hull_points();
+        let first = points.first()?;
+        Some(points.iter().fold(
+            [first[0], first[1], first[0], first[1]],
+            |[x0, y0, x1, y1], p| [x0.min(p[0]), y0.min(p[1]), x1.max(p[0]), y1.max(p[1])],
+        ))
+    }
 }
 
 /// Twin of WGSL `PhysicsProbeInput`: one set of arguments for every physics kernel

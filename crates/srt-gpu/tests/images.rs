@@ -393,7 +393,7 @@ fn triangles_split_beyond_the_piece_slots_are_drawn_by_the_rectangle_of_their_pi
     // and how many of their pieces were stored first, depends on the order in which GPU
     // threads take slots (it differs from run to run on llvmpipe), so the test checks what
     // holds in every order.
-    // The rectangle holds the on-screen part of each piece's rectangle.
+    // The rectangle holds the on-screen part of what each stored piece draws.
     let (width, height) = (WIDTH as f32, HEIGHT as f32);
     let holds = |outer: [f32; 4], inner: [f32; 4]| {
         outer[0] <= inner[0].max(0.0)
@@ -401,18 +401,16 @@ fn triangles_split_beyond_the_piece_slots_are_drawn_by_the_rectangle_of_their_pi
             && outer[2] >= inner[2].min(width)
             && outer[3] >= inner[3].min(height)
     };
-    let overflowed: Vec<_> = drawn
-        .iter()
-        .filter(|t| t.own.pieces_overflowed == 1)
-        .collect();
+    let overflowed: Vec<_> = drawn.iter().filter(|t| t.own.pieces_overflowed()).collect();
     assert!(
         !overflowed.is_empty(),
         "no triangle fell back to the rectangle of its pieces"
     );
     for t in &overflowed {
-        assert_eq!(t.own.hull_len, 4, "a fallback is a rectangle: {t:?}");
+        assert_eq!(t.own.hull_len(), 4, "a fallback is a rectangle: {t:?}");
+        let own = t.own.bounds().unwrap();
         assert!(
-            t.pieces.iter().all(|p| holds(t.own.rect, p.rect)),
+            (t.pieces.iter()).all(|p| p.bounds().is_some_and(|piece| holds(own, piece))),
             "a fallback rectangle misses a stored piece: {t:?}"
         );
     }

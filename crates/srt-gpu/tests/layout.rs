@@ -120,7 +120,7 @@ fn table() -> Vec<Twin> {
         twin!(ObjectUniforms => "ObjectUniforms" { frame, style, optics, time, world_time, blink, clock, clock_face, clock_ink, motion, motion_axis, motion_centre, motion_low, motion_high, view_bound }),
         twin!(PartUniforms => "PartUniforms" { base_color, flags, triangle_count, id, frames, frame_height, frame_rate, padding }),
         twin!(GpuVertex => "Vertex" { position, normal, color, uv }),
-        twin!(GpuFootprint => "Footprint" { hull, rect, hull_len, whole_screen, triangle, pieces_overflowed, nearest_depth, padding }),
+        twin!(GpuFootprint => "Footprint" { hull, triangle, nearest_depth, flags, padding }),
         twin!(GpuBvhNode => "BvhNode" { min, primitive_count, max, first }),
         twin!(GpuRtTriangle => "RtTriangle" { p0, part, p1, triangle, p2, padding }),
         twin!(GpuMovingLight => "MovingLight" { offset_temperature, beta_gamma, strength }),
