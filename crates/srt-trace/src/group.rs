@@ -9,15 +9,12 @@
 //! object chosen is searched in its own coordinates as before ([`PreparedObject`]), so the hit
 //! found does not depend on the grouping.
 
-use bvh::aabb::{Aabb, Bounded};
-use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::Bvh;
 use glam::DVec3;
-use nalgebra::Point3;
 use srt_physics::{Event, RestRay};
 
 use crate::prepared::{Hit, PreparedObject};
-use crate::walk::nearest_first;
+use crate::walk::{BoxLeaf, nearest_first};
 
 /// A velocity group of a scene's objects.
 pub(crate) struct VelocityGroup {
@@ -25,34 +22,12 @@ pub(crate) struct VelocityGroup {
     first: usize,
     /// Members that spin or thrust: searched along every ray, as their bodies leave any box.
     moving: Vec<usize>,
-    /// The resting members' boxes in the group's rest coordinates.
-    boxes: Vec<MemberBox>,
+    /// The resting members' boxes in the group's rest coordinates, each holding the member's
+    /// index.
+    boxes: Vec<BoxLeaf<usize>>,
     /// A BVH over `boxes`; `None` for a group of one resting member, whose own box test is
     /// the whole cull.
     bvh: Option<Bvh<f64, 3>>,
-}
-
-/// A resting member's box, as a leaf of its group's BVH.
-struct MemberBox {
-    aabb: Aabb<f64, 3>,
-    object: usize,
-    node: usize,
-}
-
-impl Bounded<f64, 3> for MemberBox {
-    fn aabb(&self) -> Aabb<f64, 3> {
-        self.aabb
-    }
-}
-
-impl BHShape<f64, 3> for MemberBox {
-    fn set_bh_node_index(&mut self, index: usize) {
-        self.node = index;
-    }
-
-    fn bh_node_index(&self) -> usize {
-        self.node
-    }
 }
 
 impl VelocityGroup {
@@ -78,7 +53,7 @@ impl VelocityGroup {
         let origin = objects[first].observer_rest.position;
         let (resting, moving): (Vec<usize>, Vec<usize>) =
             (members.iter()).partition(|&&index| objects[index].motion.is_rest());
-        let mut boxes: Vec<MemberBox> = (resting.iter())
+        let mut boxes: Vec<BoxLeaf<usize>> = (resting.iter())
             .map(|&index| {
                 let object = &objects[index];
                 // The same event has coordinates shifted by `shift` in the group's rest frame
@@ -88,15 +63,7 @@ impl VelocityGroup {
                 let (lo, hi) = object.bounds;
                 let scale = 1.0 + origin.abs().max_element() + lo.abs().max(hi.abs()).max_element();
                 let pad = DVec3::splat(1e-9 * scale);
-                let (lo, hi) = (lo + shift - pad, hi + shift + pad);
-                MemberBox {
-                    aabb: Aabb::with_bounds(
-                        Point3::new(lo.x, lo.y, lo.z),
-                        Point3::new(hi.x, hi.y, hi.z),
-                    ),
-                    object: index,
-                    node: 0,
-                }
+                BoxLeaf::new(lo + shift - pad, hi + shift + pad, index)
             })
             .collect();
         let bvh = (boxes.len() > 1).then(|| Bvh::build(&mut boxes));
@@ -156,11 +123,11 @@ impl VelocityGroup {
                 let origin = origin_of(&objects[self.first]).position;
                 // Members come nearer box first; none whose box starts beyond the best hit.
                 nearest_first(bvh, origin, inverse_direction, limit(best), |member, _| {
-                    search_member(self.boxes[member].object, best);
+                    search_member(self.boxes[member].item, best);
                     limit(best)
                 });
             }
-            None => (self.boxes.iter()).for_each(|member| search_member(member.object, best)),
+            None => (self.boxes.iter()).for_each(|member| search_member(member.item, best)),
         }
         for &index in &self.moving {
             search_member(index, best);

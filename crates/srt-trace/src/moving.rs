@@ -23,9 +23,7 @@
 //! tangential graze within one piece) is missed; the pieces keep that to grazing incidence. A
 //! thrust's crossings are all found.
 
-use bvh::aabb::Aabb;
 use glam::{DMat4, DVec3, DVec4};
-use nalgebra::Point3;
 use srt_physics::motion::{
     Motion, SPIN_PIECE_ANGLE, Spin, THRUST_NEWTON_STEPS, THRUST_PIECES_PER_SIZE, Thrust,
 };
@@ -33,6 +31,7 @@ use srt_physics::{RestRay, lorentz_matrix};
 
 use crate::intersect::TriangleHit;
 use crate::prepared::PreparedObject;
+use crate::walk::aabb;
 
 /// Most pieces of one curved stretch of ray.
 const MAX_PIECES: usize = 1 << 16;
@@ -192,10 +191,10 @@ impl PreparedObject<'_> {
         for k in 1..=pieces {
             let piece = curve.piece(previous.as_ref(), at(k - 1), at(k));
             let (lo, hi) = (piece.lo, piece.hi);
-            let query =
-                Aabb::with_bounds(Point3::new(lo.x, lo.y, lo.z), Point3::new(hi.x, hi.y, hi.z));
+            let query = aabb(lo, hi);
             let mut best: Option<Crossing> = None;
             for leaf in bvh.traverse_iterator(&query, &self.boxes) {
+                let leaf = leaf.item;
                 let mesh = &self.parts[leaf.part as usize].part.mesh;
                 let corners = mesh.triangle_positions(leaf.triangle as usize);
                 // The crossing is a point of the piece, in its box, and of the triangle, in

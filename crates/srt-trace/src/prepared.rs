@@ -6,43 +6,27 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use bvh::aabb::{Aabb, Bounded};
-use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::Bvh;
 use glam::{DVec3, DVec4};
-use nalgebra::Point3;
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::mip::MipChain;
 use srt_scene::{Object, Part, Texture};
 
 use crate::intersect::{TriangleHit, intersect_triangle};
-use crate::walk::{box_entry, nearest_first};
+use crate::walk::{BoxLeaf, box_entry, nearest_first};
 
-/// A triangle of one of an object's parts, as a leaf of the object's BVH.
-#[derive(Debug, Clone)]
-pub(crate) struct TriangleBox {
-    aabb: Aabb<f64, 3>,
+/// A triangle of one of an object's parts.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PartTriangle {
+    /// The part.
     pub(crate) part: u32,
+    /// The triangle in the part's mesh.
     pub(crate) triangle: u32,
-    node: usize,
 }
 
-impl Bounded<f64, 3> for TriangleBox {
-    fn aabb(&self) -> Aabb<f64, 3> {
-        self.aabb
-    }
-}
-
-impl BHShape<f64, 3> for TriangleBox {
-    fn set_bh_node_index(&mut self, index: usize) {
-        self.node = index;
-    }
-
-    fn bh_node_index(&self) -> usize {
-        self.node
-    }
-}
+/// A triangle as a leaf of its object's BVH.
+pub(crate) type TriangleBox = BoxLeaf<PartTriangle>;
 
 /// The mip chains of a scene's textures, each made once however many parts share its texture
 /// (the scene's builder shares one texture among the parts that describe the same one).
@@ -119,15 +103,14 @@ impl<'a> PreparedObject<'a> {
                     let [a, b, c] = mesh.triangle_positions(i);
                     let min = a.min(b).min(c) - pad;
                     let max = a.max(b).max(c) + pad;
-                    TriangleBox {
-                        aabb: Aabb::with_bounds(
-                            Point3::new(min.x, min.y, min.z),
-                            Point3::new(max.x, max.y, max.z),
-                        ),
-                        part: part as u32,
-                        triangle: i as u32,
-                        node: 0,
-                    }
+                    TriangleBox::new(
+                        min,
+                        max,
+                        PartTriangle {
+                            part: part as u32,
+                            triangle: i as u32,
+                        },
+                    )
                 })
             })
             .collect();
@@ -168,7 +151,7 @@ impl<'a> PreparedObject<'a> {
             ray.direction.recip(),
             limit,
             |shape, bound| {
-                let leaf = &self.boxes[shape];
+                let leaf = self.boxes[shape].item;
                 let mesh = &self.parts[leaf.part as usize].part.mesh;
                 let corners = mesh.triangle_positions(leaf.triangle as usize);
                 if let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
@@ -220,7 +203,7 @@ impl<'a> PreparedObject<'a> {
         // The walk stops (its bound below every entry) at the first triangle crossed.
         let mut crossed = false;
         nearest_first(bvh, from, direction.recip(), length, |shape, bound| {
-            let leaf = &self.boxes[shape];
+            let leaf = self.boxes[shape].item;
             let mesh = &self.parts[leaf.part as usize].part.mesh;
             crossed = intersect_triangle(
                 from,

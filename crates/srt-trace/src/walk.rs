@@ -9,9 +9,53 @@
 //! farther than the bound at the time, so whatever a visitor keeps of the leaves it is given —
 //! the nearest hit, ties to the lowest index — is what a search of every leaf keeps.
 
-use bvh::aabb::Aabb;
+use bvh::aabb::{Aabb, Bounded};
+use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::{Bvh, BvhNode};
 use glam::DVec3;
+use nalgebra::Point3;
+
+/// A leaf of a BVH the walk searches: `item` in the box [`lo`, `hi`] it was made with (the
+/// `bvh` crate's leaf traits, for its builder).
+#[derive(Debug, Clone)]
+pub(crate) struct BoxLeaf<T> {
+    aabb: Aabb<f64, 3>,
+    /// What the leaf stands for.
+    pub(crate) item: T,
+    node: usize,
+}
+
+impl<T> BoxLeaf<T> {
+    /// The leaf of `item` in the box [`lo`, `hi`].
+    pub(crate) fn new(lo: DVec3, hi: DVec3, item: T) -> Self {
+        Self {
+            aabb: aabb(lo, hi),
+            item,
+            node: 0,
+        }
+    }
+}
+
+/// The `bvh` crate's box [`lo`, `hi`].
+pub(crate) fn aabb(lo: DVec3, hi: DVec3) -> Aabb<f64, 3> {
+    Aabb::with_bounds(Point3::new(lo.x, lo.y, lo.z), Point3::new(hi.x, hi.y, hi.z))
+}
+
+impl<T> Bounded<f64, 3> for BoxLeaf<T> {
+    fn aabb(&self) -> Aabb<f64, 3> {
+        self.aabb
+    }
+}
+
+impl<T> BHShape<f64, 3> for BoxLeaf<T> {
+    fn set_bh_node_index(&mut self, index: usize) {
+        self.node = index;
+    }
+
+    fn bh_node_index(&self) -> usize {
+        self.node
+    }
+}
 
 /// Subtrees a walk keeps on its own stack frame before it spills to the heap: a BVH of
 /// 1.92 M triangles built by the crate is about 40 levels deep.
@@ -131,44 +175,18 @@ pub(crate) fn nearest_first(
 
 #[cfg(test)]
 mod tests {
-    use bvh::aabb::Bounded;
-    use bvh::bounding_hierarchy::BHShape;
-    use nalgebra::Point3;
-
     use super::*;
-
-    /// A unit cube at `centre`, as a BVH leaf.
-    struct Cube {
-        centre: DVec3,
-        node: usize,
-    }
-
-    impl Bounded<f64, 3> for Cube {
-        fn aabb(&self) -> Aabb<f64, 3> {
-            let (lo, hi) = (self.centre - 0.5, self.centre + 0.5);
-            Aabb::with_bounds(Point3::new(lo.x, lo.y, lo.z), Point3::new(hi.x, hi.y, hi.z))
-        }
-    }
-
-    impl BHShape<f64, 3> for Cube {
-        fn set_bh_node_index(&mut self, index: usize) {
-            self.node = index;
-        }
-
-        fn bh_node_index(&self) -> usize {
-            self.node
-        }
-    }
 
     /// On a row of cubes along the ray (and some beside it), the walk finds the nearest cube
     /// the ray meets as a search of all does, visits no cube it misses, and, once its visitor
     /// bounds it at the first hit, visits few cubes beyond it.
     #[test]
     fn the_walk_finds_the_nearest_and_prunes_beyond_its_bound() {
-        let mut cubes: Vec<Cube> = (0..200)
-            .map(|i| Cube {
-                centre: DVec3::new(f64::from(i % 20) * 2.0, f64::from(i / 20) * 3.0, 0.0),
-                node: 0,
+        // Unit cubes, each leaf holding its centre.
+        let mut cubes: Vec<BoxLeaf<DVec3>> = (0..200)
+            .map(|i| {
+                let centre = DVec3::new(f64::from(i % 20) * 2.0, f64::from(i / 20) * 3.0, 0.0);
+                BoxLeaf::new(centre - 0.5, centre + 0.5, centre)
             })
             .collect();
         let bvh = Bvh::build(&mut cubes);
