@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -139,27 +143,66 @@ def test_an_edited_scene_renders_as_the_override_does():
     assert not np.array_equal(edited, srt.render("fig4", **SMALL, backend="cpu"))
 
 
+# validate's rule (xtask/src/validate.rs): pixels within EDGE_MARGIN pixels of a silhouette of
+# the CPU's picture are not compared, and at most MAX_MISMATCH of the others may differ: by more
+# than 2/255 in a channel of the 8-bit display colours; by more than 2 % of the pixel's largest
+# radiance channel (or of 0.01 where that is smaller); in what the pixel sees of time, by its
+# object or by more than 1e-3 of a channel's magnitude (at least 1).
+EDGE_MARGIN = 1
+MAX_MISMATCH = 0.001
+DISPLAY_TOLERANCE = 2
+RADIANCE_TOLERANCE, RADIANCE_FLOOR = 0.02, 0.01
+SEEN_TOLERANCE = 1e-3
+
+
+def off_silhouettes(objects: np.ndarray, margin: int = EDGE_MARGIN) -> np.ndarray:
+    """The pixels of the (height, width) object indices `objects` that no pixel within `margin`
+    (Chebyshev distance, within the picture) sees another object in: those validate compares
+    (srt_trace::compare::near_silhouette)."""
+    height, width = objects.shape
+    padded = np.pad(objects, margin, mode="edge")
+    near = np.zeros(objects.shape, dtype=bool)
+    for dy in range(2 * margin + 1):
+        for dx in range(2 * margin + 1):
+            near |= padded[dy : dy + height, dx : dx + width] != objects
+    return ~near
+
+
+def mismatch(differs: np.ndarray, compared: np.ndarray) -> float:
+    """The fraction of the `compared` pixels that differ."""
+    return float(differs[compared].mean())
+
+
+def test_off_silhouettes_leaves_out_the_pixels_beside_an_edge():
+    objects = np.full((5, 6), -1)
+    objects[1:3, 1:3] = 0
+    expected = np.ones((5, 6), dtype=bool)
+    expected[0:4, 0:4] = False
+    assert (off_silhouettes(objects) == expected).all()
+    assert mismatch(np.eye(5, 6, dtype=bool), expected) == pytest.approx(1 / 14)
+
+
 def test_the_gpu_draws_the_display_the_radiance_and_the_time_near_the_cpu():
     try:
         gpu = srt.render("fig7", **SMALL, backend="gpu", aov=True)
     except srt.GpuError as error:
         require_gpu(f"no GPU adapter for srt.render(backend='gpu'): {error}")
     cpu = srt.render("fig7", **SMALL, backend="cpu", aov=True)
-    # The GPU draws the radiance too: equal to the CPU's relative to each pixel's brightness
-    # (validate's rule, edge pixels aside), and not the CPU's own bits.
+    compared = off_silhouettes(cpu["object"])
+    assert compared.mean() > 0.5 and (cpu["object"][compared] >= 0).any()
+    # The GPU draws the radiance too, not the CPU's own bits.
     assert not np.array_equal(gpu["radiance"], cpu["radiance"])
-    scale = np.maximum(np.abs(cpu["radiance"]).max(axis=-1), 0.01)
+    scale = np.maximum(np.abs(cpu["radiance"]).max(axis=-1), RADIANCE_FLOOR)
     relative = np.abs(gpu["radiance"] - cpu["radiance"]).max(axis=-1) / scale
-    assert (relative > 0.02).mean() < 0.01, "the GPU mirrors the CPU but for a few edge pixels"
-    difference = np.abs(gpu["display"] - cpu["display"]).max(axis=-1)
-    assert (difference > 0.01).mean() < 0.01, "the GPU mirrors the CPU but for a few edge pixels"
-    # The time channels: the same objects, each value to validate's 1e-3 of its magnitude (the
-    # CPU computes them where the GPU's colour target holds half floats).
-    same_object = gpu["object"] == cpu["object"]
-    assert same_object.mean() > 0.99 and (cpu["object"] >= 0).any()
+    assert mismatch(relative > RADIANCE_TOLERANCE, compared) <= MAX_MISMATCH, "radiance"
+    steps = np.abs(srt.to_srgb8(gpu["display"]).astype(int) - srt.to_srgb8(cpu["display"]))
+    assert mismatch(steps.max(axis=-1) > DISPLAY_TOLERANCE, compared) <= MAX_MISMATCH, "display"
+    # The time channels (the CPU computes them where the GPU's colour target holds half floats).
+    differs = gpu["object"] != cpu["object"]
     for name in ("emission_ct", "proper_time", "distance", "doppler"):
         relative = np.abs(gpu[name] - cpu[name]) / np.maximum(np.abs(cpu[name]), 1.0)
-        assert (relative[same_object] <= 1e-3).all(), name
+        differs |= relative > SEEN_TOLERANCE
+    assert mismatch(differs, compared) <= MAX_MISMATCH, "what the pixels see of time"
 
 
 @pytest.mark.parametrize(
@@ -208,74 +251,143 @@ def test_unknown_scenes_and_missing_files_raise_os_errors(tmp_path):
 
 
 def test_the_gil_is_released_while_rendering():
-    ticks = 0
+    """Another Python thread runs while srt.render is rendering. The switch interval is made so
+    long that the interpreter never takes the GIL from the main thread itself: the other thread
+    runs only where the main thread gives the GIL up, so a step it takes while `rendering` is
+    set was taken inside srt.render, however fast or slow the machine."""
+    steps = {"rendering": 0, "else": 0}
+    rendering = False
     done = threading.Event()
 
     def count():
-        nonlocal ticks
         while not done.is_set():
-            ticks += 1
-            time.sleep(0.001)
+            steps["rendering" if rendering else "else"] += 1
+            time.sleep(0.001)  # gives the GIL up
 
+    # A scene already built: srt.render loads no scene file (which it also does without the GIL).
+    teaser = srt.Scene.builtin("teaser")
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1000.0)
     counter = threading.Thread(target=count)
-    counter.start()
     try:
-        srt.render("teaser", width=480, height=270, backend="cpu")
+        counter.start()
+        rendering = True
+        srt.render(teaser, width=480, height=270, backend="cpu")
+        rendering = False
     finally:
         done.set()
         counter.join()
-    assert ticks > 10, "another Python thread ran while srt rendered"
+        sys.setswitchinterval(interval)
+    assert steps["rendering"] >= 1, f"no other Python thread ran while srt rendered: {steps}"
 
 
-def test_ctrl_c_stops_a_long_render(tmp_path):
-    import subprocess
-    import sys
+# The Ctrl-C test's render: far more than any machine can finish within the test's bound (1024
+# samples of every pixel of 16384 × 16384: 2.7e11 samples, about a day on two cores of 2026),
+# stopped within the rows already begun (16384 × 1024 samples each).
+ENDLESS = {"width": 16384, "height": 16384, "samples": 1024}
+# How long the interrupted render may take in all, start-up included: generous, as a render
+# that finished would take far longer.
+STOP_BOUND_SECONDS = 600
 
+
+def test_ctrl_c_stops_a_long_render():
     # Python's own Ctrl-C handler, even where this process was started with SIGINT ignored (a
     # job a non-interactive shell ran in the background inherits that, and Python keeps it).
-    script = """
-import os, signal, threading, time, srt
+    # SIGINT is sent once the render has started: by a thread that runs only where the main
+    # thread gives the GIL up (the switch interval made too long for the interpreter to take
+    # it), which it does inside srt.render.
+    script = f"""
+import os, signal, sys, threading, time, srt
 signal.signal(signal.SIGINT, signal.default_int_handler)
-threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
-start = time.monotonic()
+teaser = srt.Scene.builtin("teaser")
+sys.setswitchinterval(1000.0)
+rendering = False
+
+def interrupt():
+    while not rendering:
+        time.sleep(0.001)
+    os.kill(os.getpid(), signal.SIGINT)
+
+threading.Thread(target=interrupt, daemon=True).start()
 try:
-    srt.render("teaser", width=4096, height=4096, samples=16, backend="cpu")
+    rendering = True
+    srt.render(teaser, **{ENDLESS!r}, backend="cpu")
     print("finished")
 except KeyboardInterrupt:
-    print(f"interrupted after {time.monotonic() - start:.1f} s")
+    print("interrupted")
 """
+    try:
+        done = subprocess.run(
+            [sys.executable, "-c", script], capture_output=True, text=True,
+            timeout=STOP_BOUND_SECONDS, check=False,
+        )
+    except subprocess.TimeoutExpired as expired:
+        pytest.fail(f"Ctrl-C did not stop the render within {STOP_BOUND_SECONDS} s: {expired}")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == "interrupted\n", done.stdout + done.stderr
+
+
+# Prints what `import srt` made of XDG_RUNTIME_DIR: the folder, its permissions and its entries.
+RUNTIME_DIR_SCRIPT = """
+import os, stat, srt
+folder = os.environ.get("XDG_RUNTIME_DIR", "")
+print(folder)
+print(oct(stat.S_IMODE(os.stat(folder).st_mode)) if os.path.isdir(folder) else "no folder")
+print(sorted(os.listdir(folder)) if os.path.isdir(folder) else "no entries")
+"""
+
+
+def run_python(script: str, runtime_dir: str | None) -> subprocess.CompletedProcess[str]:
+    """`python -c SCRIPT` with XDG_RUNTIME_DIR set to `runtime_dir` (absent for None); it must
+    succeed."""
+    environment = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
+    if runtime_dir is not None:
+        environment["XDG_RUNTIME_DIR"] = runtime_dir
     done = subprocess.run(
-        [sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=False
+        [sys.executable, "-c", script], capture_output=True, text=True, env=environment,
+        timeout=300, check=False,
     )
-    assert done.stdout.startswith("interrupted after"), done.stdout + done.stderr
-    seconds = float(done.stdout.split()[2])
-    # The whole render takes minutes; the stop comes within the rows already begun.
-    assert seconds < 30, done.stdout
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="srt sets it on Linux only")
+@pytest.mark.parametrize("given", [None, "", "relative/run", "/nonexistent/srt-run"])
+def test_import_gives_a_private_runtime_dir_where_there_is_no_valid_one(given):
+    """Without a valid XDG_RUNTIME_DIR (absent, empty, relative, not a folder), `import srt`
+    sets it to a new private folder (0700, empty, named srt-runtime-…), removed when the
+    interpreter exits, as the `srt` command does."""
+    folder, mode, entries = run_python(RUNTIME_DIR_SCRIPT, given).stdout.splitlines()
+    assert os.path.isabs(folder) and os.path.basename(folder).startswith("srt-runtime-"), folder
+    assert folder != given
+    assert (mode, entries) == ("0o700", "[]")
+    assert not os.path.exists(folder), "the private folder is removed at exit"
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="srt sets it on Linux only")
+def test_import_leaves_a_valid_runtime_dir_alone(tmp_path):
+    (tmp_path / "socket").write_text("")
+    folder, _, entries = run_python(RUNTIME_DIR_SCRIPT, str(tmp_path)).stdout.splitlines()
+    assert (folder, entries) == (str(tmp_path), "['socket']")
+    assert (tmp_path / "socket").exists(), "the folder and what is in it are kept"
 
 
 def test_no_runtime_dir_warning_without_xdg_runtime_dir():
     """Mesa's Vulkan layer makes libwayland complain on every GPU render without a valid
-    XDG_RUNTIME_DIR; srt gives the process a private one, as the command does."""
-    import os
-    import subprocess
-    import sys
-
+    XDG_RUNTIME_DIR; srt gives the process a private one, as the command does: a GPU render
+    runs with it and says nothing of it."""
     script = """
-import srt
+import os, srt
 try:
     srt.render("fig7", width=16, height=16, backend="gpu", aov=True)
-    print("rendered on the GPU")
+    print("rendered on the GPU with", os.environ["XDG_RUNTIME_DIR"])
 except srt.GpuError as error:
     print(f"no GPU: {error}")
 """
-    environment = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
-    done = subprocess.run(
-        [sys.executable, "-c", script], capture_output=True, text=True, env=environment,
-        timeout=120, check=False,
-    )
-    assert done.returncode == 0, done.stderr
+    done = run_python(script, None)
     if not done.stdout.startswith("rendered on the GPU"):
         require_gpu(done.stdout.strip())
+    assert os.path.basename(done.stdout.split()[-1]).startswith("srt-runtime-"), done.stdout
     assert "XDG_RUNTIME_DIR" not in done.stderr, done.stderr
 
 
@@ -356,6 +468,20 @@ def test_a_gpu_renderer_keeps_its_engine_and_gives_each_frame_as_render_does():
     assert not np.array_equal(frames[0], frames[2]), "time moves the cube"
 
 
+def notes_of(render, *arguments, **keywords):
+    """What `render(*arguments, **keywords)` returns, and the notes it raised as warnings."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = render(*arguments, **keywords)
+    return result, [str(w.message) for w in caught if str(w.message).startswith("note: ")]
+
+
+def on_the_cpu(notes) -> bool:
+    """Whether `auto`'s notes say it rendered on the CPU (no adapter, or one it weighed as
+    slower: src/engine.rs)."""
+    return any("rendering on the CPU instead" in n or "auto renders on the CPU" in n for n in notes)
+
+
 def test_an_auto_renderer_follows_what_the_gpu_can_draw():
     # A projection the local ray tracer does not draw goes to the CPU within the loop, and the
     # next frame back to the GPU (where there is one): every frame is what srt.render gives.
@@ -371,5 +497,7 @@ def test_auto_draws_the_whole_sky_on_the_gpu_as_render_does():
     # pinhole and the full sphere on the GPU, each frame what srt.render gives.
     renderer = srt.Renderer(**SMALL)
     for arguments in ({}, {"projection": "equirectangular"}, {}):
-        frame = renderer.render("fig7", **arguments)
+        frame, notes = notes_of(renderer.render, "fig7", **arguments)
+        if on_the_cpu(notes):
+            require_gpu(f"auto drew fig7 {arguments} on the CPU: {notes}")
         assert np.array_equal(frame, srt.render("fig7", **SMALL, **arguments)), arguments
