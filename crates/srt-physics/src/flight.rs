@@ -24,6 +24,7 @@ use crate::event::Event;
 use crate::frame::FrameError;
 use crate::light::doppler_factor;
 use crate::lorentz::validate_beta;
+use crate::velocity::FourVelocity;
 
 /// Below this |α dτ| the hyperbolic functions are replaced by their Taylor series' leading
 /// terms (relative error below 10⁻¹⁶).
@@ -181,23 +182,11 @@ impl Worldline {
     }
 }
 
-/// The boost Λ_β of Eq. 2 written with the four-velocity u = (γ, γβ) instead of β:
-/// γ²/(γ+1) ββᵀ = (γβ)(γβ)ᵀ/(γ+1). Equal to `lorentz_matrix(β)`, but γ is not recomputed from
-/// 1 − β·β, which loses precision as |β| → 1.
+/// The boost Λ_β of Eq. 2 written with the four-velocity u = (γ, γβ) instead of β
+/// ([`FourVelocity::boost`], γ taken from the spatial part): equal to `lorentz_matrix(β)`, but γ
+/// is not recomputed from 1 − β·β, which loses precision as |β| → 1.
 fn boost_of_four_velocity(u: DVec4) -> DMat4 {
-    let gamma = u.x;
-    let g = DVec3::new(u.y, u.z, u.w);
-    let k = 1.0 / (gamma + 1.0);
-    let column = |axis: DVec3, component: f64| {
-        let spatial = axis + k * component * g;
-        DVec4::new(component, spatial.x, spatial.y, spatial.z)
-    };
-    DMat4::from_cols(
-        DVec4::new(gamma, g.x, g.y, g.z),
-        column(DVec3::X, g.x),
-        column(DVec3::Y, g.y),
-        column(DVec3::Z, g.z),
-    )
+    FourVelocity::from_spatial(DVec3::new(u.y, u.z, u.w)).boost()
 }
 
 /// The four-velocity with its time part recomputed from its spatial part, γ = √(1 + |γβ|²), so

@@ -35,6 +35,7 @@ mod lorentz;
 pub mod motion;
 mod observer;
 mod retarded;
+mod velocity;
 
 pub use event::{Event, minkowski_interval};
 pub use frame::{Frame, FrameError, RestRay};
@@ -45,6 +46,7 @@ pub use light::{
 pub use lorentz::{compose_velocities, lorentz_factor, lorentz_matrix, rapidity, validate_beta};
 pub use observer::{MovingObserver, Poincare, RelativeFrame, boost_and_rotation};
 pub use retarded::RetardedLight;
+pub use velocity::FourVelocity;
 
 /// The README's example, compiled and run by `cargo test --doc`.
 #[cfg(doctest)]

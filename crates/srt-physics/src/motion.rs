@@ -27,6 +27,7 @@
 use glam::{DMat3, DQuat, DVec3};
 
 use crate::event::Event;
+use crate::velocity::FourVelocity;
 
 /// Most rotation of a spinning body per piece of a curved ray, in radians: how finely the
 /// moving bodies' searches cut a ray's curve in body space into pieces whose boxes ask the BVH
@@ -297,13 +298,25 @@ impl Thrust {
     /// The velocity (units of c) in S′ of the body point `body` at S′ time `ct`.
     #[must_use]
     pub fn velocity(&self, body: DVec3, ct: f64) -> DVec3 {
+        self.rapidity(body, ct).tanh() * self.direction
+    }
+
+    /// The four-velocity in S′ of the body point `body` at S′ time `ct`: sinh η · â, finite
+    /// however long the thrust (where tanh η, its β, rounds to 1).
+    #[must_use]
+    pub fn four_velocity(&self, body: DVec3, ct: f64) -> FourVelocity {
+        FourVelocity::from_rapidity(self.direction, self.rapidity(body, ct))
+    }
+
+    /// The rapidity η of the body point `body` at S′ time `ct` (X sinh η = ct − ct₀, at most
+    /// α·τ; 0 before the start).
+    fn rapidity(&self, body: DVec3, ct: f64) -> f64 {
         let x = 1.0 / self.alpha + body.dot(self.direction);
         let elapsed = ct - self.start;
         if elapsed <= 0.0 {
-            return DVec3::ZERO;
+            return 0.0;
         }
-        let eta = (elapsed / x).asinh().min(self.final_rapidity);
-        eta.tanh() * self.direction
+        (elapsed / x).asinh().min(self.final_rapidity)
     }
 
     /// The body point found at the S′ event (`ct`, `position`), if any body point's worldline
@@ -370,6 +383,17 @@ impl Motion {
             Self::Rest => DVec3::ZERO,
             Self::Spin(spin) => spin.velocity_at(spin.position(body, ct)),
             Self::Thrust(thrust) => thrust.velocity(body, ct),
+        }
+    }
+
+    /// The four-velocity in S′ of the body point `body` at S′ time `ct` (finite where its β
+    /// rounds to |β| = 1).
+    #[must_use]
+    pub fn four_velocity(&self, body: DVec3, ct: f64) -> FourVelocity {
+        match self {
+            Self::Rest => FourVelocity::REST,
+            Self::Spin(_) => FourVelocity::from_beta(self.velocity(body, ct)),
+            Self::Thrust(thrust) => thrust.four_velocity(body, ct),
         }
     }
 

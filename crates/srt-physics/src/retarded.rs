@@ -10,8 +10,8 @@
 //!
 //! The frequency ratio receiver/source is the product of the source's Doppler factor into S
 //! (Eq. 4's time part, [`doppler_factor`]) and the receiver's out of S (Eq. 3's,
-//! [`receiver_doppler`]): D_in = γ_R(1 − β_R·n) / (γ_L(1 − β_L·n)), the first factor of Eq. 17
-//! with a moving source. Since r_L = γ_L(1 − β_L·n)·r and the distance in the receiver's frame is
+//! [`FourVelocity::receiver_doppler`]): D_in = γ_R(1 − β_R·n) / (γ_L(1 − β_L·n)), the first
+//! factor of Eq. 17 with a moving source. Since r_L = γ_L(1 − β_L·n)·r and the distance in the receiver's frame is
 //! r_R = γ_R(1 − β_R·n)·r (both the time component of the null vector (r, r·n) boosted), also
 //! D_in = r_R / r_L.
 //!
@@ -25,7 +25,8 @@ use glam::DVec3;
 
 use crate::event::Event;
 use crate::frame::Frame;
-use crate::light::{doppler_factor, receiver_doppler};
+use crate::light::doppler_factor;
+use crate::velocity::FourVelocity;
 
 /// The light of a point source at rest at the origin of `source` (a frame relative to S) that
 /// reaches one event.
@@ -62,19 +63,19 @@ impl RetardedLight {
         )
     }
 
-    /// D_in: the frequency a receiver moving with `receiver_beta` measures over the frequency
-    /// the source emitted (the source's Doppler factor into S times the receiver's out of S).
+    /// D_in: the frequency a receiver moving with `receiver` (its four-velocity, finite however
+    /// fast) measures over the frequency the source emitted (the source's Doppler factor into S
+    /// times the receiver's out of S).
     #[must_use]
-    pub fn doppler_to(&self, receiver_beta: DVec3) -> f64 {
-        doppler_factor(self.source_beta, self.direction)
-            * receiver_doppler(receiver_beta, self.direction)
+    pub fn doppler_to(&self, receiver: FourVelocity) -> f64 {
+        doppler_factor(self.source_beta, self.direction) * receiver.receiver_doppler(self.direction)
     }
 
-    /// The energy flux a receiver moving with `receiver_beta` measures, per unit of the source's
+    /// The energy flux a receiver moving with `receiver` measures, per unit of the source's
     /// intensity (flux at unit distance in its rest frame): D_in² / r_L².
     #[must_use]
-    pub fn flux_to(&self, receiver_beta: DVec3) -> f64 {
-        let doppler = self.doppler_to(receiver_beta);
+    pub fn flux_to(&self, receiver: FourVelocity) -> f64 {
+        let doppler = self.doppler_to(receiver);
         doppler * doppler / (self.source_distance * self.source_distance)
     }
 }
@@ -144,12 +145,12 @@ mod tests {
             let photon = LightVector::new(1.0, light.direction);
             let emitted = photon.boosted(-source_beta).omega;
             let received = photon.boosted(-receiver_beta).omega;
-            assert_relative_eq!(light.doppler_to(receiver_beta), received / emitted, max_relative = 1e-12);
+            assert_relative_eq!(light.doppler_to(FourVelocity::from_beta(receiver_beta)), received / emitted, max_relative = 1e-12);
             // D_in = r_R / r_L: the receiver's distance is the same null vector's time part in
             // its frame.
             let r = light.source_distance / (lorentz_factor(source_beta) * (1.0 - source_beta.dot(light.direction)));
             let r_receiver = lorentz_factor(receiver_beta) * r * (1.0 - receiver_beta.dot(light.direction));
-            assert_relative_eq!(light.doppler_to(receiver_beta), r_receiver / light.source_distance,
+            assert_relative_eq!(light.doppler_to(FourVelocity::from_beta(receiver_beta)), r_receiver / light.source_distance,
                 max_relative = 1e-12);
         }
     }
@@ -161,7 +162,11 @@ mod tests {
             RetardedLight::reaching(&source, Event::new(5.0, DVec3::new(4.0, 0.0, 0.0))).unwrap();
         assert_relative_eq!(light.source_event.ct, 0.0, epsilon = 1e-12);
         assert_relative_eq!(light.source_distance, 5.0, epsilon = 1e-12);
-        assert_relative_eq!(light.flux_to(DVec3::ZERO), 1.0 / 25.0, epsilon = 1e-15);
+        assert_relative_eq!(
+            light.flux_to(FourVelocity::REST),
+            1.0 / 25.0,
+            epsilon = 1e-15
+        );
         assert!(
             RetardedLight::reaching(&source, Event::new(1.0, DVec3::new(0.0, 0.0, 3.0))).is_none()
         );
@@ -175,8 +180,12 @@ mod tests {
         let source = Frame::new(DVec3::new(-0.6, 0.0, 0.0), DVec3::new(4.0, 0.0, 0.0)).unwrap();
         let light = RetardedLight::reaching(&source, Event::new(0.0, DVec3::ZERO)).unwrap();
         assert_relative_eq!(light.source_event.position.x, 10.0, epsilon = 1e-12);
-        assert_relative_eq!(light.doppler_to(DVec3::ZERO), 2.0, epsilon = 1e-12);
+        assert_relative_eq!(light.doppler_to(FourVelocity::REST), 2.0, epsilon = 1e-12);
         assert_relative_eq!(light.source_distance, 5.0, epsilon = 1e-12);
-        assert_relative_eq!(light.flux_to(DVec3::ZERO), 4.0 / 25.0, epsilon = 1e-15);
+        assert_relative_eq!(
+            light.flux_to(FourVelocity::REST),
+            4.0 / 25.0,
+            epsilon = 1e-15
+        );
     }
 }

@@ -16,7 +16,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 use glam::{DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
-use srt_physics::{Event, RetardedLight, doppler_factor};
+use srt_physics::{Event, FourVelocity, RetardedLight};
 use srt_scene::{Scene, ViewRays};
 use web_time::Instant;
 
@@ -79,8 +79,9 @@ pub struct SurfaceState {
     pub ct: f64,
     /// The proper time a clock riding on the point shows there (ct′ for a body at rest in S′).
     pub proper_time: f64,
-    /// The velocity of the point's local rest frame relative to S.
-    pub beta: DVec3,
+    /// The velocity of the point's local rest frame relative to S (its four-velocity: finite
+    /// where β rounds to |β| = 1).
+    pub velocity: FourVelocity,
     /// The unit surface normal in that frame (a pure boost from S).
     pub normal: DVec3,
 }
@@ -209,18 +210,18 @@ impl<'a> Tracer<'a> {
                 body,
                 ct,
                 proper_time: ct,
-                beta: object.frame.beta(),
+                velocity: FourVelocity::from_beta(object.frame.beta()),
                 normal,
             };
         }
-        let velocity = object.motion.velocity(body, ct);
+        let velocity = object.motion.four_velocity(body, ct);
         let four_normal = moving_normal(&object.motion, body, ct, normal);
-        let (beta, normal) = local_rest_frame(object.frame.beta(), velocity, four_normal);
+        let (velocity, normal) = local_rest_frame(object.frame.beta(), velocity, four_normal);
         SurfaceState {
             body,
             ct,
             proper_time: object.motion.proper_time(body, ct),
-            beta,
+            velocity,
             normal,
         }
     }
@@ -302,7 +303,7 @@ impl<'a> Tracer<'a> {
             exposure: self.scene.exposure,
         };
         let point = SurfacePoint {
-            beta: surface.beta,
+            velocity: surface.velocity,
             normal_rest: surface.normal,
             apparent_position: hit.emission.position,
             albedo,
@@ -534,7 +535,7 @@ impl Tracer<'_> {
             emission_ct: scene.world.apply(hit.emission).ct,
             proper_time: surface.proper_time,
             distance: hit.apparent_distance,
-            doppler: doppler_factor(surface.beta, towards_observer),
+            doppler: surface.velocity.doppler_factor(towards_observer),
         }
     }
 

@@ -26,7 +26,7 @@ use srt_color::{
     RadianceScale, RadianceTable, Reflectance, ScaledXyz, TemperatureLut, ToneMap, emitted_light,
     reflected_light, srgb_coefficient_table, srgb_decode,
 };
-use srt_physics::{Event, RetardedLight, aberrate, doppler_factor, receiver_doppler};
+use srt_physics::{Event, FourVelocity, RetardedLight};
 use srt_scene::{
     Effects, Emission, MAX_MOVING_LIGHTS, MovingLight, Shading, SurfaceColour, SurfaceOptics,
 };
@@ -34,8 +34,9 @@ use srt_scene::{
 /// What the shading of one point needs to know about the surface there.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
-    /// Velocity of the surface's rest frame.
-    pub beta: DVec3,
+    /// Velocity of the surface's rest frame relative to S, as its four-velocity (finite where a
+    /// point moving on a fast body has a β that rounds to |β| = 1).
+    pub velocity: FourVelocity,
     /// Interpolated unit normal in S′.
     pub normal_rest: DVec3,
     /// Apparent position of the point in S (Eq. 8).
@@ -234,8 +235,8 @@ pub fn arriving_unless_shadowed(
     // Eq. 17 in its two factors: light → surface and surface → observer.
     let (d_in, d_out) = if relativistic {
         (
-            receiver_doppler(point.beta, incident),
-            doppler_factor(point.beta, outgoing),
+            point.velocity.receiver_doppler(incident),
+            point.velocity.doppler_factor(outgoing),
         )
     } else {
         (1.0, 1.0)
@@ -246,7 +247,7 @@ pub fn arriving_unless_shadowed(
         return emitted(emission, d_out, light);
     }
     // Phong in S′: directions towards the light and towards the observer, aberrated (Eq. 4).
-    let to_observer = aberrate(-point.beta, outgoing).normalize();
+    let to_observer = point.velocity.reversed().aberrate(outgoing);
     // Two-sided surfaces: the normal facing the observer.
     let normal = if point.normal_rest.dot(to_observer) < 0.0 {
         -point.normal_rest
@@ -254,7 +255,7 @@ pub fn arriving_unless_shadowed(
         point.normal_rest
     };
     let phong = |propagation: DVec3| {
-        let to_light = -aberrate(-point.beta, propagation).normalize();
+        let to_light = -point.velocity.reversed().aberrate(propagation);
         phong_terms(&light.shading, normal, to_light, to_observer)
     };
     let (diffuse, specular) = phong(incident);
@@ -275,7 +276,7 @@ pub fn arriving_unless_shadowed(
             return None;
         }
         let d_in = if relativistic {
-            arriving.doppler_to(point.beta)
+            arriving.doppler_to(point.velocity)
         } else {
             1.0
         };

@@ -5,7 +5,7 @@
 
 use glam::{DVec3, DVec4};
 use srt_color::{TemperatureLut, ToneMap};
-use srt_physics::{doppler_factor, receiver_doppler};
+use srt_physics::{FourVelocity, doppler_factor, receiver_doppler};
 use srt_scene::{Effects, Emission, Shading, SurfaceColour, SurfaceOptics};
 use srt_trace::{Illumination, SurfacePoint, shade};
 
@@ -35,7 +35,7 @@ fn colour_of(albedo: [f64; 3], beta: DVec3, colour: SurfaceColour, optics: Surfa
     };
     // A point straight ahead, moving with `beta`, lit from the observer's position.
     let point = SurfacePoint {
-        beta,
+        velocity: FourVelocity::from_beta(beta),
         normal_rest: DVec3::NEG_Y,
         apparent_position: DVec3::new(0.0, 10.0, 0.0),
         albedo: DVec4::new(albedo[0], albedo[1], albedo[2], 1.0),

@@ -6,6 +6,7 @@ mod blink;
 mod clock;
 mod moving_bodies;
 mod moving_lights;
+mod near_light_speed;
 mod physics_checks;
 mod principle_of_relativity;
 mod projections;

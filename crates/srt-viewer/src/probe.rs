@@ -101,7 +101,7 @@ pub fn probe(scene: &Scene, width: u32, height: u32, x: u32, y: u32) -> Option<P
     let tracer = Tracer::new(scene);
     let hit = tracer.hit_at_pixel(width, height, x, y)?;
     let object = scene.objects.get(hit.object)?;
-    let beta = tracer.surface_at(&hit).beta;
+    let beta = tracer.surface_at(&hit).velocity.beta();
     let apparent_position = hit.emission.position;
     let seen = tracer.seen_event(&hit);
     // Propagation directions in S, as the shading uses them (§4.2): light → surface and
