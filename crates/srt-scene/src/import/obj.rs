@@ -4,13 +4,14 @@
 //! points and lines ignored. Material: diffuse colour `Kd` and dissolve `d` as the base colour,
 //! diffuse texture `map_Kd` (relative to the MTL file; texture options such as `-s 1 1 1` before
 //! the file name are skipped). Texture coordinates are flipped to v = 0 at the top. A missing
-//! MTL file or texture is a warning. Text that `tobj` would reject or panic on for reasons that
-//! do not touch the geometry is repaired first (UTF-16 or Latin-1 text, material statements
-//! without a name, one-component MTL colours), and face indices on which its arithmetic would
-//! overflow are rejected first, in a first pass that also counts the triangles and vertices and
-//! charges them to the budget before `tobj` allocates them. `tobj`'s errors carry no position:
-//! the line is where it stopped reading (or, for an index out of range, the first face that
-//! refers to an element not defined before it).
+//! MTL file or texture is a warning, and so is a `Kd` or `d` that reads as NaN or ±∞, named by
+//! the MTL file and line (the material gets the default instead). Text that `tobj` would
+//! reject or panic on for reasons that do not touch the geometry is repaired first (UTF-16 or
+//! Latin-1 text, material statements without a name, one-component MTL colours), and face
+//! indices on which its arithmetic would overflow are rejected first, in a first pass that also
+//! counts the triangles and vertices and charges them to the budget before `tobj` allocates
+//! them. `tobj`'s errors carry no position: the line is where it stopped reading (or, for an
+//! index out of range, the first face that refers to an element not defined before it).
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -141,6 +142,7 @@ fn load_library(
                     .borrow_mut()
                     .push(format!("material library \"{}\" {note}", full.display()));
             }
+            let text = drop_non_finite(&text, full, &mut warnings.borrow_mut());
             let mut cursor = Cursor::new(text.as_bytes());
             tobj::load_mtl_buf(&mut cursor)
                 .map_err(|e| describe_error(&e, &text, stopped_at(&cursor), Kind::Mtl))
@@ -264,6 +266,45 @@ fn normalize_text(bytes: &[u8], kind: Kind) -> (String, Option<&'static str>) {
         out.push('\n');
     }
     (out, note)
+}
+
+/// The MTL keys the importer reads a number from ([`convert_material`]) and what a material
+/// without the key gets: `Kd` the default colour (white), `d` the default opacity (1).
+const READ_NUMBER_KEYS: [(&str, &str); 2] = [
+    ("Kd", "the default colour"),
+    ("d", "the default opacity (1)"),
+];
+
+/// The MTL `text` of the library `file` without the statements of [`READ_NUMBER_KEYS`] that
+/// hold a number `tobj` would read as NaN or ±∞ (`Kd nan nan nan`, `d inf`): each is blanked,
+/// so that its material gets the default, and warned about with the file and the line
+/// (`normalize_text` keeps the lines where they were). A NaN colour would otherwise draw the
+/// model black, or dim one channel, without a word.
+fn drop_non_finite(text: &str, file: &Path, warnings: &mut Vec<String>) -> String {
+    let mut out = String::with_capacity(text.len());
+    for (index, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let keyword = words.next().unwrap_or("");
+        let bad = READ_NUMBER_KEYS
+            .iter()
+            .find(|(key, _)| *key == keyword)
+            .and_then(|(key, default)| {
+                // tobj reads f32; a word it cannot parse is its own error, left to it.
+                let value = words.find(|word| word.parse::<f32>().is_ok_and(|v| !v.is_finite()))?;
+                Some((key, value, default))
+            });
+        if let Some((key, value, default)) = bad {
+            warnings.push(format!(
+                "{}:{}: {key} has a non-finite value ({value}); using {default}",
+                file.display(),
+                index + 1
+            ));
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+    }
+    out
 }
 
 /// What the first pass over an OBJ file counted.
@@ -503,6 +544,50 @@ mod tests {
         assert_eq!(
             text,
             "newmtl (unnamed)\nKs 0 0 0\nKd 1 0.5 0.5\n\nKe 1 2 3\n"
+        );
+    }
+
+    /// A colour or opacity tobj would read as NaN or ∞ is dropped with a warning naming the
+    /// file and line, and the material gets the default colour (not black, not dimmed).
+    #[test]
+    fn non_finite_material_numbers_are_warned_about_and_replaced_by_the_default() {
+        let text = "newmtl a\nKd nan nan nan\nd 0.5\nnewmtl b\nKd 0.2 nan 0.4\nd inf\n\
+                    newmtl c\nKd 1e99 0 0\nKs nan 0 0\nnewmtl d\nKd 0.25 0.5 0.75\n";
+        let mut warnings = Vec::new();
+        let kept = drop_non_finite(text, Path::new("lib/model.mtl"), &mut warnings);
+        assert_eq!(
+            warnings,
+            [
+                "lib/model.mtl:2: Kd has a non-finite value (nan); using the default colour",
+                "lib/model.mtl:5: Kd has a non-finite value (nan); using the default colour",
+                "lib/model.mtl:6: d has a non-finite value (inf); using the default opacity (1)",
+                "lib/model.mtl:8: Kd has a non-finite value (1e99); using the default colour",
+            ]
+        );
+        let (materials, _) = tobj::load_mtl_buf(&mut Cursor::new(kept.as_bytes())).unwrap();
+        let converted: Vec<[f32; 4]> = materials
+            .iter()
+            .map(|m| {
+                let dirs = HashMap::new();
+                let mut budget = Budget::default();
+                convert_material(
+                    m,
+                    &dirs,
+                    &mut TextureCache::default(),
+                    &mut Vec::new(),
+                    &mut budget,
+                )
+                .base_color
+            })
+            .collect();
+        assert_eq!(
+            converted,
+            [
+                [1.0, 1.0, 1.0, 0.5],
+                [1.0, 1.0, 1.0, 1.0],
+                [1.0, 1.0, 1.0, 1.0],
+                [0.25, 0.5, 0.75, 1.0],
+            ]
         );
     }
 
