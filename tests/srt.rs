@@ -8,6 +8,7 @@ mod common;
 mod documents;
 mod memory;
 mod overrides;
+mod slurm;
 mod supersampling;
 mod video_and_shards;
 mod view;
