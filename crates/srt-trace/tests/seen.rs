@@ -14,8 +14,9 @@ const WIDTH: u32 = 64;
 const HEIGHT: u32 = 48;
 const HALF_SIZE: f64 = 1.0;
 
-/// Λ_β of Eq. 2, written out here (not srt-physics'): S′ → S for S′ moving with `beta`.
-fn boost(beta: DVec3) -> DMat4 {
+/// Λ_β of Eq. 2, written out here (not srt-physics'): S′ → S for S′ moving with `beta` (also
+/// `moving_bodies`' independent rest-frame rays).
+pub(crate) fn boost(beta: DVec3) -> DMat4 {
     let b2 = beta.length_squared();
     let gamma = 1.0 / (1.0 - b2).sqrt();
     let k = if b2 > 0.0 { (gamma - 1.0) / b2 } else { 0.0 };
@@ -38,12 +39,48 @@ fn boost(beta: DVec3) -> DMat4 {
 enum Shape {
     Cube,
     /// A latitude–longitude sphere of [`SPHERE_SEGMENTS`] slices and half as many rings, both
-    /// 2π / segments apart: its flat triangles lie inside the sphere by at most r (1 − cos δ),
-    /// δ half the angle across a cell's diagonal.
+    /// 2π / segments apart, its poles on ±z (`srt_scene::shapes::uv_sphere`): a convex
+    /// polyhedron whose faces are the flat cells between neighbouring rings and slices.
     Sphere,
 }
 
 const SPHERE_SEGMENTS: u32 = 64;
+
+/// The face planes (outward unit normal n, offset d: n·p ≤ d inside) of the tessellated
+/// sphere of radius [`HALF_SIZE`], from its vertex grid written out here: the vertex of ring i
+/// and slice j is r (sin θᵢ cos φⱼ, sin θᵢ sin φⱼ, cos θᵢ), θᵢ = π i / rings, φⱼ = 2π j /
+/// slices. A cell's four corners are coplanar (an isosceles trapezoid, symmetric about the
+/// meridian plane halfway between its slices); at a pole two of them coincide.
+fn sphere_planes() -> Vec<(DVec3, f64)> {
+    let (slices, rings) = (SPHERE_SEGMENTS, SPHERE_SEGMENTS / 2);
+    let vertex = |i: u32, j: u32| {
+        let theta = std::f64::consts::PI * f64::from(i) / f64::from(rings);
+        let phi = std::f64::consts::TAU * f64::from(j) / f64::from(slices);
+        HALF_SIZE
+            * DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            )
+    };
+    let mut planes = Vec::new();
+    for i in 0..rings {
+        for j in 0..slices {
+            // Three distinct corners: at the north pole the ring-i corners coincide.
+            let [a, b, c] = if i == 0 {
+                [vertex(0, j), vertex(1, j), vertex(1, j + 1)]
+            } else {
+                [vertex(i, j), vertex(i + 1, j), vertex(i, j + 1)]
+            };
+            let mut normal = (b - a).cross(c - a).normalize();
+            if normal.dot(a + b + c) < 0.0 {
+                normal = -normal;
+            }
+            planes.push((normal, normal.dot(a)));
+        }
+    }
+    planes
+}
 
 impl Shape {
     /// The scene file's `shape` table.
@@ -56,15 +93,20 @@ impl Shape {
         }
     }
 
-    /// How far the rest point `p` lies off the shape's surface.
+    /// How far the rest point `p` lies off the shape's surface: |max over the face planes of
+    /// n·p − d| for these convex solids, zero exactly on the surface, the distance to the
+    /// surface for a point inside and at most that for one outside.
     fn distance_off_surface(self, p: DVec3) -> f64 {
         match self {
             Self::Cube => (p.abs().max_element() - HALF_SIZE).abs(),
             Self::Sphere => {
-                let step = std::f64::consts::TAU / f64::from(SPHERE_SEGMENTS);
-                let sag = HALF_SIZE * (1.0 - (0.5 * std::f64::consts::SQRT_2 * step).cos());
-                // Inside the sphere by at most the flat triangles' sag.
-                (p.length() - HALF_SIZE).clamp(-sag, 0.0) - (p.length() - HALF_SIZE)
+                static PLANES: std::sync::OnceLock<Vec<(DVec3, f64)>> = std::sync::OnceLock::new();
+                PLANES
+                    .get_or_init(sphere_planes)
+                    .iter()
+                    .map(|(normal, offset)| normal.dot(p) - offset)
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    .abs()
             }
         }
     }
