@@ -30,7 +30,8 @@ fn a_picture_written_in_bands_is_the_whole_picture() {
     };
     let display = tracer.render(settings, &|_| {});
     let png = image::open(dir.path().join("t.png")).unwrap().into_rgb8();
-    assert_eq!(png.as_raw().len(), 3 * display.pixels.len());
+    assert_eq!(png.dimensions(), (4096, 600));
+    assert_eq!(display.pixels.len(), 4096 * 600);
     assert!(
         display.to_rgb8().iter().flatten().eq(png.as_raw().iter()),
         "the PNG is the whole picture"
@@ -217,6 +218,13 @@ fn gpu_tiles_give_the_whole_frame() {
                 .unwrap();
             banded.extend(band);
         }
+        // The whole frame and the bands' rows, pixel for pixel: a short band fails here.
+        assert_eq!(expected.len(), 160 * 90, "{output:?}: the whole frame");
+        assert_eq!(
+            banded.len(),
+            expected.len(),
+            "{output:?}: the bands' pixels"
+        );
         let worst = (expected.iter().zip(&banded))
             .map(|(e, t)| ((*e - *t).abs() / e.abs().max(glam::DVec3::splat(1e-3))).max_element())
             .fold(0.0, f64::max);
@@ -234,7 +242,8 @@ fn gpu_tiles_give_the_whole_frame() {
             .unwrap();
         banded.extend(band);
     }
-    assert_eq!(banded.len(), expected.len());
+    assert_eq!(expected.len(), 160 * 90, "the whole frame's time channels");
+    assert_eq!(banded.len(), expected.len(), "the bands' time channels");
     for (e, t) in expected.iter().zip(&banded) {
         assert_eq!(e[4], t[4], "the same object seen");
         for k in 0..4 {

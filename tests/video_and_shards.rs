@@ -539,8 +539,9 @@ fn partial_files(dir: &Path) -> Vec<String> {
         .collect()
 }
 
-/// Starts `srt` with `args` in `dir`, waits until `ready` holds for the folder (up to a minute),
-/// sends it `signal` (`kill -s`) and returns how it ended.
+/// Starts `srt` with `args` in `dir`, waits until `ready` holds for the folder (up to ten
+/// minutes: a bound for a stuck run, not a speed), sends it `signal` (`kill -s`) and returns
+/// how it ended.
 #[cfg(unix)]
 fn interrupted(
     args: &[&str],
@@ -555,7 +556,7 @@ fn interrupted(
         .stderr(std::process::Stdio::null())
         .spawn()
         .expect("srt runs");
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(600);
     while !ready(dir) && std::time::Instant::now() < deadline {
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
@@ -570,11 +571,13 @@ fn interrupted(
 
 /// A render ended by SIGINT, SIGTERM or SIGHUP removes its unfinished files and exits with
 /// 128 + the signal: a video leaves the folder as it was; a sharded run of numbered images keeps
-/// only the frames it finished, each complete.
+/// only the frames it finished, every one finished before the signal among them, each the
+/// frame an uninterrupted run writes, byte for byte.
 #[cfg(unix)]
 #[test]
 fn interrupted_renders_leave_no_unfinished_file() {
-    let frames = ["--frames", "400", "--t0", "0", "--t1", "8"];
+    // Far more frames than are rendered before the signal, on any machine.
+    let frames = ["--frames", "4000", "--t0", "0", "--t1", "8"];
     for (signal, status) in [("INT", 130), ("TERM", 143), ("HUP", 129)] {
         let dir = folder();
         let args = [&["render", "teaser"][..], &SMALL, &frames, &["-o", "t.gif"]].concat();
@@ -586,22 +589,76 @@ fn interrupted_renders_leave_no_unfinished_file() {
         assert!(left.is_empty(), "SIG{signal} left {left:?}");
     }
     let dir = folder();
+    let sharded = [&frames[..], &["--shard", "1/2"]].concat();
     let args = [
         &["render", "teaser"][..],
         &SMALL,
-        &frames,
-        &["--shard", "1/2", "-o", "t.png"],
+        &sharded,
+        &["-o", "t.png"],
     ]
     .concat();
+    // The frames finished when the signal is sent, as they are then (each renamed into place
+    // whole, so a name there is a complete file).
+    let finished = std::cell::RefCell::new(Vec::new());
     let ended = interrupted(&args, dir.path(), "TERM", |dir| {
-        dir.join("t_0002.png").exists()
+        if !dir.join("t_0002.png").exists() {
+            return false;
+        }
+        *finished.borrow_mut() = finished_frames(dir);
+        true
     });
     assert_eq!(ended.code(), Some(143));
     assert!(partial_files(dir.path()).is_empty());
-    for entry in std::fs::read_dir(dir.path()).unwrap() {
-        let path = entry.unwrap().path();
-        image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let finished = finished.into_inner();
+    let kept = finished_frames(dir.path());
+    assert!(
+        finished.iter().any(|(name, _)| name == "t_0002.png"),
+        "{finished:?}"
+    );
+    for (name, bytes) in &finished {
+        let now = kept.iter().find(|(kept, _)| kept == name);
+        assert!(
+            now.is_some_and(|(_, now)| now == bytes),
+            "{name}, finished before SIGTERM, is gone or changed"
+        );
     }
+    // Every frame left (those finished before the signal and any finished before it took
+    // effect) is the frame an uninterrupted run writes, byte for byte: each rendered alone
+    // here as the one frame of its own share (frame i is share i + 1 of 4000).
+    let whole = folder();
+    for (name, bytes) in &kept {
+        let frame: u32 = name
+            .strip_prefix("t_")
+            .and_then(|n| n.strip_suffix(".png"))
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{name} is not a frame of t.png"));
+        assert_eq!(frame % 2, 0, "{name} is not in share 1/2");
+        let alone = format!("{}/4000", frame + 1);
+        render_teaser(
+            whole.path(),
+            &[&frames[..], &["--shard", &alone]].concat(),
+            "t.png",
+        );
+        let expected = std::fs::read(whole.path().join(name)).unwrap();
+        assert!(
+            *bytes == expected,
+            "{name} differs from the frame of an uninterrupted run"
+        );
+    }
+}
+
+/// The files of `dir` but the temporary ones, each with its bytes, sorted by name.
+#[cfg(unix)]
+fn finished_frames(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut names = file_names(dir);
+    names.retain(|name| !name.ends_with(".partial"));
+    names
+        .into_iter()
+        .map(|name| {
+            let bytes = std::fs::read(dir.join(&name)).unwrap();
+            (name, bytes)
+        })
+        .collect()
 }
 
 /// The boxes of an MP4 below `start..end` of `data`, each as its path of box types
