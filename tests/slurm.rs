@@ -352,32 +352,46 @@ fn file_names(dir: &Path) -> Vec<String> {
     names
 }
 
-/// The partial file (`.srt-….partial`, an unfinished frame) that a process of task `task` of
-/// array job `array` holds open, if any: found through `/proc`, the environment Slurm gave the
-/// task's processes and their open files.
-fn partial_file_of(array: &str, task: u32) -> Option<PathBuf> {
+/// The processes (their `/proc` folders) of task `task` of array job `array`: those with the
+/// environment Slurm gave the task.
+fn task_processes(array: &str, task: u32) -> Vec<PathBuf> {
     let wanted = [
         format!("SLURM_ARRAY_JOB_ID={array}"),
         format!("SLURM_ARRAY_TASK_ID={task}"),
     ];
-    std::fs::read_dir("/proc")
-        .ok()?
-        .flatten()
-        .find_map(|process| {
-            let environment = std::fs::read(process.path().join("environ")).ok()?;
-            let environment: Vec<&[u8]> = environment.split(|&byte| byte == 0).collect();
-            if !wanted.iter().all(|v| environment.contains(&v.as_bytes())) {
-                return None;
-            }
-            std::fs::read_dir(process.path().join("fd"))
-                .ok()?
-                .flatten()
-                .find_map(|fd| {
-                    let file = std::fs::read_link(fd.path()).ok()?;
-                    let name = file.file_name()?.to_string_lossy().into_owned();
-                    (name.starts_with(".srt-") && name.ends_with(".partial")).then_some(file)
-                })
+    let Ok(processes) = std::fs::read_dir("/proc") else {
+        return Vec::new();
+    };
+    (processes.flatten())
+        .map(|process| process.path())
+        .filter(|process| {
+            std::fs::read(process.join("environ")).is_ok_and(|environment| {
+                let variables: Vec<&[u8]> = environment.split(|&byte| byte == 0).collect();
+                wanted.iter().all(|v| variables.contains(&v.as_bytes()))
+            })
         })
+        .collect()
+}
+
+/// A process of task `task` of array job `array` that holds a partial file (`.srt-….partial`,
+/// an unfinished frame) open, if any: its `/proc` folder and the file.
+fn partial_file_of(array: &str, task: u32) -> Option<(PathBuf, PathBuf)> {
+    task_processes(array, task).into_iter().find_map(|process| {
+        let open = std::fs::read_dir(process.join("fd")).ok()?;
+        let partial = open.flatten().find_map(|fd| {
+            let file = std::fs::read_link(fd.path()).ok()?;
+            let name = file.file_name()?.to_string_lossy().into_owned();
+            (name.starts_with(".srt-") && name.ends_with(".partial")).then_some(file)
+        })?;
+        Some((process, partial))
+    })
+}
+
+/// Sends `signal` (`STOP`, `CONT`) to the process of `/proc` folder `process`.
+fn signal(process: &Path, signal: &str) {
+    let pid = process.file_name().unwrap().to_string_lossy().into_owned();
+    // The process may have ended since it was seen: then there is nothing to signal.
+    let _ = Command::new("kill").args(["-s", signal, &pid]).status();
 }
 
 /// What job `id` (`123`, or an array task `123_4`) printed: Slurm's `slurm-ID.out` in the
@@ -391,9 +405,9 @@ fn frame_number(name: &str) -> Option<usize> {
     name.strip_prefix("f_")?.strip_suffix(".png")?.parse().ok()
 }
 
-/// The documented array, two shares of 8 frames, with its join. Share 1 is cancelled once its
-/// first frame is written (while it renders a later one): it leaves complete frames and no
-/// partial file, and the join waits for ever. As the page says, that share is submitted again
+/// The documented array, two shares of 8 frames, with its join. Share 1 is cancelled in the
+/// middle of its second frame or a later one: it leaves complete frames and no partial file,
+/// and the join waits for ever. As the page says, that share is submitted again
 /// alone and the join after it. Then every frame, those written before the cancel too, is the
 /// unsharded run's of the same command byte for byte, and so is the joined video.
 #[test]
@@ -403,8 +417,7 @@ fn the_documented_job_array_renders_the_frames_of_one_run_and_survives_a_cancell
         return;
     };
     let [render, join, submit] = documented_scripts();
-    // Small frames, each yet long enough (tenths of a second, against the cancel's
-    // milliseconds) that the cancel lands in the frame it was sent in.
+    // Small frames: 8 of 160x90, in two shares.
     let render = [
         ("--array=1-32", "--array=1-2"),
         ("--cpus-per-task=16", "--cpus-per-task=1"),
@@ -417,6 +430,8 @@ fn the_documented_job_array_renders_the_frames_of_one_run_and_survives_a_cancell
             "--samples 64 --width 160 --height 90",
         ),
         ("--frames 2400", "--frames 8"),
+        // The objects stay in view (frames of about equal cost).
+        ("--t0 0 --t1 100", "--t0 0 --t1 4"),
     ]
     .iter()
     .fold(render, |text, (documented, tiny)| {
@@ -438,8 +453,8 @@ fn the_documented_job_array_renders_the_frames_of_one_run_and_survives_a_cancell
     let frames_dir = dir.join("frames");
 
     // The node does not bind a task to the one CPU it asks for (no cgroups here): each is held
-    // to one thread, as a cluster's binding would, so that a frame takes as long on a machine of
-    // many cores.
+    // to one thread, as a cluster's binding would, so that a frame takes long enough (tenths of
+    // a second) to be seen unfinished on a machine of many cores too.
     let one_thread = "export RAYON_NUM_THREADS=1";
     // The page's commands, then the array's id they keep.
     let said = slurm.shell(
@@ -457,28 +472,53 @@ fn the_documented_job_array_renders_the_frames_of_one_run_and_survives_a_cancell
         .unwrap_or_else(|| panic!("the join was not submitted:\n{said}"))
         .to_owned();
 
-    // Share 1 writes frames 0, 2, 4, …: once frame 0 is there and it holds a partial file, it
-    // is writing frame 2.
+    // Share 1 writes frames 0, 2, 4, …: once frame 0 is there, its srt is stopped (SIGSTOP)
+    // while it holds the partial file of a later frame open, so that the cancel lands in that
+    // frame whatever the machine's speed. Slurm's cancel sends SIGCONT, then SIGTERM.
     let share_1 = format!("{array}_1");
     let first_frame = frames_dir.join("f_0000.png");
     let deadline = Instant::now() + PATIENCE;
+    let mut state_seen = Instant::now();
     let partial = loop {
         if first_frame.exists()
-            && let Some(partial) = partial_file_of(&array, 1)
+            && let Some((process, _)) = partial_file_of(&array, 1)
         {
-            break partial;
+            signal(&process, "STOP");
+            // Stopped, it cannot finish the frame: if it still holds a partial file, that frame
+            // is unfinished.
+            match partial_file_of(&array, 1) {
+                Some((_, partial)) => break partial,
+                None => signal(&process, "CONT"),
+            }
         }
-        let state = slurm.job_field(&share_1, "JobState");
-        assert!(
-            matches!(state.as_str(), "PENDING" | "RUNNING") && Instant::now() < deadline,
-            "share 1 ({state}) was not seen writing its second frame:\n{}\n{}",
-            job_output(dir, &share_1),
-            slurm.logs()
-        );
+        // The files are looked at every millisecond; Slurm, slower to ask, every two seconds
+        // until the first frame is there, then the task's processes.
+        if first_frame.exists() {
+            assert!(
+                !task_processes(&array, 1).is_empty(),
+                "share 1 ended before it was seen writing a second frame:\n{}",
+                job_output(dir, &share_1)
+            );
+        } else if state_seen.elapsed() > Duration::from_secs(2) {
+            let state = slurm.job_field(&share_1, "JobState");
+            assert!(
+                matches!(state.as_str(), "PENDING" | "RUNNING") && Instant::now() < deadline,
+                "share 1 ({state}) wrote no frame:\n{}\n{}",
+                job_output(dir, &share_1),
+                slurm.logs()
+            );
+            state_seen = Instant::now();
+        }
         std::thread::sleep(Duration::from_millis(1));
     };
     slurm.shell(&format!("scancel {share_1}"), dir);
     slurm.wait_for(&share_1, "JobState", "CANCELLED");
+    // Slurm may say so before the task's processes have ended.
+    let deadline = Instant::now() + PATIENCE;
+    while !task_processes(&array, 1).is_empty() {
+        assert!(Instant::now() < deadline, "share 1's processes never end");
+        std::thread::sleep(Duration::from_millis(10));
+    }
     let said = job_output(dir, &share_1);
     assert!(
         said.contains("interrupted: removed 1 unfinished output file(s)"),
