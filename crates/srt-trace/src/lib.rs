@@ -32,7 +32,9 @@ mod texture;
 mod walk;
 
 pub use intersect::{TriangleHit, intersect_triangle, plane_hit};
-pub use measure::{FrameMeasure, MeasuredPicture, PROBE_ROWS, WARM_UP_ROWS, measure_picture};
+pub use measure::{
+    FrameMeasure, MEASURED_SAMPLES, MeasuredPicture, PROBE_ROWS, WARM_UP_ROWS, measure_picture,
+};
 pub use render::{
     FrameCost, Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
     spread_rows,

@@ -21,6 +21,16 @@ use crate::render::{
 /// 2026-11-29, fourth entry).
 pub const PROBE_ROWS: u32 = 16;
 
+/// The most samples a pixel of a measured row traces: a picture of more samples is measured on
+/// the first this many of each pixel's samples (a prefix of the same sequence,
+/// [`crate::sample_offsets`]) and its rows' cost scaled by the ratio, as every sample of a pixel
+/// is one more ray of the same cost. A measure of every sample would cost the same share of the
+/// picture at any sample count, time thrown away where the adapter then draws it: the teaser at
+/// 320 × 180 with 256 samples spent 0.17 s measuring a 1.7 s picture (docs/performance.md,
+/// "auto without a hardware GPU"). Rows measured on fewer samples than the picture's are not
+/// the picture's rows, and a render traces them again.
+pub const MEASURED_SAMPLES: u32 = 16;
+
 /// Rows traced untimed before a measure: the first rows of a process build shared tables and
 /// touch the BVHs' memory, costs a frame pays once, which would weigh on every estimated row.
 pub const WARM_UP_ROWS: u32 = 2;
@@ -28,8 +38,12 @@ pub const WARM_UP_ROWS: u32 = 2;
 /// A frame's cost measured on some of its rows, with those rows' pixels.
 #[derive(Debug, Clone)]
 pub struct FrameMeasure {
-    /// The frame's size and samples.
+    /// The size and samples the rows were traced at: the frame's, with at most
+    /// [`MEASURED_SAMPLES`] samples.
     settings: RenderSettings,
+    /// The frame's samples a pixel for each one the rows traced (1 unless the frame has more
+    /// than [`MEASURED_SAMPLES`]).
+    samples_per_traced: f64,
     /// What the rows hold.
     output: Output,
     /// Seconds a frame of no rows took.
@@ -55,7 +69,9 @@ impl FrameMeasure {
         let threads = rayon::current_num_threads().max(1) as f64;
         FrameCost {
             setup_seconds: self.setup_seconds,
-            row_seconds: nanoseconds as f64 * 1e-9 / self.timed_rows.len().max(1) as f64 / threads,
+            row_seconds: nanoseconds as f64 * 1e-9 * self.samples_per_traced
+                / self.timed_rows.len().max(1) as f64
+                / threads,
             rows: self.settings.height,
         }
     }
@@ -67,7 +83,8 @@ impl FrameMeasure {
         self.passes
     }
 
-    /// The size and samples of the frame measured.
+    /// The size and samples the measured rows were traced at: the frame's size, and its samples
+    /// up to [`MEASURED_SAMPLES`].
     #[must_use]
     pub const fn settings(&self) -> RenderSettings {
         self.settings
@@ -130,7 +147,8 @@ pub fn measure_picture(scene: &Scene, settings: RenderSettings) -> MeasuredPictu
 
 impl Tracer<'_> {
     /// Measures what a frame of `output` at `settings` costs on this machine: `sample_rows`
-    /// of its rows spread evenly over the image ([`spread_rows`]) are traced once, timed,
+    /// of its rows spread evenly over the image ([`spread_rows`]), each pixel on at most
+    /// [`MEASURED_SAMPLES`] of its samples, are traced once, timed,
     /// after [`WARM_UP_ROWS`] rows untimed (which also make the picture's star layer, kept by
     /// the tracer for the render), and a frame of no rows gives the cost that does not grow
     /// with the rows. Each row is traced at full width, its rays as coherent as in a whole
@@ -145,6 +163,11 @@ impl Tracer<'_> {
         output: Output,
         sample_rows: u32,
     ) -> FrameMeasure {
+        let frame_samples = settings.samples.max(1);
+        let settings = RenderSettings {
+            samples: frame_samples.min(MEASURED_SAMPLES),
+            ..settings
+        };
         let warm_up = spread_rows(settings.height, WARM_UP_ROWS);
         let warm_pixels = self.rows_of(settings, &warm_up, output, Rows::Traced);
         let start = Instant::now();
@@ -175,6 +198,7 @@ impl Tracer<'_> {
         let rows = traced.iter().map(|&(row, _, _)| row).collect();
         FrameMeasure {
             settings,
+            samples_per_traced: f64::from(frame_samples) / f64::from(settings.samples),
             output,
             setup_seconds,
             timed_rows,
@@ -397,5 +421,66 @@ mod tests {
         };
         assert!(!render(other, Output::Display).pixels.contains(&marker));
         assert!(!render(settings, Output::Radiance).pixels.contains(&marker));
+    }
+
+    /// A frame of more than [`MEASURED_SAMPLES`] samples is measured on the first that many
+    /// of each pixel's samples: its rows are those of a frame of that many samples, bit for
+    /// bit, and not the frame's (a render of the frame traces them again); its rows' cost is
+    /// what was timed times the frame's samples per traced sample.
+    #[test]
+    fn a_frame_of_many_samples_is_measured_on_fewer_and_scaled() {
+        let scene = teaser();
+        let tracer = Tracer::new(&scene);
+        let frame = RenderSettings {
+            width: 16,
+            height: 12,
+            samples: 4 * MEASURED_SAMPLES,
+        };
+        let traced = RenderSettings {
+            samples: MEASURED_SAMPLES,
+            ..frame
+        };
+        let mut measure = tracer.measure_frame(frame, Output::Display, 3);
+        assert_eq!(measure.settings(), traced);
+        let at_traced = tracer.render(traced, &|_| {});
+        for &row in measure.rows() {
+            assert_eq!(
+                measure.row_pixels(row).unwrap(),
+                &at_traced.pixels[row as usize * 16..][..16],
+                "row {row}"
+            );
+        }
+        let marker = DVec3::new(-7.0, -7.0, -7.0);
+        measure.image.pixels.fill(marker);
+        let never = AtomicBool::new(false);
+        let picture = tracer
+            .render_band_reusing(
+                frame,
+                0..12,
+                Output::Display,
+                &|_| {},
+                &never,
+                Some(&measure),
+            )
+            .unwrap();
+        assert!(!picture.pixels.contains(&marker));
+        // The cost from fixed row times: 3 ms a row on one thread, four samples a traced one.
+        measure.row_nanoseconds.fill(3_000_000);
+        let threads = rayon::current_num_threads().max(1) as f64;
+        let cost = measure.cost();
+        assert_eq!(cost.rows, 12);
+        assert!(
+            (cost.row_seconds - 4.0 * 0.003 / threads).abs() < 1e-15,
+            "{cost:?}"
+        );
+        // At most MEASURED_SAMPLES: traced as asked, unscaled.
+        let few = RenderSettings {
+            samples: MEASURED_SAMPLES,
+            ..frame
+        };
+        let mut measure = tracer.measure_frame(few, Output::Display, 3);
+        assert_eq!(measure.settings(), few);
+        measure.row_nanoseconds.fill(3_000_000);
+        assert!((measure.cost().row_seconds - 0.003 / threads).abs() < 1e-15);
     }
 }
