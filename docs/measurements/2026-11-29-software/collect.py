@@ -5,10 +5,14 @@ and with `--backend auto`, in turn, median of N runs; and the CPU's cost that au
 (src/software.rs) was fitted to (fit.py) and is checked against.
 
     python3 collect.py [RUNS] [CASE-SUBSTRING...] > fitted.tsv
+
+QUIET, where set, is a command run before each run (2026-12-07's collection,
+../2026-12-07-intel/checked.tsv, ran one that put every other process at nice 19).
 """
 import os, re, statistics, subprocess, sys, time
 
 SRT = os.environ.get("SRT", "target/release/srt")
+QUIET = os.environ.get("QUIET")
 ENGINE = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
 # name, arguments, width, height, samples, frames, triangles, objects
 CASES = [
@@ -16,6 +20,7 @@ CASES = [
     ("teaser 1920x1080", ["teaser", "--width", "1920", "--height", "1080"], 1920, 1080, 1, 1, 3768, 3),
     ("teaser 3840x2160", ["teaser", "--width", "3840", "--height", "2160"], 3840, 2160, 1, 1, 3768, 3),
     ("teaser 640x360", ["teaser", "--width", "640", "--height", "360"], 640, 360, 1, 1, 3768, 3),
+    ("teaser 320x180 256 samples", ["teaser", "--width", "320", "--height", "180", "--samples", "256"], 320, 180, 256, 1, 3768, 3),
     ("teaser 1280x720 16 samples", ["teaser", "--samples", "16"], 1280, 720, 16, 1, 3768, 3),
     ("teaser 10 frames", ["teaser", "--frames", "10"], 1280, 720, 1, 10, 3768, 3),
     ("teaser 30 frames", ["teaser", "--frames", "30"], 1280, 720, 1, 30, 3768, 3),
@@ -38,6 +43,8 @@ MODES = {
 
 
 def run(args, env, out):
+    if QUIET:
+        subprocess.run(QUIET, shell=True)
     start = time.perf_counter()
     done = subprocess.run([SRT, "render", *args, "-o", out], env=dict(os.environ, **env),
                           capture_output=True, text=True)
