@@ -6,7 +6,9 @@ mod cli;
 #[allow(dead_code)] // each module uses its own share
 mod common;
 mod documents;
+mod material_numbers;
 mod memory;
+mod near_light_speed;
 mod overrides;
 mod slurm;
 mod supersampling;
