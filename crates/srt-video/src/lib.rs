@@ -1,5 +1,6 @@
 //! Output files for srt's programs: videos (H.264 in MP4, animated GIF) from rendered frames,
-//! and files that appear complete or not at all. Shared by `srt render`, `srt encode` and the
+//! with a text record of how they were made that reads back ([`read_comments`]), and files that
+//! appear complete or not at all. Shared by `srt render`, `srt encode` and the
 //! viewer's recorder, so a video written from any of them is the same.
 //!
 //! Errors are [`WriteError`]s: every one's `Display` is a finished one-line message for a person
@@ -21,11 +22,14 @@
 
 mod atomic;
 mod error;
+mod mp4box;
+mod record;
 pub mod spherical;
 mod video;
 
 pub use atomic::{AtomicFile, parent_folder, remove_partial_files, temporary_file_beside};
 pub use error::{EncoderError, WriteError};
+pub use record::{read_comments, read_gif_comments, read_mp4_comments, video_format_of};
 pub use spherical::StereoMode;
 pub use video::{VideoFormat, VideoWriter, check_size, lowercase_extension};
 

@@ -10,11 +10,12 @@
 //!   `equi` (a full box: the projection bounds top, bottom, left, right, 0.32 fixed point, all 0
 //!   for the full sphere).
 //!
-//! The boxes and every box around them grow by the inserted size; where the movie box comes
-//! before the media data (as the muxer writes it), every chunk offset (`stco`, `co64`) moves
-//! by that size too. The media data is copied as it is, in blocks.
+//! The boxes and every box around them grow by the inserted size; the file is copied by
+//! [`crate::mp4box`]'s pass, which moves the chunk offsets.
 
 use std::io::{self, Read, Write};
+
+use crate::mp4box::{boxed, children, full_box, insert_at, invalid, rewrite_movie};
 
 /// How the two eyes' pictures share one frame of a 360° video (`st3d`'s stereo mode).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,23 +30,6 @@ pub enum StereoMode {
 
 /// What `svhd` names as the metadata's source.
 const METADATA_SOURCE: &str = "srt (Spherical Video V2)";
-
-/// A box of `kind` holding `payload`.
-fn boxed(kind: &[u8; 4], payload: &[u8]) -> Vec<u8> {
-    // The boxes are a few dozen bytes.
-    #[expect(clippy::cast_possible_truncation, reason = "metadata boxes are small")]
-    let size = (8 + payload.len()) as u32;
-    let mut out = Vec::with_capacity(8 + payload.len());
-    out.extend_from_slice(&size.to_be_bytes());
-    out.extend_from_slice(kind);
-    out.extend_from_slice(payload);
-    out
-}
-
-/// A full box (version 0, flags 0) of `kind` holding `payload`.
-fn full_box(kind: &[u8; 4], payload: &[u8]) -> Vec<u8> {
-    boxed(kind, &[&[0_u8; 4][..], payload].concat())
-}
 
 /// The `st3d` and `sv3d` boxes of an equirectangular video in `stereo` mode.
 #[must_use]
@@ -69,109 +53,9 @@ pub fn add_spherical_metadata(
     to: &mut impl Write,
     stereo: StereoMode,
 ) -> io::Result<()> {
-    let inserted = spherical_boxes(stereo);
-    let mut media_seen = false;
-    let mut moov_done = false;
-    while let Some((header, size)) = read_box_header(from)? {
-        let kind = [header[4], header[5], header[6], header[7]];
-        let body_size = size - header.len() as u64;
-        if size == 0 {
-            // A last box that runs to the end of the file.
-            to.write_all(&header)?;
-            io::copy(from, to)?;
-            media_seen |= &kind == b"mdat";
-            continue;
-        }
-        if &kind == b"moov" {
-            let mut moov = header;
-            from.take(body_size).read_to_end(&mut moov)?;
-            let shift = if media_seen { 0 } else { inserted.len() as u64 };
-            insert_into_sample_entry(&mut moov, &inserted, shift)?;
-            to.write_all(&moov)?;
-            moov_done = true;
-        } else {
-            media_seen |= &kind == b"mdat";
-            to.write_all(&header)?;
-            let copied = io::copy(&mut from.take(body_size), to)?;
-            if copied != body_size {
-                return Err(invalid("the MP4 ends inside a box"));
-            }
-        }
-    }
-    if moov_done {
-        Ok(())
-    } else {
-        Err(invalid("the MP4 has no movie box (moov)"))
-    }
-}
-
-/// The big-endian `u32` at `at` of `data`.
-fn read_u32(data: &[u8], at: usize) -> u32 {
-    u32::from_be_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]])
-}
-
-/// The big-endian `u64` at `at` of `data`.
-fn read_u64(data: &[u8], at: usize) -> u64 {
-    (u64::from(read_u32(data, at)) << 32) | u64::from(read_u32(data, at + 4))
-}
-
-/// An [`io::ErrorKind::InvalidData`] error.
-fn invalid(message: &str) -> io::Error {
-    io::Error::new(io::ErrorKind::InvalidData, message.to_owned())
-}
-
-/// The next top-level box's header bytes and its whole size (0: it runs to the end of the
-/// file), or `None` at the end.
-fn read_box_header(from: &mut impl Read) -> io::Result<Option<(Vec<u8>, u64)>> {
-    let mut header = vec![0_u8; 8];
-    let mut filled = 0;
-    while filled < 8 {
-        let n = from.read(&mut header[filled..])?;
-        if n == 0 {
-            return if filled == 0 {
-                Ok(None)
-            } else {
-                Err(invalid("the MP4 ends inside a box header"))
-            };
-        }
-        filled += n;
-    }
-    let mut size = u64::from(read_u32(&header, 0));
-    if size == 1 {
-        let mut large = [0_u8; 8];
-        from.read_exact(&mut large)?;
-        header.extend_from_slice(&large);
-        size = u64::from_be_bytes(large);
-    }
-    if size != 0 && size < header.len() as u64 {
-        return Err(invalid("an MP4 box has a size smaller than its header"));
-    }
-    Ok(Some((header, size)))
-}
-
-/// The children of the box at `start` (of `size` bytes) of `data`: each (kind, start, size),
-/// after `skip` bytes of the box's own fields following its 8-byte header.
-fn children(
-    data: &[u8],
-    start: usize,
-    size: usize,
-    skip: usize,
-) -> io::Result<Vec<([u8; 4], usize, usize)>> {
-    let end = start + size;
-    let mut at = start + 8 + skip;
-    let mut found = Vec::new();
-    while at + 8 <= end {
-        let child_size = read_u32(data, at) as usize;
-        if child_size < 8 || at + child_size > end {
-            return Err(invalid(
-                "a box in the movie box has a size that does not fit",
-            ));
-        }
-        let kind = [data[at + 4], data[at + 5], data[at + 6], data[at + 7]];
-        found.push((kind, at, child_size));
-        at += child_size;
-    }
-    Ok(found)
+    rewrite_movie(from, to, |moov| {
+        insert_into_sample_entry(moov, &spherical_boxes(stereo))
+    })
 }
 
 /// The bytes of its own fields each box on the way to the sample entry has before its children.
@@ -184,8 +68,8 @@ fn fields_before_children(kind: &[u8; 4]) -> usize {
 }
 
 /// Inserts `inserted` at the end of the `avc1` sample entry in `moov` (a whole movie box),
-/// growing every box around it, and adds `shift` to every chunk offset.
-fn insert_into_sample_entry(moov: &mut Vec<u8>, inserted: &[u8], shift: u64) -> io::Result<()> {
+/// growing every box around it.
+pub(crate) fn insert_into_sample_entry(moov: &mut Vec<u8>, inserted: &[u8]) -> io::Result<()> {
     const PATH: [&[u8; 4]; 6] = [b"trak", b"mdia", b"minf", b"stbl", b"stsd", b"avc1"];
     let mut ancestors = vec![0_usize];
     let (mut start, mut size) = (0, moov.len());
@@ -204,61 +88,14 @@ fn insert_into_sample_entry(moov: &mut Vec<u8>, inserted: &[u8], shift: u64) -> 
         (start, size, kind) = (child_start, child_size, **wanted);
         ancestors.push(start);
     }
-    #[expect(clippy::cast_possible_truncation, reason = "metadata boxes are small")]
-    let grow = inserted.len() as u32;
-    for &box_start in &ancestors {
-        let old = read_u32(moov, box_start);
-        moov[box_start..box_start + 4].copy_from_slice(&(old + grow).to_be_bytes());
-    }
-    let at = start + size;
-    moov.splice(at..at, inserted.iter().copied());
-    if shift > 0 {
-        let whole = moov.len();
-        shift_chunk_offsets(moov, 0, whole, shift)?;
-    }
-    Ok(())
-}
-
-/// Adds `shift` to every entry of the `stco` and `co64` boxes inside the box at `start`.
-fn shift_chunk_offsets(moov: &mut [u8], start: usize, size: usize, shift: u64) -> io::Result<()> {
-    for (kind, child, child_size) in children(moov, start, size, 0)? {
-        match &kind {
-            b"trak" | b"mdia" | b"minf" | b"stbl" => {
-                shift_chunk_offsets(moov, child, child_size, shift)?;
-            }
-            b"stco" | b"co64" => {
-                if child_size < 16 {
-                    return Err(invalid("a chunk offset box is shorter than its header"));
-                }
-                let wide = &kind == b"co64";
-                let count_at = child + 12;
-                let count = read_u32(moov, count_at) as usize;
-                let width = if wide { 8 } else { 4 };
-                if count_at + 4 + count * width > child + child_size {
-                    return Err(invalid("a chunk offset box is shorter than its entries"));
-                }
-                for entry in 0..count {
-                    let at = count_at + 4 + entry * width;
-                    if wide {
-                        let old = read_u64(moov, at);
-                        moov[at..at + 8].copy_from_slice(&(old + shift).to_be_bytes());
-                    } else {
-                        let old = read_u32(moov, at);
-                        let new = u32::try_from(u64::from(old) + shift)
-                            .map_err(|_| invalid("a chunk offset no longer fits 32 bits"))?;
-                        moov[at..at + 4].copy_from_slice(&new.to_be_bytes());
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
+    insert_at(moov, &ancestors, start + size, inserted);
     Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mp4box::read_u32;
 
     /// A movie box whose one track has an `avc1` sample entry (with an empty `avcC`) and a
     /// chunk offset table holding `offset`.

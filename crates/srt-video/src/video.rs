@@ -1,7 +1,7 @@
 //! Videos from rendered frames, written atomically through [`AtomicFile`]: H.264 (Cisco's
 //! OpenH264, constrained baseline profile) in an MP4 with its index before the data (muxide), so
 //! browsers and presentation software play it while it loads; or an animated GIF that loops
-//! (the gif crate, one palette per frame).
+//! (the gif crate, one palette per frame). Either may carry a text record ([`crate::record`]).
 
 use std::fs::File;
 use std::io::BufWriter;
@@ -18,7 +18,9 @@ use openh264::formats::{RgbSliceU8, YUVBuffer};
 
 use crate::atomic::AtomicFile;
 use crate::error::{EncoderError, WriteError};
-use crate::spherical::{StereoMode, add_spherical_metadata};
+use crate::mp4box::rewrite_movie;
+use crate::record::{add_mp4_comment, write_gif_comment};
+use crate::spherical::{StereoMode, insert_into_sample_entry, spherical_boxes};
 
 /// Bits per pixel and frame the H.264 encoder's buffer model is set up for (about 5.5 Mbit/s at
 /// 1280×720 and 24 fps).
@@ -127,6 +129,8 @@ pub struct VideoWriter {
     encoder: VideoEncoder,
     /// The 360° metadata to add to an MP4 ([`VideoWriter::set_spherical`]).
     spherical: Option<StereoMode>,
+    /// The text record to store in the file ([`VideoWriter::set_comment`]).
+    comment: Option<String>,
 }
 
 impl std::fmt::Debug for VideoWriter {
@@ -227,6 +231,7 @@ impl VideoWriter {
             frames: 0,
             encoder,
             spherical: None,
+            comment: None,
         })
     }
 
@@ -235,6 +240,13 @@ impl VideoWriter {
     /// it around the viewer. A GIF has no such metadata and is written as it is.
     pub const fn set_spherical(&mut self, stereo: StereoMode) {
         self.spherical = Some(stereo);
+    }
+
+    /// Stores `text` in the video when it is finished: an MP4's user-data comment
+    /// (`moov/udta/©cmt`), a GIF's comment extension ([`crate::record`]); it reads back with
+    /// [`crate::read_comments`]. srt stores its record of how the video was made there.
+    pub fn set_comment(&mut self, text: &str) {
+        self.comment = Some(text.to_owned());
     }
 
     /// Appends a frame.
@@ -296,31 +308,44 @@ impl VideoWriter {
         }
         let path = &self.path;
         let cannot = |error| encode_error(path, None, error);
-        let (writer, spherical) = match self.encoder {
+        let (writer, rewrite) = match self.encoder {
             VideoEncoder::Mp4 { mut muxer, .. } => {
                 muxer
                     .finish_in_place()
                     .map_err(|error| cannot(error.into()))?;
-                ((*muxer).into_writer(), self.spherical)
+                let rewrite = self.spherical.is_some() || self.comment.is_some();
+                ((*muxer).into_writer(), rewrite)
             }
-            VideoEncoder::Gif { encoder, .. } => (
-                (*encoder)
+            VideoEncoder::Gif { mut encoder, .. } => {
+                if let Some(text) = &self.comment {
+                    write_gif_comment(&mut encoder, text).map_err(|error| cannot(error.into()))?;
+                }
+                let writer = (*encoder)
                     .into_inner()
-                    .map_err(|error| cannot(error.into()))?,
-                None,
-            ),
+                    .map_err(|error| cannot(error.into()))?;
+                (writer, false)
+            }
         };
         self.file.flush(writer)?;
-        let Some(stereo) = spherical else {
+        if !rewrite {
             self.file.commit()?;
             return Ok(self.frames);
-        };
-        // The muxer's file, copied with the 360° boxes into a second temporary file that
-        // replaces it; the first is removed when it drops.
+        }
+        // The muxer's file, copied with the 360° boxes and the comment into a second temporary
+        // file that replaces it; the first is removed when it drops.
         let with_metadata = AtomicFile::create(path)?;
         let mut out = with_metadata.writer()?;
-        add_spherical_metadata(&mut self.file.reader()?, &mut out, stereo)
-            .map_err(|error| cannot(error.into()))?;
+        let (spherical, comment) = (self.spherical, self.comment.as_deref());
+        rewrite_movie(&mut self.file.reader()?, &mut out, |moov| {
+            if let Some(stereo) = spherical {
+                insert_into_sample_entry(moov, &spherical_boxes(stereo))?;
+            }
+            if let Some(text) = comment {
+                add_mp4_comment(moov, text)?;
+            }
+            Ok(())
+        })
+        .map_err(|error| cannot(error.into()))?;
         with_metadata.flush(out)?;
         with_metadata.commit()?;
         Ok(self.frames)
