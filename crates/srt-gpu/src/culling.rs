@@ -471,8 +471,9 @@ mod tests {
     };
     use glam::{DVec2, DVec3};
     use proptest::prelude::*;
-    use srt_physics::{Event, Frame};
-    use srt_scene::Observer;
+    use srt_physics::{Event, Frame, aberrate};
+    use srt_scene::{Observer, Projection};
+    use std::f64::consts::TAU;
 
     proptest! {
         /// The box's shortcut decides as the winding number does: a moving closed sphere's back
@@ -593,15 +594,35 @@ mod tests {
         ));
         // Moving at 0.9c across the view, the same small ball's image is carried to another
         // place (aberration): where it lands over a centre it is kept, whatever its rest place.
+        // Each ball is put on the rest-frame ray of a pixel's centre (Eq. 3 and 5 through
+        // `Frame::backward_ray`), 5 to 20 units out; at rest in S the same place is seen
+        // elsewhere.
         let crossing = Frame::new(DVec3::new(0.9, 0.0, 0.0), DVec3::ZERO).unwrap();
-        for x in [-8.0, -4.0, 0.0, 4.0, 8.0] {
-            let ball = DVec3::new(x, 0.0, 10.0);
-            if pixels_hit(ball, 0.05, &crossing, &observer, size) > 0 {
-                assert!(!ball_between_pixel_centres(
-                    ball, 0.05, &crossing, &observer, 4, 4
-                ));
+        let mut missed_at_rest = 0;
+        for (x, y) in [(0, 0), (1, 2), (2, 1), (3, 3)] {
+            let ndc = DVec2::new(
+                2.0 * (f64::from(x) + 0.5) / 4.0 - 1.0,
+                1.0 - 2.0 * (f64::from(y) + 0.5) / 4.0,
+            );
+            let ray = crossing.backward_ray(observer.event(), observer.view_direction(ndc, 1.0));
+            for distance in [5.0, 10.0, 20.0] {
+                let ball = ray.origin + distance * ray.direction;
+                assert!(
+                    pixels_hit(ball, 0.05, &crossing, &observer, size) > 0,
+                    "{ball}"
+                );
+                assert!(
+                    !ball_between_pixel_centres(ball, 0.05, &crossing, &observer, 4, 4),
+                    "pixel ({x}, {y}): {ball} culled"
+                );
+                missed_at_rest +=
+                    usize::from(pixels_hit(ball, 0.05, &at_rest, &observer, size) == 0);
             }
         }
+        assert!(
+            missed_at_rest > 0,
+            "every ball is over a centre at rest too: aberration not exercised"
+        );
     }
 
     #[test]
@@ -745,7 +766,11 @@ mod tests {
         /// A wide projection's bound holds every pixel whose viewing ray (traced exactly in
         /// S′, through the pixel's centre on a 96 × 48 grid) hits the ball, for the full sphere
         /// and fisheyes of any field, at any velocity, for balls beside, behind and around the
-        /// observer's poles; and it is not the whole picture for every ball.
+        /// observer's poles; and it is tight: at most twice as wide and as high as the ball's
+        /// exact image ([`wide_image_extent`]) plus its margins (4 pixels), for the full sphere
+        /// and for a fisheye whose field holds the whole image (one cut by the field's edge is
+        /// bounded by a box of an annular sector, not checked here). Twice: the fisheye's
+        /// sector box is up to twice the image's where the image is near the picture's centre.
         #[test]
         fn a_wide_bound_holds_every_pixel_that_sees_the_ball(
             centre in prop::array::uniform3(-20.0f64..20.0),
@@ -784,7 +809,89 @@ mod tests {
                     );
                 }
             }
+            if let Some([ex0, ey0, ex1, ey1]) =
+                wide_image_extent(centre, radius, &frame, &observer, (width, height))
+            {
+                let (wide, high) = ((x1 - x0).max(0.0), (y1 - y0).max(0.0));
+                let (exact_wide, exact_high) = ((ex1 - ex0).max(0.0), (ey1 - ey0).max(0.0));
+                prop_assert!(
+                    wide <= 2.0 * exact_wide + 4.0 && high <= 2.0 * exact_high + 4.0,
+                    "bound {:?} around the image {:?}", [x0, y0, x1, y1], [ex0, ey0, ex1, ey1]
+                );
+            }
         }
+    }
+
+    /// Whether the viewing ray `view` (in S) of `observer` hits the ball, traced exactly in S′.
+    fn sees_ball(
+        centre: DVec3,
+        radius: f64,
+        frame: &Frame,
+        observer: &Observer,
+        view: DVec3,
+    ) -> bool {
+        let ray = frame.backward_ray(observer.event(), view);
+        let along = (centre - ray.origin).dot(ray.direction).max(0.0);
+        (ray.origin + along * ray.direction - centre).length() <= radius
+    }
+
+    /// The exact extent (pixels: min x, min y, max x, max y) of the ball's image in a
+    /// `width` × `height` picture of `observer`'s wide projection, from 4096 points of its rim:
+    /// the viewing directions in S of the rays from the observer's rest-frame position that
+    /// graze the ball (the inverse of Eq. 3 through `aberrate`, checked against
+    /// `Frame::rest_direction`), reaching the picture's top or bottom row where the image holds
+    /// a pole. `None` where that is not the image's extent: the observer inside the ball, a
+    /// fisheye whose field does not hold the whole image.
+    fn wide_image_extent(
+        centre: DVec3,
+        radius: f64,
+        frame: &Frame,
+        observer: &Observer,
+        (width, height): (u32, u32),
+    ) -> Option<[f64; 4]> {
+        let origin = frame.to_rest(observer.event()).position;
+        let distance = (centre - origin).length();
+        if distance <= radius {
+            return None;
+        }
+        let axis = (centre - origin) / distance;
+        let (e1, e2) = axis.any_orthonormal_pair();
+        let sine = radius / distance;
+        let cosine = (1.0 - sine * sine).sqrt();
+        let rays = observer.view_rays(f64::from(width) / f64::from(height));
+        let (forward, _, up) = observer.basis();
+        let mut points = Vec::new();
+        for k in 0..4096 {
+            let phi = TAU * f64::from(k) / 4096.0;
+            let rest = cosine * axis + sine * (phi.cos() * e1 + phi.sin() * e2);
+            // The light runs along −rest in S′, along aberrate(β, −rest) in S.
+            let view = -aberrate(frame.beta(), -rest).normalize();
+            assert!((frame.rest_direction(view) - rest).length() < 1e-9);
+            points.push(rays.image_point(view)?);
+        }
+        match observer.projection {
+            Projection::Equirectangular => {
+                for pole in [up, -up] {
+                    if sees_ball(centre, radius, frame, observer, pole) {
+                        points.push(DVec2::new(0.0, pole.dot(up)));
+                    }
+                }
+            }
+            // Not the whole image in the field where the image holds the direction behind.
+            _ if sees_ball(centre, radius, frame, observer, -forward) => return None,
+            _ => {}
+        }
+        let (lo, hi) = points.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        let (width, height) = (f64::from(width), f64::from(height));
+        Some([
+            (lo.x + 1.0) * 0.5 * width,
+            (1.0 - hi.y) * 0.5 * height,
+            (hi.x + 1.0) * 0.5 * width,
+            (1.0 - lo.y) * 0.5 * height,
+        ])
     }
 
     /// A small ball ahead in the full sphere and in a fisheye is bounded by a small rectangle
