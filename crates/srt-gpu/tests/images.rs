@@ -308,16 +308,32 @@ fn auto_traces_deep_objects_and_the_mix_matches_the_cpu_reference() {
         loads.iter().rev().skip(1).flatten().all(|l| l.layers < 2.0),
         "{loads:?}"
     );
-    // A CPU adapter traces the deep stack and draws the teaser's spider by LRT: a mix (a
-    // hardware GPU's costs decide by the stack's pixels, `srt_gpu::auto`).
-    let costs = srt_gpu::auto::MethodCosts::for_adapter(ctx.adapter_info.device_type);
+    // Which objects auto should trace, worked out here from each object's figures and the
+    // adapter's fitted costs (RT's work, per traced pixel × box layers × seen pixels + per
+    // object, below LRT's, triangles + per layer pixel × layers × seen pixels; a tie to LRT) as
+    // `srt_gpu::auto` documents the rule, not by the rule's code (`MethodCosts::traces`). A
+    // CPU adapter traces the deep stack and draws the teaser's spider by LRT (a mix); a
+    // hardware GPU's costs decide by the objects' triangles per seen pixel.
+    let costs = if ctx.adapter_info.device_type == wgpu::DeviceType::Cpu {
+        srt_gpu::auto::CPU_ADAPTER_COSTS
+    } else {
+        srt_gpu::auto::HARDWARE_COSTS
+    };
     let traced: Vec<bool> = loads
         .iter()
-        .map(|l| l.is_some_and(|l| costs.traces(&l)))
+        .map(|load| {
+            load.is_some_and(|l| {
+                let lrt = l.triangles as f64 + costs.per_layer_pixel * l.layers * l.seen_pixels;
+                let rt = costs.per_traced_pixel * f64::from(l.box_layers) * l.seen_pixels
+                    + costs.per_traced_object;
+                rt < lrt
+            })
+        })
         .collect();
     assert_eq!(
         renderer.auto_traced_objects(&scene),
-        traced.iter().filter(|&&t| t).count()
+        traced.iter().filter(|&&t| t).count(),
+        "{traced:?} {loads:?}"
     );
     if ctx.adapter_info.device_type == wgpu::DeviceType::Cpu {
         assert!(
