@@ -9,17 +9,6 @@ use srt_scene::{Choice, OverrideNames, Overrides, parse_vector};
 /// The largest canvas side the page draws, in pixels (WebGPU's guaranteed texture size).
 pub const MAX_CANVAS_SIDE: u32 = 8192;
 
-/// What a page's override keys are called in messages: the address's keys.
-pub const QUERY_NAMES: OverrideNames = OverrideNames {
-    colour: "colour",
-    exposure: "exposure",
-    time: "time",
-    beta: "beta",
-    observer_beta: "observer_beta",
-    projection: "projection",
-    settings: "set",
-};
-
 /// Which renderer draws the page.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum BackendChoice {
@@ -68,7 +57,7 @@ impl Default for PageQuery {
             method: Method::Auto,
             split: false,
             overrides: Overrides {
-                names: QUERY_NAMES,
+                names: OverrideNames::KEYS,
                 ..Overrides::default()
             },
         }

@@ -7,10 +7,10 @@
 use glam::DVec3;
 use srt_color::quantize_8bit;
 use srt_scene::resolve::ResolveError;
-use srt_scene::{EditError, Editor, Overrides, Scene, SceneError, SceneSource, builtin_scenes};
+use srt_scene::{
+    EditError, Editor, OverrideNames, Overrides, Scene, SceneError, SceneSource, builtin_scenes,
+};
 use srt_trace::{RenderSettings, Tracer, measure_picture};
-
-use crate::query::QUERY_NAMES;
 
 /// Why the page cannot show what was asked.
 #[derive(Debug, thiserror::Error)]
@@ -76,7 +76,7 @@ impl Session {
     pub fn new(name: &str) -> Result<Self, SessionError> {
         let source = builtin_source(name)?;
         let overrides = Overrides {
-            names: QUERY_NAMES,
+            names: OverrideNames::KEYS,
             ..Overrides::default()
         };
         let (editor, warnings) = Editor::new(source.load_with(&overrides)?);
@@ -134,7 +134,7 @@ impl Session {
     /// they are judged when the scene is next asked for.
     pub fn set_overrides(&mut self, overrides: Overrides) {
         self.overrides = Overrides {
-            names: QUERY_NAMES,
+            names: OverrideNames::KEYS,
             ..overrides
         };
     }

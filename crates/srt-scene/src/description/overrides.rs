@@ -72,6 +72,18 @@ impl OverrideNames {
         projection: "--projection",
         settings: "--set",
     };
+
+    /// The keys of the web page's address (`?time=5&set=…`) and the keyword arguments of
+    /// Python's `srt.render`: each override called by its own name, `set` for the settings.
+    pub const KEYS: Self = Self {
+        colour: "colour",
+        exposure: "exposure",
+        time: "time",
+        beta: "beta",
+        observer_beta: "observer_beta",
+        projection: "projection",
+        settings: "set",
+    };
 }
 
 impl Default for OverrideNames {
