@@ -19,7 +19,7 @@ use crate::software::{
     CpuCost, Job, MEASURED_WHILE_OPENING, SceneSize, SoftwareCosts, gpu_possible, weigh,
 };
 use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
-use srt_scene::{Projection, Scene};
+use srt_scene::{Projection, Scene, UploadKey};
 use srt_trace::{FrameMeasure, Output, PROBE_ROWS, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
@@ -528,17 +528,18 @@ fn open_measuring(
 }
 
 /// An engine kept for a sequence of frames whose scenes may change (Python's `srt.Renderer`):
-/// the GPU's device is made once, and a scene is uploaded again only when its structure
-/// ([`Scene::same_structure`]) or the size changes, or when the GPU cannot draw it (a projection
-/// it does not trace); each frame is drawn by the engine [`Engine::choose`] would choose for it.
-/// It keeps a copy of the scene it uploaded (meshes included) to compare the next frame's with.
+/// the GPU's device is made once, and a scene is uploaded again only when its [`UploadKey`]
+/// asks for it (srt-scene's one rule, on the editor's structure version, as the viewer and the
+/// web page keep theirs), when the settings change, or when the GPU cannot draw it (a
+/// projection it does not trace); each frame is drawn by the engine [`Engine::choose`] would
+/// choose for it.
 pub struct KeptEngine {
     /// The backend asked for.
     backend: Backend,
     /// The method asked for.
     method: Method,
-    /// The engine, with the scene whose structure it holds and the settings it was made for.
-    kept: Option<(Engine, Scene, RenderSettings)>,
+    /// The engine, with the key of the upload it holds and the settings it was made for.
+    kept: Option<(Engine, UploadKey, RenderSettings)>,
     /// Whether the GPU was asked for by `auto` and could not serve (no adapter, a target
     /// beyond its limits, or a software adapter expected to be slower than the CPU): a CPU
     /// engine chosen only because the GPU could not draw a frame (a projection it does not
@@ -558,8 +559,8 @@ impl KeptEngine {
         }
     }
 
-    /// The engine ready to render `job` of `frame`, and [`Chosen::note`] when it was chosen
-    /// for this frame.
+    /// The engine ready to render `job` of `frame`, whose scene's upload is `key`, and
+    /// [`Chosen::note`] when it was chosen for this frame.
     ///
     /// # Errors
     /// As [`Engine::choose`].
@@ -567,12 +568,13 @@ impl KeptEngine {
         &mut self,
         frame: &Frame<'_>,
         job: &Job,
+        key: &UploadKey,
     ) -> anyhow::Result<(&mut Engine, Option<String>)> {
         let (scene, settings) = (frame.scene(), job.settings);
         let gpu_can_draw = self.method.cannot_draw(scene).is_none();
-        let fits = |(engine, kept, made_for): &(Engine, Scene, RenderSettings)| {
+        let fits = |(engine, uploaded, made_for): &(Engine, UploadKey, RenderSettings)| {
             *made_for == settings
-                && kept.same_structure(scene)
+                && !uploaded.needs_upload(key)
                 && match engine {
                     Engine::Cpu => {
                         self.backend == Backend::Cpu || self.gpu_unavailable || !gpu_can_draw
@@ -594,7 +596,7 @@ impl KeptEngine {
                     && gpu_can_draw
                     && matches!(chosen.engine, Engine::Cpu);
                 note = chosen.note;
-                (chosen.engine, scene.clone(), settings)
+                (chosen.engine, key.clone(), settings)
             }
         };
         let (engine, ..) = self.kept.insert(kept);

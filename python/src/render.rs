@@ -3,6 +3,7 @@
 //! library's [`engine`](srt::engine)), with the GIL released and Ctrl-C honoured; a `Renderer`
 //! keeps its engine for a loop of frames. And `srt.to_srgb8`.
 
+use std::borrow::Cow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::Duration;
@@ -21,22 +22,11 @@ use srt::engine::{
 use srt::software::Job;
 use srt_color::{quantize_8bit, srgb_encode};
 use srt_gpu::Method;
-use srt_scene::{OverrideNames, Overrides, SceneSource, Setting, View};
+use srt_scene::{Editor, OverrideNames, Overrides, SceneSource, Setting, UploadKey, View};
 use srt_trace::{Output, RenderSettings};
 
 use crate::errors;
 use crate::scene::Scene;
-
-/// What messages call the overriding arguments of `srt.render`.
-const ARGUMENT_NAMES: OverrideNames = OverrideNames {
-    colour: "colour",
-    exposure: "exposure",
-    time: "time",
-    beta: "beta",
-    observer_beta: "observer_beta",
-    projection: "projection",
-    settings: "set",
-};
 
 /// How often the waiting Python thread looks for Ctrl-C while a render runs.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
@@ -137,8 +127,18 @@ pub fn render<'py>(
 pub struct Renderer {
     /// Size and samples per pixel of every frame.
     settings: RenderSettings,
-    /// The engine, kept between frames (locked by the frame being drawn).
-    engine: Mutex<KeptEngine>,
+    /// The engine and the last frame's scene, kept between frames (locked by the frame being
+    /// drawn).
+    engine: Mutex<Kept>,
+}
+
+/// What a [`Renderer`] keeps between frames.
+struct Kept {
+    /// The engine, holding the last frame's upload.
+    engine: KeptEngine,
+    /// The last frame's scene: each frame's scene replaces it ([`Editor::replace_with`]),
+    /// whose structure version tells the engine whether to upload again ([`UploadKey`]).
+    editor: Option<Editor>,
 }
 
 #[pymethods]
@@ -159,7 +159,10 @@ impl Renderer {
         }
         Ok(Self {
             settings,
-            engine: Mutex::new(KeptEngine::new(backend, method)),
+            engine: Mutex::new(Kept {
+                engine: KeptEngine::new(backend, method),
+                editor: None,
+            }),
         })
     }
 
@@ -198,7 +201,7 @@ impl Renderer {
                 .map(|text| text.parse().map_err(errors::value))
                 .transpose()?,
             settings: set.map(scene_settings).transpose()?.unwrap_or_default(),
-            names: ARGUMENT_NAMES,
+            names: OverrideNames::KEYS,
         };
         let (built, warnings) = match &scene {
             SceneArgument::Name(name) => SceneSource::resolve(name)
@@ -341,25 +344,36 @@ struct Request {
 }
 
 impl Request {
-    /// Renders `built`, met with `warnings`, with the engine `kept` has for it (no GIL held),
-    /// giving up once `stop` is set.
+    /// Renders the scene of `next`, met with `warnings`, with the engine `kept` has for it (no
+    /// GIL held), giving up once `stop` is set. `next` replaces the kept editor, so that its
+    /// structure version says whether the engine uploads again.
     fn run(
         &self,
-        kept: &mut KeptEngine,
-        built: srt_scene::Scene,
+        kept: &mut Kept,
+        next: Editor,
         mut warnings: Vec<String>,
         stop: &AtomicBool,
     ) -> Result<Rendered, Failure> {
+        let editor = match kept.editor.take() {
+            Some(mut editor) => {
+                editor.replace_with(next);
+                editor
+            }
+            None => next,
+        };
+        let editor = kept.editor.insert(editor);
+        let built = editor.scene();
+        let key = UploadKey::new(self.view, built, editor.structure_version());
         let scene = if self.view == View::Seen {
-            built
+            Cow::Borrowed(built)
         } else {
-            self.view.apply(&built).map_err(|error| {
+            Cow::Owned(self.view.apply(built).map_err(|error| {
                 Failure::Raise(errors::value(format!(
                     "cannot draw scene {} in the {} view: {error}",
                     built.name,
                     self.view.name()
                 )))
-            })?
+            })?)
         };
         scene
             .check_picture_size(self.settings.width, self.settings.height)
@@ -369,6 +383,7 @@ impl Request {
         // radiance, and with `aov` the display colours too.
         let frame = Frame::new(&scene);
         let (engine, note) = kept
+            .engine
             .engine_for(
                 &frame,
                 &Job {
@@ -377,6 +392,7 @@ impl Request {
                     // The radiance; with `aov` the display colours and the time channels too.
                     passes: 1 + 2 * u32::from(self.aov),
                 },
+                &key,
             )
             .map_err(|e| Failure::Raise(errors::gpu(&e)))?;
         warnings.extend(note.map(|note| format!("note: {note}")));
@@ -410,16 +426,16 @@ impl Request {
     }
 }
 
-/// The scene `source` loads with `overrides` (no GIL held), and the warnings met.
+/// An editor of the scene `source` loads with `overrides` (no GIL held), and the warnings met.
 fn load(
     py: Python<'_>,
     source: &SceneSource,
     overrides: &Overrides,
-) -> PyResult<(srt_scene::Scene, Vec<String>)> {
+) -> PyResult<(Editor, Vec<String>)> {
     let loaded = py
         .detach(|| source.load_with(overrides))
         .map_err(|e| errors::scene(&e))?;
-    Ok((loaded.scene, loaded.warnings))
+    Ok(Editor::new(loaded))
 }
 
 /// Runs `work` on another thread with the GIL released, looking for Ctrl-C meanwhile: on one,

@@ -54,9 +54,9 @@ impl Scene {
             .map_err(|e| errors::edit(&e))
     }
 
-    /// The scene built with `overrides` in place of its values (the scene itself unchanged),
-    /// named in messages as its source names it.
-    pub fn overridden(&self, overrides: &Overrides) -> PyResult<srt_scene::Scene> {
+    /// An editor of the scene built with `overrides` in place of its values (the scene itself
+    /// unchanged), named in messages as its source names it.
+    pub fn overridden(&self, overrides: &Overrides) -> PyResult<Editor> {
         let mut description = self.description().clone();
         let origin = match &self.source {
             Some(source) => source.origin(&description),
@@ -66,7 +66,7 @@ impl Scene {
             .map_err(|kind| errors::scene(&srt_scene::SceneError::new(origin, kind)))?;
         let mut editor = self.editor.clone();
         (editor.set_description(description)).map_err(|e| errors::edit(&e))?;
-        Ok(editor.scene().clone())
+        Ok(editor)
     }
 
     /// A scene from `source`, its description read (a bare model moving with `beta`) and built

@@ -20,6 +20,7 @@ pub mod scene;
 pub mod shapes;
 pub mod sky;
 pub mod textures;
+pub mod upload;
 pub mod view;
 
 pub use builtin::{BuiltinScene, builtin, builtin_scenes};
@@ -40,4 +41,5 @@ pub use scene::{
     SurfaceColour, SurfaceOptics, ViewRays,
 };
 pub use sky::{Sky, SkyError, Star};
+pub use upload::UploadKey;
 pub use view::{View, ViewError};

@@ -10,8 +10,8 @@
 
 use std::time::Instant;
 
-use srt_scene::View;
-use srt_viewer::view::{PaneScene, SceneView, UploadKey};
+use srt_scene::{UploadKey, View};
+use srt_viewer::view::{PaneScene, SceneView};
 use srt_viewer::{Pane, ViewMethod};
 
 fn main() -> anyhow::Result<()> {

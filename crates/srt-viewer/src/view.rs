@@ -17,7 +17,7 @@ use eframe::egui;
 use eframe::egui_wgpu;
 use srt_gpu::display::DisplayPass;
 use srt_gpu::{FootprintShape, GpuContext, GpuError, GpuRenderer, Method};
-use srt_scene::{Scene, View};
+use srt_scene::{Scene, UploadKey, View};
 use srt_trace::{MeasuredPicture, Output, RenderSettings, Tracer, measure_picture};
 
 use crate::exact_path::{DrawnBy, ExactPath, PaneTimes};
@@ -136,34 +136,6 @@ pub const fn view_label(view: View) -> &'static str {
         View::Seen => "seen (what a camera records)",
         View::Measured => "measured (where everything is now, contracted)",
         View::Newtonian => "Newtonian (rest shapes where they are now)",
-    }
-}
-
-/// Which meshes a renderer holds: those of the editor's scene at a structure version, or for
-/// the measured view also the velocities the meshes were contracted with (their bits).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct UploadKey {
-    version: u64,
-    contracted_for: Option<Vec<[u64; 3]>>,
-}
-
-impl UploadKey {
-    /// The key of `view` of `scene`, the editor's scene at structure version `version`: the
-    /// seen and Newtonian views draw the scene's own meshes, the measured view meshes
-    /// contracted along each object's velocity (which the key therefore includes).
-    #[must_use]
-    pub fn new(view: View, scene: &Scene, version: u64) -> Self {
-        let contracted_for = (view == View::Measured).then(|| {
-            scene
-                .objects
-                .iter()
-                .map(|o| o.frame.beta().to_array().map(f64::to_bits))
-                .collect()
-        });
-        Self {
-            version,
-            contracted_for,
-        }
     }
 }
 
@@ -308,19 +280,20 @@ impl SceneView {
         scene: &Scene,
         key: &UploadKey,
     ) -> Result<usize, GpuError> {
-        if let Some(index) = self.renderers.iter().position(|(k, _)| k == key) {
+        if let Some(index) = (self.renderers.iter()).position(|(k, _)| !k.needs_upload(key)) {
             return Ok(index);
         }
         let size = self.renderers.first().map_or((64, 64), |(_, r)| r.size());
-        self.renderers.retain(|(k, _)| k.version == key.version);
-        if key.contracted_for.is_some() {
+        self.renderers
+            .retain(|(k, _)| k.structure_version() == key.structure_version());
+        if key.is_contracted() {
             // One set of contracted meshes at a time: the velocities changed.
-            self.renderers.retain(|(k, _)| k.contracted_for.is_none());
+            self.renderers.retain(|(k, _)| !k.is_contracted());
         }
         let renderer = GpuRenderer::new(ctx, scene, size.0, size.1).inspect_err(|_| {
             self.renderers.clear();
         })?;
-        if key.contracted_for.is_none() {
+        if !key.is_contracted() {
             self.triangles = scene.triangle_count();
         }
         self.renderers.push((key.clone(), renderer));
@@ -355,7 +328,7 @@ impl SceneView {
         let each = ((size.0 / count).clamp(1, limit), size.1.clamp(1, limit));
         // Renderers no pane needs any more are dropped (their meshes are stale or unused).
         self.renderers
-            .retain(|(key, _)| panes.iter().any(|pane| pane.key == key));
+            .retain(|(key, _)| panes.iter().any(|pane| !key.needs_upload(pane.key)));
         // Displays no longer needed keep their egui ids for later reuse.
         while self.displays.len() > panes.len() {
             if let Some(display) = self.displays.pop() {
@@ -594,9 +567,6 @@ fn draw_on_cpu(
 
 #[cfg(test)]
 mod tests {
-    use glam::DVec3;
-    use srt_scene::builtin::find_builtin;
-
     use super::*;
 
     #[test]
@@ -626,22 +596,5 @@ mod tests {
             Some(format!("{} · polygon", view_label(View::Newtonian)))
         );
         assert_eq!(Pane::label(&both, 2), None);
-    }
-
-    #[test]
-    fn only_the_measured_view_needs_meshes_of_its_own() {
-        let (mut scene, _) = find_builtin("fig7").unwrap().build().unwrap();
-        let seen = UploadKey::new(View::Seen, &scene, 3);
-        assert_eq!(UploadKey::new(View::Newtonian, &scene, 3), seen);
-        assert_ne!(UploadKey::new(View::Seen, &scene, 4), seen);
-        let measured = UploadKey::new(View::Measured, &scene, 3);
-        assert_ne!(measured, seen);
-        // The contracted meshes depend on the velocities, not on the time.
-        scene.observer.ct += 1.0;
-        assert_eq!(UploadKey::new(View::Measured, &scene, 3), measured);
-        let object = &mut scene.objects[0];
-        object.frame =
-            srt_physics::Frame::new(DVec3::new(0.0, 0.5, 0.0), object.frame.offset()).unwrap();
-        assert_ne!(UploadKey::new(View::Measured, &scene, 3), measured);
     }
 }

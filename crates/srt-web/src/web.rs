@@ -9,6 +9,7 @@ use std::rc::Rc;
 use srt_gpu::display::DisplayPass;
 use srt_gpu::exact_path::{DrawnBy, PaneTimes};
 use srt_gpu::{FootprintShape, GpuContext, GpuRenderer, Method};
+use srt_scene::{UploadKey, View};
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
 
@@ -150,9 +151,9 @@ fn load_model(session: &mut Session, name: &str, bytes: Vec<u8>) -> Result<Strin
         .map_err(|error: SessionError| js_error(error))
 }
 
-/// A renderer of one method with the upload version of the scene it holds.
+/// A renderer of one method with the key of the upload it holds.
 struct Uploaded {
-    version: u64,
+    key: UploadKey,
     method: Method,
     renderer: GpuRenderer,
 }
@@ -314,12 +315,13 @@ impl GpuPage {
         if let Some(reason) = methods.iter().find_map(|m| m.cannot_draw(scene)) {
             return Ok(Some(reason));
         }
+        let key = UploadKey::new(View::Seen, scene, version);
         let context = &self.context;
         self.renderers.truncate(methods.len());
         self.uploaded = false;
         for (index, &method) in methods.iter().enumerate() {
             match self.renderers.get_mut(index) {
-                Some(uploaded) if uploaded.version == version => {
+                Some(uploaded) if !uploaded.key.needs_upload(&key) => {
                     uploaded.method = method;
                     uploaded
                         .renderer
@@ -331,7 +333,7 @@ impl GpuPage {
                     let renderer =
                         GpuRenderer::new(context, scene, width, height).map_err(js_error)?;
                     let uploaded = Uploaded {
-                        version,
+                        key: key.clone(),
                         method,
                         renderer,
                     };

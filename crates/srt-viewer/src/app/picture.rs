@@ -5,12 +5,12 @@ use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use eframe::egui::{self, Color32, Sense};
-use srt_scene::{Observer, Scene, View};
+use srt_scene::{Observer, Scene, UploadKey, View};
 
 use super::{Level, ProbeShown, SLOW_FRAME_MS, Status, TURN_PER_POINT, ViewerApp};
 use crate::camera;
 use crate::probe::{Probe, probe};
-use crate::view::{Pane, PaneScene, UploadKey};
+use crate::view::{Pane, PaneScene};
 
 impl ViewerApp {
     /// The probe's finding at the last pixel clicked: `None` before any click, `Some(None)` for
