@@ -1,6 +1,6 @@
-// surface.wgsl — ray–triangle intersection (Eq. 15–16) and relativistic shading (Eq. 17–18),
-// moving lights included (with shadows.wgsl): the f32 mirror of crates/srt-trace (intersect.rs,
-// shade.rs and Tracer::shade).
+// surface.wgsl — relativistic shading (Eq. 17–18), moving lights included (with shadows.wgsl),
+// and the barycentric coordinates of a pixel's neighbours' rays (the ray–triangle test itself
+// is triangle.wgsl's): the f32 mirror of crates/srt-trace (shade.rs and Tracer::shade).
 
 // What this variant of the shader shades (srt_gpu::shaders::ObjectVariant): compiled in, because
 // a software rasteriser runs every side of a branch its pixels do not all take, and these sides
@@ -20,34 +20,12 @@ override SEEN_VARIANT: bool;
 // eye_offset); the directions towards the observer start there.
 var<private> stereo_eye: vec3<f32>;
 
-struct TriangleHit {
-    found: bool,
-    distance: f32,
-    zeta: f32,
-    xi: f32,
-}
-
-// Eq. 16 by Cramer's rule with unnormalised spans σ = p1 − p0, τ = p2 − p0 (ζ, ξ barycentric):
-// where the line origin + ψ·direction meets the triangle's plane, inside or not; found = false
-// for lines parallel to the plane (mirror of srt_trace::plane_hit).
-fn plane_hit(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
-    let sigma = p[1] - p[0];
-    let tau = p[2] - p[0];
-    let b = origin - p[0];
-    let q1 = cross(direction, tau);
-    let det = dot(sigma, q1);
-    if (det == 0.0) {
-        return TriangleHit(false, 0.0, 0.0, 0.0);
-    }
-    let q2 = cross(b, sigma);
-    return TriangleHit(true, dot(tau, q2) / det, dot(b, q1) / det, dot(direction, q2) / det);
-}
-
-// Where rays from one origin meet the plane of a triangle, as plane_hit finds it: for a ray
-// along d, ζ = d·zeta / d·det and ξ = d·xi / d·det (the triple products of plane_hit, with d
-// factored out: σ·(d×τ) = d·(τ×σ), b·(d×τ) = d·(τ×b), d·(b×σ)), so the same coordinates for
-// any positive or negative multiple of d. For several rays from the origin `origin` (a pixel's
-// neighbours) at the cost of three dot products each.
+// Where rays from one origin meet the plane of a triangle (Eq. 16 by Cramer's rule with
+// unnormalised spans σ = p1 − p0, τ = p2 − p0, as srt_trace::plane_hit solves it): for a ray along
+// d, ζ = d·zeta / d·det and ξ = d·xi / d·det (the triple products σ·(d×τ) = d·(τ×σ),
+// b·(d×τ) = d·(τ×b), d·(b×σ) with b = origin − p0), so the same coordinates for any positive or
+// negative multiple of d. For several rays from the origin `origin` (a pixel's neighbours) at the
+// cost of three dot products each; whether a ray meets the triangle is triangle.wgsl's question.
 struct PlaneRays {
     zeta: vec3<f32>,
     xi: vec3<f32>,
@@ -66,14 +44,6 @@ fn plane_rays(origin: vec3<f32>, p: array<vec3<f32>, 3>) -> PlaneRays {
 fn plane_barycentric(plane: PlaneRays, direction: vec3<f32>) -> TriangleHit {
     let det = dot(direction, plane.det);
     return TriangleHit(det != 0.0, 0.0, dot(direction, plane.zeta) / det, dot(direction, plane.xi) / det);
-}
-
-// The hit of the ray (ψ > 0) with the triangle, edges included, both faces (mirror of
-// srt_trace::intersect_triangle).
-fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
-    var h = plane_hit(origin, direction, p);
-    h.found = h.found && h.zeta >= 0.0 && h.xi >= 0.0 && h.zeta + h.xi <= 1.0 && h.distance > 0.0;
-    return h;
 }
 
 // The texture coordinates of triangle `t`'s corners (read once where several points of the

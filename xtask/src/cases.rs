@@ -202,6 +202,33 @@ pub fn enclosing_case() -> anyhow::Result<Case> {
     toml_case("enclosing", text)
 }
 
+/// The picture size of [`pinhole_case`], as it was reported.
+pub const PINHOLE_SIZE: (u32, u32) = (160, 120);
+
+/// A sphere of 900 segments (radius 1.5) passing at β = (0.2, 0.95, 0), seen at ct = 10 from
+/// (0, −10, 0.5) along (0, 1, −0.05) with a 40° field of view, at [`PINHOLE_SIZE`]: a closed
+/// mesh whose shared edges are packed under every pixel, where a ray that slipped between two
+/// f32 triangle tests (issue 68) showed the background (LRT) or the sphere's far side (the ray
+/// tracer and `auto`) at column 86, row 58.
+///
+/// # Errors
+/// If the scene does not build (a bug).
+pub fn pinhole_case() -> anyhow::Result<Case> {
+    let text = r#"
+        name = "sphere-900"
+        [observer]
+        position = [0.0, -10.0, 0.5]
+        direction = [0.0, 1.0, -0.05]
+        fov_y_deg = 40.0
+        ct = 10.0
+        [[object]]
+        shape = { type = "sphere", radius = 1.5, segments = 900 }
+        beta = [0.2, 0.95, 0.0]
+        offset = [0.0, 0.0, 0.0]
+    "#;
+    toml_case("sphere-900", text)
+}
+
 /// Scenes in motion for `validate`: the teaser while the spider passes the camera, the engine
 /// passing through and beside the camera, the flythrough's observer further on (columns and
 /// ground passing beside and under it), bodies spinning and thrusting in their frames

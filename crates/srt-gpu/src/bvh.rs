@@ -240,8 +240,8 @@ fn box_entry(node: &GpuBvhNode, origin: [f32; 3], inverse: [f32; 3], limit: f32)
 
 /// Factor on the slab test's exit distance: 1 + 2γ₃ with γₙ = nε/(1 − nε), ε = 2⁻²⁴, covers
 /// the rounding of the three operations per slab (Ize 2013, "Robust BVH ray traversal"),
-/// rounded up (the value of WGSL `override SLAB_TOLERANCE` in rt.wgsl).
-pub const SLAB_TOLERANCE: f32 = 1.000_000_4;
+/// rounded up to the next f32, 1 + 8ε (the value of WGSL `override SLAB_TOLERANCE` in bvh.wgsl).
+pub const SLAB_TOLERANCE: f32 = 1.000_000_5;
 
 /// The 8 corners and 12 triangles of the box `min`–`max`, as vertices of an upload: the
 /// object's stand-in in the proxy pass, whose footprints bound where the ray tracer draws.
@@ -292,7 +292,9 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    /// The same Cramer's rule as surface.wgsl's `intersect_triangle`, in f32.
+    /// A ray–triangle test in f32 (Cramer's rule) for the traversal's tests, which need only
+    /// some hit per triangle (triangle.wgsl's watertight test runs on the GPU in
+    /// tests/watertight.rs).
     fn intersect(origin: [f32; 3], direction: [f32; 3], p: [[f32; 3]; 3]) -> Option<f32> {
         let (o, d) = (Vec3A::from(origin), Vec3A::from(direction));
         let p = p.map(Vec3A::from);
@@ -393,6 +395,19 @@ mod tests {
             area += 0.5 * normal.length();
         }
         assert!((area - 2.0 * (2.0 * 4.0 + 2.0 * 6.0 + 4.0 * 6.0)).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_slab_tolerance_is_one_plus_two_gamma_three_rounded_up() {
+        let epsilon = 2f64.powi(-24);
+        let gamma_3 = 3.0 * epsilon / (1.0 - 3.0 * epsilon);
+        let wanted = 1.0 + 2.0 * gamma_3;
+        assert!(
+            f64::from(SLAB_TOLERANCE) >= wanted,
+            "{SLAB_TOLERANCE} < {wanted}"
+        );
+        let below = f32::from_bits(SLAB_TOLERANCE.to_bits() - 1);
+        assert!(f64::from(below) < wanted, "{below} would do");
     }
 
     #[test]

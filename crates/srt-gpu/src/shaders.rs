@@ -21,7 +21,10 @@ pub const LIGHT: &str = include_str!("../shaders/light.wgsl");
 pub const RENDER_BINDINGS: &str = include_str!("../shaders/render_bindings.wgsl");
 /// The clock face (mirror of srt-trace's `clock`).
 pub const CLOCK: &str = include_str!("../shaders/clock.wgsl");
-/// Intersection and shading (mirror of srt-trace).
+/// The one watertight ray–triangle test of every pass that meets triangles (mirror of
+/// `srt_trace::intersect_triangle`).
+pub const TRIANGLE: &str = include_str!("../shaders/triangle.wgsl");
+/// Shading (mirror of srt-trace).
 pub const SURFACE: &str = include_str!("../shaders/surface.wgsl");
 /// The footprint compute pass (mirror of srt-proxy).
 pub const PROXY: &str = include_str!("../shaders/proxy.wgsl");
@@ -542,6 +545,7 @@ pub fn lrt(variant: ObjectVariant) -> Shader {
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("camera.wgsl", CAMERA),
             ("clock.wgsl", CLOCK),
+            ("triangle.wgsl", TRIANGLE),
             ("surface.wgsl", SURFACE),
             ("bvh.wgsl", BVH),
             ("shadows.wgsl", SHADOWS),
@@ -567,6 +571,7 @@ pub fn polygon(variant: ObjectVariant) -> Shader {
             ("light.wgsl", LIGHT),
             ("render_bindings.wgsl", RENDER_BINDINGS),
             ("clock.wgsl", CLOCK),
+            ("triangle.wgsl", TRIANGLE),
             ("surface.wgsl", SURFACE),
             ("bvh.wgsl", BVH),
             ("shadows.wgsl", SHADOWS),

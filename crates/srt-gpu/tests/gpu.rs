@@ -16,4 +16,5 @@ mod reflect;
 mod shaders;
 mod slices;
 mod upload;
+mod watertight;
 mod windows;
