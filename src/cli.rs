@@ -33,10 +33,10 @@ pub enum Command {
     },
     /// Join rendered frames (PNG or EXR, in the order given) into a video: .mp4 (H.264) or .gif.
     Encode(EncodeArgs),
-    /// Print how an image was made: the scene, time, velocities, effects and renderer that srt
-    /// records in every PNG and EXR it writes.
+    /// Print how an image or video was made: the scene, time, velocities, effects and renderer
+    /// that srt records in every PNG, EXR, MP4 and GIF it writes.
     Info {
-        /// A PNG or EXR image written by `srt render`.
+        /// A PNG or EXR image, or an MP4 or GIF video, written by `srt render` or `srt encode`.
         image: PathBuf,
     },
     /// Open the interactive viewer: SCENE_OR_MODEL... (default `teaser`); further models are

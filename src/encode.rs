@@ -1,5 +1,7 @@
 //! `srt encode`: join rendered frames (PNG, or linear EXR converted to sRGB) into one video,
 //! typically the numbered frames that the shares of a cluster render wrote (docs/cluster.md).
+//! The video holds the frames' record ([`Provenance::for_video`]): the first frame's, with the
+//! time and frame range from the first frame to the last.
 
 use std::path::Path;
 use std::time::Instant;
@@ -11,6 +13,7 @@ use srt_color::{quantize_8bit, srgb_encode};
 use crate::cli::EncodeArgs;
 use crate::output::{EXR_DISPLAY_CHANNELS, OutputFormat, check_writable};
 use crate::progress::DelayedBar;
+use crate::provenance::Provenance;
 use srt_video::{VideoWriter, check_size};
 
 /// Runs `srt encode FRAME... -o VIDEO`.
@@ -41,6 +44,7 @@ pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
         &first_path.display().to_string(),
     )?;
     let mut video = VideoWriter::create(output, width, height, args.video.fps())?;
+    video.set_comment(&joined_record(&args.frames, args.video.fps()).to_text());
     let bar = DelayedBar::new(
         args.frames.len() as u64,
         "frames",
@@ -71,6 +75,25 @@ pub fn run(args: &EncodeArgs) -> anyhow::Result<()> {
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// The record of a video joined from `frames`: theirs ([`Provenance::for_video`]) where the
+/// first and last frames hold srt records, else one that says only that srt joined them.
+fn joined_record(frames: &[std::path::PathBuf], fps: u32) -> Provenance {
+    let joined = "joined by srt encode";
+    let (Some(first), Some(last)) = (frames.first(), frames.last()) else {
+        return Provenance::new();
+    };
+    match (Provenance::read(first), Provenance::read(last)) {
+        (Ok(first), Ok(last)) => Provenance::for_video(&first, &last, frames.len(), fps, joined),
+        _ => Provenance::for_video(
+            &Provenance::new(),
+            &Provenance::new(),
+            frames.len(),
+            fps,
+            &format!("{joined} from frames without an srt record"),
+        ),
+    }
 }
 
 /// Reads a frame as 8-bit display colours: a PNG as it is; srt's EXR by its displayed image

@@ -1,6 +1,7 @@
 //! Writing images and videos without ever leaving a half-written file: encode into a temporary
 //! file in the destination folder ([`AtomicFile`]), then rename it over the destination. Images
-//! carry a [`Provenance`] record.
+//! carry a [`Provenance`] record (a video carries its frames', written by `srt render` and
+//! `srt encode` through [`srt_video::VideoWriter::set_comment`]).
 
 use std::fs::File;
 use std::io::{BufWriter, ErrorKind, Write as _};

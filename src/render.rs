@@ -131,7 +131,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             &record,
             args,
         ),
-        Animation::Video => render_video(&mut engine, &mut editor, &sweep, &output, args),
+        Animation::Video => render_video(&mut engine, &mut editor, &sweep, &output, &record, args),
     }
 }
 
@@ -183,6 +183,14 @@ impl Sweep {
             0.0
         };
         self.t0 + fraction * (self.t1 - self.t0)
+    }
+
+    /// `record` for frame `frame` of the sweep: its observation time and number.
+    fn frame_record(&self, record: &Provenance, frame: u32) -> Provenance {
+        record.with(&[
+            ("time", format!("{:?}", self.time_of(frame))),
+            ("frame", format!("{frame} of 0 to {}", self.frames - 1)),
+        ])
     }
 }
 
@@ -367,10 +375,7 @@ fn render_numbered(
     for frame in share {
         let frame_start = Instant::now();
         let (scene, frame_scene) = sweep.frame_scene(editor, frame)?;
-        let record = record.with(&[
-            ("time", format!("{:?}", sweep.time_of(frame))),
-            ("frame", format!("{frame} of 0 to {}", frames - 1)),
-        ]);
+        let record = sweep.frame_record(record, frame);
         let path = numbered(output, frame, digits);
         let frame_of = Frame::new(&frame_scene);
         let colours = sweep
@@ -420,17 +425,27 @@ impl EmptyFrames {
     }
 }
 
-/// Renders the sweep as one video, `output`.
+/// Renders the sweep as one video, `output`, holding `record` for all its frames
+/// ([`Provenance::for_video`]).
 fn render_video(
     engine: &mut Engine,
     editor: &mut Editor,
     sweep: &Sweep,
     output: &Path,
+    record: &Provenance,
     args: &RenderArgs,
 ) -> anyhow::Result<()> {
     let start = Instant::now();
     let settings = settings_of(args);
     let mut video = VideoWriter::create(output, settings.width, settings.height, args.video.fps())?;
+    let whole = Provenance::for_video(
+        &sweep.frame_record(record, 0),
+        &sweep.frame_record(record, sweep.frames - 1),
+        sweep.frames as usize,
+        args.video.fps(),
+        "rendered by srt render",
+    );
+    video.set_comment(&whole.to_text());
     if editor.scene().observer.projection == Projection::Equirectangular {
         // 360° players show it around the viewer (the Spherical Video V2 boxes of an MP4), the
         // left eye's picture above the right eye's for a stereo pair.

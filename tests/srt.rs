@@ -10,6 +10,7 @@ mod material_numbers;
 mod memory;
 mod near_light_speed;
 mod overrides;
+mod records;
 mod slurm;
 mod supersampling;
 mod video_and_shards;
