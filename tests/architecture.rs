@@ -1,4 +1,4 @@
-//! docs/ARCHITECTURE.md against the code, so that the map cannot drift. The test reads four
+//! docs/ARCHITECTURE.md against the code, so that the map cannot drift. The test reads five
 //! things of the map, by these conventions:
 //!
 //! - **The package graph**: the codemap's block of `name  ←  a, b` lines is, for every package
@@ -26,6 +26,9 @@
 //!     `Type::member` the member is declared in a file that declares or implements `Type`.
 //!     Names that start with `std`, `core` or an external dependency (`wgpu::Features::…`), and
 //!     the few others' names in [`FOREIGN`], are not the code's and are not checked.
+//! - **CPU and GPU twins**: the table under "## CPU and GPU twins" has one row per file of
+//!   `shaders/`, its first cell the shader's backticked path, its second the backticked paths of
+//!   the CPU code it mirrors (each exists), or `none: ` and the reason it has no twin.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -858,5 +861,112 @@ fn the_name_check_sees_a_wrong_path_type_member_and_module() {
             "nothing declares Nowhere (for Nowhere::new)",
         ],
         "{missing:?}"
+    );
+}
+
+/// The rows of the map's table of CPU and GPU twins: (the shader cell, the twin cell).
+fn twin_rows(architecture: &str) -> Vec<(String, String)> {
+    let heading = "## CPU and GPU twins";
+    let Some(start) = architecture.find(heading) else {
+        return Vec::new();
+    };
+    let section = &architecture[start + heading.len()..];
+    let section = section.split("\n## ").next().unwrap_or_default();
+    section
+        .lines()
+        .filter(|line| line.starts_with('|') && !line.starts_with("|---"))
+        .skip(1)
+        .map(|line| {
+            let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
+            let twin = cells.get(1).copied().unwrap_or("");
+            (cells[0].to_owned(), twin.to_owned())
+        })
+        .collect()
+}
+
+/// Where the twins table and the workspace disagree, one line each (empty: agreed): a first
+/// cell that is not one shader's path, a shader in no row or in two, a path that `exists`
+/// denies, a twin cell with no path that is not `none: ` and a reason.
+fn twin_disagreements(
+    rows: &[(String, String)],
+    shaders: &BTreeSet<String>,
+    exists: impl Fn(&str) -> bool,
+) -> Vec<String> {
+    let mut wrong = Vec::new();
+    let mut listed = BTreeSet::new();
+    for (shader, twin) in rows {
+        let spans = backticked(shader);
+        let [path] = spans.as_slice() else {
+            wrong.push(format!("{shader:?} is not one backticked shader path"));
+            continue;
+        };
+        if !(path.starts_with("shaders/") && path.ends_with(".wgsl")) || !exists(path) {
+            wrong.push(format!("{path} is not a shader of shaders/"));
+        }
+        if !listed.insert(path.clone()) {
+            wrong.push(format!("{path} is in two rows"));
+        }
+        let paths: Vec<String> = backticked(twin)
+            .into_iter()
+            .filter(|s| is_path(s))
+            .collect();
+        for twin_path in &paths {
+            if !exists(twin_path) {
+                wrong.push(format!("{path}'s twin {twin_path} does not exist"));
+            }
+        }
+        let reason = twin.strip_prefix("none: ").unwrap_or("");
+        if paths.is_empty() && reason.len() < 10 {
+            wrong.push(format!("{path} names no CPU twin and gives no reason"));
+        }
+    }
+    for shader in shaders.difference(&listed) {
+        wrong.push(format!("{shader} is not in the table"));
+    }
+    wrong
+}
+
+#[test]
+fn the_twins_table_pairs_every_shader_with_its_cpu_mirror() {
+    let shaders: BTreeSet<String> = std::fs::read_dir(root().join("shaders"))
+        .expect("shaders/ lists")
+        .map(|entry| entry.expect("a folder entry").file_name())
+        .map(|name| format!("shaders/{}", name.to_string_lossy()))
+        .filter(|path| path.ends_with(".wgsl"))
+        .collect();
+    assert!(shaders.len() > 15, "found only {shaders:?}");
+    let rows = twin_rows(&architecture());
+    let wrong = twin_disagreements(&rows, &shaders, |path| root().join(path).exists());
+    assert!(
+        wrong.is_empty(),
+        "the map's table of CPU and GPU twins:\n{}",
+        wrong.join("\n")
+    );
+}
+
+#[test]
+fn the_twins_check_sees_a_missing_shader_a_wrong_twin_and_a_reasonless_none() {
+    let rows = twin_rows(
+        "## CPU and GPU twins\n\n| shader | CPU twin |\n|---|---|\n\
+         | `shaders/a.wgsl` | `crates/x/src/a.rs` |\n| `shaders/b.wgsl` | `crates/x/src/gone.rs` |\n\
+         | `shaders/c.wgsl` | none |\n| `shaders/a.wgsl` | none: a reason long enough |\n\
+         | `src/d.rs` | `crates/x/src/a.rs` |\n\n## Next\n| `shaders/e.wgsl` | none |\n",
+    );
+    let shaders: BTreeSet<String> = ["a", "b", "c", "f"]
+        .iter()
+        .map(|name| format!("shaders/{name}.wgsl"))
+        .collect();
+    let exists = |path: &str| shaders.contains(path) || path == "crates/x/src/a.rs";
+    let wrong = twin_disagreements(&rows, &shaders, exists);
+    assert_eq!(
+        wrong,
+        [
+            "shaders/b.wgsl's twin crates/x/src/gone.rs does not exist",
+            "shaders/c.wgsl names no CPU twin and gives no reason",
+            "shaders/a.wgsl is in two rows",
+            "src/d.rs is not a shader of shaders/",
+            "shaders/f.wgsl is not in the table",
+        ],
+        "{wrong:?}"
     );
 }
