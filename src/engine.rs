@@ -19,7 +19,7 @@ use crate::software::{
     CpuCost, Job, MEASURED_WHILE_OPENING, SceneSize, SoftwareCosts, gpu_possible, weigh,
 };
 use crate::tiles::{BAND_ROW_MULTIPLE, Tiling, assemble};
-use srt_scene::{Projection, Scene, UploadKey};
+use srt_scene::{Scene, UploadKey};
 use srt_trace::{FrameMeasure, Output, PROBE_ROWS, RenderSettings, SeenEvent, Tracer};
 
 /// The largest image width or height `srt render` accepts, in pixels.
@@ -357,12 +357,14 @@ impl Engine {
         // Each output pixel averages scale² rendered pixels; a star lights all of them.
         renderer.set_supersampling(scale);
         let observer = &scene.observer;
-        let what = match (observer.projection, observer.stereo) {
-            (Projection::Perspective, None) => None,
-            (Projection::Perspective, Some(_)) => Some("for the stereo pair".to_owned()),
-            (projection, None) => Some(format!("in the {projection} projection")),
-            (projection, Some(_)) => Some(format!("in the {projection} projection's stereo pair")),
-        };
+        let projection = observer.projection;
+        let what = observer.picture_decides().then(|| {
+            match (projection.is_pinhole(), observer.stereo.is_some()) {
+                (true, _) => "for the stereo pair".to_owned(),
+                (false, false) => format!("in the {projection} projection"),
+                (false, true) => format!("in the {projection} projection's stereo pair"),
+            }
+        });
         let note = what.filter(|_| method == Method::Auto).map(|what| {
             format!(
                 "auto traces every object by the ray tracer (rt) {what}: the local ray tracer's \

@@ -13,11 +13,11 @@
 //! the observer outside it, a triangle facing away from the observer is hidden. The proxy pass
 //! (`proxy.wgsl`) then gives such a triangle an empty footprint.
 
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::TAU;
 
 use glam::DVec3;
 use srt_physics::{Event, Frame, aberrate};
-use srt_scene::{Mesh, Observer, Projection};
+use srt_scene::{Mesh, Observer};
 
 /// How far (radians, about) outside the field of view an object's image must lie to be culled:
 /// room for the rounding of [`ball_out_of_view`]'s f64 arithmetic.
@@ -236,12 +236,8 @@ const WIDE_PIXEL_MARGIN: f64 = 1.5;
 /// of the projection, non-finite input) or for the pinhole.
 ///
 /// The ball's image is a cap on the sphere of viewing directions ([`ball_out_of_view`] says
-/// why), of axis m and angular radius r. In the equirectangular picture a cap around latitude
-/// θ_c that holds no pole spans latitudes θ_c ± r and longitudes φ_c ± asin(sin r / cos θ_c)
-/// (the tangent great circles through the poles); in a fisheye, where the angle from the
-/// viewing direction plays the colatitude, it spans angles θ_c ± r and azimuths
-/// ± asin(sin r / sin θ_c) around its own, a sector of an annulus whose box is taken. A range
-/// of longitudes across ±180° takes the whole width.
+/// why), of axis m and angular radius r, which the projection bounds
+/// ([`srt_scene::Projection::cap_bound`]).
 #[must_use]
 pub fn ball_wide_bound(
     centre: DVec3,
@@ -257,69 +253,8 @@ pub fn ball_wide_bound(
         return whole;
     };
     let r = cap.height.clamp(-1.0, 1.0).acos() + WIDE_ANGLE_MARGIN;
-    let (forward, right, up) = observer.basis();
-    let m = cap.axis;
-    // An empty bound, in normalised device coordinates.
-    const NOTHING: [f64; 4] = [2.0, 2.0, -2.0, -2.0];
     // Normalised device coordinates (x right, y up) of the bound, or None for the whole picture.
-    let ndc: Option<[f64; 4]> = match observer.projection {
-        Projection::Perspective => None,
-        Projection::Equirectangular => {
-            let latitude = m.dot(up).clamp(-1.0, 1.0).asin();
-            let longitude = m.dot(right).atan2(m.dot(forward));
-            let (low, high) = (latitude - r, latitude + r);
-            let half_width = (r.sin() / latitude.cos()).min(1.0).asin();
-            let (west, east) = (longitude - half_width, longitude + half_width);
-            let around = high >= FRAC_PI_2 || low <= -FRAC_PI_2 || west <= -PI || east >= PI;
-            let (west, east) = if around { (-PI, PI) } else { (west, east) };
-            Some([
-                west / PI,
-                low.max(-FRAC_PI_2) / FRAC_PI_2,
-                east / PI,
-                high.min(FRAC_PI_2) / FRAC_PI_2,
-            ])
-        }
-        Projection::Fisheye { fov_deg } => {
-            let half_fov = 0.5 * fov_deg.to_radians();
-            let polar = m.dot(forward).clamp(-1.0, 1.0).acos();
-            let azimuth = m.dot(up).atan2(m.dot(right));
-            let (inner, outer) = ((polar - r) / half_fov, (polar + r) / half_fov);
-            if polar + r >= PI {
-                // Around the direction behind: every azimuth, from the inner angle on; beyond
-                // the field, nothing.
-                (inner <= 1.0)
-                    .then_some([-1.0, -1.0, 1.0, 1.0])
-                    .or(Some(NOTHING))
-            } else if polar <= r {
-                Some([-outer, -outer, outer, outer])
-            } else {
-                let spread = (r.sin() / polar.sin()).min(1.0).asin();
-                let (from, to) = (azimuth - spread, azimuth + spread);
-                let at = |rho: f64, angle: f64| [rho * angle.cos(), rho * angle.sin()];
-                let mut points = vec![
-                    at(inner, from),
-                    at(inner, to),
-                    at(outer, from),
-                    at(outer, to),
-                ];
-                // The outer arc's extremes along the axes that fall within the sector.
-                for quarter in -4..=4 {
-                    let angle = f64::from(quarter) * FRAC_PI_2;
-                    if (from..=to).contains(&angle) {
-                        points.push(at(outer, angle));
-                    }
-                }
-                let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-                for p in points {
-                    for k in 0..2 {
-                        lo[k] = lo[k].min(p[k]);
-                        hi[k] = hi[k].max(p[k]);
-                    }
-                }
-                Some([lo[0], lo[1], hi[0], hi[1]])
-            }
-        }
-    };
+    let ndc = (observer.projection).cap_bound(cap.axis, r, observer.basis());
     let Some([x0, y0, x1, y1]) = ndc.filter(|b| b.iter().all(|v| v.is_finite())) else {
         return whole;
     };

@@ -4,7 +4,7 @@
 //! tile): [`target_camera`] gives the camera and matrix of that window.
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
-use srt_scene::{Observer, Projection};
+use srt_scene::Observer;
 
 /// Near plane of the projection (distance in scene units).
 pub const NEAR_PLANE: f64 = 1e-3;
@@ -85,7 +85,7 @@ pub fn target_camera(
     window: Option<ImageWindow>,
 ) -> TargetCamera {
     let (forward, right, up) = observer.basis();
-    if observer.stereo.is_some() || observer.projection != Projection::Perspective {
+    if observer.picture_decides() {
         // The shaders map the whole picture's points (camera.wgsl's eye_point and
         // eye_direction, through FrameUniforms::picture, windows included): a wide projection
         // takes the unit basis; each eye's half of a side-by-side pair is a pinhole picture of
@@ -93,7 +93,7 @@ pub fn target_camera(
         if let Some(window) = window {
             window.check_holds(width, height);
         }
-        let (right, up) = if observer.projection == Projection::Perspective {
+        let (right, up) = if observer.projection.is_pinhole() {
             let (picture_width, picture_height) =
                 window.map_or((width, height), |w| (w.image_width, w.image_height));
             let tan_half = (0.5 * observer.fov_y_deg.to_radians()).tan();

@@ -182,6 +182,118 @@ const fn default_fisheye_fov() -> f64 {
 pub const PROJECTION_NAMES: [&str; 3] = ["perspective", "equirectangular", "fisheye"];
 
 impl Projection {
+    /// Every projection, each with its default parameters, in the order a menu lists them.
+    pub const ALL: [Self; 3] = [
+        Self::Perspective,
+        Self::Equirectangular,
+        Self::Fisheye {
+            fov_deg: DEFAULT_FISHEYE_FOV_DEG,
+        },
+    ];
+
+    /// What a menu calls the projection with its parameters as [`Projection::ALL`] has them
+    /// (the viewer's): "full sky (equirectangular)".
+    #[must_use]
+    pub const fn label(self) -> &'static str {
+        match self {
+            Self::Perspective => "perspective",
+            Self::Equirectangular => "full sky (equirectangular)",
+            Self::Fisheye { .. } => "dome (180° fisheye)",
+        }
+    }
+
+    /// Whether the projection is the pinhole: the one picture whose every pixel's ray follows
+    /// from one camera over the whole image, which the footprint methods (local ray tracing,
+    /// the polygon method) draw; every other is traced ([`crate::Observer::picture_decides`]).
+    #[must_use]
+    pub const fn is_pinhole(self) -> bool {
+        matches!(self, Self::Perspective)
+    }
+
+    /// The bound, in normalised device coordinates (min x, min y, max x, max y; module doc),
+    /// of the image of a cap of viewing directions around the unit `axis` of angular radius
+    /// `radius` (radians), for the observer's unit `basis` (forward, right, up); `None` where
+    /// the projection cannot bound it (the pinhole, whose images the footprints bound) or the
+    /// image may be anywhere, and an empty bound (min > max) where no point of the image sees
+    /// the cap (outside a fisheye's field).
+    ///
+    /// In the equirectangular picture a cap around latitude θ_c that holds no pole spans
+    /// latitudes θ_c ± r and longitudes φ_c ± asin(sin r / cos θ_c) (the tangent great
+    /// circles through the poles); in a fisheye, where the angle from the viewing direction
+    /// plays the colatitude, it spans angles θ_c ± r and azimuths ± asin(sin r / sin θ_c)
+    /// around its own, a sector of an annulus whose box is taken. A range of longitudes
+    /// across ±180° takes the whole width.
+    #[must_use]
+    pub fn cap_bound(
+        self,
+        axis: DVec3,
+        radius: f64,
+        basis: (DVec3, DVec3, DVec3),
+    ) -> Option<[f64; 4]> {
+        // An empty bound.
+        const NOTHING: [f64; 4] = [2.0, 2.0, -2.0, -2.0];
+        let (forward, right, up) = basis;
+        let (m, r) = (axis, radius);
+        match self {
+            Self::Perspective => None,
+            Self::Equirectangular => {
+                let latitude = m.dot(up).clamp(-1.0, 1.0).asin();
+                let longitude = m.dot(right).atan2(m.dot(forward));
+                let (low, high) = (latitude - r, latitude + r);
+                let half_width = (r.sin() / latitude.cos()).min(1.0).asin();
+                let (west, east) = (longitude - half_width, longitude + half_width);
+                let around = high >= FRAC_PI_2 || low <= -FRAC_PI_2 || west <= -PI || east >= PI;
+                let (west, east) = if around { (-PI, PI) } else { (west, east) };
+                Some([
+                    west / PI,
+                    low.max(-FRAC_PI_2) / FRAC_PI_2,
+                    east / PI,
+                    high.min(FRAC_PI_2) / FRAC_PI_2,
+                ])
+            }
+            Self::Fisheye { fov_deg } => {
+                let half_fov = 0.5 * fov_deg.to_radians();
+                let polar = m.dot(forward).clamp(-1.0, 1.0).acos();
+                let azimuth = m.dot(up).atan2(m.dot(right));
+                let (inner, outer) = ((polar - r) / half_fov, (polar + r) / half_fov);
+                if polar + r >= PI {
+                    // Around the direction behind: every azimuth, from the inner angle on;
+                    // beyond the field, nothing.
+                    return (inner <= 1.0)
+                        .then_some([-1.0, -1.0, 1.0, 1.0])
+                        .or(Some(NOTHING));
+                }
+                if polar <= r {
+                    return Some([-outer, -outer, outer, outer]);
+                }
+                let spread = (r.sin() / polar.sin()).min(1.0).asin();
+                let (from, to) = (azimuth - spread, azimuth + spread);
+                let at = |rho: f64, angle: f64| [rho * angle.cos(), rho * angle.sin()];
+                let mut points = vec![
+                    at(inner, from),
+                    at(inner, to),
+                    at(outer, from),
+                    at(outer, to),
+                ];
+                // The outer arc's extremes along the axes that fall within the sector.
+                for quarter in -4..=4 {
+                    let angle = f64::from(quarter) * FRAC_PI_2;
+                    if (from..=to).contains(&angle) {
+                        points.push(at(outer, angle));
+                    }
+                }
+                let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+                for p in points {
+                    for k in 0..2 {
+                        lo[k] = lo[k].min(p[k]);
+                        hi[k] = hi[k].max(p[k]);
+                    }
+                }
+                Some([lo[0], lo[1], hi[0], hi[1]])
+            }
+        }
+    }
+
     /// The projection's name (`"fisheye"` whatever its field).
     #[must_use]
     pub const fn name(self) -> &'static str {
@@ -383,5 +495,68 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `ALL` lists every projection once, in `PROJECTION_NAMES`' order, each with a label of
+    /// its own; only the pinhole is one; and a picture is decided by its place in the whole
+    /// picture exactly where the projection is wide or the observer has two eyes.
+    #[test]
+    fn every_projection_is_listed_once_and_only_the_pinhole_is_one() {
+        let names: Vec<&str> = Projection::ALL.iter().map(|p| p.name()).collect();
+        assert_eq!(names, PROJECTION_NAMES);
+        let mut labels: Vec<&str> = Projection::ALL.iter().map(|p| p.label()).collect();
+        labels.sort_unstable();
+        labels.dedup();
+        assert_eq!(labels.len(), Projection::ALL.len());
+        let pinholes: Vec<Projection> = (Projection::ALL.into_iter())
+            .filter(|p| p.is_pinhole())
+            .collect();
+        assert_eq!(pinholes, [Projection::Perspective]);
+        for projection in Projection::ALL {
+            assert_eq!(projection.check(), Ok(projection));
+            for stereo in [
+                None,
+                Some(crate::Stereo {
+                    eye_separation: 0.065,
+                }),
+            ] {
+                let observer = crate::Observer {
+                    projection,
+                    stereo,
+                    ..crate::builtin::find_builtin("fig7")
+                        .unwrap()
+                        .build()
+                        .unwrap()
+                        .0
+                        .observer
+                };
+                assert_eq!(
+                    observer.picture_decides(),
+                    projection != Projection::Perspective || stereo.is_some(),
+                    "{projection} {stereo:?}"
+                );
+            }
+        }
+    }
+
+    /// A cap's bound: none for the pinhole; in the equirectangular picture a small cap straight
+    /// ahead spans its angular radius around the centre (longitude over π, latitude over π/2);
+    /// in a fisheye of 180° a cap behind is outside the field (empty).
+    #[test]
+    fn a_cap_is_bounded_where_the_projection_draws_it() {
+        let basis = (BASIS[0], BASIS[1], BASIS[2]);
+        let r = 0.1;
+        assert_eq!(Projection::Perspective.cap_bound(BASIS[0], r, basis), None);
+        let [x0, y0, x1, y1] = Projection::Equirectangular
+            .cap_bound(BASIS[0], r, basis)
+            .unwrap();
+        let half_width = r.sin().asin() / PI;
+        assert!((x0 + half_width).abs() < 1e-12 && (x1 - half_width).abs() < 1e-12);
+        assert!((y0 + r / FRAC_PI_2).abs() < 1e-12 && (y1 - r / FRAC_PI_2).abs() < 1e-12);
+        let dome = Projection::Fisheye {
+            fov_deg: DEFAULT_FISHEYE_FOV_DEG,
+        };
+        let [x0, _, x1, _] = dome.cap_bound(-BASIS[0], r, basis).unwrap();
+        assert!(x0 > x1, "behind a hemisphere's dome: nothing");
     }
 }

@@ -164,6 +164,15 @@ pub struct Observer {
 }
 
 impl Observer {
+    /// Whether a pixel's ray follows from its place in the whole picture — a wide projection
+    /// or a stereo pair — rather than from one pinhole over the whole image: such pictures
+    /// are traced, as the footprint methods draw through one pinhole. WGSL's
+    /// `picture_decides` (camera.wgsl) is the GPU's twin.
+    #[must_use]
+    pub fn picture_decides(&self) -> bool {
+        !self.projection.is_pinhole() || self.stereo.is_some()
+    }
+
     /// The observation event (ct_obs, x_obs) in S.
     #[must_use]
     pub const fn event(&self) -> Event {

@@ -297,8 +297,7 @@ impl super::GpuRenderer {
             return Err(GpuError::Unsupported(why));
         }
         // A wide projection or a stereo pair is traced: footprints are drawn through one pinhole.
-        let wide =
-            scene.observer.projection != Projection::Perspective || scene.observer.stereo.is_some();
+        let wide = scene.observer.picture_decides();
         let auto_traced = if method == Method::Auto {
             self.auto_traced(scene, shown)
         } else {
@@ -356,7 +355,7 @@ impl super::GpuRenderer {
     ) -> Vec<Option<ObjectLoad>> {
         let (width, height) = self.picture_size();
         let observer = &scene.observer;
-        let wide = observer.projection != Projection::Perspective || observer.stereo.is_some();
+        let wide = observer.picture_decides();
         let mut viewed = vec![false; self.objects.len()];
         for &index in in_view {
             viewed[index] = true;
@@ -403,7 +402,7 @@ impl super::GpuRenderer {
         observer: &srt_scene::Observer,
     ) -> [f32; 4] {
         let (width, height) = self.picture_size();
-        if observer.stereo.is_some() || observer.projection == Projection::Perspective {
+        if observer.stereo.is_some() || observer.projection.is_pinhole() {
             return [0.0, 0.0, width as f32, height as f32];
         }
         let (centre, radius) = object_ball(object, resources, observer.event());
@@ -453,7 +452,7 @@ impl super::GpuRenderer {
                 let unseen = if observer.stereo.is_some() {
                     // Two eyes' views: nothing is culled.
                     false
-                } else if observer.projection == Projection::Perspective {
+                } else if observer.projection.is_pinhole() {
                     ball_out_of_view(centre, radius, frame, observer, aspect)
                         || ball_between_pixel_centres(
                             centre, radius, frame, observer, width, height,

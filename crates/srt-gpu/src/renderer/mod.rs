@@ -111,7 +111,7 @@ impl Method {
     pub fn cannot_draw(self, scene: &Scene) -> Option<String> {
         let projection = scene.observer.projection;
         if matches!(self, Self::Lrt | Self::Polygon) {
-            let what = if projection != srt_scene::Projection::Perspective {
+            let what = if !projection.is_pinhole() {
                 Some(format!("the {projection} projection"))
             } else {
                 scene.observer.stereo.map(|_| "a stereo pair".to_owned())

@@ -4,7 +4,6 @@
 use eframe::egui::{self, Key, RichText};
 
 use srt_scene::Projection;
-use srt_scene::projection::DEFAULT_FISHEYE_FOV_DEG;
 
 use super::{ViewerApp, panel::vector_row};
 use crate::camera::{self, Movement};
@@ -144,28 +143,16 @@ impl ViewerApp {
         );
         // The picture's projection: the pinhole, the whole sky (drag to look around in it) or
         // a planetarium's dome; the GPU's ray tracer draws the wide ones (auto does).
-        let choices = [
-            ("perspective", Projection::Perspective),
-            ("full sky (equirectangular)", Projection::Equirectangular),
-            (
-                "dome (180° fisheye)",
-                Projection::Fisheye {
-                    fov_deg: DEFAULT_FISHEYE_FOV_DEG,
-                },
-            ),
-        ];
-        let shown = choices
-            .iter()
-            .find(|(_, p)| *p == changed.projection)
-            .map_or_else(
-                || changed.projection.to_string(),
-                |(label, _)| (*label).to_owned(),
-            );
+        let shown = if Projection::ALL.contains(&changed.projection) {
+            changed.projection.label().to_owned()
+        } else {
+            changed.projection.to_string()
+        };
         egui::ComboBox::from_label("projection")
             .selected_text(shown)
             .show_ui(ui, |ui| {
-                for (label, projection) in choices {
-                    ui.selectable_value(&mut changed.projection, projection, label);
+                for projection in Projection::ALL {
+                    ui.selectable_value(&mut changed.projection, projection, projection.label());
                 }
             });
         if changed.projection != observer.projection {
