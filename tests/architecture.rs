@@ -900,7 +900,7 @@ fn twin_disagreements(
             wrong.push(format!("{shader:?} is not one backticked shader path"));
             continue;
         };
-        if !(path.starts_with("shaders/") && path.ends_with(".wgsl")) || !exists(path) {
+        if !(path.starts_with("shaders/") && path.ends_with(".wgsl") && exists(path)) {
             wrong.push(format!("{path} is not a shader of shaders/"));
         }
         if !listed.insert(path.clone()) {
