@@ -548,7 +548,7 @@ fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
 /// with the GPU's but at silhouettes; with "the faster", a software adapter's viewer times both
 /// paths and shows the same picture by either (a hardware GPU always draws).
 #[test]
-fn the_exact_picture_is_drawn_by_the_cpu_tracer_or_the_gpu_whichever_is_faster() {
+fn the_exact_picture_is_the_same_by_the_cpu_tracer_and_the_gpu_and_auto_times_both() {
     let Some(ctx) = srt_gpu::context_or_skip("viewer_exact_path") else {
         return;
     };
