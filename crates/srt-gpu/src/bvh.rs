@@ -1,8 +1,8 @@
 //! The bounding volume hierarchy of one object's triangles (all its parts), in its rest frame
 //! S′, for the GPU ray tracer (`--method rt`, `shaders/rt.wgsl`): built on the CPU by the
 //! `obvhs` crate (PLOC with reinsertion), flattened into [`GpuBvhNode`]s, and walked on the
-//! GPU by the same nearest-hit traversal as [`ObjectBvh::nearest_hit`], its f32 mirror here
-//! (which the tests compare with a test of every triangle).
+//! GPU by the same nearest-hit traversal as `ObjectBvh::nearest_hit`, its f32 mirror here,
+//! compiled for the tests only (which compare it with a test of every triangle).
 //!
 //! In S′ the object is static and a pixel's backward viewing ray is a straight half-line
 //! (Eq. 3, 5), so this is the reference's algorithm (srt-trace: a BVH per part, Eq. 15–16),
@@ -148,7 +148,8 @@ impl ObjectBvh {
     /// The nearest hit of the half-line `origin + ψ·direction`, ψ > 0, with the triangles: the
     /// traversal of `rt.wgsl` (`bvh_nearest_hit`) in Rust, with `hit(t)` the distance ψ at which
     /// the ray meets input triangle `t`, if it does. Returns the triangle and ψ; ties keep the
-    /// triangle found first.
+    /// triangle found first. Test code only: the GPU walks the BVH, never the CPU.
+    #[cfg(test)]
     pub fn nearest_hit(
         &self,
         origin: [f32; 3],
@@ -220,6 +221,7 @@ fn tree_depth(nodes: &[GpuBvhNode]) -> usize {
 
 /// 1 / direction per axis, with components nearer 0 than 10⁻²⁰ replaced by 10⁻²⁰, so that the
 /// slab test meets no infinity and no 0 × ∞ (mirror of `rt.wgsl`'s `safe_inverse`).
+#[cfg(test)]
 fn safe_inverse(direction: [f32; 3]) -> [f32; 3] {
     direction.map(|d| 1.0 / if d.abs() < 1e-20 { 1e-20 } else { d })
 }
@@ -227,6 +229,7 @@ fn safe_inverse(direction: [f32; 3]) -> [f32; 3] {
 /// Where the ray enters `node`'s box (0 if it starts inside), if it meets the box before
 /// `limit` (mirror of `rt.wgsl`'s `box_entry`). The exit is taken a few rounding units late,
 /// so that a ray grazing a face still enters.
+#[cfg(test)]
 fn box_entry(node: &GpuBvhNode, origin: [f32; 3], inverse: [f32; 3], limit: f32) -> Option<f32> {
     let (mut near, mut far) = (0.0f32, f32::MAX);
     for axis in 0..3 {
