@@ -41,7 +41,7 @@ impl Captioner {
 pub fn caption_text(scene: &Scene, observer_beta: DVec3, view: View, renderer: &str) -> String {
     let mut parts = vec![
         scene.name.clone(),
-        format!("time {}", short(scene.observer.ct)),
+        format!("time {}", short(scene.observer.time)),
     ];
     if observer_beta != DVec3::ZERO {
         parts.push(format!("observer β {}", vector(observer_beta)));

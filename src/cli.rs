@@ -101,7 +101,8 @@ pub struct RenderArgs {
     /// frame) or newtonian (rest shape where it is now); the last two are static, Doppler factor 1.
     #[arg(long, value_parser = choice::<View>(), default_value_t = View::Seen)]
     pub view: View,
-    /// Observation time ct_obs (overrides the scene's).
+    /// The observation time: the observer's own clock when it looks (overrides the scene
+    /// file's `observer.time`; its `ct` is W's time at `position`).
     #[arg(long, allow_hyphen_values = true)]
     pub time: Option<f64>,
     /// Velocity X,Y,Z in units of c given to every object (overrides the scene's; a bare model

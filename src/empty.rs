@@ -86,7 +86,7 @@ impl OneColour {
             .collect();
         Some(format!(
             "the picture is empty: no object is in the view at ct = {} ({})",
-            scene.observer.ct,
+            scene.observer.time,
             places.join("; ")
         ))
     }

@@ -95,7 +95,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     );
     let (Some(frames), Some(animation)) = (args.frames, animation) else {
         let start = Instant::now();
-        let record = record.with(&[("time", format!("{:?}", scene.observer.ct))]);
+        let record = record.with(&[("time", format!("{:?}", scene.observer.time))]);
         let captioner = captioner(args, loaded.observer_beta, &engine);
         let picture = Picture {
             frame: &first_frame,
@@ -628,7 +628,7 @@ fn details(settings: RenderSettings, engine: &Engine, start: Instant) -> String 
 }
 
 /// `scene` as `view` shows it at its current observation time (applied per frame, after the
-/// frame's time is set: the measured and Newtonian positions depend on ct_obs).
+/// frame's time is set: the measured and Newtonian positions depend on the observation time).
 fn viewed(view: View, scene: &Scene) -> anyhow::Result<Cow<'_, Scene>> {
     if view == View::Seen {
         // The picture srt renders anyway: no copy of the meshes per frame.

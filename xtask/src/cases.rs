@@ -103,7 +103,7 @@ pub const ENGINE: &str = "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
 #[must_use]
 pub fn at_time(name: &str, scene: &Scene, ct: f64) -> Case {
     let mut scene = scene.clone();
-    scene.observer.ct = ct;
+    scene.observer.time = ct;
     Case {
         name: format!("{name}@ct={ct}"),
         scene,

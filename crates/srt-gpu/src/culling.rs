@@ -442,7 +442,7 @@ mod tests {
             direction: DVec3::Z,
             up: DVec3::Y,
             fov_y_deg: 60.0,
-            ct,
+            time: ct,
         }
     }
 

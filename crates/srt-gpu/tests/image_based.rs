@@ -118,7 +118,7 @@ fn it_looks_up_the_whole_sphere() {
         return;
     };
     let mut scene = builtin("teaser");
-    scene.observer.ct = 16.0;
+    scene.observer.time = 16.0;
     scene.observer.projection = Projection::Equirectangular;
     let reference = cpu_image(&scene);
     assert!(reference.coverage.iter().any(|&c| c != 0));

@@ -197,7 +197,7 @@ fn flipbooks_match_the_cpu_reference() {
     let renderer = GpuRenderer::new(&ctx, &scene, WIDTH, HEIGHT).unwrap();
     let mut seen = Vec::new();
     for frame in 0..4 {
-        scene.observer.ct = 4.5 + f64::from(frame);
+        scene.observer.time = 4.5 + f64::from(frame);
         let reference = cpu_image(&scene);
         let (image, _) = renderer
             .render(&ctx, &scene, Method::Lrt, FootprintShape::Hull)
@@ -205,7 +205,7 @@ fn flipbooks_match_the_cpu_reference() {
         let mismatch = compare(&reference, &image.to_rgb8(), 2, 1);
         let line = format!(
             "ct={}: mismatch={:.5} max={}",
-            scene.observer.ct,
+            scene.observer.time,
             mismatch.fraction(),
             mismatch.max_difference
         );

@@ -134,7 +134,7 @@ fn a_spinning_cube_matches_the_cpu_reference() {
     };
     let mut scene = scene(SPINNING_CUBE, "spinning cube");
     for ct in [2.0, 4.5] {
-        scene.observer.ct = ct;
+        scene.observer.time = ct;
         assert_matches(&ctx, &format!("spinning cube at ct={ct}"), &scene);
     }
     ctx.take_errors().unwrap();
@@ -148,7 +148,7 @@ fn a_thrusting_sphere_matches_the_cpu_reference() {
     let mut scene = scene(THRUSTING_SPHERE, "thrusting sphere");
     // Seen accelerating, then coasting (the thrust ends near ct′ = 1 + sinh(1.5)/0.52 ≈ 5.1).
     for ct in [6.0, 9.0, 14.0] {
-        scene.observer.ct = ct;
+        scene.observer.time = ct;
         assert_matches(&ctx, &format!("thrusting sphere at ct={ct}"), &scene);
     }
     ctx.take_errors().unwrap();
@@ -164,7 +164,7 @@ fn the_rolling_wheel_matches_the_cpu_reference() {
         .find(|b| b.name == "rolling-wheel")
         .unwrap();
     let (mut scene, _) = builtin.build().unwrap();
-    scene.observer.ct = 1.5;
+    scene.observer.time = 1.5;
     assert_matches(&ctx, "rolling wheel at ct=1.5", &scene);
     ctx.take_errors().unwrap();
 }

@@ -54,7 +54,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         observer.position.to_array(),
         observer.direction.to_array(),
         observer.fov_y_deg,
-        observer.ct
+        observer.time
     );
     println!(
         "  light {} K at {:.2?}; effects: {}",

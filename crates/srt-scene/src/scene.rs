@@ -144,7 +144,7 @@ pub struct SurfaceOptics {
     pub emission: Option<Emission>,
 }
 
-/// The observer: a camera at rest in S, observing at time `ct`.
+/// The observer: a camera at rest in S, looking at its observation time `time`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Observer {
     /// Position in S.
@@ -155,8 +155,10 @@ pub struct Observer {
     pub up: DVec3,
     /// Vertical field of view in degrees, in (0, 180).
     pub fov_y_deg: f64,
-    /// Observation time ct_obs (c = 1).
-    pub ct: f64,
+    /// The observation time: the observer's own clock when it looks (the scene file's
+    /// `observer.time`, or its `ct` where it gives none), which is the time of S (c = 1): the
+    /// paper's ct_obs.
+    pub time: f64,
     /// How the image maps its points to viewing directions ([`Projection`]).
     pub projection: Projection,
     /// Two eyes in one picture ([`Stereo`]; `None`: one eye at `position`).
@@ -176,7 +178,7 @@ impl Observer {
     /// The observation event (ct_obs, x_obs) in S.
     #[must_use]
     pub const fn event(&self) -> Event {
-        Event::new(self.ct, self.position)
+        Event::new(self.time, self.position)
     }
 
     /// Orthonormal camera basis (forward, right, up).

@@ -78,7 +78,7 @@ mod tests {
         assert!(!seen.needs_upload(&key(View::Newtonian, &editor)));
         assert!(seen.needs_upload(&measured) && !seen.is_contracted() && measured.is_contracted());
         // Time and the observer's camera are written with each frame.
-        editor.set_time(editor.scene().observer.ct + 1.0).unwrap();
+        editor.set_time(editor.scene().observer.time + 1.0).unwrap();
         assert!(!seen.needs_upload(&key(View::Seen, &editor)));
         assert!(!measured.needs_upload(&key(View::Measured, &editor)));
         // A velocity keeps the seen view's upload; the measured view's meshes are contracted

@@ -79,7 +79,7 @@ impl View {
         if self == Self::Seen {
             return Ok(viewed);
         }
-        let ct = scene.observer.ct;
+        let ct = scene.observer.time;
         for object in &mut viewed.objects {
             self.apply_to_object(object, ct)?;
         }

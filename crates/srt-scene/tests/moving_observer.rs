@@ -217,7 +217,7 @@ fn assert_close(a: &srt_scene::Scene, b: &srt_scene::Scene) {
         a.observer,
         b.observer
     );
-    assert!((a.observer.ct - b.observer.ct).abs() <= 1e-9 * (1.0 + a.observer.ct.abs()));
+    assert!((a.observer.time - b.observer.time).abs() <= 1e-9 * (1.0 + a.observer.time.abs()));
     assert_eq!(a.observer.direction, b.observer.direction);
     assert!(
         close(a.light.position, b.light.position),

@@ -50,7 +50,7 @@ fn overrides_edit_the_description_that_is_built() {
     assert_eq!(scene.tone_map, Effects::Searchlight.default_tone_map());
     assert_eq!(scene.colour, SurfaceColour::Spectral);
     assert_eq!(scene.exposure, 2.5);
-    assert_eq!(scene.observer.ct, -3.0);
+    assert_eq!(scene.observer.time, -3.0);
     for object in &scene.objects {
         assert_eq!(object.frame.beta(), DVec3::new(0.0, -0.5, 0.25));
     }
@@ -66,7 +66,7 @@ fn no_overrides_change_nothing() {
     let plain = source.load(None).unwrap();
     let routed = source.load_with(&Overrides::default()).unwrap();
     assert_eq!(plain.source, routed.source);
-    assert_eq!(plain.scene.observer.ct, routed.scene.observer.ct);
+    assert_eq!(plain.scene.observer.time, routed.scene.observer.time);
     for (a, b) in plain.scene.objects.iter().zip(&routed.scene.objects) {
         assert_eq!(a.frame, b.frame);
     }
@@ -272,11 +272,14 @@ fn an_edited_description_loads_as_the_overridden_source() {
             ..Overrides::default()
         })
         .unwrap();
-    assert_eq!(from_edit.scene.observer.ct, overridden.scene.observer.ct);
+    assert_eq!(
+        from_edit.scene.observer.time,
+        overridden.scene.observer.time
+    );
     assert_eq!(from_edit.source.description, edited.description);
     // Text without a file: built from its base folder, named as a scene without a file.
     let text = edited.clone().load_with(&Overrides::default()).unwrap();
-    assert_eq!(text.scene.observer.ct, 4.4);
+    assert_eq!(text.scene.observer.time, 4.4);
     let mut broken = edited;
     broken.description.observer.fov_y_deg = 200.0;
     let message = broken

@@ -139,7 +139,7 @@ fn fig4_matches_the_paper() {
     let scene = build("fig4");
     assert_eq!(scene.observer.position, DVec3::new(2.0, 5.0, 0.2));
     assert_eq!(scene.observer.fov_y_deg, 35.0);
-    assert_eq!(scene.observer.ct, 5.12);
+    assert_eq!(scene.observer.time, 5.12);
     let cube = &scene.objects[0];
     assert_eq!(cube.frame.beta(), DVec3::new(0.0, 0.95, 0.0));
     let (lo, hi) = cube.parts[0].mesh.bounds();

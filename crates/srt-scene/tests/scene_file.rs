@@ -137,7 +137,7 @@ fn a_full_scene_parses_and_builds() {
     assert_eq!(scene.shading.ambient, 0.1);
     assert_eq!(scene.shading.shininess, 16.0);
     assert_eq!(scene.light.temperature_k, 5500.0);
-    assert_eq!(scene.observer.ct, 1.5);
+    assert_eq!(scene.observer.time, 1.5);
     assert_eq!(scene.observer.fov_y_deg, 50.0);
     assert!((scene.observer.direction - DVec3::new(0.0, 10.0, -1.5).normalize()).length() < 1e-12);
 
@@ -180,7 +180,7 @@ fn defaults_fill_in_what_is_left_out() {
         scene.observer.fov_y_deg,
         srt_scene::description::DEFAULT_FOV_Y_DEG
     );
-    assert_eq!(scene.observer.ct, 0.0);
+    assert_eq!(scene.observer.time, 0.0);
     assert_eq!(scene.light.position, DVec3::new(1.0, 2.0, 3.0));
     assert_eq!(
         scene.light.temperature_k,

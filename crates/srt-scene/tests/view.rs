@@ -18,7 +18,7 @@ fn moving(beta: DVec3, ct: f64) -> Scene {
     for object in &mut scene.objects {
         object.frame = Frame::new(beta, object.frame.offset()).unwrap();
     }
-    scene.observer.ct = ct;
+    scene.observer.time = ct;
     scene
 }
 

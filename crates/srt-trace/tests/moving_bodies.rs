@@ -95,7 +95,7 @@ impl PixelRay {
         let to_rest = crate::seen::boost(-beta);
         let origin = to_rest
             * (DVec4::new(
-                observer.ct,
+                observer.time,
                 observer.position.x,
                 observer.position.y,
                 observer.position.z,

@@ -146,7 +146,7 @@ fn penrose_a_moving_sphere_has_a_circular_outline() {
             direction: axis,
             up: DVec3::new(0.1, 1.0, 0.05),
             fov_y_deg: 0.0,
-            ct,
+            time: ct,
         };
         let half_angle = (1.0 / apparent).asin();
         let observer = Observer {
@@ -183,7 +183,7 @@ fn penrose_check_detects_a_non_circular_outline() {
         direction: -DVec3::Z,
         up: DVec3::Y,
         fov_y_deg: 30.0,
-        ct: 0.0,
+        time: 0.0,
     };
     let (_, _, rms, _) = outline_fit(&scene(vec![ellipsoid], observer), 512);
     println!("control ellipse: RMS {rms:.3} px");
@@ -232,7 +232,7 @@ fn terrell_a_passing_cube_appears_rotated_by_arcsin_beta() {
             direction: -DVec3::Z,
             up: DVec3::Y,
             fov_y_deg: (2.0f64 / distance).atan().to_degrees(),
-            ct: distance,
+            time: distance,
         };
         let (front, trailing) = face_widths(&scene(vec![cube_object], observer), 800);
         let measured = trailing.atan2(front).to_degrees();
@@ -252,7 +252,7 @@ fn terrell_a_passing_cube_appears_rotated_by_arcsin_beta() {
         direction: -DVec3::Z,
         up: DVec3::Y,
         fov_y_deg: 0.1146,
-        ct: 0.0,
+        time: 0.0,
     };
     let (front, trailing) = face_widths(&scene(vec![at_rest], observer), 800);
     assert!(front > 300.0 && trailing == 0.0);
@@ -357,7 +357,7 @@ fn at_rest_the_renderer_is_an_ordinary_ray_tracer() {
         direction: DVec3::new(-0.05, -0.33, -1.0),
         up: DVec3::Y,
         fov_y_deg: 50.0,
-        ct: 17.0,
+        time: 17.0,
     };
     for effects in Effects::ALL {
         let mut s = scene(objects.clone(), observer);

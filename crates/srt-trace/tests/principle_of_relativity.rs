@@ -262,6 +262,6 @@ fn the_counterpart_uses_other_coordinates() {
     moving.observer.beta = beta_o.to_array();
     let built = build(&moving).observer;
     let counterpart = in_observer_frame(&description, beta_o).observer;
-    assert!((built.ct - counterpart.ct).abs() > 1.0);
+    assert!((built.time - counterpart.time).abs() > 1.0);
     assert!((built.position - counterpart.position).length() > 1.0);
 }

@@ -133,7 +133,7 @@ fn check(shape: Shape, observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f6
     let observer = scene.observer;
     // The observation event in W and the map S → W: x_W = Λ_βo (x_S − E) + E (Eq. 1).
     let observation = DVec4::new(
-        observer.ct,
+        observer.time,
         observer.position.x,
         observer.position.y,
         observer.position.z,
@@ -168,7 +168,7 @@ fn check(shape: Shape, observer_beta: [f64; 3], cube_beta: [f64; 3], offset: [f6
             .normalize();
         // On the backward light cone in S: seen at `distance` along the ray, that long ago.
         let at = observer.position + distance * look;
-        let in_s = DVec4::new(observer.ct - distance, at.x, at.y, at.z);
+        let in_s = DVec4::new(observer.time - distance, at.x, at.y, at.z);
         let in_w = to_world(in_s);
         let rest = from_world * (in_w - a);
         let context =

@@ -25,7 +25,7 @@ fn sky_scene(stars: Vec<Star>, speed: f64, effects: Effects) -> Scene {
             direction: DVec3::Y,
             up: DVec3::Z,
             fov_y_deg: FOV_Y_DEG,
-            ct: 0.0,
+            time: 0.0,
         },
         light: Light {
             position: DVec3::ZERO,

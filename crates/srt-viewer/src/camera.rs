@@ -81,7 +81,7 @@ mod tests {
             direction: DVec3::Y,
             up: DVec3::Z,
             fov_y_deg: 45.0,
-            ct: 0.0,
+            time: 0.0,
         }
     }
 

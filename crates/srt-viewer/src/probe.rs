@@ -186,7 +186,7 @@ mod tests {
         // light left that long before the observation.
         let distance = (found.apparent_position - observer).length();
         assert!((found.apparent_distance - distance).abs() < 1e-9);
-        assert!((found.emission_ct - (scene.observer.ct - distance)).abs() < 1e-9);
+        assert!((found.emission_ct - (scene.observer.time - distance)).abs() < 1e-9);
         // Eq. 17 with the light at (90, 0, 9.8).
         let incident = (found.apparent_position - scene.light.position).normalize();
         let expected = reflection_doppler(beta, incident, outgoing);

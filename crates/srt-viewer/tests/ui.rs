@@ -372,7 +372,7 @@ fn keyboard_flies_and_resets_the_camera() {
     harness.key_press(Key::Space);
     harness.run_steps(5);
     assert!(
-        harness.state().editor().scene().observer.ct > home.ct,
+        harness.state().editor().scene().observer.time > home.time,
         "Space plays the time"
     );
 }
@@ -511,9 +511,9 @@ fn recording_writes_one_video_frame_per_drawn_frame_on_a_fixed_clock() {
         harness.state().status().text
     );
     click(&mut harness, "Play");
-    let ct_start = harness.state().editor().scene().observer.ct;
+    let ct_start = harness.state().editor().scene().observer.time;
     harness.run_steps(12);
-    let ct_end = harness.state().editor().scene().observer.ct;
+    let ct_end = harness.state().editor().scene().observer.time;
     // 12 frames at 24 fps of playback at 1 unit of time per second: exactly 0.5, whatever the frames took.
     assert!(
         (ct_end - ct_start - 0.5).abs() < 1e-9,

@@ -99,7 +99,7 @@ pub fn measure(
     frames: u32,
 ) -> anyhow::Result<([f64; 4], [f64; 4])> {
     let mut moving = scene.clone();
-    let start_ct = scene.observer.ct;
+    let start_ct = scene.observer.time;
     let (mut fps, mut encode_ms) = ([0.0; 4], [0.0; 4]);
     let step = CT_SPAN / f64::from(frames.max(1));
     for ((rate, encode), method) in fps.iter_mut().zip(&mut encode_ms).zip(METHODS) {
@@ -111,7 +111,7 @@ pub fn measure(
         let mut encoding = std::time::Duration::ZERO;
         let mut queued = VecDeque::new();
         for frame in 0..frames {
-            moving.observer.ct = start_ct + step * f64::from(frame);
+            moving.observer.time = start_ct + step * f64::from(frame);
             let encode_start = Instant::now();
             queued.push_back(submit(ctx, renderer, &moving, method)?);
             encoding += encode_start.elapsed();

@@ -524,7 +524,7 @@ impl ObserverDescription {
             direction,
             up: DVec3::from_array(self.up).normalize_or(DVec3::Z),
             fov_y_deg: self.fov_y_deg,
-            ct: self.time.unwrap_or(self.ct),
+            time: self.time.unwrap_or(self.ct),
             projection: self.projection.unwrap_or_default(),
             stereo: self.stereo,
         }

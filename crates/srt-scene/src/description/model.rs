@@ -151,7 +151,7 @@ pub struct ObserverDescription {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightDescription {
-    /// The lamp's position in W at the observation time `observer.ct`; a moving light's
+    /// The lamp's position in W at W's time `observer.ct`; a moving light's
     /// position in W at t = 0.
     pub position: [f64; 3],
     /// Black-body temperature in kelvin (> 0).

@@ -21,7 +21,7 @@ impl Editor {
     /// vector parallel to it, a field of view outside (0°, 180°), a position or time that is not
     /// finite…); the observer is then unchanged.
     pub fn set_observer(&mut self, observer: Observer) -> Result<(), EditError> {
-        let clock_moved = observer.ct != self.time();
+        let clock_moved = observer.time != self.time();
         self.move_observer(|description| {
             // A riding observer's runtime position is where the ride has taken it: its start
             // stays the description's.
@@ -39,7 +39,7 @@ impl Editor {
                 fov_y_deg: observer.fov_y_deg,
                 ct: description.ct,
                 time: if clock_moved {
-                    Some(observer.ct)
+                    Some(observer.time)
                 } else {
                     description.time
                 },
@@ -55,7 +55,7 @@ impl Editor {
     /// `observer.ct` when the scene gives none).
     #[must_use]
     pub const fn time(&self) -> f64 {
-        self.scene.observer.ct
+        self.scene.observer.time
     }
 
     /// Sets the observation time on the observer's own clock (`observer.time`): a moving
@@ -118,7 +118,7 @@ impl Editor {
     /// As [`Editor::set_observer`] (the home observer was accepted when the scene was built).
     pub fn reset_view(&mut self) -> Result<(), EditError> {
         self.set_observer(Observer {
-            ct: self.scene.observer.ct,
+            time: self.scene.observer.time,
             ..self.home
         })
     }

@@ -473,7 +473,7 @@ fn saved_scenes_load_back_with_the_edits() {
     assert_eq!(scene.effects, Effects::Searchlight);
     assert_eq!(scene.objects[1].wireframe, Some(0.02));
     assert_eq!(scene.light.temperature_k, 8000.0);
-    assert_eq!(scene.observer.ct, 2.5);
+    assert_eq!(scene.observer.time, 2.5);
     assert_eq!(scene.objects[3].triangle_count(), 4);
 }
 
@@ -504,7 +504,7 @@ fn the_observer_is_validated_and_reset() {
     editor.set_time(4.0).unwrap();
     editor.reset_view().unwrap();
     assert_eq!(editor.scene().observer.position, home.position);
-    assert_eq!(editor.scene().observer.ct, 4.0);
+    assert_eq!(editor.scene().observer.time, 4.0);
 }
 
 #[test]

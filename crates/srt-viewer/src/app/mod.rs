@@ -178,7 +178,7 @@ impl ViewerApp {
                 text: warnings.join("; "),
             }
         };
-        let ct = observer.ct;
+        let ct = observer.time;
         Self {
             selected: (editor.object_count() > 0).then_some(0),
             selected_light: None,

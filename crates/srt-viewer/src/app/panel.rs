@@ -129,7 +129,7 @@ impl ViewerApp {
                 shown.size.0,
                 shown.size.1,
                 view_label(shown.pane.view),
-                shown.observer.ct
+                shown.observer.time
             ))
             .small(),
         );
