@@ -9,7 +9,7 @@
 //! r = ct_E − ct_L along the unit direction n = (x_E − x_L) / r.
 //!
 //! The frequency ratio receiver/source is the product of the source's Doppler factor into S
-//! (Eq. 4's time part, [`doppler_factor`]) and the receiver's out of S (Eq. 3's,
+//! (Eq. 4's time part, [`FourVelocity::doppler_factor`]) and the receiver's out of S (Eq. 3's,
 //! [`FourVelocity::receiver_doppler`]): D_in = γ_R(1 − β_R·n) / (γ_L(1 − β_L·n)), the first
 //! factor of Eq. 17 with a moving source. Since r_L = γ_L(1 − β_L·n)·r and the distance in the receiver's frame is
 //! r_R = γ_R(1 − β_R·n)·r (both the time component of the null vector (r, r·n) boosted), also
@@ -25,7 +25,6 @@ use glam::DVec3;
 
 use crate::event::Event;
 use crate::frame::Frame;
-use crate::light::doppler_factor;
 use crate::velocity::FourVelocity;
 
 /// The light of a point source at rest at the origin of `source` (a frame relative to S) that
@@ -46,29 +45,53 @@ impl RetardedLight {
     /// The light of the source resting at `source`'s origin that reaches `receiver` (an event in
     /// S). `None` where the receiver is on the source's worldline (no direction), or the input is
     /// not finite.
+    ///
+    /// The retarded event is found in S, on the worldline x(ct) = a + β·ct: with p = x_E − x(ct_E)
+    /// the receiver's offset from where the source is at its time, the light travelled
+    /// r = ct_E − ct_L with ‖p + β r‖ = r, the root of (1 − β²) r² − 2 (β·p) r − p² = 0 that is
+    /// ≥ 0, r = (β·p + q)·γ² = p² / (q − β·p) with q = √((β·p)² + p²/γ²), each form taken where it
+    /// has no cancellation. It is the S_L construction above (Eq. 5–7) without its Lorentz
+    /// transformations, whose ct_L = γ(ct_L,L + β·x_L,L) loses every digit at |β| = 1 − 10⁻¹⁶
+    /// when the light leaves backwards. r_L = γ_L(1 − β_L·n)·r from the source's four-velocity.
     #[must_use]
     pub fn reaching(source: &Frame, receiver: Event) -> Option<Self> {
-        let emission_rest = source.emission_event(DVec3::ZERO, receiver);
-        let source_distance = source.to_rest(receiver).ct - emission_rest.ct;
-        let source_event = source.to_observer(emission_rest);
-        let travelled = receiver.position - source_event.position;
-        let direction = travelled.normalize_or_zero();
-        (source_distance > 0.0 && source_distance.is_finite() && direction != DVec3::ZERO).then(
-            || Self {
+        let beta = source.beta();
+        let velocity = FourVelocity::from_beta(beta);
+        let gamma = velocity.gamma();
+        let offset = receiver.position - source.offset() - beta * receiver.ct;
+        let ahead = beta.dot(offset);
+        let q = (ahead * ahead + offset.length_squared() / (gamma * gamma)).sqrt();
+        let travelled = if ahead >= 0.0 {
+            (ahead + q) * gamma * gamma
+        } else {
+            offset.length_squared() / (q - ahead)
+        };
+        let direction = (offset + beta * travelled).normalize_or_zero();
+        let source_distance = velocity.gamma_one_minus_dot(direction) * travelled;
+        let source_ct = receiver.ct - travelled;
+        let source_event = Event::new(source_ct, source.offset() + beta * source_ct);
+        (source_distance > 0.0
+            && source_distance.is_finite()
+            && source_event.ct.is_finite()
+            && source_event.position.is_finite()
+            && direction != DVec3::ZERO)
+            .then_some(Self {
                 source_event,
                 direction,
                 source_distance,
-                source_beta: source.beta(),
-            },
-        )
+                source_beta: beta,
+            })
     }
 
     /// D_in: the frequency a receiver moving with `receiver` (its four-velocity, finite however
     /// fast) measures over the frequency the source emitted (the source's Doppler factor into S
-    /// times the receiver's out of S).
+    /// times the receiver's out of S). The source's factor 1/(γ_L(1 − β_L·n)) (Eq. 4's time
+    /// part) is taken from its four-velocity ([`FourVelocity::doppler_factor`]): at
+    /// |β_L| = 1 − 10⁻¹⁶ the β form's 1 − β_L·n rounds to 0 for light sent straight ahead.
     #[must_use]
     pub fn doppler_to(&self, receiver: FourVelocity) -> f64 {
-        doppler_factor(self.source_beta, self.direction) * receiver.receiver_doppler(self.direction)
+        FourVelocity::from_beta(self.source_beta).doppler_factor(self.direction)
+            * receiver.receiver_doppler(self.direction)
     }
 
     /// The energy flux a receiver moving with `receiver` measures, per unit of the source's
@@ -152,6 +175,60 @@ mod tests {
             let r_receiver = lorentz_factor(receiver_beta) * r * (1.0 - receiver_beta.dot(light.direction));
             assert_relative_eq!(light.doppler_to(FourVelocity::from_beta(receiver_beta)), r_receiver / light.source_distance,
                 max_relative = 1e-12);
+        }
+    }
+
+    /// A source at the fastest speeds `f64` writes (along an axis, |β| = 1 − 1.1·10⁻¹⁶, and the
+    /// diagonal, |β| = 1 − 3·10⁻¹⁶) lighting receivers at rest straight ahead of it, straight
+    /// behind and across its path: D_in (Eq. 4's time part) is the head-on γ(1 + β), its inverse
+    /// and 1/γ across, and r_L = γ(1 − β·n)·r, all finite. With the β form of the source's
+    /// Doppler factor, 1 − β·n rounds to 0 on the diagonal straight ahead (D_in = ∞).
+    #[test]
+    fn a_source_at_the_fastest_f64_speeds_gives_finite_doppler_factors_and_distances() {
+        let edge = 0.999_999_999_999_999_9;
+        let diagonal = 0.577_350_269_189_625_6;
+        for beta in [
+            DVec3::new(edge, 0.0, 0.0),
+            DVec3::new(0.0, -edge, 0.0),
+            DVec3::splat(diagonal),
+        ] {
+            let speed = beta.length();
+            let along = beta / speed;
+            let gamma = 1.0 / ((1.0 - speed) * (1.0 + speed)).sqrt();
+            let source = Frame::new(beta, DVec3::ZERO).unwrap();
+            let velocity = FourVelocity::from_beta(beta);
+            for (place, expected) in [
+                (along * 10.0, gamma * (1.0 + speed)),
+                (-along * 10.0, 1.0 / (gamma * (1.0 + speed))),
+            ] {
+                let receiver = Event::new(0.0, place);
+                let light = RetardedLight::reaching(&source, receiver).unwrap();
+                let doppler = light.doppler_to(FourVelocity::REST);
+                assert!(
+                    doppler.is_finite() && light.flux_to(FourVelocity::REST).is_finite(),
+                    "{beta} to {place}: D_in = {doppler}, {light:?}"
+                );
+                assert_relative_eq!(doppler, expected, max_relative = 1e-6);
+                // The retarded event is on the source's worldline and the receiver's past
+                // light cone (at |β| = 1 − 10⁻¹⁶ behind the source: ct = −10/(1 + β) = −5).
+                let r = receiver.ct - light.source_event.ct;
+                let gap = receiver.position - light.source_event.position;
+                assert_relative_eq!(gap.length(), r, max_relative = 1e-9);
+                let on_worldline = beta * light.source_event.ct;
+                assert!((light.source_event.position - on_worldline).length() <= 1e-12 * r);
+                let one_minus = velocity.gamma_one_minus_dot(light.direction);
+                assert_relative_eq!(light.source_distance, one_minus * r, max_relative = 1e-6);
+            }
+            // Light crossing the source's path at right angles in S: D_in = 1/γ.
+            let across = RetardedLight {
+                direction: along.any_orthonormal_vector(),
+                ..RetardedLight::reaching(&source, Event::new(0.0, DVec3::ONE)).unwrap()
+            };
+            assert_relative_eq!(
+                across.doppler_to(FourVelocity::REST),
+                1.0 / gamma,
+                max_relative = 1e-6
+            );
         }
     }
 

@@ -103,3 +103,123 @@ fn spinning_and_thrusting_bodies_at_the_fastest_f64_speeds_give_finite_pixels() 
         bad.join("\n")
     );
 }
+
+/// The built-in scene `name` as `srt render NAME --set KEY=VALUE …` loads it.
+fn with_settings(name: &str, settings: &[String]) -> srt_scene::Scene {
+    let overrides = Overrides {
+        settings: (settings.iter())
+            .map(|text| text.parse().unwrap())
+            .collect(),
+        ..Overrides::default()
+    };
+    (SceneSource::resolve(name).unwrap().load_with(&overrides))
+        .unwrap_or_else(|e| panic!("{name} with {settings:?}: {e}"))
+        .scene
+}
+
+/// Every pixel's radiance and every channel `--aov` writes, for a scene, in `bad` where not
+/// finite; the number of pixels that see an object.
+fn non_finite(label: &str, scene: &srt_scene::Scene, bad: &mut Vec<String>) -> usize {
+    let tracer = Tracer::new(scene);
+    let picture = tracer.render_radiance(SETTINGS, &|_| {});
+    for (index, pixel) in picture.pixels.iter().enumerate() {
+        if !pixel.is_finite() {
+            bad.push(format!("{label}: pixel {index} radiance {pixel}"));
+        }
+    }
+    let mut seen = 0;
+    for y in 0..SETTINGS.height {
+        for x in 0..SETTINGS.width {
+            let Some(hit) = tracer.hit_at_pixel(SETTINGS.width, SETTINGS.height, x, y) else {
+                continue;
+            };
+            seen += 1;
+            let event = tracer.seen_event(&hit);
+            let channels = [
+                event.emission_ct,
+                event.proper_time,
+                event.distance,
+                event.doppler,
+            ];
+            if !channels.iter().all(|c| c.is_finite()) {
+                bad.push(format!("{label}: ({x}, {y}) channels {event:?}"));
+            }
+        }
+    }
+    seen
+}
+
+/// The lamp of `shadows` (a moving `[[light]]` and its glowing bulb) flying at the fastest
+/// speeds, with each effect: its light, D_in, flux and late shadows give finite pixels, and the
+/// plain moving objects of fig10-cube50 and teaser (`--beta`) give finite pixels too.
+#[test]
+fn moving_lights_and_uniform_motion_at_the_fastest_f64_speeds_give_finite_pixels() {
+    let mut bad = Vec::new();
+    for beta in fastest() {
+        let value = format!("[{}, {}, {}]", beta.x, beta.y, beta.z);
+        for effects in ["geometry", "doppler", "searchlight"] {
+            let settings = [
+                format!("light.1.beta={value}"),
+                format!("object.lamp.beta={value}"),
+                format!("render.effects={effects}"),
+            ];
+            let scene = with_settings("shadows", &settings);
+            let seen = non_finite(&format!("shadows {settings:?}"), &scene, &mut bad);
+            assert!(seen > 0, "shadows with {settings:?} sees nothing");
+        }
+        let overrides = Overrides {
+            beta: Some(beta),
+            ..Overrides::default()
+        };
+        for name in ["fig10-cube50", "teaser"] {
+            let loaded = SceneSource::resolve(name).unwrap().load_with(&overrides);
+            let scene = loaded.unwrap().scene;
+            non_finite(&format!("{name} at {beta}"), &scene, &mut bad);
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "{} non-finite:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
+
+/// The ride (`observer.thrust`) of flythrough's observer at the fastest speeds: coasting at
+/// |β| = 1 − 1.1·10⁻¹⁶ and braking from it, and accelerating from rest to rapidity 18
+/// (|β| = 1 − 4.4·10⁻¹⁶): finite pixels.
+#[test]
+fn an_accelerating_observer_at_the_fastest_f64_speeds_gives_finite_pixels() {
+    let edge = "0.9999999999999999";
+    let lamp = "light.position=[0, 0, 1.6]".to_string();
+    let rides = [
+        vec![format!("observer.beta=[0, {edge}, 0]"), lamp.clone()],
+        vec![
+            format!("observer.beta=[0, {edge}, 0]"),
+            "observer.thrust={ proper_acceleration = [0, -0.1, 0] }".into(),
+            "observer.ct=20".into(),
+            lamp.clone(),
+        ],
+        vec![
+            "observer.beta=[0, 0, 0]".into(),
+            "observer.thrust={ proper_acceleration = [0, 0.1, 0] }".into(),
+            "observer.ct=180".into(),
+            lamp,
+        ],
+    ];
+    let mut bad = Vec::new();
+    for settings in rides {
+        for effects in ["doppler", "searchlight"] {
+            let mut settings = settings.clone();
+            settings.push(format!("render.effects={effects}"));
+            let scene = with_settings("flythrough", &settings);
+            non_finite(&format!("flythrough {settings:?}"), &scene, &mut bad);
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "{} non-finite:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
