@@ -245,6 +245,50 @@ mod tests {
         }
     }
 
+    /// A speed |β| in [0.999999, 1 − 1.1·10⁻¹⁶] (the largest `f64` below 1), as 1 − |β|
+    /// drawn on a log scale so that every decade is met.
+    fn near_light_speed() -> impl Strategy<Value = f64> {
+        (-16.0f64..-6.0).prop_map(|e| (1.0 - 10f64.powf(e)).min(0.999_999_999_999_999_9))
+    }
+
+    /// The rapidity η = artanh β = ½ ln((1 + β)/(1 − β)), 1 − β exact near 1.
+    fn rapidity(speed: f64) -> f64 {
+        0.5 * ((1.0 + speed) / (1.0 - speed)).ln()
+    }
+
+    proptest! {
+        /// At |β| from 1 − 10⁻⁶ to 1 − 1.1·10⁻¹⁶ along any direction â, and a body moving forward
+        /// along â on that frame as fast: collinear rapidities add (Eq. 3 on the four-velocity), and
+        /// the Doppler factor along any unit n is that of rapidity η, 1/(γ(1 − β·n)) (Eq. 4's
+        /// time part) with γ(1 − β·n) = e^(−η)(1 + â·n)/2 + e^(η)(1 − â·n)/2, a sum of
+        /// positive terms, however fast the composed body goes (its β may round to 1).
+        #[test]
+        fn near_light_speed_compositions_and_doppler_factors_are_finite_and_exact(
+            frame_speed in near_light_speed(),
+            body_speed in near_light_speed(),
+            direction in prop::array::uniform3(-1.0f64..1.0),
+            n in prop::array::uniform3(-1.0f64..1.0),
+        ) {
+            let (Some(along), Some(n)) = (unit(direction), unit(n)) else { return Ok(()) };
+            // The speeds as written in f64 (|β| of the vector, not the number drawn).
+            let (frame_beta, body_beta) = (frame_speed * along, body_speed * along);
+            prop_assume!(frame_beta.length() < 1.0 && body_beta.length() < 1.0);
+            let frame = FourVelocity::from_beta(frame_beta);
+            let body = frame.compose(FourVelocity::from_beta(body_beta));
+            let eta = rapidity(frame_beta.length()) + rapidity(body_beta.length());
+            prop_assert!((body.spatial() - eta.sinh() * along).length()
+                <= 1e-9 * eta.cosh() + 1e-9, "{body:?} vs η = {eta}");
+            assert_relative_eq!(body.gamma(), eta.cosh(), max_relative = 1e-9);
+            let (plus, minus) = ((along + n).length_squared() / 2.0, (along - n).length_squared() / 2.0);
+            let expected = 1.0 / ((-eta).exp() * plus / 2.0 + eta.exp() * minus / 2.0);
+            let doppler = body.doppler_factor(n);
+            prop_assert!(doppler.is_finite() && doppler > 0.0, "{doppler}");
+            assert_relative_eq!(doppler, expected, max_relative = 1e-6);
+            assert_relative_eq!(body.receiver_doppler(n) * body.reversed().receiver_doppler(-n),
+                1.0 / (doppler * body.reversed().doppler_factor(-n)), max_relative = 1e-6);
+        }
+    }
+
     /// A body moving forward at 0.9 on a frame at |β| = 1 − 1.1·10⁻¹⁶: its β rounds to |β| = 1
     /// (the β formulas give ∞ and NaN), its four-velocity stays exact: collinear rapidities add,
     /// and the Doppler factors are e^(±η) head-on and 1/γ across, with aberration sending light
