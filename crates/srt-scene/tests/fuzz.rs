@@ -38,7 +38,11 @@ const DEFAULT_CASES: u64 = 40;
 const DEFAULT_SEED: u64 = 8;
 
 /// Values that numbers in text files are swapped for.
-const NUMBERS: [&str; 18] = [
+const NUMBERS: [&str; 22] = [
+    "0.9999999999999999",
+    "0.5773502691896256",
+    "1.0000000000000002",
+    "-0.9999999999999999",
     "1e300",
     "-1e300",
     "3e38",
@@ -136,10 +140,19 @@ look_at = [0.0, 0.0, 0.0]
 up = [0.0, 0.0, 1.0]
 fov_y_deg = 50.0
 ct = 0.5
+thrust = { proper_acceleration = [0.0, 0.1, 0.0], start = 0.25, duration = 2.0 }
 
-[light]
-position = [2.0, -3.0, 4.0]
+[[light]]
+position = [0.0, -6.0, 1.0]
 temperature_k = 5800.0
+strength = 0.5
+carried = true
+
+[[light]]
+position = [2.0, -3.0, 4.0]
+beta = [0.5773502691896256, 0.5773502691896256, 0.5773502691896256]
+temperature_k = 5000.0
+strength = 10.0
 
 [render]
 effects = "searchlight"
@@ -149,18 +162,20 @@ ambient = 0.2
 [[object]]
 name = "box"
 shape = { type = "cube", size = 1.5, subdivisions = 3 }
-texture = { type = "checker", squares = 4, colors = [[1.0, 0.5, 0.0], [0.0, 0.0, 1.0]] }
-beta = [0.5, 0.0, 0.0]
+texture = { type = "clock", rate = 1.0, offset = 0.0, dial = 12.0 }
+beta = [0.9999999999999999, 0.0, 0.0]
 offset = [-1.0, 0.0, 0.0]
 rotate_deg = [0.0, 30.0, 0.0]
+spin = { axis = [0.0, 0.0, 1.0], rate = 0.5, centre = [0.0, 0.0, 0.0] }
 
 [[object]]
 name = "ball"
 shape = { type = "sphere", radius = 0.5, segments = 12 }
-texture = "checker.png"
-beta = [0.0, 0.3, 0.2]
+texture = { type = "frames", files = ["checker.png", "checker.png"], fps = 6.0 }
+beta = [0.5773502691896256, 0.5773502691896256, 0.5773502691896256]
 scale = [1.0, 2.0, 1.0]
 translate = [0.0, 0.0, 1.0]
+thrust = { proper_acceleration = [0.0, 0.0, 0.25], start = 0.0, duration = 4.0 }
 
 [[object]]
 name = "model"
@@ -168,7 +183,8 @@ shape = { type = "model", path = "cube.obj" }
 fit = true
 color = [0.8, 0.8, 0.8]
 wireframe = 0.02
-beta = [0.0, 0.0, -0.9]
+beta = [0.0, 0.0, -0.9999999999999999]
+emission = { temperature_k = 3000.0, brightness = 1.0, blink = { period = 0.5, duty = 0.25 } }
 "#;
 
 fn gltf() -> Target {
