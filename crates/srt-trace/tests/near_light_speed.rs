@@ -223,3 +223,29 @@ fn an_accelerating_observer_at_the_fastest_f64_speeds_gives_finite_pixels() {
         bad.join("\n")
     );
 }
+
+/// A ride that carries the observer past the fastest speed `f64` writes (rapidity 40 from
+/// rest, tanh 40 = 1 in f64) is refused with a reason that names `observer.thrust`.
+#[test]
+fn a_ride_past_the_fastest_f64_speed_is_refused_by_its_thrust() {
+    let settings = [
+        "observer.thrust={ proper_acceleration = [0, 0.1, 0] }",
+        "observer.ct=400",
+        "light.position=[0, 0, 1.6]",
+    ];
+    let overrides = Overrides {
+        settings: settings.iter().map(|text| text.parse().unwrap()).collect(),
+        ..Overrides::default()
+    };
+    let loaded = SceneSource::resolve("flythrough")
+        .unwrap()
+        .load_with(&overrides);
+    let Err(error) = loaded else {
+        panic!("a ride to rapidity 40 loads");
+    };
+    let message = error.to_string();
+    assert!(
+        message.contains("observer.thrust") && message.contains("rounds to 1"),
+        "{message}"
+    );
+}

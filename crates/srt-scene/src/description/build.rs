@@ -13,7 +13,7 @@ use std::sync::Arc;
 
 use glam::{DMat3, DMat4, DVec3};
 use srt_physics::motion::{Motion, Thrust};
-use srt_physics::{Event, Frame, FrameError, MovingObserver, RelativeFrame};
+use srt_physics::{Event, FourVelocity, Frame, FrameError, MovingObserver, RelativeFrame};
 
 use super::error::{SceneError, SceneErrorKind, value_error};
 use super::model::{
@@ -249,7 +249,19 @@ impl SceneDescription {
         let event = start
             .observer_to_world()
             .apply(Event::new(ship.ct, position + ship.position));
-        let beta = (beta0 + velocity) / (1.0 + beta0.dot(velocity));
+        // Eq. 3 on the four-velocities (velocity is along β₀): near c the composed β may round
+        // to |β| = 1, which no frame can take; the ride says so rather than observer.beta.
+        let beta = FourVelocity::from_beta(beta0)
+            .compose(FourVelocity::from_beta(velocity))
+            .beta();
+        if !beta.is_finite() || beta.length() >= 1.0 {
+            return Err(thrust_error(format!(
+                "carries the observer so close to the speed of light by its clock's {} that its \
+                 |β| rounds to 1 in f64 (give an earlier time, a smaller proper_acceleration or \
+                 a duration)",
+                observer.time.unwrap_or(observer.ct)
+            )));
+        }
         // The lamp's offset in the ship's frame is `lamp_offset`: in W, at E's time, its
         // component along β is longer by γ.
         let lamp = lamp_offset.map(|offset| {
