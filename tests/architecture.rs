@@ -241,12 +241,12 @@ fn the_manifest_reader_sees_every_kind_of_dependency_table() {
     assert_eq!(names, ["a", "b", "c", "e", "f", "h"]);
 }
 
-/// The rows of the map's dependency table: (the crates of the first cell, the last cell).
-fn dependency_rows(architecture: &str) -> Vec<(Vec<String>, String)> {
-    let heading = "## Dependencies and why each is there";
-    let start = architecture
-        .find(heading)
-        .expect("the map has its dependency table");
+/// The cells of each body row of the table under the map's heading `heading` (the header row
+/// and its rule left out), trimmed; no rows where the map has no such heading.
+fn table_rows(architecture: &str, heading: &str) -> Vec<Vec<String>> {
+    let Some(start) = architecture.find(heading) else {
+        return Vec::new();
+    };
     let section = &architecture[start + heading.len()..];
     let section = section.split("\n## ").next().unwrap_or_default();
     section
@@ -254,12 +254,25 @@ fn dependency_rows(architecture: &str) -> Vec<(Vec<String>, String)> {
         .filter(|line| line.starts_with('|') && !line.starts_with("|---"))
         .skip(1)
         .map(|line| {
-            let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
+            (line.trim_matches('|').split('|'))
+                .map(|cell| cell.trim().to_owned())
+                .collect()
+        })
+        .collect()
+}
+
+/// The rows of the map's dependency table: (the crates of the first cell, the last cell).
+fn dependency_rows(architecture: &str) -> Vec<(Vec<String>, String)> {
+    let heading = "## Dependencies and why each is there";
+    assert!(
+        architecture.contains(heading),
+        "the map has its dependency table"
+    );
+    table_rows(architecture, heading)
+        .into_iter()
+        .map(|cells| {
             let crates = cells[0].split(',').map(|name| name.trim().to_owned());
-            (
-                crates.collect(),
-                cells.last().copied().unwrap_or("").to_owned(),
-            )
+            (crates.collect(), cells.last().cloned().unwrap_or_default())
         })
         .collect()
 }
@@ -866,20 +879,11 @@ fn the_name_check_sees_a_wrong_path_type_member_and_module() {
 
 /// The rows of the map's table of CPU and GPU twins: (the shader cell, the twin cell).
 fn twin_rows(architecture: &str) -> Vec<(String, String)> {
-    let heading = "## CPU and GPU twins";
-    let Some(start) = architecture.find(heading) else {
-        return Vec::new();
-    };
-    let section = &architecture[start + heading.len()..];
-    let section = section.split("\n## ").next().unwrap_or_default();
-    section
-        .lines()
-        .filter(|line| line.starts_with('|') && !line.starts_with("|---"))
-        .skip(1)
-        .map(|line| {
-            let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
-            let twin = cells.get(1).copied().unwrap_or("");
-            (cells[0].to_owned(), twin.to_owned())
+    table_rows(architecture, "## CPU and GPU twins")
+        .into_iter()
+        .map(|cells| {
+            let twin = cells.get(1).cloned().unwrap_or_default();
+            (cells[0].clone(), twin)
         })
         .collect()
 }

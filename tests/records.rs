@@ -9,24 +9,13 @@ use crate::common;
 use std::collections::HashMap;
 use std::path::Path;
 
-use common::{assert_clean_failure, folder, srt, stderr};
+use common::{assert_clean_failure, folder, srt, srt_ok};
 
 /// Options every render here shares: the exact CPU renderer at 32×18.
 const TINY: [&str; 6] = ["--backend", "cpu", "--width", "32", "--height", "18"];
 
 /// An animation of three frames from ct = 1 to ct = 2.
 const FRAMES: [&str; 6] = ["--frames", "3", "--t0", "1", "--t1", "2"];
-
-/// Runs `srt` in `dir`, asserts it succeeded and returns its standard output.
-fn srt_ok(args: &[&str], dir: &Path) -> String {
-    let output = srt(args, dir);
-    assert!(
-        output.status.success(),
-        "srt {args:?}:\n{}",
-        stderr(&output)
-    );
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
 
 /// `srt render teaser` with the tiny options, the three frames, `extra` and `-o output`.
 fn render(dir: &Path, extra: &[&str], output: &str) {

@@ -8,22 +8,11 @@ use std::fs::File;
 use std::io::Write as _;
 use std::path::Path;
 
-use common::{assert_clean_failure, folder, srt, stderr};
+use common::{assert_clean_failure, folder, srt, srt_ok, stderr};
 use openh264::formats::YUVSource as _;
 
 /// Options every render here shares: the exact CPU renderer at 64×36.
 const SMALL: [&str; 6] = ["--backend", "cpu", "--width", "64", "--height", "36"];
-
-/// Runs `srt` and asserts it succeeded.
-fn srt_ok(args: &[&str], dir: &Path) -> String {
-    let output = srt(args, dir);
-    assert!(
-        output.status.success(),
-        "srt {args:?}:\n{}",
-        stderr(&output)
-    );
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
 
 /// `srt render teaser` with the small options, `extra` and `-o output`.
 fn render_teaser(dir: &Path, extra: &[&str], output: &str) -> String {

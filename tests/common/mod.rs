@@ -15,6 +15,17 @@ pub fn srt(args: &[&str], dir: &Path) -> Output {
         .expect("srt runs")
 }
 
+/// Runs `srt` in `dir`, asserts it succeeded and returns its standard output.
+pub fn srt_ok(args: &[&str], dir: &Path) -> String {
+    let output = srt(args, dir);
+    assert!(
+        output.status.success(),
+        "srt {args:?}:\n{}",
+        stderr(&output)
+    );
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
 /// The standard error of a run, as text.
 pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
