@@ -25,7 +25,7 @@ fn line_due(last: Option<f64>, now: f64) -> bool {
 
 /// A progress line: "rendering fig7: 120/720 rows (16 %), 12 s".
 fn progress_line(message: &str, done: u64, len: u64, unit: &str, seconds: f64) -> String {
-    let percent = if len == 0 { 100 } else { done * 100 / len };
+    let percent = (done * 100).checked_div(len).unwrap_or(100);
     format!("{message}: {done}/{len} {unit} ({percent} %), {seconds:.0} s")
 }
 
