@@ -11,7 +11,7 @@
 //!   for the full sphere).
 //!
 //! The boxes and every box around them grow by the inserted size; the file is copied by
-//! [`crate::mp4box`]'s pass, which moves the chunk offsets.
+//! `mp4box.rs`'s pass, which moves the chunk offsets.
 
 use std::io::{self, Read, Write};
 

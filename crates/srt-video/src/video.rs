@@ -243,7 +243,7 @@ impl VideoWriter {
     }
 
     /// Stores `text` in the video when it is finished: an MP4's user-data comment
-    /// (`moov/udta/©cmt`), a GIF's comment extension ([`crate::record`]); it reads back with
+    /// (`moov/udta/©cmt`), a GIF's comment extension (`record.rs`); it reads back with
     /// [`crate::read_comments`]. srt stores its record of how the video was made there.
     pub fn set_comment(&mut self, text: &str) {
         self.comment = Some(text.to_owned());
