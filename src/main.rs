@@ -66,11 +66,13 @@ fn ensure_runtime_dir() -> Option<tempfile::TempDir> {
 }
 
 /// On SIGINT, SIGTERM or SIGHUP (Ctrl-C, a cluster's time limit, a closed terminal), removes
-/// the temporary files of outputs not yet finished ([`srt_video::remove_partial_files`]) and
-/// exits with the conventional status 128 + the signal's number: an interrupted render leaves no
-/// half-written file. Without a handler (it cannot be installed) the signals act as before.
+/// the temporary files of outputs not yet finished ([`srt_video::remove_partial_files`]) and the
+/// private `runtime_dir` ([`ensure_runtime_dir`]), whose guard the exit does not drop, and exits
+/// with the conventional status 128 + the signal's number: an interrupted render leaves no
+/// half-written file and no folder. Without a handler (it cannot be installed) the signals act
+/// as before.
 #[cfg(unix)]
-fn remove_partial_files_on_signals() {
+fn remove_partial_files_on_signals(runtime_dir: Option<std::path::PathBuf>) {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
     let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
         return;
@@ -81,6 +83,9 @@ fn remove_partial_files_on_signals() {
             if removed > 0 {
                 eprintln!("interrupted: removed {removed} unfinished output file(s)");
             }
+            if let Some(dir) = &runtime_dir {
+                let _ = std::fs::remove_dir_all(dir);
+            }
             std::process::exit(128 + signal);
         }
     });
@@ -88,11 +93,11 @@ fn remove_partial_files_on_signals() {
 
 /// Other systems end the process on their own terms.
 #[cfg(not(unix))]
-const fn remove_partial_files_on_signals() {}
+fn remove_partial_files_on_signals(_runtime_dir: Option<std::path::PathBuf>) {}
 
 fn main() -> ExitCode {
-    let _runtime_dir = ensure_runtime_dir();
-    remove_partial_files_on_signals();
+    let runtime_dir = ensure_runtime_dir();
+    remove_partial_files_on_signals(runtime_dir.as_ref().map(|dir| dir.path().to_owned()));
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or_default() {
         Command::Render(args) => render::run(&args),

@@ -538,9 +538,14 @@ fn interrupted(
     signal: &str,
     ready: impl Fn(&Path) -> bool,
 ) -> std::process::ExitStatus {
+    // Without a runtime folder srt makes a private one in the temporary folder: a folder of
+    // the test's own, empty again once srt has ended.
+    let temporary = folder();
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_srt"))
         .args(args)
         .current_dir(dir)
+        .env_remove("XDG_RUNTIME_DIR")
+        .env("TMPDIR", temporary.path())
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .spawn()
@@ -555,7 +560,13 @@ fn interrupted(
         .status()
         .expect("kill runs");
     assert!(sent.success());
-    child.wait().expect("srt ends")
+    let ended = child.wait().expect("srt ends");
+    let left: Vec<_> = std::fs::read_dir(temporary.path()).unwrap().collect();
+    assert!(
+        left.is_empty(),
+        "SIG{signal} left {left:?} in the temporary folder"
+    );
+    ended
 }
 
 /// A render ended by SIGINT, SIGTERM or SIGHUP removes its unfinished files and exits with
