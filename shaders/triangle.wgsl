@@ -52,7 +52,7 @@ fn sheared_corner(a: vec3<f32>, kx: u32, ky: u32, kz: u32, shear: vec3<f32>) -> 
 // corners relative to the origin are sheared so that the ray is the z axis, and the ray meets
 // the triangle where the three edge functions of the sheared corners (U, V, W, each the weight
 // of the corner opposite its edge) do not differ in sign. A ray in the triangle's plane (all
-// three 0) meets nothing.
+// three 0) meets nothing. The distance and barycentrics of a hit are Cramer's, as before.
 fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32>, 3>) -> TriangleHit {
     let none = TriangleHit(false, 0.0, 0.0, 0.0);
     let size = abs(direction);
@@ -78,6 +78,20 @@ fn intersect_triangle(origin: vec3<f32>, direction: vec3<f32>, p: array<vec3<f32
     if (det == 0.0) {
         return none;
     }
-    let distance = (u * a.z + v * b.z + w * c.z) / det;
-    return TriangleHit(distance > 0.0, distance, v / det, w / det);
+    // Where the ray meets the plane, as the plane's equations relative to p[0] give it
+    // (Cramer's rule, the CPU's): the sheared frame's ψ sums terms as large as the corners'
+    // distances along the ray, which loses f32 digits on a long triangle seen at a grazing
+    // angle (a floor), where this does not. The test above alone decides whether it is a hit.
+    let sigma = p[1] - p[0];
+    let tau = p[2] - p[0];
+    let from_corner = origin - p[0];
+    let q1 = cross(direction, tau);
+    let m = dot(sigma, q1);
+    if (m == 0.0) {
+        let distance = (u * a.z + v * b.z + w * c.z) / det;
+        return TriangleHit(distance > 0.0, distance, v / det, w / det);
+    }
+    let q2 = cross(from_corner, sigma);
+    let distance = dot(tau, q2) / m;
+    return TriangleHit(distance > 0.0, distance, dot(from_corner, q1) / m, dot(direction, q2) / m);
 }
