@@ -3,9 +3,9 @@
 // crossings (motion.wgsl) and the shadow test (shadows.wgsl). Watertight (Woop, Benthin and Wald
 // 2013, "Watertight Ray/Triangle Intersection", JCGT 2(1)): a ray through an edge or a corner the
 // mesh's triangles share meets at least one of them, so a closed mesh has no pinholes in f32.
-// The CPU reference (srt_trace::intersect_triangle) solves the same equations in f64 by Cramer's
-// rule; crates/srt-gpu/tests/watertight.rs shoots rays at shared edges and corners through this
-// code.
+// The CPU reference (srt_trace::intersect_triangle) makes the same test in f64 and takes the
+// same Cramer's-rule distance and barycentrics; crates/srt-gpu/tests/watertight.rs shoots rays
+// at shared edges and corners through this code.
 
 struct TriangleHit {
     found: bool,

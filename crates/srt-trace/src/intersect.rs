@@ -1,6 +1,6 @@
 //! Ray–triangle intersection in the rest frame S′ (Eq. 15–16).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// Where a ray meets a triangle: x′ = x′₁ + ζ(x′₂ − x′₁) + ξ(x′₃ − x′₁) = origin + ψ·direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,16 +46,67 @@ pub fn plane_hit(origin: DVec3, direction: DVec3, corners: [DVec3; 3]) -> Option
     })
 }
 
+/// a·b − c·d to within about an ulp of the exact value (Kahan's difference of products with a
+/// fused multiply-add), so that its sign is right wherever the exact value is not 0.
+fn difference_of_products(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let w = c * d;
+    let e = (-c).mul_add(d, w);
+    let f = a.mul_add(b, -w);
+    f + e
+}
+
+/// The edge function of the directed edge p → q of points in the ray's sheared frame (the ray
+/// at their origin): p.x·q.y − p.y·q.x, evaluated on the two points in one order whichever way
+/// round they are given, so that two triangles sharing the edge get exactly opposite values.
+fn edge_function(p: DVec2, q: DVec2) -> f64 {
+    let swapped = q.x < p.x || (q.x == p.x && q.y < p.y);
+    let (first, second) = if swapped { (q, p) } else { (p, q) };
+    let e = difference_of_products(first.x, second.y, first.y, second.x);
+    if swapped { -e } else { e }
+}
+
+/// Whether the ray from `origin` along `direction` passes through the triangle, edges and
+/// corners included: Woop, Benthin and Wald's watertight test (JCGT 2(1), 2013), whose edge
+/// functions two triangles sharing an edge evaluate alike, so that a ray through a shared edge
+/// or corner of a closed mesh meets at least one of them. GPU twin: shaders/triangle.wgsl.
+fn passes_through(origin: DVec3, direction: DVec3, corners: [DVec3; 3]) -> bool {
+    let size = direction.abs();
+    let kz = if size.x > size.y && size.x > size.z {
+        0
+    } else if size.y > size.z {
+        1
+    } else {
+        2
+    };
+    let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+    let shear = DVec2::new(direction[kx], direction[ky]) / direction[kz];
+    let sheared = |corner: DVec3| {
+        let a = corner - origin;
+        DVec2::new(a[kx] - shear.x * a[kz], a[ky] - shear.y * a[kz])
+    };
+    let [a, b, c] = corners.map(sheared);
+    let (u, v, w) = (
+        edge_function(b, c),
+        edge_function(c, a),
+        edge_function(a, b),
+    );
+    let mixed = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
+    !mixed && u + v + w != 0.0
+}
+
 /// The hit of the ray `origin + ψ·direction`, ψ > 0, with the triangle (edges included, both
-/// faces): [`plane_hit`] restricted to the triangle and to the ray.
+/// faces): where the watertight test ([`passes_through`]) finds the ray through the triangle,
+/// [`plane_hit`]'s distance and barycentrics, ahead of the origin.
 #[must_use]
 pub fn intersect_triangle(
     origin: DVec3,
     direction: DVec3,
     corners: [DVec3; 3],
 ) -> Option<TriangleHit> {
-    plane_hit(origin, direction, corners)
-        .filter(|h| h.zeta >= 0.0 && h.xi >= 0.0 && h.zeta + h.xi <= 1.0 && h.distance > 0.0)
+    if !passes_through(origin, direction, corners) {
+        return None;
+    }
+    plane_hit(origin, direction, corners).filter(|h| h.distance > 0.0)
 }
 
 #[cfg(test)]
