@@ -619,19 +619,7 @@ fn validate_image(
             case.name
         )
     });
-    let pinholes = pinhole_counts
-        .iter()
-        .filter_map(|(method, found)| {
-            let found: Vec<&(u32, u32)> = (found.iter())
-                .filter(|&&pixel| !KNOWN_PINHOLES.contains(&(case.name.as_str(), speed, pixel)))
-                .collect();
-            let (x, y) = found.first()?;
-            Some(format!(
-                "{} at {width}x{height}, {speed}c: {} pinholes under {method} (the first at column {x}, row {y})",
-                case.name,
-                found.len()
-            ))
-        });
+    let pinholes = pinhole_failures(&pinhole_counts, &case.name, speed, (width, height));
     let image_based = (image_based_mismatch > MAX_IMAGE_BASED_MISMATCH).then(|| {
         format!(
             "{} at {width}x{height}, {speed}c: image-based mismatch {image_based_mismatch:.6} > \
@@ -714,6 +702,29 @@ fn further_mismatches(
         pinhole_counts.push((method.name(), pinholes(&events, &seen, width)));
     }
     Ok((further_mismatches, pinhole_counts))
+}
+
+/// One failure line per method whose `found` pinholes (per method name) include one that
+/// [`KNOWN_PINHOLES`] does not list for case `name` at `speed`.
+fn pinhole_failures(
+    found: &[(&str, Vec<(u32, u32)>)],
+    name: &str,
+    speed: f64,
+    (width, height): (u32, u32),
+) -> Vec<String> {
+    (found.iter())
+        .filter_map(|(method, pixels)| {
+            let unknown: Vec<&(u32, u32)> = (pixels.iter())
+                .filter(|&&pixel| !KNOWN_PINHOLES.contains(&(name, speed, pixel)))
+                .collect();
+            let (x, y) = unknown.first()?;
+            Some(format!(
+                "{name} at {width}x{height}, {speed}c: {} pinholes under {method} (the first at \
+                 column {x}, row {y})",
+                unknown.len()
+            ))
+        })
+        .collect()
 }
 
 /// The pinholes of `candidate` (what a method's pixels see, [`GpuRenderer::render_seen`]'s

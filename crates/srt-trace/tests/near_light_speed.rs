@@ -96,12 +96,7 @@ fn spinning_and_thrusting_bodies_at_the_fastest_f64_speeds_give_finite_pixels() 
             "{name}'s moving bodies are not seen: {seen_moving:?}"
         );
     }
-    assert!(
-        bad.is_empty(),
-        "{} non-finite:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
+    assert_all_finite(&bad);
 }
 
 /// The built-in scene `name` as `srt render NAME --set KEY=VALUE …` loads it.
@@ -115,6 +110,16 @@ fn with_settings(name: &str, settings: &[String]) -> srt_scene::Scene {
     (SceneSource::resolve(name).unwrap().load_with(&overrides))
         .unwrap_or_else(|e| panic!("{name} with {settings:?}: {e}"))
         .scene
+}
+
+/// Fails listing every non-finite value `non_finite` found.
+fn assert_all_finite(bad: &[String]) {
+    assert!(
+        bad.is_empty(),
+        "{} non-finite:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
 }
 
 /// Every pixel's radiance and every channel `--aov` writes, for a scene, in `bad` where not
@@ -177,12 +182,7 @@ fn moving_lights_and_uniform_motion_at_the_fastest_f64_speeds_give_finite_pixels
             non_finite(&format!("{name} at {beta}"), &scene, &mut bad);
         }
     }
-    assert!(
-        bad.is_empty(),
-        "{} non-finite:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
+    assert_all_finite(&bad);
 }
 
 /// The ride (`observer.thrust`) of flythrough's observer at the fastest speeds: coasting at
@@ -216,12 +216,7 @@ fn an_accelerating_observer_at_the_fastest_f64_speeds_gives_finite_pixels() {
             non_finite(&format!("flythrough {settings:?}"), &scene, &mut bad);
         }
     }
-    assert!(
-        bad.is_empty(),
-        "{} non-finite:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
+    assert_all_finite(&bad);
 }
 
 /// A ride that carries the observer past the fastest speed `f64` writes (rapidity 40 from
