@@ -95,7 +95,7 @@ fn passes_through(origin: DVec3, direction: DVec3, corners: [DVec3; 3]) -> bool 
 }
 
 /// The hit of the ray `origin + ψ·direction`, ψ > 0, with the triangle (edges included, both
-/// faces): where the watertight test ([`passes_through`]) finds the ray through the triangle,
+/// faces): where the watertight test (`passes_through`) finds the ray through the triangle,
 /// [`plane_hit`]'s distance and barycentrics, ahead of the origin.
 #[must_use]
 pub fn intersect_triangle(
