@@ -1,4 +1,4 @@
-//! docs/ARCHITECTURE.md against the code, so that the map cannot drift. The test reads five
+//! docs/ARCHITECTURE.md against the code, so that the map cannot drift. The test reads six
 //! things of the map, by these conventions:
 //!
 //! - **The package graph**: the codemap's block of `name  ←  a, b` lines is, for every package
@@ -29,6 +29,8 @@
 //! - **CPU and GPU twins**: the table under "## CPU and GPU twins" has one row per file of
 //!   `shaders/`, its first cell the shader's backticked path, its second the backticked paths of
 //!   the CPU code it mirrors (each exists), or `none: ` and the reason it has no twin.
+//! - **Failing cases are kept**: every `proptest!` block of the workspace keeps a failing case
+//!   where the invariant of that name says (`unkept_failures`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -970,6 +972,162 @@ fn the_twins_check_sees_a_missing_shader_a_wrong_twin_and_a_reasonless_none() {
             "shaders/a.wgsl is in two rows",
             "src/d.rs is not a shader of shaders/",
             "shaders/f.wgsl is not in the table",
+        ],
+        "{wrong:?}"
+    );
+}
+
+/// Where the Rust file at `path` (from the root), whose text is `text`, has a property test that
+/// would not keep a failing case as the map's invariant "**Failing cases are kept**" says, one
+/// line each (empty: every one does). Under a `src/` folder proptest's default keeps them (in the
+/// crate's `proptest-regressions/`), so the file never names the failure persistence; elsewhere
+/// (`tests/`) each `proptest! { … }` opens with a `proptest_config` built on
+/// `ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)`, and a `KEEP_FAILURES` is
+/// `FileFailurePersistence::WithSource("proptest-regressions")`.
+fn unkept_failures(path: &str, text: &str) -> Vec<String> {
+    let squeezed = |s: &str| s.split_whitespace().collect::<String>();
+    let code = code_only(text, true);
+    let mut wrong = Vec::new();
+    if path.starts_with("src/") || path.contains("/src/") {
+        if has_word(&code, "failure_persistence") || has_word(&code, "FileFailurePersistence") {
+            wrong.push(format!(
+                "{path}: sets the failure persistence (under src/, proptest's default keeps \
+                 failing cases in the crate's proptest-regressions/)"
+            ));
+        }
+        return wrong;
+    }
+    for (at, _) in code.match_indices("proptest!") {
+        if code[..at]
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_')
+        {
+            continue;
+        }
+        let rest = code[at + "proptest!".len()..].trim_start();
+        let config = rest
+            .strip_prefix('{')
+            .and_then(|body| body.trim_start().strip_prefix("#![proptest_config("))
+            .map(|config| {
+                let mut depth = 1;
+                let end = config
+                    .find(|c| {
+                        depth += match c {
+                            '(' => 1,
+                            ')' => -1,
+                            _ => 0,
+                        };
+                        depth == 0
+                    })
+                    .unwrap_or(config.len());
+                squeezed(&config[..end])
+            })
+            .unwrap_or_default();
+        if !config.contains("ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)")
+            || config.contains("failure_persistence:")
+        {
+            let line = code[..at].matches('\n').count() + 1;
+            wrong.push(format!(
+                "{path}:{line}: a proptest! block whose proptest_config is not built on \
+                 ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)"
+            ));
+        }
+    }
+    // The value is a string, which `code` blanks: read it from the text, from the line on which
+    // the code defines the constant (both have the same lines).
+    let lines: Vec<&str> = text.lines().collect();
+    for (number, code_line) in code.lines().enumerate() {
+        if !code_line.contains("const KEEP_FAILURES") {
+            continue;
+        }
+        let definition = lines[number..].join("\n");
+        let value = definition.split(';').next().unwrap_or_default();
+        if !squeezed(value)
+            .ends_with("=FileFailurePersistence::WithSource(\"proptest-regressions\")")
+        {
+            wrong.push(format!(
+                "{path}: KEEP_FAILURES is not FileFailurePersistence::WithSource(\"proptest-regressions\")"
+            ));
+        }
+    }
+    wrong
+}
+
+#[test]
+fn every_property_test_keeps_its_failing_cases() {
+    let rust: Vec<(String, String)> = workspace_entries()
+        .into_iter()
+        .filter(|path| path.ends_with(".rs"))
+        .map(|path| {
+            let text = std::fs::read_to_string(root().join(&path)).expect("a Rust file reads");
+            (path, text)
+        })
+        .collect();
+    let with_property_tests = rust
+        .iter()
+        .filter(|(_, text)| text.contains("proptest!"))
+        .count();
+    assert!(
+        with_property_tests > 20,
+        "found only {with_property_tests} files with property tests"
+    );
+    let wrong: Vec<String> = rust
+        .iter()
+        .flat_map(|(path, text)| unkept_failures(path, text))
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "property tests that would lose a failing case:\n{}",
+        wrong.join("\n")
+    );
+}
+
+#[test]
+fn the_kept_cases_check_sees_a_block_that_forgets_and_a_persistence_turned_off() {
+    let kept = "proptest! {\n    #![proptest_config(ProptestConfig {\n        cases: 9,\n        \
+                ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)\n    })]\n}\n\
+                const KEEP_FAILURES: FileFailurePersistence =\n    \
+                FileFailurePersistence::WithSource(\"proptest-regressions\");\n";
+    assert!(unkept_failures("crates/a/tests/kept.rs", kept).is_empty());
+    let default = "// proptest! {\nmod tests {\n    proptest::proptest! {\n        \
+                   #![proptest_config(ProptestConfig::with_cases(9))]\n    }\n}\n";
+    assert!(unkept_failures("crates/a/src/default.rs", default).is_empty());
+    let wrong = [
+        ("crates/a/tests/default.rs", default),
+        (
+            "crates/a/tests/none.rs",
+            "\nproptest! {\n    #[test]\n    fn f(x in 0..1) {}\n}\n",
+        ),
+        (
+            "crates/a/tests/off.rs",
+            "proptest! { #![proptest_config(ProptestConfig { failure_persistence: None, \
+             ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES) })] }\n\
+             const KEEP_FAILURES: FileFailurePersistence = FileFailurePersistence::Off;",
+        ),
+        (
+            "src/off.rs",
+            "proptest! { #![proptest_config(ProptestConfig { failure_persistence: None, \
+             ..ProptestConfig::default() })] }",
+        ),
+    ]
+    .iter()
+    .flat_map(|(path, text)| unkept_failures(path, text))
+    .collect::<Vec<_>>();
+    let block = "a proptest! block whose proptest_config is not built on \
+                 ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)";
+    assert_eq!(
+        wrong,
+        [
+            format!("crates/a/tests/default.rs:3: {block}"),
+            format!("crates/a/tests/none.rs:2: {block}"),
+            format!("crates/a/tests/off.rs:1: {block}"),
+            "crates/a/tests/off.rs: KEEP_FAILURES is not \
+             FileFailurePersistence::WithSource(\"proptest-regressions\")"
+                .to_owned(),
+            "src/off.rs: sets the failure persistence (under src/, proptest's default keeps \
+             failing cases in the crate's proptest-regressions/)"
+                .to_owned(),
         ],
         "{wrong:?}"
     );

@@ -104,6 +104,8 @@ fn gpu_filter(lut: &TemperatureLut, s: f32) -> [f64; 4] {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES))]
+
     #[test]
     fn texture_coordinate_is_monotone(a in 1.0f64..1e7, k in 1.0f64..100.0) {
         let lut = TemperatureLut::build(ToneMap::Luminance, 256, 100.0, 1e6).expect("valid");

@@ -106,6 +106,8 @@ fn doppler_example_of_fig_5() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES))]
+
     /// Eq. 9 with D = λ′/λ: a Doppler-shifted Planck spectrum is a Planck spectrum of temperature
     /// D·T, radiance scaled by D⁵.
     #[test]

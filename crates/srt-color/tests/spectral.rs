@@ -328,7 +328,10 @@ fn bad_input_is_an_error_not_a_panic_or_nan() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)
+    })]
 
     #[test]
     fn reflectance_always_lies_in_0_1(

@@ -22,6 +22,8 @@ fn nearly_continuous_at_the_threshold() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES))]
+
     /// Monotone, up to the threshold's 3 × 10⁻⁸ jump.
     #[test]
     fn monotone(a in -1.0f64..20.0, delta in 0.0f64..1.0) {

@@ -17,7 +17,10 @@ fn norm(u: DVec4) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig {
+        cases: 256,
+        ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)
+    })]
 
     /// From rest at the origin, a constant proper acceleration along a fixed axis gives the
     /// hyperbolic worldline, in one step or in many.

@@ -56,7 +56,10 @@ fn close_vec(a: DVec3, b: DVec3, tolerance: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(ProptestConfig {
+        cases: 512,
+        ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)
+    })]
 
     /// Λ_a Λ_b = Λ_w diag(1, R): the split reproduces the product, R is a proper rotation.
     #[test]

@@ -77,7 +77,10 @@ fn apparent_position_in_s(beta: DVec3, offset: DVec3, rest: DVec3, observer: Eve
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(ProptestConfig {
+        cases: 512,
+        ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)
+    })]
 
     #[test]
     fn boost_and_inverse_boost_cancel(beta in velocity(0.999)) {

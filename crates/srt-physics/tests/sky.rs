@@ -7,6 +7,8 @@ use srt_physics::{distant_source_image, lorentz_factor};
 use crate::common;
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES))]
+
     #[test]
     fn aberration_and_doppler_follow_the_closed_form(
         speed in 0.0f64..0.999,

@@ -6,8 +6,15 @@ use glam::dcamera::rh::proj::directx::perspective;
 use glam::dcamera::rh::view::look_at_mat4 as look_at;
 use glam::{DMat4, DVec2, DVec3};
 use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
 use srt_physics::{Event, Frame};
 use srt_proxy::{Footprint, Rect, Viewport, footprint, polygon_area, project, split_pieces};
+
+/// Where this binary's property tests keep a failing case, which proptest runs again before
+/// any new one: beside the test's file, as `NAME.proptest-regressions`, committed with it
+/// (docs/ARCHITECTURE.md, "Failing cases are kept"; tests/architecture.rs checks every test).
+const KEEP_FAILURES: FileFailurePersistence =
+    FileFailurePersistence::WithSource("proptest-regressions");
 
 const VIEWPORT: Viewport = Viewport {
     width: 640.0,
@@ -187,7 +194,10 @@ fn assert_conservative(s: &Setup) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
+    #![proptest_config(ProptestConfig {
+        cases: 400,
+        ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)
+    })]
 
     #[test]
     fn apparent_triangle_lies_inside_rectangle_and_hull(s in setup()) {

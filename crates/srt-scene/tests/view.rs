@@ -70,7 +70,10 @@ fn names_are_distinct() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        ..ProptestConfig::with_failure_persistence(crate::KEEP_FAILURES)
+    })]
 
     #[test]
     fn newtonian_is_the_rest_shape_where_the_origin_is_now(
