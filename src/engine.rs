@@ -156,6 +156,28 @@ pub struct Chosen {
     pub engine: Engine,
     /// "the GPU …; rendering on the CPU instead", when `auto` fell back.
     pub note: Option<String>,
+    /// The GPU devices opened and scenes uploaded in choosing it.
+    pub made: Made,
+}
+
+/// What choosing an engine made, counted where it is made: a GPU device opened
+/// ([`GpuContext::new`], by [`Engine::choose`]) and a scene uploaded ([`GpuRenderer::new`]), so
+/// that a kept engine's reuse can be checked ([`KeptEngine::made`], Python's
+/// `Renderer.devices_opened` and `Renderer.scene_uploads`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Made {
+    /// GPU devices opened, whether kept or not (`auto` may open one and draw on the CPU).
+    pub devices: u32,
+    /// Scenes uploaded to the GPU (each a [`GpuRenderer`] made: the scene's geometry, textures
+    /// and pipelines).
+    pub uploads: u32,
+}
+
+impl std::ops::AddAssign for Made {
+    fn add_assign(&mut self, other: Self) {
+        self.devices += other.devices;
+        self.uploads += other.uploads;
+    }
 }
 
 impl Engine {
@@ -181,6 +203,7 @@ impl Engine {
             Ok(Chosen {
                 engine: Self::Cpu,
                 note,
+                made: Made::default(),
             })
         };
         // The GPU draws spinning and thrusting bodies with its exact methods (traced through
@@ -248,11 +271,18 @@ impl Engine {
                 }
             }
         };
-        let Some(api) = context.software_api().filter(|_| weighs) else {
-            return Self::on_gpu(Box::new(context), backend, method, settings, scene);
+        let chosen = match context.software_api().filter(|_| weighs) {
+            None => Self::on_gpu(Box::new(context), backend, method, settings, scene),
+            Some(api) => {
+                let cost = measured.unwrap_or_else(|| frame.measure_cpu(settings));
+                Self::weighed(context, api, &cost, job, frame, method)
+            }
         };
-        let cost = measured.unwrap_or_else(|| frame.measure_cpu(settings));
-        Self::weighed(context, api, &cost, job, frame, method)
+        // A device was opened above, whichever engine draws.
+        chosen.map(|mut chosen| {
+            chosen.made.devices += 1;
+            chosen
+        })
     }
 
     /// `auto`'s choice between the CPU and the software adapter of `context`, reached through
@@ -289,6 +319,7 @@ impl Engine {
                     cost.describe(),
                     estimates.gpu_seconds
                 )),
+                made: Made::default(),
             });
         }
         let mut chosen = Self::on_gpu(Box::new(context), Backend::Auto, method, settings, scene)?;
@@ -341,6 +372,7 @@ impl Engine {
                         "the GPU cannot render {width}x{height} at {samples} samples (in \
                          {big_width}x{big_height} tiles): {error}; rendering on the CPU instead"
                     )),
+                    made: Made::default(),
                 });
             }
             Err(error) => {
@@ -379,6 +411,10 @@ impl Engine {
                 method,
             },
             note,
+            made: Made {
+                devices: 0,
+                uploads: 1,
+            },
         })
     }
 
@@ -529,6 +565,18 @@ fn open_measuring(
     })
 }
 
+/// A picture (or a band of its rows) as [`Engine::draw`] draws it: its pixels and, per pixel,
+/// whether it shows an object — on the CPU whether the ray through its centre hits one (the
+/// `--aov` object channel's test), on the GPU whether any of its supersamples does — for
+/// [`crate::empty`]'s test of an empty picture, which colours cannot decide under a starry sky.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drawn {
+    /// Display colours or radiance, row-major from the top.
+    pub pixels: Vec<DVec3>,
+    /// Per pixel, in the same order, whether an object is seen in it.
+    pub seen: Vec<bool>,
+}
+
 /// An engine kept for a sequence of frames whose scenes may change (Python's `srt.Renderer`):
 /// the GPU's device is made once, and a scene is uploaded again only when its [`UploadKey`]
 /// asks for it (srt-scene's one rule, on the editor's structure version, as the viewer and the
@@ -547,6 +595,8 @@ pub struct KeptEngine {
     /// engine chosen only because the GPU could not draw a frame (a projection it does not
     /// trace) gives way to the GPU again when it can.
     gpu_unavailable: bool,
+    /// The devices opened and scenes uploaded for every frame so far.
+    made: Made,
 }
 
 impl KeptEngine {
@@ -558,6 +608,27 @@ impl KeptEngine {
             method,
             kept: None,
             gpu_unavailable: false,
+            made: Made {
+                devices: 0,
+                uploads: 0,
+            },
+        }
+    }
+
+    /// The GPU devices opened and scenes uploaded over every frame so far: one device, and an
+    /// upload for each change of the scene's structure or of the settings, where the GPU draws.
+    #[must_use]
+    pub const fn made(&self) -> Made {
+        self.made
+    }
+
+    /// The device the last frame was drawn on: `None` before the first frame, and where the CPU
+    /// drew it.
+    #[must_use]
+    pub fn context(&self) -> Option<&GpuContext> {
+        match &self.kept {
+            Some((Engine::Gpu { context, .. }, ..)) => Some(context),
+            _ => None,
         }
     }
 

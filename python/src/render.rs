@@ -234,6 +234,38 @@ impl Renderer {
         rendered.into_python(py, self.settings)
     }
 
+    /// How many GPU devices this renderer has opened (srt's count, where the device is
+    /// opened): 1 after any number of GPU frames, 0 where no device was asked for.
+    #[getter]
+    fn devices_opened(&self, py: Python<'_>) -> u32 {
+        self.read(py, KeptEngine::made).devices
+    }
+
+    /// How many times this renderer has uploaded a scene to the GPU (srt's count, where the
+    /// upload is made): once, and again for each change of the scene's structure.
+    #[getter]
+    fn scene_uploads(&self, py: Python<'_>) -> u32 {
+        self.read(py, KeptEngine::made).uploads
+    }
+
+    /// The GPU adapter the last frame was drawn on, as wgpu names it: a dict of "name",
+    /// "backend" (as `WGPU_BACKEND` names it: "vulkan", "gl", …), "driver" and "driver_info";
+    /// `None` before the first frame and when the CPU drew it.
+    #[getter]
+    fn adapter<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(info) = self.read(py, |engine| {
+            engine.context().map(|context| context.adapter_info.clone())
+        }) else {
+            return Ok(None);
+        };
+        let adapter = PyDict::new(py);
+        adapter.set_item("name", info.name)?;
+        adapter.set_item("backend", info.backend.to_str())?;
+        adapter.set_item("driver", info.driver)?;
+        adapter.set_item("driver_info", info.driver_info)?;
+        Ok(Some(adapter))
+    }
+
     fn __repr__(&self) -> String {
         let RenderSettings {
             width,
@@ -241,6 +273,21 @@ impl Renderer {
             samples,
         } = self.settings;
         format!("Renderer(width={width}, height={height}, samples={samples})")
+    }
+}
+
+impl Renderer {
+    /// `read` of the kept engine, without the GIL (a frame being drawn holds the engine).
+    fn read<T: Send>(&self, py: Python<'_>, read: impl FnOnce(&KeptEngine) -> T + Send) -> T {
+        py.detach(|| {
+            read(
+                &self
+                    .engine
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner)
+                    .engine,
+            )
+        })
     }
 }
 
