@@ -153,6 +153,15 @@ class Renderer:
         view: Literal["seen", "measured", "newtonian"] = "seen",
         aov: bool = False,
     ) -> npt.NDArray[np.float32] | dict[str, npt.NDArray[np.float32] | npt.NDArray[np.int32]]: ...
+    @property
+    def devices_opened(self) -> int:
+        """GPU devices opened: 1 after any number of GPU frames, 0 on the CPU."""
+    @property
+    def scene_uploads(self) -> int:
+        """Scenes uploaded to the GPU: once, and again at each change of structure."""
+    @property
+    def adapter(self) -> dict[str, str] | None:
+        """The last frame's GPU adapter: "name", "backend", "driver", "driver_info"; None on CPU."""
 
 def to_srgb8(linear: npt.NDArray[np.float64]) -> npt.NDArray[np.uint8]: ...
 def lorentz_boost(beta: Vector) -> npt.NDArray[np.float64]: ...

@@ -74,5 +74,11 @@ def require_gpu(reason: str) -> None:
     one (SRT_REQUIRE_GPU=1), as every GPU test of the project does."""
     if os.environ.get("SRT_REQUIRE_GPU") == "1":
         pytest.fail(f"SRT_REQUIRE_GPU=1 but {reason}")
+    skip_visibly(reason)
+
+
+def skip_visibly(reason: str) -> None:
+    """Skips the test, saying so on its output (SKIPPED: `reason`) as well as in pytest's
+    summary: a test that cannot tell right from wrong here says why instead of passing."""
     print(f"SKIPPED: {reason}")
     pytest.skip(reason)
