@@ -2,6 +2,7 @@
 //! below was a test binary of its own; `cargo test --test trace MODULE::` runs one.
 
 mod bands;
+mod bare_model;
 mod blink;
 mod clock;
 mod moving_bodies;
