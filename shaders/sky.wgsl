@@ -286,11 +286,13 @@ fn sky_compose(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32>
     if (frame_uniforms.output == OUTPUT_SEEN_EVENT || frame_uniforms.output == OUTPUT_SEEN_OBJECT) {
         return frame_uniforms.background;
     }
+    // Alpha 0: no object is seen here (srt_gpu::GpuImage::pixels).
+    let unseen = vec4<f32>(1.0, 1.0, 1.0, 0.0);
     // Outside a fisheye's circle the picture sees nothing: the background alone.
     if (sees_nothing(position.xy)) {
-        return output_pixel(frame_uniforms.background.rgb);
+        return unseen * output_pixel(frame_uniforms.background.rgb);
     }
     let stars = star_light_at(u32(position.y) * u32(frame_uniforms.viewport.x) + u32(position.x));
     let image = arriving_output(sky_image_light(view_direction(position.xy)));
-    return output_pixel(frame_uniforms.background.rgb + image + stars);
+    return unseen * output_pixel(frame_uniforms.background.rgb + image + stars);
 }

@@ -84,8 +84,8 @@ struct FrameUniforms {
     // Phong factors: ambient, diffuse, specular, shininess.
     shading: vec4<f32>,
     // Background as the output holds it: the display colour, or its radiance (the colour
-    // sRGB-decoded), alpha 1; for the seen-event outputs, what a pixel that sees no object holds
-    // (0, and −1 as the object index).
+    // sRGB-decoded), alpha 0 (no object seen; objects write alpha 1); for the seen-event
+    // outputs, what a pixel that sees no object holds (0, and −1 as the object index).
     background: vec4<f32>,
     // Colour table: ln T_min, ln T_max, texel count, unused.
     lut: vec4<f32>,

@@ -1,12 +1,19 @@
-//! An empty picture, explained: when a rendered picture is one colour and no object is seen
-//! in the view, where each object is seen instead — behind the observer, or how far off the view
-//! and to which side — so that `srt render fig4 --view measured` (the cube has passed the
-//! observer) says why its image is black instead of writing it without a word.
+//! An empty picture, explained: when no object covers any pixel of a rendered picture, where
+//! each object is seen instead — behind the observer, how far off the view and to which side, or
+//! in the view but covering no pixel (smaller than one, between pixel centres) — so that `srt
+//! render fig4 --view measured` (the cube has passed the observer) says why its picture shows no
+//! object instead of writing it without a word. Whether a pixel shows an object is what the
+//! renderer knows of it ([`crate::engine::Drawn`]), not its colour: a starry sky varies an empty
+//! picture's colours, and an object may be the colour of the background.
 //!
 //! Where an object is seen is the direction of the light from its centre (the middle of its
 //! bounds in its rest frame) that reaches the observer at the observation event: the past light
 //! cone's intersection with that point's worldline (Eq. 8 of Müller et al. 2010 for uniform
 //! motion, found by bisection for every motion, spinning and thrusting bodies included).
+//!
+//! No picture is empty for light not yet emitted: every object's worldline reaches back to the
+//! infinite past (uniform motion, spin, and a thrust at rest before it starts: srt-physics
+//! `motion.rs`), so the observer's past light cone always meets it.
 
 use glam::{DVec2, DVec3};
 use srt_physics::Event;
@@ -34,55 +41,42 @@ pub enum Seen {
     Unknown,
 }
 
-/// Why `display` (one frame's pixels) shows no object, if it is one colour and no object of
-/// `scene` is seen in the view: one line naming where each object is seen. `None` when the
-/// picture has any detail or some object's centre is in view (a picture that one object fills
-/// is one colour too).
+/// Why a picture of `scene` shows no object, if none of its pixels does (`seen`: per pixel,
+/// whether it shows an object): one line naming where each object is seen. `None` when some
+/// pixel shows an object, or the picture has no pixel.
 #[must_use]
-pub fn empty_picture_warning(scene: &Scene, display: &[DVec3]) -> Option<String> {
-    let mut colours = OneColour::default();
-    colours.look_at(display);
-    colours.empty_warning(scene)
+pub fn empty_picture_warning(scene: &Scene, seen: &[bool]) -> Option<String> {
+    let mut objects = ObjectsSeen::default();
+    objects.look_at(seen);
+    objects.empty_warning(scene)
 }
 
-/// Whether a picture seen a band of rows at a time is one colour (for
+/// Whether any pixel of a picture seen a band of rows at a time shows an object (for
 /// [`empty_picture_warning`]'s test on a picture never held whole).
 #[derive(Debug, Clone, Copy, Default)]
-pub struct OneColour {
-    /// The first pixel seen.
-    first: Option<DVec3>,
-    /// Whether some pixel differed from it.
-    varied: bool,
+pub struct ObjectsSeen {
+    /// Whether any pixel was looked at.
+    looked: bool,
+    /// Whether some pixel showed an object.
+    some: bool,
 }
 
-impl OneColour {
-    /// Takes the next `pixels` of the picture into account.
-    pub fn look_at(&mut self, pixels: &[DVec3]) {
-        let Some(&head) = pixels.first() else {
-            return;
-        };
-        let first = *self.first.get_or_insert(head);
-        self.varied = self.varied || pixels.iter().any(|pixel| *pixel != first);
+impl ObjectsSeen {
+    /// Takes the next pixels of the picture into account: `seen` says, per pixel, whether it
+    /// shows an object.
+    pub fn look_at(&mut self, seen: &[bool]) {
+        self.looked |= !seen.is_empty();
+        self.some = self.some || seen.contains(&true);
     }
 
     /// [`empty_picture_warning`] for the picture of `scene` seen so far.
     #[must_use]
     pub fn empty_warning(&self, scene: &Scene) -> Option<String> {
-        if self.varied || self.first.is_none() {
+        if self.some || !self.looked {
             return None;
         }
-        let seen: Vec<(String, Seen)> = (scene.objects.iter())
-            .map(|object| (object.name.clone(), where_seen(scene, object)))
-            .collect();
-        if seen
-            .iter()
-            .any(|(_, where_seen)| *where_seen == Seen::InView)
-        {
-            return None;
-        }
-        let places: Vec<String> = seen
-            .iter()
-            .map(|(name, where_seen)| format!("{name} {}", describe(*where_seen)))
+        let places: Vec<String> = (scene.objects.iter())
+            .map(|object| format!("{} {}", object.name, describe(where_seen(scene, object))))
             .collect();
         Some(format!(
             "the picture is empty: no object is in the view at ct = {} ({})",
@@ -95,7 +89,10 @@ impl OneColour {
 /// Words for where an object is seen.
 fn describe(seen: Seen) -> String {
     match seen {
-        Seen::InView => "is in the view".to_owned(),
+        Seen::InView => {
+            "is in the view but covers no pixel (smaller than a pixel, or between pixel centres)"
+                .to_owned()
+        }
         Seen::Behind { angle_deg } => {
             format!("is seen behind the observer, {angle_deg:.0}° from the viewing direction")
         }
@@ -222,23 +219,85 @@ mod tests {
         assert_eq!(where_seen(&scene, cube), Seen::InView);
     }
 
-    /// Fig. 4's measured view at ct = 5.12 has the cube beside the observer, out of the view:
-    /// a black picture is explained; the seen picture is not warned about.
+    /// Fig. 4's measured view at ct = 5.12 has the cube beside the observer, out of the view: a
+    /// picture none of whose pixels shows an object is explained, band by band too; one pixel
+    /// showing an object, in any band, silences it.
     #[test]
     fn an_empty_measured_fig4_is_explained() {
         let scene = built("fig4");
         let measured = View::Measured.apply(&scene).expect("a measured view");
-        let black = vec![DVec3::ZERO; 16];
-        let warning = empty_picture_warning(&measured, &black).expect("a warning");
+        let none = vec![false; 16];
+        let warning = empty_picture_warning(&measured, &none).expect("a warning");
         assert!(warning.contains("no object is in the view"), "{warning}");
-        assert!(warning.contains("cube is seen"), "{warning}");
-        assert_eq!(
-            empty_picture_warning(&scene, &black),
-            None,
-            "the cube is in view"
+        assert!(
+            warning.contains("cube is seen outside the view"),
+            "{warning}"
         );
-        let mut detailed = black;
-        detailed[3] = DVec3::ONE;
-        assert_eq!(empty_picture_warning(&measured, &detailed), None);
+        let mut one = none.clone();
+        one[3] = true;
+        assert_eq!(empty_picture_warning(&measured, &one), None);
+        let mut bands = ObjectsSeen::default();
+        bands.look_at(&none);
+        bands.look_at(&one);
+        bands.look_at(&none);
+        assert_eq!(bands.empty_warning(&measured), None);
+        assert_eq!(empty_picture_warning(&measured, &[]), None, "no picture");
+    }
+
+    /// An object whose centre is in the view but which covers no pixel is named as such.
+    #[test]
+    fn an_object_in_view_that_covers_no_pixel_is_explained() {
+        let scene = built("fig4");
+        let warning = empty_picture_warning(&scene, &[false; 16]).expect("a warning");
+        assert!(
+            warning.contains("cube is in the view but covers no pixel"),
+            "{warning}"
+        );
+    }
+
+    /// Fig. 4 under the built-in star field, drawn by the CPU engine: the measured view (the
+    /// cube out of it) is warned about though the stars vary its colours; the seen view (the
+    /// cube in it) is not.
+    #[test]
+    fn a_starry_picture_is_judged_by_the_objects_the_engine_sees() {
+        let fig4 = srt_scene::builtin::find_builtin("fig4").expect("fig4");
+        let mut description = fig4.description();
+        description.sky = Some(srt_scene::description::SkyDescription {
+            star_field: 4000,
+            stars: None,
+            saturation_magnitude: srt_scene::sky::DEFAULT_SATURATION_MAGNITUDE,
+            image: None,
+            image_brightness: 1.0,
+        });
+        let scene = fig4.build_description(&description).expect("builds").0;
+        let measured = View::Measured.apply(&scene).expect("a measured view");
+        let settings = srt_trace::RenderSettings {
+            width: 32,
+            height: 18,
+            samples: 1,
+        };
+        let drawn = |scene: &Scene| {
+            crate::engine::Engine::Cpu
+                .draw(
+                    &crate::engine::Frame::new(scene),
+                    settings,
+                    srt_trace::Output::Display,
+                    &|_| {},
+                    &std::sync::atomic::AtomicBool::new(false),
+                )
+                .expect("drawn")
+                .expect("not stopped")
+        };
+        let empty = drawn(&measured);
+        assert!(
+            empty.pixels.iter().any(|pixel| *pixel != empty.pixels[0]),
+            "the stars vary the picture"
+        );
+        let warning = empty_picture_warning(&measured, &empty.seen).expect("a warning");
+        assert!(
+            warning.contains("cube is seen outside the view"),
+            "{warning}"
+        );
+        assert_eq!(empty_picture_warning(&scene, &drawn(&scene).seen), None);
     }
 }

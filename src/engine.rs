@@ -472,6 +472,21 @@ impl Engine {
         self.render_band(frame, settings, 0..settings.height, output, progress, stop)
     }
 
+    /// [`Engine::render`]'s picture with the pixels that show an object ([`Drawn`]).
+    ///
+    /// # Errors
+    /// As [`Engine::render`].
+    pub fn draw(
+        &mut self,
+        frame: &Frame<'_>,
+        settings: RenderSettings,
+        output: Output,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> anyhow::Result<Option<Drawn>> {
+        self.draw_band(frame, settings, 0..settings.height, output, progress, stop)
+    }
+
     /// How many rows of a picture at `settings` to render at a time when it is written a band
     /// at a time, so that memory does not grow with the picture's height: about
     /// [`BAND_PIXELS`] pixels on the CPU, a row of tiles on the GPU (the whole frame where it is
@@ -506,6 +521,27 @@ impl Engine {
         progress: &(dyn Fn(u32) + Sync),
         stop: &AtomicBool,
     ) -> anyhow::Result<Option<Vec<DVec3>>> {
+        let drawn = self.draw_band(frame, settings, rows, output, progress, stop)?;
+        Ok(drawn.map(|drawn| drawn.pixels))
+    }
+
+    /// The rows `rows` of [`Engine::draw`]'s picture: [`Engine::render_band`]'s pixels with
+    /// those that show an object.
+    ///
+    /// # Errors
+    /// As [`Engine::render_band`].
+    ///
+    /// # Panics
+    /// As [`Engine::render_band`].
+    pub fn draw_band(
+        &mut self,
+        frame: &Frame<'_>,
+        settings: RenderSettings,
+        rows: Range<u32>,
+        output: Output,
+        progress: &(dyn Fn(u32) + Sync),
+        stop: &AtomicBool,
+    ) -> anyhow::Result<Option<Drawn>> {
         let scene = frame.scene();
         Ok(match self {
             Self::Cpu => {
@@ -514,7 +550,10 @@ impl Engine {
                 frame
                     .tracer()
                     .render_band_reusing(settings, rows, output, progress, stop, known)
-                    .map(|image| image.pixels)
+                    .map(|image| Drawn {
+                        seen: image.coverage.iter().map(|&object| object != 0).collect(),
+                        pixels: image.pixels,
+                    })
             }
             Self::Gpu {
                 context,
@@ -532,13 +571,13 @@ impl Engine {
                     let (width, height) = (image.width / scale, image.height / scale);
                     anyhow::Ok(downsample(&image.pixels, width, height, scale))
                 };
-                if tiling.is_whole() {
-                    Some(keep_rows(draw(None)?, settings.width, rows))
+                let band = if tiling.is_whole() {
+                    keep_rows(draw(None)?, settings.width, rows)
                 } else {
-                    Some(assemble(tiling, rows, |tile| {
-                        draw(Some(tiling.window(tile, scale)))
-                    })?)
-                }
+                    assemble(tiling, rows, |tile| draw(Some(tiling.window(tile, scale))))?
+                };
+                let (pixels, seen) = band.into_iter().unzip();
+                Some(Drawn { pixels, seen })
             }
         })
     }
@@ -812,20 +851,24 @@ fn keep_rows<T>(mut pixels: Vec<T>, width: u32, rows: Range<u32>) -> Vec<T> {
     pixels
 }
 
-/// Box-filters an image rendered at `scale`× the size down to `width` × `height`.
-fn downsample(pixels: &[[f32; 4]], width: u32, height: u32, scale: u32) -> Vec<DVec3> {
+/// Box-filters an image rendered at `scale`× the size down to `width` × `height`; with each
+/// pixel, whether some sample of it shows an object (alpha 1 in the GPU's colour target, 0 where
+/// the background or the sky is seen: `GpuImage::pixels`).
+fn downsample(pixels: &[[f32; 4]], width: u32, height: u32, scale: u32) -> Vec<(DVec3, bool)> {
     let big_width = (width * scale) as usize;
     let mut out = Vec::with_capacity((width * height) as usize);
     for y in 0..height as usize {
         for x in 0..width as usize {
             let mut sum = DVec3::ZERO;
+            let mut seen = false;
             for dy in 0..scale as usize {
                 for dx in 0..scale as usize {
                     let p = pixels[(y * scale as usize + dy) * big_width + x * scale as usize + dx];
                     sum += DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
+                    seen |= p[3] > 0.5;
                 }
             }
-            out.push(sum / f64::from(scale * scale));
+            out.push((sum / f64::from(scale * scale), seen));
         }
     }
     out

@@ -13,7 +13,7 @@ use crate::caption::{Captioner, Ink};
 use anyhow::{Context as _, bail};
 use glam::DVec3;
 use image::RgbImage;
-use srt::empty::OneColour;
+use srt::empty::ObjectsSeen;
 use srt::engine::{Engine, Frame};
 use srt::software::Job;
 use srt_scene::description::observation_time;
@@ -104,8 +104,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             settings,
             show_rows: true,
         };
-        let colours = picture.write(&mut engine, &record, args.aov, &output)?;
-        if let Some(warning) = colours.empty_warning(&first) {
+        let objects = picture.write(&mut engine, &record, args.aov, &output)?;
+        if let Some(warning) = objects.empty_warning(&first) {
             eprintln!("warning: {warning}");
         }
         println!("{}", wrote(&output, settings, &engine, start));
@@ -212,17 +212,17 @@ struct Picture<'p, 'f> {
 
 impl Picture<'_, '_> {
     /// Renders the picture with `engine` and writes it to `path` with `record` (an EXR with its
-    /// radiance, and with `aov` its time channels); whether it was one colour.
+    /// radiance, and with `aov` its time channels); whether it showed an object.
     fn write(
         &self,
         engine: &mut Engine,
         record: &Provenance,
         aov: bool,
         path: &Path,
-    ) -> anyhow::Result<OneColour> {
+    ) -> anyhow::Result<ObjectsSeen> {
         let settings = self.settings;
         let layers = Layers::for_path(path, aov);
-        let mut colours = OneColour::default();
+        let mut objects = ObjectsSeen::default();
         let bar = self.row_bar(engine);
         let band_rows = engine.band_rows(settings);
         let ink = self.ink();
@@ -239,7 +239,7 @@ impl Picture<'_, '_> {
                     engine,
                     rows.clone(),
                     ink.as_ref(),
-                    &mut colours,
+                    &mut objects,
                     bar.as_ref(),
                 )?;
                 let radiance = layers
@@ -273,33 +273,33 @@ impl Picture<'_, '_> {
         if let Some(bar) = bar {
             bar.finish();
         }
-        Ok(colours)
+        Ok(objects)
     }
 
     /// Renders the picture's display colours into an 8-bit image, a band of rows at a time
-    /// (for a video's frame); whether it was one colour.
-    fn rgb8(&self, engine: &mut Engine) -> anyhow::Result<(RgbImage, OneColour)> {
+    /// (for a video's frame); whether it showed an object.
+    fn rgb8(&self, engine: &mut Engine) -> anyhow::Result<(RgbImage, ObjectsSeen)> {
         let settings = self.settings;
-        let mut colours = OneColour::default();
+        let mut objects = ObjectsSeen::default();
         let ink = self.ink();
         let mut bytes = Vec::with_capacity(3 * settings.width as usize * settings.height as usize);
         for rows in bands(settings.height, engine.band_rows(settings)) {
-            let display = self.display_band(engine, rows, ink.as_ref(), &mut colours, None)?;
+            let display = self.display_band(engine, rows, ink.as_ref(), &mut objects, None)?;
             bytes.extend(display_bytes(&display));
         }
         let image = RgbImage::from_raw(settings.width, settings.height, bytes)
             .expect("one colour per pixel");
-        Ok((image, colours))
+        Ok((image, objects))
     }
 
-    /// The display colours of `rows`, their colours noted in `colours` before `ink` (the
-    /// caption) is burnt into them; `bar` shows the rows finished.
+    /// The display colours of `rows`, the pixels among them that show an object noted in
+    /// `objects`, with `ink` (the caption) burnt into them; `bar` shows the rows finished.
     fn display_band(
         &self,
         engine: &mut Engine,
         rows: Range<u32>,
         ink: Option<&Ink>,
-        colours: &mut OneColour,
+        objects: &mut ObjectsSeen,
         bar: Option<&DelayedBar>,
     ) -> anyhow::Result<Vec<DVec3>> {
         let never = AtomicBool::new(false);
@@ -309,8 +309,8 @@ impl Picture<'_, '_> {
                 bar.set_position(u64::from(first_row + done));
             }
         };
-        let mut display = engine
-            .render_band(
+        let drawn = engine
+            .draw_band(
                 self.frame,
                 self.settings,
                 rows.clone(),
@@ -319,7 +319,8 @@ impl Picture<'_, '_> {
                 &never,
             )?
             .expect("a render that is never stopped finishes");
-        colours.look_at(&display);
+        objects.look_at(&drawn.seen);
+        let mut display = drawn.pixels;
         if let Some(ink) = ink {
             ink.burn_into_rows(&mut display, self.settings.width, rows);
         }
@@ -378,10 +379,10 @@ fn render_numbered(
         let record = sweep.frame_record(record, frame);
         let path = numbered(output, frame, digits);
         let frame_of = Frame::new(&frame_scene);
-        let colours = sweep
+        let objects = sweep
             .picture(&frame_of, scene, settings)
             .write(engine, &record, args.aov, &path)?;
-        empty.look_at(&frame_scene, &colours);
+        empty.look_at(&frame_scene, &objects);
         bar.println(&wrote(&path, settings, engine, frame_start));
         bar.inc();
     }
@@ -396,17 +397,17 @@ fn render_numbered(
 struct EmptyFrames {
     /// The first frame's warning, while every frame so far was empty.
     first: Option<String>,
-    /// Whether some frame showed an object (or had any detail).
+    /// Whether some frame showed an object.
     some_seen: bool,
 }
 
 impl EmptyFrames {
-    /// Takes one frame of `scene` into account, whose pixels were `colours`.
-    fn look_at(&mut self, scene: &Scene, colours: &OneColour) {
+    /// Takes one frame of `scene` into account, whose pixels showed `objects`.
+    fn look_at(&mut self, scene: &Scene, objects: &ObjectsSeen) {
         if self.some_seen {
             return;
         }
-        match colours.empty_warning(scene) {
+        match objects.empty_warning(scene) {
             Some(warning) => {
                 self.first.get_or_insert(warning);
             }
@@ -464,8 +465,8 @@ fn render_video(
     for frame in 0..sweep.frames {
         let (scene, frame_scene) = sweep.frame_scene(editor, frame)?;
         let frame_of = Frame::new(&frame_scene);
-        let (image, colours) = sweep.picture(&frame_of, scene, settings).rgb8(engine)?;
-        empty.look_at(&frame_scene, &colours);
+        let (image, objects) = sweep.picture(&frame_of, scene, settings).rgb8(engine)?;
+        empty.look_at(&frame_scene, &objects);
         video.push(&image)?;
         bar.inc();
     }

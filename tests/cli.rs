@@ -360,6 +360,103 @@ fn an_empty_picture_says_where_the_objects_are() {
     assert!(!stderr(&output).contains("empty"), "{}", stderr(&output));
 }
 
+/// srt's `render` with `args` in `dir` on `backend`; `None` (after a visible skip line) where
+/// the GPU was asked for and there is no adapter.
+fn render_on(backend: &str, args: &[&str], dir: &Path, test: &str) -> Option<String> {
+    let output = srt(&[args, &["--backend", backend]].concat(), dir);
+    if backend == "gpu" && skipped_for_want_of_an_adapter(test, &output) {
+        return None;
+    }
+    assert!(output.status.success(), "{backend}: {}", stderr(&output));
+    Some(stderr(&output))
+}
+
+/// Under a starry sky the empty picture is no longer one colour: the measured Fig. 4 is still
+/// warned about, naming where the cube is, a video of it too; the seen Fig. 4 (the cube in the
+/// picture) is not, on the CPU and on the GPU.
+#[test]
+fn an_empty_picture_under_stars_says_where_the_objects_are() {
+    let test = "an_empty_picture_under_stars_says_where_the_objects_are";
+    let dir = folder();
+    let stars = [
+        "--width",
+        "32",
+        "--height",
+        "18",
+        "--set",
+        "sky.star_field=4000",
+    ];
+    for backend in ["cpu", "gpu"] {
+        let measured = ["render", "fig4", "--view", "measured", "-o", "m.png"];
+        let Some(err) = render_on(backend, &[&measured[..], &stars].concat(), dir.path(), test)
+        else {
+            return;
+        };
+        assert!(
+            err.contains("warning: the picture is empty: no object is in the view at ct = 5.12")
+                && err.contains("cube is seen outside the view"),
+            "{backend}: {err}"
+        );
+        let stars_shown = image::open(dir.path().join("m.png")).unwrap().to_rgb8();
+        assert!(
+            stars_shown.pixels().any(|p| p.0 != [0, 0, 0]),
+            "{backend}: no star in the picture"
+        );
+        let video = ["render", "fig4", "--view", "measured", "--frames", "2"];
+        let err = render_on(
+            backend,
+            &[&video[..], &["-o", "m.gif"], &stars].concat(),
+            dir.path(),
+            test,
+        )
+        .expect("the adapter found before");
+        assert!(
+            err.contains("warning: every frame is empty; the first: the picture is empty"),
+            "{backend}: {err}"
+        );
+        let seen = ["render", "fig4", "-o", "s.png"];
+        let err = render_on(backend, &[&seen[..], &stars].concat(), dir.path(), test)
+            .expect("the adapter found before");
+        assert!(!err.contains("empty"), "{backend}: {err}");
+    }
+}
+
+/// A scene whose one object is in the view but smaller than a pixel, lying between pixel
+/// centres (the view's centre of a picture of even width and height), shows no object: it is
+/// warned about, the object named as in the view, on the CPU and on the GPU.
+#[test]
+fn an_object_between_pixel_centres_leaves_the_picture_empty() {
+    let test = "an_object_between_pixel_centres_leaves_the_picture_empty";
+    let dir = folder();
+    std::fs::write(
+        dir.path().join("speck.toml"),
+        "[observer]\nposition = [0, 0, 0]\nlook_at = [0, 1, 0]\n\n\
+         [[object]]\nname = \"speck\"\nshape = { type = \"cube\", size = 0.001 }\n\
+         translate = [0, 10, 0]\n",
+    )
+    .unwrap();
+    for backend in ["cpu", "gpu"] {
+        let args = [
+            "render",
+            "speck.toml",
+            "--width",
+            "32",
+            "--height",
+            "18",
+            "-o",
+            "o.png",
+        ];
+        let Some(err) = render_on(backend, &args, dir.path(), test) else {
+            return;
+        };
+        assert!(
+            err.contains("warning: the picture is empty: no object is in the view at ct = 0")
+                && err.contains("speck is in the view but covers no pixel"),
+            "{backend}: {err}"
+        );
+    }
+}
+
 /// `--caption` burns a line into the bottom of the picture and leaves the rest as it was.
 #[test]
 fn a_caption_is_burnt_into_the_bottom_of_the_picture() {

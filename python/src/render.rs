@@ -445,17 +445,18 @@ impl Request {
         warnings.extend(note.map(|note| format!("note: {note}")));
         let mut render = |output| {
             engine
-                .render(&frame, self.settings, output, &|_| {}, stop)
+                .draw(&frame, self.settings, output, &|_| {}, stop)
                 .map_err(|e| Failure::Raise(errors::gpu(&e)))?
                 .ok_or(Failure::Stopped)
         };
         let display = if self.aov {
-            Some(render(Output::Display)?)
+            Some(render(Output::Display)?.pixels)
         } else {
             None
         };
-        let radiance = render(Output::Radiance)?;
-        warnings.extend(empty_picture_warning(&scene, &radiance));
+        let drawn = render(Output::Radiance)?;
+        warnings.extend(empty_picture_warning(&scene, &drawn.seen));
+        let radiance = drawn.pixels;
         let seen = if self.aov {
             let values = engine
                 .render_aov(&frame, self.settings, &|_| {}, stop)

@@ -887,14 +887,15 @@ impl super::GpuRenderer {
 }
 
 /// The background colour `display` (sRGB-encoded) as `output` holds it: itself, or its radiance
-/// (decoded, as the CPU reference writes it), alpha 1; for the seen-event outputs, what a pixel
-/// that sees no object holds (0, and −1 as the object index).
+/// (decoded, as the CPU reference writes it), alpha 0 (no object seen: [`GpuImage::pixels`]);
+/// for the seen-event outputs, what a pixel that sees no object holds (0, and −1 as the object
+/// index).
 fn background_as(output: OutputCode, display: DVec3) -> DVec4 {
     match output {
-        OutputCode::RADIANCE => display.map(srgb_decode).extend(1.0),
+        OutputCode::RADIANCE => display.map(srgb_decode).extend(0.0),
         OutputCode::SEEN_EVENT => DVec4::ZERO,
         OutputCode::SEEN_OBJECT => DVec4::new(-1.0, 0.0, 0.0, 0.0),
-        _ => display.extend(1.0),
+        _ => display.extend(0.0),
     }
 }
 

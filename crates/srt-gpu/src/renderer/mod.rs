@@ -206,7 +206,9 @@ pub struct GpuImage {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Row-major pixels from the top.
+    /// Row-major pixels from the top. For display colours and radiance, alpha is 1 where an
+    /// object is seen and 0 where the background or the sky is (`srt render`'s test of an
+    /// empty picture reads it; every method writes it so).
     pub pixels: Vec<[f32; 4]>,
 }
 
