@@ -708,6 +708,7 @@ impl KeptEngine {
                     && gpu_can_draw
                     && matches!(chosen.engine, Engine::Cpu);
                 note = chosen.note;
+                self.made += chosen.made;
                 (chosen.engine, key.clone(), settings)
             }
         };
