@@ -5,7 +5,6 @@
 use std::path::Path;
 use std::process::Command;
 use std::sync::atomic::AtomicBool;
-use std::time::Duration;
 
 use crate::common::{builtin_scene, exr_channel, folder, srt, stderr};
 use srt::engine::{aov_values, channel_f32, display_as_linear};
@@ -67,10 +66,14 @@ fn a_picture_written_in_bands_is_the_whole_picture() {
     assert!(events.iter().any(Option::is_some), "the cube is seen");
 }
 
-/// The peak resident size of `srt ARGS` run in `dir` (the kernel's high-water mark, read while
-/// it runs: it only grows), in bytes, with its standard error; the run must succeed.
+/// The peak resident size of `srt ARGS` run in `dir`, in bytes, with its standard error; the run
+/// must succeed. The size is the kernel's own count for the process (`ru_maxrss`, which `wait4`
+/// gives with its exit status): exact, whatever the machine's speed or load, where reading the
+/// high-water mark while it runs could miss a peak between two reads.
 #[cfg(target_os = "linux")]
 fn peak_resident_bytes(args: &[&str], dir: &Path) -> (u64, String) {
+    use std::io::Read as _;
+    use std::os::unix::process::ExitStatusExt as _;
     let mut child = Command::new(env!("CARGO_BIN_EXE_srt"))
         .args(args)
         .current_dir(dir)
@@ -78,27 +81,37 @@ fn peak_resident_bytes(args: &[&str], dir: &Path) -> (u64, String) {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("srt runs");
-    let status_file = format!("/proc/{}/status", child.id());
-    let mut peak = 0;
-    while child.try_wait().expect("waits").is_none() {
-        // Gone between the wait and the read: the last mark read stands.
-        if let Ok(status) = std::fs::read_to_string(&status_file)
-            && let Some(line) = status.lines().find(|line| line.starts_with("VmHWM:"))
-        {
-            let kib: u64 = line
-                .split_whitespace()
-                .nth(1)
-                .and_then(|n| n.parse().ok())
-                .expect("VmHWM: N kB");
-            peak = peak.max(kib * 1024);
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    let output = child.wait_with_output().expect("srt ends");
-    let err = stderr(&output);
-    assert!(output.status.success(), "{err}");
-    assert!(peak > 0, "no resident size read for srt {args:?}");
+    let mut err = String::new();
+    (child.stderr.take().expect("piped"))
+        .read_to_string(&mut err)
+        .expect("srt's standard error reads");
+    let (status, peak) = wait_with_usage(child);
+    let status = std::process::ExitStatus::from_raw(status);
+    assert!(status.success(), "{status}: {err}");
+    assert!(peak > 0, "no resident size for srt {args:?}");
     (peak, err)
+}
+
+/// Waits for `child` (which std then never waits for): its raw wait status and its peak resident
+/// size in bytes (`wait4(2)`'s `ru_maxrss`, in KiB on Linux).
+#[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
+fn wait_with_usage(child: std::process::Child) -> (i32, u64) {
+    let pid = libc::pid_t::try_from(child.id()).expect("a process id fits pid_t");
+    let mut status = 0;
+    // SAFETY: `rusage` is plain integers, for which all zeros is a valid value.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    loop {
+        // SAFETY: both pointers are to live locals of the types wait4 writes.
+        let waited = unsafe { libc::wait4(pid, &raw mut status, 0, &raw mut usage) };
+        if waited == pid {
+            break;
+        }
+        let error = std::io::Error::last_os_error();
+        assert_eq!(error.kind(), std::io::ErrorKind::Interrupted, "wait4: {error}");
+    }
+    let kib = u64::try_from(usage.ru_maxrss).expect("a size is not negative");
+    (status, kib * 1024)
 }
 
 /// The widest picture srt accepts (16384 pixels, so the widest band) held in bands on the CPU:
