@@ -75,13 +75,15 @@ const RADIANCE_FLOOR: f64 = 0.01;
 /// What pixels see of time: a pixel differs when its object differs or a channel is off by
 /// more than this fraction of its magnitude (at least 1, in scene units of ct).
 const SEEN_TOLERANCE: f64 = 1e-3;
-/// Pinholes known and not yet explained, each (case, speed, method-independent pixel): allowed
-/// there and nowhere else, so that every other pinhole fails and this one is not forgotten.
-/// rolling-wheel at 0.99c shows one pixel at column 323, row 94 that all three GPU methods
-/// draw alike and the CPU differently: a spinning body, found by motion.wgsl's search on the GPU
-/// and moving.rs's on the CPU; the watertight triangle tests on both sides (2026-12-07) leave it,
-/// so it lies in the spinning body's search, open (issue 68's note).
-const KNOWN_PINHOLES: &[(&str, f64, (u32, u32))] = &[("rolling-wheel", 0.99, (323, 94))];
+/// How far from a pixel's centre (in pixels) the CPU looks for what a GPU method drew there before
+/// a difference counts as a pinhole ([`grazed_within_rounding`]). The GPU's f32 moves what a ray
+/// meets by its rounding of the rays and rest coordinates: at 0.99c the rolling wheel's rest
+/// coordinates reach 57 units, where f32's step is 4·10⁻⁶ of a unit and a pixel is about 0.08, so
+/// 5·10⁻⁵ of a pixel; a ray that grazes a silhouette closer than that is decided by rounding
+/// (column 323, row 94 of that case passes the rim's edge 1.5·10⁻⁷ outside: the GPU sees the rim,
+/// the CPU the background). A hole in a closed mesh is no such tie: the CPU sees the surface on
+/// every side of a shared edge or vertex, however little the ray moves.
+const GRAZING_REACH_PX: f64 = 1e-3;
 /// Speeds of the image cases.
 const SPEEDS: [f64; 3] = [0.5, 0.9, 0.99];
 /// The assimp models of the image cases.
@@ -699,13 +701,17 @@ fn further_mismatches(
         let seen = renderer.render_seen(ctx, scene, method, FootprintShape::Hull)?;
         let mismatch = compare_seen(&reference, &events, &seen, SEEN_TOLERANCE, EDGE_MARGIN);
         further_mismatches.push((format!("{}_seen", method.name()), mismatch));
-        pinhole_counts.push((method.name(), pinholes(&events, &seen, width)));
+        let found = pinholes(&events, &seen, width).into_iter().filter(|&(x, y)| {
+            let candidate = seen[(y * width + x) as usize];
+            !grazed_within_rounding(tracer, (width, height), (x, y), candidate)
+        });
+        pinhole_counts.push((method.name(), found.collect()));
     }
     Ok((further_mismatches, pinhole_counts))
 }
 
-/// One failure line per method whose `found` pinholes (per method name) include one that
-/// [`KNOWN_PINHOLES`] does not list for case `name` at `speed`.
+/// One failure line per method with `found` pinholes (per method name), for case `name` at
+/// `speed`.
 fn pinhole_failures(
     found: &[(&str, Vec<(u32, u32)>)],
     name: &str,
@@ -714,17 +720,48 @@ fn pinhole_failures(
 ) -> Vec<String> {
     (found.iter())
         .filter_map(|(method, pixels)| {
-            let unknown: Vec<&(u32, u32)> = (pixels.iter())
-                .filter(|&&pixel| !KNOWN_PINHOLES.contains(&(name, speed, pixel)))
-                .collect();
-            let (x, y) = unknown.first()?;
+            let (x, y) = pixels.first()?;
             Some(format!(
                 "{name} at {width}x{height}, {speed}c: {} pinholes under {method} (the first at \
                  column {x}, row {y})",
-                unknown.len()
+                pixels.len()
             ))
         })
         .collect()
+}
+
+/// Whether the CPU's `event` shows what a GPU method's pixel `candidate` (a row of
+/// [`GpuRenderer::render_seen`]) shows: the background for both, or the same object at the same
+/// distance ([`SEEN_TOLERANCE`]).
+fn shows_alike(event: Option<&SeenEvent>, candidate: [f32; 5]) -> bool {
+    let [.., distance, _, object] = candidate.map(f64::from);
+    event.map_or(object < 0.0, |event| {
+        object == event.object as f64 && near_distance(distance, event.distance)
+    })
+}
+
+/// Whether `value` is `expected`'s distance within [`SEEN_TOLERANCE`] (of its magnitude, at
+/// least 1).
+fn near_distance(value: f64, expected: f64) -> bool {
+    (value - expected).abs() <= SEEN_TOLERANCE * expected.abs().max(1.0)
+}
+
+/// Whether the CPU, tracing rays [`GRAZING_REACH_PX`] from pixel `(x, y)`'s centre in eight
+/// directions, sees what the GPU's `candidate` shows there ([`shows_alike`]): a silhouette grazed
+/// within the GPU's rounding, not a pinhole.
+fn grazed_within_rounding(
+    tracer: &Tracer<'_>,
+    (width, height): (u32, u32),
+    (x, y): (u32, u32),
+    candidate: [f32; 5],
+) -> bool {
+    let centre = DVec2::new(f64::from(x), f64::from(y)) + srt_trace::sample_offsets(1)[0];
+    (0..8).any(|k| {
+        let angle = std::f64::consts::FRAC_PI_4 * f64::from(k);
+        let point = centre + GRAZING_REACH_PX * DVec2::from_angle(angle);
+        let hit = tracer.hit_at(width, height, point);
+        shows_alike(hit.map(|hit| tracer.seen_event(&hit)).as_ref(), candidate)
+    })
 }
 
 /// The pinholes of `candidate` (what a method's pixels see, [`GpuRenderer::render_seen`]'s
@@ -737,16 +774,7 @@ fn pinhole_failures(
 fn pinholes(events: &[Option<SeenEvent>], candidate: &[[f32; 5]], width: u32) -> Vec<(u32, u32)> {
     let width = width as usize;
     let height = events.len() / width;
-    let near = |value: f64, expected: f64| {
-        (value - expected).abs() <= SEEN_TOLERANCE * expected.abs().max(1.0)
-    };
-    let agrees = |i: usize| {
-        let [.., distance, _, object] = candidate[i].map(f64::from);
-        match events[i] {
-            None => object < 0.0,
-            Some(event) => object == event.object as f64 && near(distance, event.distance),
-        }
-    };
+    let agrees = |i: usize| shows_alike(events[i].as_ref(), candidate[i]);
     let mut found = Vec::new();
     for y in 1..height.saturating_sub(1) {
         for x in 1..width - 1 {
@@ -778,8 +806,8 @@ fn pinholes(events: &[Option<SeenEvent>], candidate: &[[f32; 5]], width: u32) ->
             );
             let between = object >= 0.0
                 && explained.1 <= explained.2
-                && (near(distance, explained.1)
-                    || near(distance, explained.2)
+                && (near_distance(distance, explained.1)
+                    || near_distance(distance, explained.2)
                     || (explained.1..=explained.2).contains(&distance));
             if !(explained.0 || between) {
                 found.push((x as u32, y as u32));
@@ -892,5 +920,31 @@ mod tests {
         }
         seen[7][2] = 11.99;
         assert!(pinholes(&events, &seen, 5).is_empty());
+    }
+
+    /// The rolling wheel at 0.99c, 640 × 360: column 323 of row 94 passes the edge of rim 3
+    /// (object 3) 1.5·10⁻⁷ outside in its rest coordinates, where the GPU's f32 meets the rim
+    /// at distance 7.963 and the CPU sees the background.
+    #[test]
+    fn a_silhouette_grazed_within_rounding_is_no_pinhole_and_a_hole_is() {
+        let wheel = builtin_cases()
+            .unwrap()
+            .into_iter()
+            .find(|case| case.name == "rolling-wheel")
+            .unwrap();
+        let scene = with_speed(&wheel.scene, 0.99).unwrap();
+        let tracer = Tracer::new(&scene);
+        let size = (640, 360);
+        assert!(tracer.hit_at_pixel(640, 360, 323, 94).is_none());
+        let rim = |distance: f32| [0.0, 0.0, distance, 1.0, 3.0];
+        assert!(grazed_within_rounding(&tracer, size, (323, 94), rim(7.963_163)));
+        // The rim, but not where the CPU sees it near this pixel.
+        assert!(!grazed_within_rounding(&tracer, size, (323, 94), rim(8.1)));
+        // The background one pixel over, inside the rim (the CPU: rim 3 at 7.9507).
+        let inside = tracer.hit_at_pixel(640, 360, 324, 94).unwrap();
+        assert_eq!(inside.object, 3);
+        let background = [0.0, 0.0, 0.0, 0.0, -1.0];
+        assert!(!grazed_within_rounding(&tracer, size, (324, 94), background));
+        assert!(grazed_within_rounding(&tracer, size, (324, 94), rim(7.950_644)));
     }
 }

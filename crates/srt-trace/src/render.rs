@@ -175,8 +175,15 @@ impl<'a> Tracer<'a> {
             return None;
         }
         let centre = sample_offsets(1)[0];
-        let (sx, sy) = (f64::from(x) + centre.x, f64::from(y) + centre.y);
-        let (eye, direction) = ImageRays::new(self.scene, width, height).ray(sx, sy)?;
+        self.hit_at(width, height, DVec2::new(f64::from(x), f64::from(y)) + centre)
+    }
+
+    /// The closest surface seen through the point `point` of a `width` × `height` image, in
+    /// pixels from its top-left corner (pixel (x, y)'s centre is (x + ½, y + ½)): the ray
+    /// [`Tracer::hit_at_pixel`] casts, anywhere in the picture.
+    #[must_use]
+    pub fn hit_at(&self, width: u32, height: u32, point: DVec2) -> Option<Hit> {
+        let (eye, direction) = ImageRays::new(self.scene, width, height).ray(point.x, point.y)?;
         self.trace_from(eye, direction)
     }
 
