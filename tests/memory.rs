@@ -108,7 +108,11 @@ fn wait_with_usage(child: std::process::Child) -> (i32, u64) {
             break;
         }
         let error = std::io::Error::last_os_error();
-        assert_eq!(error.kind(), std::io::ErrorKind::Interrupted, "wait4: {error}");
+        assert_eq!(
+            error.kind(),
+            std::io::ErrorKind::Interrupted,
+            "wait4: {error}"
+        );
     }
     let kib = u64::try_from(usage.ru_maxrss).expect("a size is not negative");
     (status, kib * 1024)

@@ -701,10 +701,12 @@ fn further_mismatches(
         let seen = renderer.render_seen(ctx, scene, method, FootprintShape::Hull)?;
         let mismatch = compare_seen(&reference, &events, &seen, SEEN_TOLERANCE, EDGE_MARGIN);
         further_mismatches.push((format!("{}_seen", method.name()), mismatch));
-        let found = pinholes(&events, &seen, width).into_iter().filter(|&(x, y)| {
-            let candidate = seen[(y * width + x) as usize];
-            !grazed_within_rounding(tracer, (width, height), (x, y), candidate)
-        });
+        let found = pinholes(&events, &seen, width)
+            .into_iter()
+            .filter(|&(x, y)| {
+                let candidate = seen[(y * width + x) as usize];
+                !grazed_within_rounding(tracer, (width, height), (x, y), candidate)
+            });
         pinhole_counts.push((method.name(), found.collect()));
     }
     Ok((further_mismatches, pinhole_counts))
@@ -937,14 +939,29 @@ mod tests {
         let size = (640, 360);
         assert!(tracer.hit_at_pixel(640, 360, 323, 94).is_none());
         let rim = |distance: f32| [0.0, 0.0, distance, 1.0, 3.0];
-        assert!(grazed_within_rounding(&tracer, size, (323, 94), rim(7.963_163)));
+        assert!(grazed_within_rounding(
+            &tracer,
+            size,
+            (323, 94),
+            rim(7.963_163)
+        ));
         // The rim, but not where the CPU sees it near this pixel.
         assert!(!grazed_within_rounding(&tracer, size, (323, 94), rim(8.1)));
         // The background one pixel over, inside the rim (the CPU: rim 3 at 7.9507).
         let inside = tracer.hit_at_pixel(640, 360, 324, 94).unwrap();
         assert_eq!(inside.object, 3);
         let background = [0.0, 0.0, 0.0, 0.0, -1.0];
-        assert!(!grazed_within_rounding(&tracer, size, (324, 94), background));
-        assert!(grazed_within_rounding(&tracer, size, (324, 94), rim(7.950_644)));
+        assert!(!grazed_within_rounding(
+            &tracer,
+            size,
+            (324, 94),
+            background
+        ));
+        assert!(grazed_within_rounding(
+            &tracer,
+            size,
+            (324, 94),
+            rim(7.950_644)
+        ));
     }
 }

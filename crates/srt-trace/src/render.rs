@@ -175,7 +175,11 @@ impl<'a> Tracer<'a> {
             return None;
         }
         let centre = sample_offsets(1)[0];
-        self.hit_at(width, height, DVec2::new(f64::from(x), f64::from(y)) + centre)
+        self.hit_at(
+            width,
+            height,
+            DVec2::new(f64::from(x), f64::from(y)) + centre,
+        )
     }
 
     /// The closest surface seen through the point `point` of a `width` × `height` image, in
