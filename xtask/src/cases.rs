@@ -12,9 +12,6 @@ use srt_scene::{
     Effects, Projection, Scene, SceneDescription, Stereo, SurfaceColour, View, builtin_scenes,
 };
 
-/// Where Debian's assimp-testmodels package puts its models.
-pub const ASSIMP_MODELS: &str = "/usr/share/assimp/models";
-
 /// A named scene to render.
 pub struct Case {
     /// Name for the report (built-in name or model file name).
@@ -28,11 +25,12 @@ pub struct Case {
 /// # Errors
 /// If the file is missing.
 pub fn assimp_model(relative: &str) -> anyhow::Result<PathBuf> {
-    let path = Path::new(ASSIMP_MODELS).join(relative);
+    let path = srt_scene::corpus::folder().join(relative);
     anyhow::ensure!(
         path.exists(),
-        "{} is missing: install Debian's assimp-testmodels (apt-get install assimp-testmodels)",
-        path.display()
+        "{} is missing: {}",
+        path.display(),
+        srt_scene::corpus::HOW_TO_GET_IT
     );
     Ok(path)
 }

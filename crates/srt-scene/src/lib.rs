@@ -5,6 +5,7 @@
 pub mod assets;
 pub mod builtin;
 pub mod choice;
+pub mod corpus;
 pub mod description;
 pub mod edit;
 pub mod import;

@@ -9,42 +9,16 @@
 //! - `SRT_REQUIRE_CORPUS=1` (set by CI): a missing corpus fails the tests. Without it they print
 //!   a line starting with `SKIPPED ` (naming the folder and how to install it) and pass.
 
-use std::io::Write as _;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use srt_scene::import::{ImportFailure, Model, SUPPORTED_EXTENSIONS, load_model};
 
-/// Where Debian installs the corpus.
-const DEFAULT_CORPUS: &str = "/usr/share/assimp/models";
-
 /// The corpus folder, or `None` (after printing a `SKIPPED ` line) when it is missing and not
-/// required.
-///
-/// # Panics
-/// When the folder is missing and `SRT_REQUIRE_CORPUS=1`.
+/// required ([`srt_scene::corpus::for_test`]).
 fn corpus(test: &str) -> Option<PathBuf> {
-    let dir = std::env::var_os("SRT_ASSIMP_MODELS")
-        .map_or_else(|| PathBuf::from(DEFAULT_CORPUS), PathBuf::from);
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    let how =
-        "install it with `apt-get install assimp-testmodels` or point SRT_ASSIMP_MODELS at a copy";
-    assert!(
-        std::env::var_os("SRT_REQUIRE_CORPUS").is_none_or(|v| v != "1"),
-        "{test}: the model corpus {} is missing and SRT_REQUIRE_CORPUS=1: {how}",
-        dir.display()
-    );
-    // Written to the process's stderr directly: the test harness captures `eprintln!` of
-    // passing tests, and a skip must be visible.
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED {test}: model corpus {} not found; {how}",
-        dir.display()
-    );
-    None
+    srt_scene::corpus::for_test(test, "")
 }
 
 /// Every file under `dir` (recursively) with a supported extension, sorted.

@@ -17,8 +17,8 @@ const SETTINGS: RenderSettings = RenderSettings {
     height: 720,
     samples: 1,
 };
-const ENGINE: &str =
-    "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+/// The engine model, in the assimp corpus ([`srt_scene::corpus`]).
+const ENGINE: &str = "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
 fn bench_scene(c: &mut Criterion, name: &str, scene: &Scene) {
     let tracer = Tracer::new(scene);
@@ -41,14 +41,19 @@ fn bench_render(c: &mut Criterion) {
             .expect("valid scene");
         bench_scene(c, name, &scene);
     }
-    if Path::new(ENGINE).exists() {
-        let description = SceneDescription::for_model(Path::new(ENGINE), DVec3::new(0.0, 0.9, 0.0));
+    let engine = srt_scene::corpus::folder().join(ENGINE);
+    if engine.exists() {
+        let description = SceneDescription::for_model(&engine, DVec3::new(0.0, 0.9, 0.0));
         let (scene, _) = description
             .build(Path::new("/"))
             .expect("the engine model loads");
         bench_scene(c, "2CylinderEngine", &scene);
     } else {
-        println!("SKIPPED 2CylinderEngine: {ENGINE} not found (apt-get install assimp-testmodels)");
+        println!(
+            "SKIPPED 2CylinderEngine: {} not found; {}",
+            engine.display(),
+            srt_scene::corpus::HOW_TO_GET_IT
+        );
     }
 }
 
