@@ -112,6 +112,30 @@ impl Shape {
     }
 }
 
+/// The measure off the surface is two-sided: zero on it (a vertex), the depth for a point inside,
+/// and for a point outside at least the part of its height along the face's normal that the
+/// tessellation leaves (a point 0.1 beyond the surface along an axis is 0.1 off the cube, and
+/// over 0.05 off the sphere's facets, whose middles lie at most 2·10⁻³ inside the sphere).
+#[test]
+fn a_point_off_the_surface_on_either_side_is_off_it() {
+    for shape in [Shape::Cube, Shape::Sphere] {
+        let on = DVec3::new(0.0, 0.0, HALF_SIZE);
+        assert!(shape.distance_off_surface(on) < 1e-12, "{shape:?} on");
+        for direction in [DVec3::X, DVec3::NEG_Y, DVec3::Z] {
+            let outside = shape.distance_off_surface((HALF_SIZE + 0.1) * direction);
+            let inside = shape.distance_off_surface((HALF_SIZE - 0.1) * direction);
+            assert!(
+                outside > 0.05,
+                "{shape:?} outside along {direction}: {outside}"
+            );
+            assert!(
+                inside > 0.05,
+                "{shape:?} inside along {direction}: {inside}"
+            );
+        }
+    }
+}
+
 fn scene(shape: Shape, observer_beta: [f64; 3], beta: [f64; 3], offset: [f64; 3]) -> Scene {
     let text = format!(
         "[observer]\nposition = [0.0, -6.0, 0.5]\nlook_at = [0.0, 0.0, 0.0]\nct = 0.0\n\
