@@ -92,23 +92,35 @@ fn crossing_closer(hit: TriangleHit, k: u32, best: BvhHit) -> bool {
     return a.part < b.part || (a.part == b.part && a.triangle < b.triangle);
 }
 
-// Whether the box [lo, hi] overlaps the box of some BVH leaf (the walk stops at the first).
+// Whether the box [lo, hi] may overlap the box of some BVH leaf: false only where it overlaps
+// none. The walk descends while exactly one child's box overlaps [lo, hi] and answers true at a
+// leaf or where both do. It keeps no stack: on llvmpipe's GL driver a stack walk here (on
+// bvh_stack or on an array of its own, to the end or stopping at the first leaf) lost the crossings
+// of whole blocks of 4×2 pixels in the later pieces' walks, even where its answer was not used
+// (validate's wheel-passing; lavapipe drew them right).
 fn box_meets_leaf(lo: vec3<f32>, hi: vec3<f32>) -> bool {
     if (!box_overlaps(0u, lo, hi)) {
         return false;
     }
-    var walk = bvh_walk(0u);
+    var node = 0u;
+    var met = true;
     loop {
-        if (bvh_nodes[walk.node].primitive_count > 0u) {
-            return true;
-        }
-        let first = bvh_nodes[walk.node].first;
-        bvh_step(&walk, first, box_overlaps(first, lo, hi), box_overlaps(first + 1u, lo, hi), true);
-        if (walk.done) {
+        if (bvh_nodes[node].primitive_count > 0u) {
             break;
         }
+        let first = bvh_nodes[node].first;
+        let a = box_overlaps(first, lo, hi);
+        let b = box_overlaps(first + 1u, lo, hi);
+        if (a && b) {
+            break;
+        }
+        if (!a && !b) {
+            met = false;
+            break;
+        }
+        node = select(first + 1u, first, a);
     }
-    return false;
+    return met;
 }
 
 // The nearest crossing on one piece of a moving body's curve among the triangles whose BVH boxes

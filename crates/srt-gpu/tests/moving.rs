@@ -81,10 +81,13 @@ fn without_moving(scene: &Scene) -> Scene {
     rest
 }
 
-/// Renders `scene` with every exact method and compares it with the CPU reference; returns the
-/// report line, with the polygon method's mismatch (an approximation: reported, and it must
-/// draw the moving bodies).
-fn assert_matches(ctx: &srt_gpu::GpuContext, name: &str, scene: &Scene) -> String {
+/// The image tests' tolerance: at most this fraction of the pixels differs from the CPU's.
+const TOLERANCE: f64 = 0.001;
+
+/// Renders `scene` with every exact method and compares it with the CPU reference, allowing
+/// `tolerance` of the pixels to differ; returns the report line, with the polygon method's
+/// mismatch (an approximation: reported, and it must draw the moving bodies).
+fn assert_matches(ctx: &srt_gpu::GpuContext, name: &str, scene: &Scene, tolerance: f64) -> String {
     let reference = cpu_image(scene);
     // Not vacuous: the motion changes the picture.
     let still = compare(&reference, &cpu_image(&at_rest(scene)).to_rgb8(), 2, 1);
@@ -106,7 +109,7 @@ fn assert_matches(ctx: &srt_gpu::GpuContext, name: &str, scene: &Scene) -> Strin
             mismatch.fraction(),
             mismatch.max_difference
         );
-        assert!(mismatch.fraction() <= 0.001, "{line}");
+        assert!(mismatch.fraction() <= tolerance, "{line}");
     }
     let (polygon, _) = renderer
         .render(ctx, scene, Method::Polygon, FootprintShape::Hull)
@@ -135,7 +138,12 @@ fn a_spinning_cube_matches_the_cpu_reference() {
     let mut scene = scene(SPINNING_CUBE, "spinning cube");
     for ct in [2.0, 4.5] {
         scene.observer.time = ct;
-        assert_matches(&ctx, &format!("spinning cube at ct={ct}"), &scene);
+        assert_matches(
+            &ctx,
+            &format!("spinning cube at ct={ct}"),
+            &scene,
+            TOLERANCE,
+        );
     }
     ctx.take_errors().unwrap();
 }
@@ -149,7 +157,12 @@ fn a_thrusting_sphere_matches_the_cpu_reference() {
     // Seen accelerating, then coasting (the thrust ends near ct′ = 1 + sinh(1.5)/0.52 ≈ 5.1).
     for ct in [6.0, 9.0, 14.0] {
         scene.observer.time = ct;
-        assert_matches(&ctx, &format!("thrusting sphere at ct={ct}"), &scene);
+        assert_matches(
+            &ctx,
+            &format!("thrusting sphere at ct={ct}"),
+            &scene,
+            TOLERANCE,
+        );
     }
     ctx.take_errors().unwrap();
 }
@@ -165,7 +178,36 @@ fn the_rolling_wheel_matches_the_cpu_reference() {
         .unwrap();
     let (mut scene, _) = builtin.build().unwrap();
     scene.observer.time = 1.5;
-    assert_matches(&ctx, "rolling wheel at ct=1.5", &scene);
+    assert_matches(&ctx, "rolling wheel at ct=1.5", &scene, TOLERANCE);
+    ctx.take_errors().unwrap();
+}
+
+/// The rolling wheel's hub and spokes seen from 3 units away as they pass (validate's
+/// `wheel-passing` at ct = −6): the spinning march takes its pieces in groups, skipping a group
+/// whose box meets no leaf of the BVH. On llvmpipe's GL driver a stack walk for that test lost
+/// every crossing in blocks of 4×2 pixels of the hub (0.14 % of the picture).
+#[test]
+fn the_rolling_wheel_passing_close_matches_the_cpu_reference() {
+    let Some(ctx) = context_or_skip("the_rolling_wheel_passing_close_matches_the_cpu_reference")
+    else {
+        return;
+    };
+    let builtin = builtin_scenes()
+        .iter()
+        .find(|b| b.name == "rolling-wheel")
+        .unwrap();
+    let mut description = builtin.description();
+    description.observer.position = [0.0, -3.0, 1.0];
+    description.objects.retain(|o| {
+        o.name
+            .as_deref()
+            .is_some_and(|n| n == "hub" || n.starts_with("spoke"))
+    });
+    assert_eq!(description.objects.len(), 9, "the hub and 8 spokes");
+    let (mut scene, _) = builtin.build_description(&description).unwrap();
+    scene.observer.time = -6.0;
+    // Exact on lavapipe and GL (no pixel differs); the blocks were 55 pixels, 0.00095.
+    assert_matches(&ctx, "hub and spokes passing at ct=-6", &scene, 1e-4);
     ctx.take_errors().unwrap();
 }
 
