@@ -39,7 +39,7 @@ mod compare;
 mod document;
 mod replay;
 mod report;
-mod results;
+pub mod results;
 mod summary;
 mod throughput;
 

@@ -1,7 +1,8 @@
-//! Project automation for srt: `cargo xtask figures | validate | bench`.
+//! Project automation for srt: `cargo xtask figures | validate | bench | embree`.
 
 mod bench;
 mod cases;
+mod embree;
 mod figures;
 mod plot;
 mod provenance;
@@ -110,6 +111,18 @@ enum Command {
     },
     /// Build the web page into target/web (wasm with Debian's wasm toolchain, its JavaScript
     /// glue with wasm-bindgen), then serve it on localhost or test it in headless Chromium.
+    /// Time the exact CPU tracer against Intel's Embree on identical rays (Embree's Python
+    /// binding `embreex`, one thread; `pip install embreex`): the picture's marginal cost over
+    /// an 8×8 render, whole process, against Embree's intersection per thread; checks that the
+    /// hit masks agree.
+    Embree {
+        /// Only the cases whose name contains this text.
+        #[arg(long)]
+        only: Option<String>,
+        /// Picture sizes (repeatable): 1280x720 and 1920x1080 when none is given.
+        #[arg(long = "size", value_name = "WxH", value_parser = bench::parse_size)]
+        sizes: Vec<(u32, u32)>,
+    },
     Web {
         /// Serve target/web on 127.0.0.1 until stopped.
         #[arg(long)]
@@ -188,6 +201,10 @@ fn main() -> anyhow::Result<()> {
             } else {
                 validate::run(&workspace_root(), only.as_deref())?;
             }
+        }
+        Command::Embree { only, sizes } => {
+            let sizes = sizes_or(sizes, &bench::DEFAULT_SIZES);
+            embree::run(&workspace_root(), &sizes, only.as_deref())?;
         }
         Command::Bench {
             compare: Some(files),
