@@ -167,6 +167,9 @@ fn export(scene: &Scene, (width, height): (u32, u32), folder: &Path) -> anyhow::
 /// fraction of pixels whose hit agrees with the CPU tracer's.
 struct Anchor {
     seconds: f64,
+    /// The same rays against one far triangle per object, which every ray misses at the root:
+    /// the part of `seconds` paid per ray whatever the mesh (the binding's and Embree's setup).
+    floor: f64,
     agreement: f64,
     /// The fraction of pixels some object's ray hits in Embree.
     hits: f64,
@@ -198,6 +201,7 @@ fn anchor(root: &Path, folder: &Path) -> anyhow::Result<Anchor> {
     };
     Ok(Anchor {
         seconds: field("seconds")?,
+        floor: field("floor_seconds")?,
         agreement: field("agreement")?,
         hits: field("embree_hits")?,
     })
@@ -267,13 +271,17 @@ pub fn run(root: &Path, sizes: &[(u32, u32)], only: Option<&str>) -> anyhow::Res
             let srt_seconds =
                 marginal(&srt, &case.argument, (width, height), &here.join("srt.png"))?;
             let per_thread = anchor.seconds / threads as f64;
+            let above_floor = (anchor.seconds - anchor.floor) / threads as f64;
             println!(
                 "case={} size={width}x{height} triangles={triangles} embree_one_thread_ms={:.2} \
-                 threads={threads} srt_marginal_ms={:.2} ratio={:.2} hit={:.4} agreement={:.5}",
+                 embree_floor_ms={:.2} threads={threads} srt_marginal_ms={:.2} ratio={:.2} \
+                 ratio_above_floor={:.2} hit={:.4} agreement={:.5}",
                 case.name,
                 1e3 * anchor.seconds,
+                1e3 * anchor.floor,
                 1e3 * srt_seconds,
                 srt_seconds / per_thread,
+                srt_seconds / above_floor,
                 anchor.hits,
                 anchor.agreement
             );
