@@ -125,10 +125,7 @@ fn export(scene: &Scene, (width, height): (u32, u32), folder: &Path) -> anyhow::
         for y in 0..height {
             for x in 0..width {
                 let point = DVec2::new(f64::from(x), f64::from(y)) + centre;
-                let ndc = DVec2::new(
-                    2.0 * point.x / f64::from(width) - 1.0,
-                    1.0 - 2.0 * point.y / f64::from(height),
-                );
+                let ndc = srt_trace::pixel_ndc((f64::from(width), f64::from(height)), point);
                 let (_, direction) = rays.ray(ndc).context("a perspective picture's ray")?;
                 let ray = object.frame.backward_ray(observer, direction);
                 for c in ray

@@ -36,8 +36,8 @@ pub use measure::{
     FrameMeasure, MEASURED_SAMPLES, MeasuredPicture, PROBE_ROWS, WARM_UP_ROWS, measure_picture,
 };
 pub use render::{
-    FrameCost, Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, sample_offsets,
-    spread_rows,
+    FrameCost, Hit, Output, RenderSettings, RenderedImage, SurfaceState, Tracer, pixel_ndc,
+    sample_offsets, spread_rows,
 };
 pub use seen::SeenEvent;
 pub use shade::{

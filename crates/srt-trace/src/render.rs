@@ -763,8 +763,15 @@ impl ImageRays {
 
     /// The normalised device coordinates of the point (`x`, `y`) in pixels.
     fn ndc(&self, x: f64, y: f64) -> DVec2 {
-        DVec2::new(2.0 * x / self.width - 1.0, 1.0 - 2.0 * y / self.height)
+        pixel_ndc((self.width, self.height), DVec2::new(x, y))
     }
+}
+
+/// The normalised device coordinates (x right, y up, both in [−1, 1]) of the point `point` of a
+/// `width` × `height` picture, in pixels from its top-left corner: where the tracer's rays pass.
+#[must_use]
+pub fn pixel_ndc((width, height): (f64, f64), point: DVec2) -> DVec2 {
+    DVec2::new(2.0 * point.x / width - 1.0, 1.0 - 2.0 * point.y / height)
 }
 
 /// Sub-pixel sample positions in [0, 1)²: the pixel centre first, then the R2 low-discrepancy
