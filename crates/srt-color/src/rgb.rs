@@ -57,14 +57,38 @@ pub fn srgb_decode(encoded: f64) -> f64 {
 /// the nearest code (how every 8-bit image, texture and figure of srt is quantised).
 #[must_use]
 pub fn quantize_8bit(value: f64) -> u8 {
-    // After the clamp the product lies in [0, 255], so the cast neither truncates nor wraps;
-    // NaN (never produced by the renderers) casts to 0.
-    (value.clamp(0.0, 1.0) * 255.0).round() as u8
+    // After the clamp the product lies in [0, 255]: its integer part and its fraction (exact:
+    // x − ⌊x⌋ rounds nowhere below 2⁵²) give `round`'s result, halves away from zero, without
+    // the library call `round` is where the CPU lacks SSE 4.1. NaN (never produced by the
+    // renderers) gives 0, as `round` and the cast do.
+    let scaled = value.clamp(0.0, 1.0) * 255.0;
+    let whole = scaled as u8;
+    whole + u8::from(scaled - f64::from(whole) >= 0.5)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The code is `round`'s, halves away from zero, on every code's neighbourhood, every
+    /// halfway point and the values beside it, and out of range and NaN.
+    #[test]
+    fn quantize_rounds_as_round_does() {
+        let reference = |value: f64| (value.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let mut values = vec![-1.0, 0.0, 1.0, 2.0, f64::NAN, f64::INFINITY, 0.5 / 255.0];
+        for code in 0..=255_u32 {
+            for offset in [-0.5, -0.25, 0.0, 0.25, 0.5] {
+                let value = (f64::from(code) + offset) / 255.0;
+                values.extend([value, value.next_down(), value.next_up()]);
+            }
+        }
+        for i in 0..100_000 {
+            values.push(f64::from(i) / 99_999.0);
+        }
+        for value in values {
+            assert_eq!(quantize_8bit(value), reference(value), "{value:e}");
+        }
+    }
 
     #[test]
     fn decode_inverts_encode() {
