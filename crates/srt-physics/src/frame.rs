@@ -5,7 +5,7 @@
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::event::Event;
-use crate::light::aberrate;
+use crate::light::Aberration;
 use crate::lorentz::{lorentz_factor, lorentz_matrix, validate_beta};
 
 /// Why a [`Frame`] could not be built.
@@ -34,6 +34,8 @@ pub struct Frame {
     beta: DVec3,
     offset: DVec3,
     gamma: f64,
+    /// The aberration of light from S into S′ (velocity −β), for [`Frame::rest_direction`].
+    to_rest_aberration: Aberration,
     rest_to_observer: DMat4,
     observer_to_rest: DMat4,
 }
@@ -77,6 +79,7 @@ impl Frame {
             beta,
             offset,
             gamma: lorentz_factor(beta),
+            to_rest_aberration: Aberration::new(-beta),
             rest_to_observer: lorentz_matrix(beta),
             observer_to_rest: lorentz_matrix(-beta),
         })
@@ -215,7 +218,7 @@ impl Frame {
         // Light arrives travelling opposite to the viewing direction; in S′ it travels along the
         // aberrated direction, and we follow it backwards.
         let propagation = -view_direction.normalize();
-        -aberrate(-self.beta, propagation).normalize()
+        -self.to_rest_aberration.apply(propagation).normalize()
     }
 }
 

@@ -40,7 +40,7 @@ mod velocity;
 pub use event::{Event, minkowski_interval};
 pub use frame::{Frame, FrameError, RestRay};
 pub use light::{
-    LightVector, aberrate, distant_source_image, doppler_factor, receiver_doppler,
+    Aberration, LightVector, aberrate, distant_source_image, doppler_factor, receiver_doppler,
     reflection_doppler,
 };
 pub use lorentz::{compose_velocities, lorentz_factor, lorentz_matrix, rapidity, validate_beta};

@@ -66,10 +66,41 @@ pub fn doppler_factor(beta: DVec3, propagation: DVec3) -> f64 {
 /// n = [γβ + n′ + γ²/(γ+1)(β·n′)β] / (γ(1 + β·n′)). `aberrate(-beta, n)` inverts it.
 #[must_use]
 pub fn aberrate(beta: DVec3, direction_rest: DVec3) -> DVec3 {
-    let gamma = lorentz_factor(beta);
-    let b_dot_n = beta.dot(direction_rest);
-    let spatial = gamma * beta + direction_rest + (gamma * gamma / (gamma + 1.0)) * b_dot_n * beta;
-    spatial / (gamma * (1.0 + b_dot_n))
+    Aberration::new(beta).apply(direction_rest)
+}
+
+/// [`aberrate`] for one velocity β, its factors γ and γ²/(γ+1) computed once: a renderer
+/// aberrates every ray with it (the same results, bit for bit, as [`aberrate`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aberration {
+    beta: DVec3,
+    gamma: f64,
+    /// γ²/(γ+1), the factor of (β·n′)β in Eq. 4.
+    along: f64,
+}
+
+impl Aberration {
+    /// The aberration of light from a frame S′ moving with `beta` relative to S.
+    #[must_use]
+    pub fn new(beta: DVec3) -> Self {
+        let gamma = lorentz_factor(beta);
+        Self {
+            beta,
+            gamma,
+            along: gamma * gamma / (gamma + 1.0),
+        }
+    }
+
+    /// The propagation direction in S of light propagating along `direction_rest` in S′
+    /// ([`aberrate`], Eq. 4).
+    #[must_use]
+    #[inline]
+    pub fn apply(&self, direction_rest: DVec3) -> DVec3 {
+        let (beta, gamma) = (self.beta, self.gamma);
+        let b_dot_n = beta.dot(direction_rest);
+        let spatial = gamma * beta + direction_rest + self.along * b_dot_n * beta;
+        spatial / (gamma * (1.0 + b_dot_n))
+    }
 }
 
 /// Doppler factor D = ω_R / ω_S = γ (1 − β·n) with which a receiver moving with `beta` through
