@@ -9,12 +9,21 @@
 //! object chosen is searched in its own coordinates as before ([`PreparedObject`]), so the hit
 //! found does not depend on the grouping.
 
-use bvh::bvh::Bvh;
 use glam::DVec3;
 use srt_physics::{Event, RestRay};
 
 use crate::prepared::{Hit, PreparedObject};
-use crate::walk::{BoxLeaf, nearest_first};
+use crate::walk::{BoxLeaf, FlatBvh, nearest_first};
+
+/// A backward ray's unit direction in a velocity group's rest frames and its reciprocal per
+/// component (for slab tests).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct RestDirection {
+    /// The unit direction.
+    pub(crate) direction: DVec3,
+    /// 1 / `direction`, per component.
+    pub(crate) inverse: DVec3,
+}
 
 /// A velocity group of a scene's objects.
 pub(crate) struct VelocityGroup {
@@ -22,12 +31,11 @@ pub(crate) struct VelocityGroup {
     first: usize,
     /// Members that spin or thrust: searched along every ray, as their bodies leave any box.
     moving: Vec<usize>,
-    /// The resting members' boxes in the group's rest coordinates, each holding the member's
-    /// index.
-    boxes: Vec<BoxLeaf<usize>>,
-    /// A BVH over `boxes`; `None` for a group of one resting member, whose own box test is
-    /// the whole cull.
-    bvh: Option<Bvh<f64, 3>>,
+    /// The resting members, in the order of the leaves of `bvh`.
+    resting: Vec<usize>,
+    /// A BVH over the resting members' boxes in the group's rest coordinates; `None` for a
+    /// group of at most one resting member, whose own box test is the whole cull.
+    bvh: Option<FlatBvh>,
 }
 
 impl VelocityGroup {
@@ -53,7 +61,7 @@ impl VelocityGroup {
         let origin = objects[first].observer_rest.position;
         let (resting, moving): (Vec<usize>, Vec<usize>) =
             (members.iter()).partition(|&&index| objects[index].motion.is_rest());
-        let mut boxes: Vec<BoxLeaf<usize>> = (resting.iter())
+        let boxes: Vec<BoxLeaf<usize>> = (resting.iter())
             .map(|&index| {
                 let object = &objects[index];
                 // The same event has coordinates shifted by `shift` in the group's rest frame
@@ -66,28 +74,46 @@ impl VelocityGroup {
                 BoxLeaf::new(lo + shift - pad, hi + shift + pad, index)
             })
             .collect();
-        let bvh = (boxes.len() > 1).then(|| Bvh::build(&mut boxes));
+        let (bvh, resting) = match FlatBvh::build(boxes) {
+            Some((bvh, resting)) if resting.len() > 1 => (Some(bvh), resting),
+            _ => (None, resting),
+        };
         Self {
             first,
             moving,
-            boxes,
+            resting,
             bvh,
         }
     }
 
-    /// Searches the group's members along the viewing direction `view_direction` (in S) from
-    /// the observation event whose rest-frame coordinates in a member's frame are
-    /// `origin_of(member)`, keeping in `best` the hit seen in front of all others so far.
-    pub(crate) fn search(
+    /// The backward ray's direction in the group's rest frames for the viewing direction
+    /// `view_direction` (in S): Eq. 3 ([`srt_physics::Frame::rest_direction`]), the same in
+    /// every member's frame.
+    pub(crate) fn rest_direction(
         &self,
         objects: &[PreparedObject<'_>],
         view_direction: DVec3,
+    ) -> RestDirection {
+        let direction = objects[self.first].frame.rest_direction(view_direction);
+        RestDirection {
+            direction,
+            inverse: direction.recip(),
+        }
+    }
+
+    /// Searches the group's members along the backward ray whose direction in their rest
+    /// frames is `direction` ([`VelocityGroup::rest_direction`]) from the observation event
+    /// whose rest-frame coordinates in a member's frame are `origin_of(member)`, keeping in
+    /// `best` the hit seen in front of all others so far.
+    pub(crate) fn search(
+        &self,
+        objects: &[PreparedObject<'_>],
+        RestDirection { direction, inverse }: RestDirection,
         origin_of: &impl Fn(&PreparedObject<'_>) -> Event,
         best: &mut Option<Hit>,
     ) {
         let frame = &objects[self.first].frame;
-        let direction = frame.rest_direction(view_direction);
-        let inverse_direction = direction.recip();
+        let inverse_direction = inverse;
         // The apparent distance grows linearly along the ray (γ s (1 − β·d′), the same for
         // every member), so a hit beyond `best` need not be searched for; the bound is
         // widened by a relative 1e-12 so that rounding never prunes a closer hit.
@@ -123,11 +149,11 @@ impl VelocityGroup {
                 let origin = origin_of(&objects[self.first]).position;
                 // Members come nearer box first; none whose box starts beyond the best hit.
                 nearest_first(bvh, origin, inverse_direction, limit(best), |member, _| {
-                    search_member(self.boxes[member].item, best);
+                    search_member(self.resting[member], best);
                     limit(best)
                 });
             }
-            None => (self.boxes.iter()).for_each(|member| search_member(member.item, best)),
+            None => (self.resting.iter()).for_each(|&member| search_member(member, best)),
         }
         for &index in &self.moving {
             search_member(index, best);

@@ -65,48 +65,80 @@ fn edge_function(p: DVec2, q: DVec2) -> f64 {
     if swapped { -e } else { e }
 }
 
-/// Whether the ray from `origin` along `direction` passes through the triangle, edges and
-/// corners included: Woop, Benthin and Wald's watertight test (JCGT 2(1), 2013), whose edge
-/// functions two triangles sharing an edge evaluate alike, so that a ray through a shared edge
-/// or corner of a closed mesh meets at least one of them. GPU twin: shaders/triangle.wgsl.
-fn passes_through(origin: DVec3, direction: DVec3, corners: [DVec3; 3]) -> bool {
-    let size = direction.abs();
-    let kz = if size.x > size.y && size.x > size.z {
-        0
-    } else if size.y > size.z {
-        1
-    } else {
-        2
-    };
-    let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
-    let shear = DVec2::new(direction[kx], direction[ky]) / direction[kz];
-    let sheared = |corner: DVec3| {
-        let a = corner - origin;
-        DVec2::new(a[kx] - shear.x * a[kz], a[ky] - shear.y * a[kz])
-    };
-    let [a, b, c] = corners.map(sheared);
-    let (u, v, w) = (
-        edge_function(b, c),
-        edge_function(c, a),
-        edge_function(a, b),
-    );
-    let mixed = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
-    !mixed && u + v + w != 0.0
+/// A ray set up for Woop, Benthin and Wald's watertight test (JCGT 2(1), 2013): its origin and
+/// direction, the axis its direction is largest along (kz) and the two others, and the shear
+/// that takes its direction to that axis. Made once per ray, used for every triangle it meets.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ShearedRay {
+    origin: DVec3,
+    direction: DVec3,
+    axes: [usize; 3],
+    shear: DVec2,
+}
+
+impl ShearedRay {
+    /// The ray from `origin` along `direction`.
+    #[inline]
+    pub(crate) fn new(origin: DVec3, direction: DVec3) -> Self {
+        let size = direction.abs();
+        let kz = if size.x > size.y && size.x > size.z {
+            0
+        } else if size.y > size.z {
+            1
+        } else {
+            2
+        };
+        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        Self {
+            origin,
+            direction,
+            axes: [kx, ky, kz],
+            shear: DVec2::new(direction[kx], direction[ky]) / direction[kz],
+        }
+    }
+
+    /// Whether the ray passes through the triangle, edges and corners included: the
+    /// watertight test, whose edge functions two triangles sharing an edge evaluate alike, so
+    /// that a ray through a shared edge or corner of a closed mesh meets at least one of them.
+    /// GPU twin: shaders/triangle.wgsl.
+    #[inline]
+    fn passes_through(&self, corners: &[DVec3; 3]) -> bool {
+        let [kx, ky, kz] = self.axes;
+        let sheared = |corner: DVec3| {
+            let a = corner - self.origin;
+            DVec2::new(a[kx] - self.shear.x * a[kz], a[ky] - self.shear.y * a[kz])
+        };
+        let [a, b, c] = corners.map(sheared);
+        let (u, v, w) = (
+            edge_function(b, c),
+            edge_function(c, a),
+            edge_function(a, b),
+        );
+        let mixed = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
+        !mixed && u + v + w != 0.0
+    }
+
+    /// The hit of the ray at ψ > 0 with the triangle (edges included, both faces): where
+    /// the watertight test finds the ray through the triangle, [`plane_hit`]'s distance and
+    /// barycentrics, ahead of the origin.
+    #[inline]
+    pub(crate) fn intersect(&self, corners: &[DVec3; 3]) -> Option<TriangleHit> {
+        if !self.passes_through(corners) {
+            return None;
+        }
+        plane_hit(self.origin, self.direction, *corners).filter(|h| h.distance > 0.0)
+    }
 }
 
 /// The hit of the ray `origin + ψ·direction`, ψ > 0, with the triangle (edges included, both
-/// faces): where the watertight test (`passes_through`) finds the ray through the triangle,
-/// [`plane_hit`]'s distance and barycentrics, ahead of the origin.
+/// faces): [`ShearedRay::intersect`] of the ray made for this one triangle.
 #[must_use]
 pub fn intersect_triangle(
     origin: DVec3,
     direction: DVec3,
     corners: [DVec3; 3],
 ) -> Option<TriangleHit> {
-    if !passes_through(origin, direction, corners) {
-        return None;
-    }
-    plane_hit(origin, direction, corners).filter(|h| h.distance > 0.0)
+    ShearedRay::new(origin, direction).intersect(&corners)
 }
 
 #[cfg(test)]

@@ -31,7 +31,6 @@ use srt_physics::{FourVelocity, RestRay};
 
 use crate::intersect::TriangleHit;
 use crate::prepared::PreparedObject;
-use crate::walk::aabb;
 
 /// Most pieces of one curved stretch of ray.
 const MAX_PIECES: usize = 1 << 16;
@@ -185,18 +184,16 @@ impl PreparedObject<'_> {
         to: f64,
         pieces: usize,
     ) -> Option<Crossing> {
-        let bvh = self.bvh.as_ref()?;
+        let (bvh, triangles) = self.bvh.as_ref()?;
         let at = |k: usize| from + (to - from) * (k as f64) / (pieces as f64);
         let mut previous: Option<Piece> = None;
         for k in 1..=pieces {
             let piece = curve.piece(previous.as_ref(), at(k - 1), at(k));
             let (lo, hi) = (piece.lo, piece.hi);
-            let query = aabb(lo, hi);
             let mut best: Option<Crossing> = None;
-            for leaf in bvh.traverse_iterator(&query, &self.boxes) {
-                let leaf = leaf.item;
-                let mesh = &self.parts[leaf.part as usize].part.mesh;
-                let corners = mesh.triangle_positions(leaf.triangle as usize);
+            bvh.overlapping(lo, hi, |leaf| {
+                let leaf = &triangles[leaf];
+                let corners = leaf.corners;
                 // The crossing is a point of the piece, in its box, and of the triangle, in
                 // the triangle's box: where the two are apart there is none to look for.
                 let (low, high) = (
@@ -204,10 +201,10 @@ impl PreparedObject<'_> {
                     corners[0].max(corners[1]).max(corners[2]),
                 );
                 if !(low.cmple(hi).all() && high.cmpge(lo).all()) {
-                    continue;
+                    return;
                 }
                 let Some(hit) = curve.crossing(&piece, corners) else {
-                    continue;
+                    return;
                 };
                 let closer = best.is_none_or(|(part, triangle, h)| {
                     (hit.distance, leaf.part, leaf.triangle) < (h.distance, part, triangle)
@@ -215,7 +212,7 @@ impl PreparedObject<'_> {
                 if closer {
                     best = Some((leaf.part, leaf.triangle, hit));
                 }
-            }
+            });
             if best.is_some() {
                 return best;
             }

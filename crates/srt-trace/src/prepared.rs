@@ -6,27 +6,27 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use bvh::bvh::Bvh;
 use glam::{DVec3, DVec4};
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::mip::MipChain;
 use srt_scene::{Object, Part, Texture};
 
-use crate::intersect::{TriangleHit, intersect_triangle};
-use crate::walk::{BoxLeaf, box_entry, nearest_first};
+use crate::intersect::{ShearedRay, TriangleHit};
+use crate::walk::{BoxLeaf, FlatBvh, box_entry, nearest_first};
 
-/// A triangle of one of an object's parts.
+/// A triangle of one of an object's parts, as a leaf of the object's BVH: its corners (the
+/// mesh's, copied in the order the BVH's leaves are laid out, so that a walk reads them side by
+/// side and without the mesh's index) and where it comes from.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PartTriangle {
+    /// The corners in the object's rest coordinates ([`srt_scene::Mesh::triangle_positions`]).
+    pub(crate) corners: [DVec3; 3],
     /// The part.
     pub(crate) part: u32,
     /// The triangle in the part's mesh.
     pub(crate) triangle: u32,
 }
-
-/// A triangle as a leaf of its object's BVH.
-pub(crate) type TriangleBox = BoxLeaf<PartTriangle>;
 
 /// The mip chains of a scene's textures, each made once however many parts share its texture
 /// (the scene's builder shares one texture among the parts that describe the same one).
@@ -70,9 +70,9 @@ pub(crate) struct PreparedObject<'a> {
     /// The observation event in the object's rest frame S′ (the start of every backward ray).
     pub(crate) observer_rest: Event,
     pub(crate) parts: Vec<PreparedPart<'a>>,
-    pub(crate) boxes: Vec<TriangleBox>,
-    /// `None` for an object without triangles.
-    pub(crate) bvh: Option<Bvh<f64, 3>>,
+    /// The BVH over the triangles of all parts and its leaves' triangles; `None` for an object
+    /// without triangles.
+    pub(crate) bvh: Option<(FlatBvh, Vec<PartTriangle>)>,
     /// How the body moves in its rest coordinates (the BVH holds it at S′ time 0).
     pub(crate) motion: Motion,
     /// The rest coordinates' clock lead over the object's S′ time.
@@ -96,17 +96,19 @@ impl<'a> PreparedObject<'a> {
         // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
         // boxes, which slab tests can miss.
         let pad = 1e-9 * (hi - lo).length().max(1.0);
-        let mut boxes: Vec<TriangleBox> = meshes()
+        let leaves: Vec<BoxLeaf<PartTriangle>> = meshes()
             .enumerate()
             .flat_map(|(part, mesh)| {
                 (0..mesh.triangles().len()).map(move |i| {
-                    let [a, b, c] = mesh.triangle_positions(i);
+                    let corners = mesh.triangle_positions(i);
+                    let [a, b, c] = corners;
                     let min = a.min(b).min(c) - pad;
                     let max = a.max(b).max(c) + pad;
-                    TriangleBox::new(
+                    BoxLeaf::new(
                         min,
                         max,
                         PartTriangle {
+                            corners,
                             part: part as u32,
                             triangle: i as u32,
                         },
@@ -114,14 +116,13 @@ impl<'a> PreparedObject<'a> {
                 })
             })
             .collect();
-        let bvh = (!boxes.is_empty()).then(|| Bvh::build(&mut boxes));
+        let bvh = FlatBvh::build(leaves);
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
             parts: (object.parts.iter())
                 .map(|part| PreparedPart::new(part, chains))
                 .collect(),
-            boxes,
             bvh,
             motion: object.motion,
             rest_time_shift: object.rest_time_shift,
@@ -142,7 +143,8 @@ impl<'a> PreparedObject<'a> {
         from: f64,
         limit: f64,
     ) -> Option<(u32, u32, TriangleHit)> {
-        let bvh = self.bvh.as_ref()?;
+        let (bvh, triangles) = self.bvh.as_ref()?;
+        let sheared = ShearedRay::new(ray.origin, ray.direction);
         let mut best: Option<(u32, u32, TriangleHit)> = None;
         // Nothing beyond the best hit (or `limit`) is searched for.
         nearest_first(
@@ -150,11 +152,10 @@ impl<'a> PreparedObject<'a> {
             ray.origin,
             ray.direction.recip(),
             limit,
-            |shape, bound| {
-                let leaf = self.boxes[shape].item;
-                let mesh = &self.parts[leaf.part as usize].part.mesh;
-                let corners = mesh.triangle_positions(leaf.triangle as usize);
-                if let Some(hit) = intersect_triangle(ray.origin, ray.direction, corners)
+            |leaf, bound| {
+                let leaf = &triangles[leaf];
+                if let Some(hit) = sheared
+                    .intersect(&leaf.corners)
                     .filter(|hit| hit.distance >= from)
                 {
                     let closer = best.is_none_or(|(part, triangle, b)| {
@@ -177,7 +178,7 @@ impl<'a> PreparedObject<'a> {
     /// thrusting one as a backward ray is ([`PreparedObject::closest_hit_moving`]).
     pub(crate) fn blocks(&self, at: Event, source: Event) -> bool {
         let (from, to) = (at.position, source.position);
-        let (Some(bvh), length) = (self.bvh.as_ref(), (to - from).length()) else {
+        let (Some((bvh, triangles)), length) = (self.bvh.as_ref(), (to - from).length()) else {
             return false;
         };
         let direction = (to - from) / length;
@@ -201,16 +202,11 @@ impl<'a> PreparedObject<'a> {
             return false;
         }
         // The walk stops (its bound below every entry) at the first triangle crossed.
+        let sheared = ShearedRay::new(from, direction);
         let mut crossed = false;
-        nearest_first(bvh, from, direction.recip(), length, |shape, bound| {
-            let leaf = self.boxes[shape].item;
-            let mesh = &self.parts[leaf.part as usize].part.mesh;
-            crossed = intersect_triangle(
-                from,
-                direction,
-                mesh.triangle_positions(leaf.triangle as usize),
-            )
-            .is_some_and(|hit| hit.distance > margin && hit.distance < length - margin);
+        nearest_first(bvh, from, direction.recip(), length, |leaf, bound| {
+            crossed = (sheared.intersect(&triangles[leaf].corners))
+                .is_some_and(|hit| hit.distance > margin && hit.distance < length - margin);
             if crossed { f64::NEG_INFINITY } else { bound }
         });
         crossed

@@ -21,7 +21,7 @@ use srt_scene::{Scene, ViewRays};
 use web_time::Instant;
 
 use crate::clock::clock_albedo;
-use crate::group::VelocityGroup;
+use crate::group::{RestDirection, VelocityGroup};
 use crate::intersect::plane_hit;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
@@ -146,6 +146,18 @@ impl<'a> Tracer<'a> {
     /// zero for the observer itself).
     #[must_use]
     pub fn trace_from(&self, eye: DVec3, view_direction: DVec3) -> Option<Hit> {
+        self.trace_with(eye, |_, group| {
+            group.rest_direction(&self.objects, view_direction)
+        })
+    }
+
+    /// [`Tracer::trace_from`] with the ray's direction in the rest frames of the `g`-th
+    /// velocity group given by `direction_in(g, group)`.
+    fn trace_with(
+        &self,
+        eye: DVec3,
+        direction_in: impl Fn(usize, &VelocityGroup) -> RestDirection,
+    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let origin_of = |object: &PreparedObject<'_>| {
             if eye == DVec3::ZERO {
@@ -154,10 +166,30 @@ impl<'a> Tracer<'a> {
                 object.frame.to_rest(self.eye_event(eye))
             }
         };
-        for group in &self.velocity_groups {
-            group.search(&self.objects, view_direction, &origin_of, &mut best);
+        for (index, group) in self.velocity_groups.iter().enumerate() {
+            group.search(&self.objects, direction_in(index, group), &origin_of, &mut best);
         }
         best.map(|hit| Hit { eye, ..hit })
+    }
+
+    /// The rest-frame directions of the viewing directions of `rays` (`None`: no ray) in every
+    /// velocity group, ray by ray, `groups` entries each (a missing ray's are left at their
+    /// default), written over `directions`. Computed for many rays in one loop, their square
+    /// roots and divisions (a chain within a ray) overlap from ray to ray, where ray by ray in
+    /// the search each would wait for the last.
+    fn rest_directions(
+        &self,
+        rays: &[Option<(DVec3, DVec3)>],
+        directions: &mut Vec<RestDirection>,
+    ) {
+        directions.clear();
+        for ray in rays {
+            for group in &self.velocity_groups {
+                directions.push(ray.map_or_else(RestDirection::default, |(_, direction)| {
+                    group.rest_direction(&self.objects, direction)
+                }));
+            }
+        }
     }
 
     /// The observation event of the eye `eye` away from the observer (in S).
@@ -479,50 +511,81 @@ impl<'a> Tracer<'a> {
             Rows::Reusing(known) => Some(known),
             Rows::Traced | Rows::Timed(_) => None,
         };
-        let rows = rows_in_parallel(rows, progress, stop, work, |y| {
-            if let Some((pixels, coverage)) = known.and_then(|known| known.row(y)) {
-                return (pixels.to_vec(), coverage.to_vec());
-            }
-            let mut colours = Vec::with_capacity(width as usize);
-            let mut coverage = Vec::with_capacity(width as usize);
-            for x in 0..width {
-                let mut sum = DVec3::ZERO;
-                let mut first_object = 0;
-                for (k, offset) in offsets.iter().enumerate() {
-                    let (sx, sy) = (f64::from(x) + offset.x, f64::from(y) + offset.y);
-                    // Outside a fisheye's circle the image sees nothing: the background.
-                    let Some((eye, direction)) = image_rays.ray(sx, sy) else {
-                        sum += finish(background);
-                        continue;
-                    };
-                    let hit = self.trace_from(eye, direction);
-                    if k == 0 {
-                        first_object = hit.map_or(0, |h| h.object as u32 + 1);
-                    }
-                    sum += finish(hit.map_or_else(
-                        || {
-                            let sky = value(&sky_image_light(self.scene, direction));
-                            background + sky + stars.at(y as usize * width as usize + x as usize)
-                        },
-                        |h| {
-                            // A neighbour beyond the fisheye's rim: no footprint that way.
-                            let neighbours = [(1.0, 0.0), (0.0, 1.0)].map(|step| {
-                                image_rays.neighbour(sx, sy, step).unwrap_or(direction)
-                            });
-                            value(&self.light(&h, neighbours))
-                        },
-                    ));
-                }
-                colours.push(sum / offsets.len() as f64);
-                coverage.push(first_object);
-            }
-            (colours, coverage)
-        })?;
         let count = width as usize * rows.len();
-        let (mut pixels, mut coverage) = (Vec::with_capacity(count), Vec::with_capacity(count));
-        for (row_pixels, row_coverage) in rows {
-            pixels.extend(row_pixels);
-            coverage.extend(row_coverage);
+        // Filled on the workers, so that the first touch of the picture's pages (the kernel
+        // clears each) is shared among them, not left to this thread.
+        let mut pixels = Vec::with_capacity(count);
+        pixels.par_extend(rayon::iter::repeat_n(DVec3::ZERO, count));
+        let mut coverage = vec![0_u32; count];
+        let finished = rows_in_parallel_into(
+            rows,
+            (&mut pixels, &mut coverage),
+            width as usize,
+            progress,
+            stop,
+            work,
+            |y, (colours, coverage)| {
+                if let Some((pixels, known_coverage)) = known.and_then(|known| known.row(y)) {
+                    colours.copy_from_slice(pixels);
+                    coverage.copy_from_slice(known_coverage);
+                    return;
+                }
+                let samples = offsets.len();
+                let groups = self.velocity_groups.len();
+                let sample_point = |slot: usize| {
+                    let (x, offset) = (slot / samples, offsets[slot % samples]);
+                    (f64::from(x as u32) + offset.x, f64::from(y) + offset.y)
+                };
+                let (mut rays, mut directions) = (Vec::new(), Vec::new());
+                let (mut sum, mut first_object) = (DVec3::ZERO, 0);
+                let slots = width as usize * samples;
+                for start in (0..slots).step_by(RAY_BATCH) {
+                    let batch = start..(start + RAY_BATCH).min(slots);
+                    rays.clear();
+                    rays.extend(batch.clone().map(|slot| {
+                        let (sx, sy) = sample_point(slot);
+                        image_rays.ray(sx, sy)
+                    }));
+                    self.rest_directions(&rays, &mut directions);
+                    for (i, (slot, ray)) in batch.zip(&rays).enumerate() {
+                        let directions = &directions[i * groups..][..groups];
+                        let (x, k) = (slot / samples, slot % samples);
+                        let (sx, sy) = sample_point(slot);
+                        sum += match *ray {
+                            // Outside a fisheye's circle the image sees nothing: the background.
+                            None => finish(background),
+                            Some((eye, direction)) => {
+                                let hit = self.trace_with(eye, |group, _| directions[group]);
+                                if k == 0 {
+                                    first_object = hit.map_or(0, |h| h.object as u32 + 1);
+                                }
+                                finish(hit.map_or_else(
+                                    || {
+                                        let sky = value(&sky_image_light(self.scene, direction));
+                                        background + sky + stars.at(y as usize * width as usize + x)
+                                    },
+                                    |h| {
+                                        // A neighbour beyond the fisheye's rim: no footprint
+                                        // that way.
+                                        let neighbours = [(1.0, 0.0), (0.0, 1.0)].map(|step| {
+                                            image_rays.neighbour(sx, sy, step).unwrap_or(direction)
+                                        });
+                                        value(&self.light(&h, neighbours))
+                                    },
+                                ))
+                            }
+                        };
+                        if k + 1 == samples {
+                            colours[x] = sum / samples as f64;
+                            coverage[x] = first_object;
+                            (sum, first_object) = (DVec3::ZERO, 0);
+                        }
+                    }
+                }
+            },
+        );
+        if !finished {
+            return None;
         }
         Some(RenderedImage {
             width,
@@ -654,6 +717,43 @@ fn rows_in_parallel<T: Send>(
     rows.into_iter().collect()
 }
 
+/// Runs `row(y, (pixels, coverage))` for every row `y` of `rows` on rayon's threads, each
+/// writing its own `width`-long stretch of `outputs` (row `i` of `rows` at `i × width`), so that
+/// a picture is written where it is kept, not gathered from rows; `progress` and `work` as
+/// [`rows_in_parallel`]. `false` once `stop` is set (rows not yet begun are skipped and left
+/// as they were).
+fn rows_in_parallel_into<A: Send, B: Send>(
+    rows: &[u32],
+    (first, second): (&mut [A], &mut [B]),
+    width: usize,
+    progress: &(dyn Fn(u32) + Sync),
+    stop: Option<&AtomicBool>,
+    work: Option<&[AtomicU64]>,
+    row: impl Fn(u32, (&mut [A], &mut [B])) + Sync,
+) -> bool {
+    let finished = AtomicU32::new(0);
+    let stopped = || stop.is_some_and(|stop| stop.load(Ordering::Relaxed));
+    if width == 0 {
+        // Rows without pixels: nothing to write, nothing to chunk.
+        return !stopped();
+    }
+    (rows.par_iter().enumerate())
+        .zip(first.par_chunks_mut(width))
+        .zip(second.par_chunks_mut(width))
+        .for_each(|(((index, &y), first), second)| {
+            if stopped() {
+                return;
+            }
+            let start = work.map(|_| WorkClock::start());
+            row(y, (first, second));
+            if let (Some(work), Some(start)) = (work, start) {
+                work[index].fetch_add(start.nanoseconds(), Ordering::Relaxed);
+            }
+            progress(finished.fetch_add(1, Ordering::Relaxed) + 1);
+        });
+    finished.load(Ordering::Relaxed) as usize == rows.len()
+}
+
 /// How [`Tracer::render_listed_rows`] comes by its rows.
 #[derive(Clone, Copy)]
 pub(crate) enum Rows<'r> {
@@ -721,6 +821,10 @@ impl WorkClock {
         u64::try_from(elapsed.as_nanos()).unwrap_or(u64::MAX)
     }
 }
+
+/// How many ray samples of a row are taken into the rest frames together
+/// ([`Tracer::rest_directions`]).
+const RAY_BATCH: usize = 64;
 
 /// The viewing directions (in S, unnormalised) through the points of a `width` × `height`
 /// image of a scene, the observer's basis and field of view computed once.

@@ -1,13 +1,15 @@
-//! The CPU tracer's walk of a BVH (built by the `bvh` crate) along a ray: nearer subtree
-//! first, on a stack that lives on the call's own stack frame, pruned by a bound the visitor
-//! lowers as it finds hits. An object's triangles and a velocity group's objects are both found
-//! through it ([`crate::prepared`], [`crate::group`]).
+//! The CPU tracer's BVH ([`FlatBvh`]: built by the `bvh` crate, laid out flat with f32 boxes
+//! rounded outwards) and its walk along a ray: nearer subtree first, on a stack that lives on
+//! the call's own stack frame, pruned by a bound the visitor lowers as it finds hits. An
+//! object's triangles and a velocity group's objects are both found through it
+//! ([`crate::prepared`], [`crate::group`]); a spinning body's pieces query it by box.
 //!
 //! It replaces the crate's `nearest_traverse_iterator`, which keeps a binary heap (allocated
-//! for every walk) and tests boxes through nalgebra's generic slab test: the two made up a
-//! quarter of the teaser's CPU time. A walk visits every leaf whose box the ray enters no
-//! farther than the bound at the time, so whatever a visitor keeps of the leaves it is given —
-//! the nearest hit, ties to the lowest index — is what a search of every leaf keeps.
+//! for every walk) and tests boxes through nalgebra's generic slab test, and the crate's node
+//! enum of f64 boxes (two cache lines a node, against one here). A walk visits every leaf whose
+//! box the ray enters no farther than the bound at the time, so whatever a visitor keeps of the
+//! leaves it is given — the nearest hit, ties to the lowest index — is what a search of every
+//! leaf keeps.
 
 use bvh::aabb::{Aabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
@@ -65,6 +67,7 @@ const INLINE_DEPTH: usize = 64;
 /// component) enters the box [`lo`, `hi`] (0 when it starts inside), `None` when it misses it:
 /// the slab test. Conservative: where rounding gives NaN (an origin on a slab's plane with a
 /// direction parallel to it) the box counts as met.
+#[inline]
 pub(crate) fn box_entry(
     origin: DVec3,
     inverse_direction: DVec3,
@@ -78,18 +81,146 @@ pub(crate) fn box_entry(
     if near > far { None } else { Some(near) }
 }
 
-/// [`box_entry`] of a `bvh` crate box.
-fn aabb_entry(aabb: &Aabb<f64, 3>, origin: DVec3, inverse_direction: DVec3) -> Option<f64> {
-    let lo = DVec3::new(aabb.min.x, aabb.min.y, aabb.min.z);
-    let hi = DVec3::new(aabb.max.x, aabb.max.y, aabb.max.z);
-    box_entry(origin, inverse_direction, lo, hi)
+/// A child of a [`FlatBvh`] node: a node's index, or a leaf's with [`LEAF`] set.
+type Child = u32;
+
+/// The flag of a [`Child`] that is a leaf.
+const LEAF: Child = 1 << 31;
+
+/// An inner node of a [`FlatBvh`]: its two children and their boxes, in f32 rounded outwards
+/// (each f32 box holds the f64 box it was made from), one cache line.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
+struct FlatNode {
+    lo: [[f32; 3]; 2],
+    hi: [[f32; 3]; 2],
+    child: [Child; 2],
+}
+
+impl FlatNode {
+    /// Where the ray enters the box of child `k` ([`box_entry`], in f64 on the f32 box).
+    #[inline]
+    fn entry(&self, k: usize, origin: DVec3, inverse_direction: DVec3) -> Option<f64> {
+        let widen = |v: [f32; 3]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
+        box_entry(origin, inverse_direction, widen(self.lo[k]), widen(self.hi[k]))
+    }
+
+    /// Whether the box of child `k` meets the box [`lo`, `hi`].
+    fn overlaps(&self, k: usize, lo: DVec3, hi: DVec3) -> bool {
+        (0..3).all(|axis| {
+            f64::from(self.lo[k][axis]) <= hi[axis] && f64::from(self.hi[k][axis]) >= lo[axis]
+        })
+    }
+}
+
+/// The largest f32 no greater than `x` (`x` itself where it is one).
+fn f32_below(x: f64) -> f32 {
+    let rounded = x as f32;
+    if f64::from(rounded) > x { rounded.next_down() } else { rounded }
+}
+
+/// The smallest f32 no less than `x`.
+fn f32_above(x: f64) -> f32 {
+    let rounded = x as f32;
+    if f64::from(rounded) < x { rounded.next_up() } else { rounded }
+}
+
+/// A binary BVH as the walks read it: built by the `bvh` crate (binned SAH), then laid out as
+/// one array of [`FlatNode`]s, depth first, the leaves numbered in the order the layout meets
+/// them (so that neighbouring leaves lie side by side in what their items index).
+///
+/// Its boxes are the crate's, rounded outwards to f32: every box holds the f64 box of the
+/// crate's tree, so a walk enters every leaf the crate's boxes would have let it enter (and,
+/// rarely, a few more at their rims), and a visitor that keeps the nearest hit of what it is
+/// given keeps the same as over the crate's tree.
+pub(crate) struct FlatBvh {
+    nodes: Vec<FlatNode>,
+    /// The root: node 0, or the only leaf.
+    root: Child,
+}
+
+impl FlatBvh {
+    /// Builds the BVH over `leaves` and returns it with their items in leaf order (leaf `i` of
+    /// the walks is the `i`-th item); `None` for no leaves.
+    pub(crate) fn build<T>(mut leaves: Vec<BoxLeaf<T>>) -> Option<(Self, Vec<T>)> {
+        if leaves.is_empty() {
+            return None;
+        }
+        let bvh = Bvh::build(&mut leaves);
+        let mut order: Vec<usize> = Vec::with_capacity(leaves.len());
+        let mut nodes: Vec<FlatNode> = Vec::with_capacity(leaves.len().saturating_sub(1));
+        let root = match bvh.nodes[0] {
+            BvhNode::Leaf { shape_index, .. } => {
+                order.push(shape_index);
+                LEAF
+            }
+            BvhNode::Node { .. } => {
+                // (crate node, the flat node and side it hangs from), depth first.
+                let mut pending: Vec<(usize, Option<(usize, usize)>)> = vec![(0, None)];
+                while let Some((index, parent)) = pending.pop() {
+                    let child = match bvh.nodes[index] {
+                        BvhNode::Leaf { shape_index, .. } => {
+                            order.push(shape_index);
+                            LEAF | (order.len() - 1) as Child
+                        }
+                        BvhNode::Node {
+                            child_l_index,
+                            child_l_aabb,
+                            child_r_index,
+                            child_r_aabb,
+                            ..
+                        } => {
+                            let flat = nodes.len();
+                            let [l, r] = [child_l_aabb, child_r_aabb];
+                            nodes.push(FlatNode {
+                                lo: [l, r].map(|b| [0, 1, 2].map(|a| f32_below(b.min[a]))),
+                                hi: [l, r].map(|b| [0, 1, 2].map(|a| f32_above(b.max[a]))),
+                                child: [0; 2],
+                            });
+                            // The right pushed first: the left is laid out next.
+                            pending.push((child_r_index, Some((flat, 1))));
+                            pending.push((child_l_index, Some((flat, 0))));
+                            flat as Child
+                        }
+                    };
+                    if let Some((node, side)) = parent {
+                        nodes[node].child[side] = child;
+                    }
+                }
+                0
+            }
+        };
+        let mut items: Vec<Option<T>> = leaves.into_iter().map(|leaf| Some(leaf.item)).collect();
+        let items = (order.iter())
+            .map(|&shape| items[shape].take().expect("each shape is one leaf"))
+            .collect();
+        Some((Self { nodes, root }, items))
+    }
+
+    /// Calls `visit(leaf)` for every leaf whose box meets the box [`lo`, `hi`] (and perhaps a
+    /// few more at the rims of theirs; a visitor tests its item's own box).
+    pub(crate) fn overlapping(&self, lo: DVec3, hi: DVec3, mut visit: impl FnMut(usize)) {
+        let mut pending = vec![self.root];
+        while let Some(child) = pending.pop() {
+            if child & LEAF != 0 {
+                visit((child & !LEAF) as usize);
+                continue;
+            }
+            let node = &self.nodes[child as usize];
+            for k in [1, 0] {
+                if node.overlaps(k, lo, hi) {
+                    pending.push(node.child[k]);
+                }
+            }
+        }
+    }
 }
 
 /// Subtrees waiting to be walked, with where the ray enters their boxes.
 struct Pending {
-    inline: [(usize, f64); INLINE_DEPTH],
+    inline: [(Child, f64); INLINE_DEPTH],
     len: usize,
-    spilled: Vec<(usize, f64)>,
+    spilled: Vec<(Child, f64)>,
 }
 
 impl Pending {
@@ -101,7 +232,8 @@ impl Pending {
         }
     }
 
-    fn push(&mut self, entry: (usize, f64)) {
+    #[inline]
+    fn push(&mut self, entry: (Child, f64)) {
         if self.len < INLINE_DEPTH {
             self.inline[self.len] = entry;
             self.len += 1;
@@ -110,7 +242,8 @@ impl Pending {
         }
     }
 
-    fn pop(&mut self) -> Option<(usize, f64)> {
+    #[inline]
+    fn pop(&mut self) -> Option<(Child, f64)> {
         if let Some(entry) = self.spilled.pop() {
             return Some(entry);
         }
@@ -120,54 +253,53 @@ impl Pending {
 }
 
 /// Walks `bvh` along the ray `origin` + s · direction (`inverse_direction` = 1 / direction per
-/// component), nearer subtree first, and calls `visit(shape, bound)` for every leaf whose box
+/// component), nearer subtree first, and calls `visit(leaf, bound)` for every leaf whose box
 /// the ray enters no farther than `bound`; `visit` returns the bound from then on (the
 /// nearest hit found so far, say). The root's box is not tested: a caller tests the object's
 /// own box first.
+#[inline]
 pub(crate) fn nearest_first(
-    bvh: &Bvh<f64, 3>,
+    bvh: &FlatBvh,
     origin: DVec3,
     inverse_direction: DVec3,
     mut bound: f64,
     mut visit: impl FnMut(usize, f64) -> f64,
 ) {
-    if bvh.nodes.is_empty() {
-        return;
-    }
     let mut pending = Pending::new();
-    pending.push((0, 0.0));
-    while let Some((index, entry)) = pending.pop() {
-        if entry > bound {
-            continue;
-        }
-        match &bvh.nodes[index] {
-            BvhNode::Leaf { shape_index, .. } => bound = visit(*shape_index, bound),
-            BvhNode::Node {
-                child_l_index,
-                child_l_aabb,
-                child_r_index,
-                child_r_aabb,
-                ..
-            } => {
-                let left = aabb_entry(child_l_aabb, origin, inverse_direction)
+    let mut current = bvh.root;
+    loop {
+        if current & LEAF != 0 {
+            bound = visit((current & !LEAF) as usize, bound);
+        } else {
+            let node = &bvh.nodes[current as usize];
+            let entry = |k: usize| {
+                node.entry(k, origin, inverse_direction)
                     .filter(|&e| e <= bound)
-                    .map(|e| (*child_l_index, e));
-                let right = aabb_entry(child_r_aabb, origin, inverse_direction)
-                    .filter(|&e| e <= bound)
-                    .map(|e| (*child_r_index, e));
-                // The nearer is pushed last, so it is walked first.
-                match (left, right) {
-                    (Some(l), Some(r)) if l.1 <= r.1 => {
-                        pending.push(r);
-                        pending.push(l);
-                    }
-                    (Some(l), Some(r)) => {
-                        pending.push(l);
-                        pending.push(r);
-                    }
-                    (Some(only), None) | (None, Some(only)) => pending.push(only),
-                    (None, None) => {}
+                    .map(|e| (node.child[k], e))
+            };
+            match (entry(0), entry(1)) {
+                (Some(l), Some(r)) => {
+                    // The nearer is walked now, the farther later.
+                    let (near, far) = if l.1 <= r.1 { (l, r) } else { (r, l) };
+                    pending.push(far);
+                    current = near.0;
+                    continue;
                 }
+                (Some(only), None) | (None, Some(only)) => {
+                    current = only.0;
+                    continue;
+                }
+                (None, None) => {}
+            }
+        }
+        // The next waiting subtree the ray enters no farther than the bound.
+        loop {
+            let Some((child, entry)) = pending.pop() else {
+                return;
+            };
+            if entry <= bound {
+                current = child;
+                break;
             }
         }
     }
@@ -183,44 +315,78 @@ mod tests {
     #[test]
     fn the_walk_finds_the_nearest_and_prunes_beyond_its_bound() {
         // Unit cubes, each leaf holding its centre.
-        let mut cubes: Vec<BoxLeaf<DVec3>> = (0..200)
+        let cubes: Vec<BoxLeaf<DVec3>> = (0..200)
             .map(|i| {
                 let centre = DVec3::new(f64::from(i % 20) * 2.0, f64::from(i / 20) * 3.0, 0.0);
                 BoxLeaf::new(centre - 0.5, centre + 0.5, centre)
             })
             .collect();
-        let bvh = Bvh::build(&mut cubes);
+        let (bvh, centres) = FlatBvh::build(cubes).unwrap();
         let origin = DVec3::new(-5.0, 0.0, 0.0);
         let direction = DVec3::X;
         let inverse = direction.recip();
-        let entries: Vec<Option<f64>> = (cubes.iter())
-            .map(|cube| aabb_entry(&cube.aabb(), origin, inverse))
+        let entries: Vec<Option<f64>> = (centres.iter())
+            .map(|&centre| box_entry(origin, inverse, centre - 0.5, centre + 0.5))
             .collect();
         let nearest = (entries.iter().enumerate())
             .filter_map(|(i, e)| e.map(|e| (e, i)))
             .min_by(|a, b| a.partial_cmp(b).unwrap())
             .unwrap();
-        assert_eq!(nearest.1, 0);
+        assert_eq!(centres[nearest.1], DVec3::ZERO);
         let mut visited = Vec::new();
         let mut best: Option<(f64, usize)> = None;
-        nearest_first(&bvh, origin, inverse, f64::INFINITY, |shape, bound| {
-            visited.push(shape);
-            let entry = entries[shape].expect("only cubes the ray meets are visited");
-            if best.is_none_or(|b| (entry, shape) < b) {
-                best = Some((entry, shape));
+        nearest_first(&bvh, origin, inverse, f64::INFINITY, |leaf, bound| {
+            visited.push(leaf);
+            let entry = entries[leaf].expect("only cubes the ray meets are visited");
+            if best.is_none_or(|b| (entry, leaf) < b) {
+                best = Some((entry, leaf));
             }
             bound.min(entry)
         });
         assert_eq!(best, Some(nearest));
         assert!(visited.len() <= 3, "visited {visited:?}");
         // Unbounded, every cube on the ray (the first row, 20 of them) is visited once.
-        let mut all = Vec::new();
-        nearest_first(&bvh, origin, inverse, f64::INFINITY, |shape, bound| {
-            all.push(shape);
+        let mut all: Vec<DVec3> = Vec::new();
+        nearest_first(&bvh, origin, inverse, f64::INFINITY, |leaf, bound| {
+            all.push(centres[leaf]);
             bound
         });
-        all.sort_unstable();
-        assert_eq!(all, (0..20).collect::<Vec<_>>());
+        all.sort_by(|a, b| a.x.total_cmp(&b.x));
+        let row: Vec<DVec3> = (0..20).map(|i| DVec3::new(f64::from(i) * 2.0, 0.0, 0.0)).collect();
+        assert_eq!(all, row);
+    }
+
+    /// The f32 boxes hold the f64 boxes they are made from, at any scale, and the box query
+    /// finds every leaf whose f64 box meets the query box (a cube beside the query box, an f64
+    /// ulp apart, may be found too).
+    #[test]
+    fn the_f32_boxes_hold_their_f64_boxes_and_the_box_query_finds_every_overlap() {
+        for x in [0.1, -0.1, 1.0 / 3.0, 1e-30, -7.123_456_789_012_345e12, 0.0] {
+            assert!(f64::from(f32_below(x)) <= x && f64::from(f32_above(x)) >= x, "{x}");
+        }
+        let cubes: Vec<BoxLeaf<usize>> = (0..64)
+            .map(|i| {
+                let centre = DVec3::new(f64::from(i % 8) * 1.1, f64::from(i / 8) * 0.7, 0.1);
+                BoxLeaf::new(centre - 0.3, centre + 0.3, i as usize)
+            })
+            .collect();
+        let boxes: Vec<(DVec3, DVec3)> = (cubes.iter())
+            .map(|c| {
+                let b = c.aabb();
+                let v = |p: nalgebra::Point3<f64>| DVec3::new(p.x, p.y, p.z);
+                (v(b.min), v(b.max))
+            })
+            .collect();
+        let (bvh, items) = FlatBvh::build(cubes).unwrap();
+        let (lo, hi) = (DVec3::new(1.0, 0.5, 0.0), DVec3::new(2.9, 2.0, 0.2));
+        let mut found = Vec::new();
+        bvh.overlapping(lo, hi, |leaf| found.push(items[leaf]));
+        found.sort_unstable();
+        let expected: Vec<usize> = (0..64)
+            .filter(|&i| boxes[i].0.cmple(hi).all() && boxes[i].1.cmpge(lo).all())
+            .collect();
+        assert!(!expected.is_empty());
+        assert_eq!(found, expected);
     }
 
     /// A walk deeper than its inline stack spills to the heap and still visits every leaf.
@@ -228,13 +394,13 @@ mod tests {
     fn a_walk_past_its_inline_depth_visits_every_leaf() {
         let mut pending = Pending::new();
         for i in 0..(INLINE_DEPTH + 10) {
-            pending.push((i, 0.0));
+            pending.push((i as Child, 0.0));
         }
         let mut popped = Vec::new();
         while let Some((i, _)) = pending.pop() {
             popped.push(i);
         }
         popped.sort_unstable();
-        assert_eq!(popped, (0..INLINE_DEPTH + 10).collect::<Vec<_>>());
+        assert_eq!(popped, (0..(INLINE_DEPTH + 10) as Child).collect::<Vec<_>>());
     }
 }
