@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use glam::DVec3;
+use rayon::prelude::*;
 use srt::engine::{AOV_CHANNELS, channel_f32, display_as_linear};
 use srt::tiles::BAND_ROW_MULTIPLE;
 use srt_color::quantize_8bit;
@@ -119,9 +120,19 @@ pub fn check_writable(path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Display colours (sRGB-encoded, [0, 1]) as 8-bit RGB bytes, in order.
-pub fn display_bytes(pixels: &[DVec3]) -> impl Iterator<Item = u8> + '_ {
-    pixels.iter().flat_map(|p| p.to_array().map(quantize_8bit))
+/// Display colours (sRGB-encoded, [0, 1]) as 8-bit RGB bytes, in order (quantised on all threads).
+pub fn display_bytes(pixels: &[DVec3]) -> Vec<u8> {
+    /// Pixels quantised by one task.
+    const CHUNK: usize = 1 << 14;
+    let mut bytes = vec![0_u8; 3 * pixels.len()];
+    (bytes.par_chunks_mut(3 * CHUNK))
+        .zip(pixels.par_chunks(CHUNK))
+        .for_each(|(bytes, pixels)| {
+            for (rgb, pixel) in bytes.chunks_exact_mut(3).zip(pixels) {
+                rgb.copy_from_slice(&pixel.to_array().map(quantize_8bit));
+            }
+        });
+    bytes
 }
 
 /// The channels of the displayed image in srt's EXR (linear light), beside R, G, B (radiance).
@@ -285,7 +296,7 @@ fn write_png(
         let Some(band) = band(range) else {
             bail!("the render stopped");
         };
-        let bytes: Vec<u8> = display_bytes(&band.display).collect();
+        let bytes = display_bytes(&band.display);
         rows.write_all(&bytes)?;
     }
     rows.finish()?;

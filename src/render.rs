@@ -285,7 +285,7 @@ impl Picture<'_, '_> {
         let mut bytes = Vec::with_capacity(3 * settings.width as usize * settings.height as usize);
         for rows in bands(settings.height, engine.band_rows(settings)) {
             let display = self.display_band(engine, rows, ink.as_ref(), &mut objects, None)?;
-            bytes.extend(display_bytes(&display));
+            bytes.extend_from_slice(&display_bytes(&display));
         }
         let image = RgbImage::from_raw(settings.width, settings.height, bytes)
             .expect("one colour per pixel");
