@@ -54,8 +54,28 @@ fn engine_toml(model: &Path) -> String {
     )
 }
 
-/// The cases: the built-in spider, Fig. 10's cubes and the teaser, and the engine at rest
-/// (written as a scene file under `folder`, where the assimp corpus is installed).
+/// Nine engines at rest, `fit`, on a 3 × 3 grid facing the observer at (0, −9, 0) (1.09 M
+/// triangles, one BVH shared by all nine): the issue's large scene.
+fn nine_engines_toml(model: &Path) -> String {
+    let mut text = String::from(
+        "name = \"nine-engines\"\n\
+         [observer]\nposition = [0.0, -9.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, 1.0]\n\
+         fov_y_deg = 45.0\n",
+    );
+    for (row, z) in [2.2, 0.0, -2.2].into_iter().enumerate() {
+        for (column, x) in [-3.0, 0.0, 3.0].into_iter().enumerate() {
+            text += &format!(
+                "[[object]]\nname = \"engine {row}{column}\"\n\
+                 shape = {{ type = \"model\", path = \"{}\" }}\nfit = true\noffset = [{x}, 0.0, {z}]\n",
+                model.display()
+            );
+        }
+    }
+    text
+}
+
+/// The cases: the built-in spider, Fig. 10's cubes and the teaser, and the engine at rest and
+/// nine of them (written as scene files under `folder`, where the assimp corpus is installed).
 fn cases(folder: &Path) -> anyhow::Result<Vec<EmbreeCase>> {
     let mut cases = Vec::new();
     for name in ["spider", "fig10-cube200", "fig10-cube50", "teaser"] {
@@ -70,19 +90,23 @@ fn cases(folder: &Path) -> anyhow::Result<Vec<EmbreeCase>> {
     }
     let model = srt_scene::corpus::folder().join(crate::cases::ENGINE);
     if model.is_file() {
-        let text = engine_toml(&model);
-        let path = folder.join("engine-at-rest.toml");
-        std::fs::create_dir_all(folder)?;
-        std::fs::write(&path, &text).with_context(|| format!("writing {}", path.display()))?;
-        let (scene, _) = SceneDescription::from_toml_str(&text, "engine-at-rest")?.build(folder)?;
-        cases.push(EmbreeCase {
-            name: "engine-at-rest".to_owned(),
-            argument: path.display().to_string(),
-            scene,
-        });
+        for (name, text) in [
+            ("engine-at-rest", engine_toml(&model)),
+            ("nine-engines", nine_engines_toml(&model)),
+        ] {
+            let path = folder.join(format!("{name}.toml"));
+            std::fs::create_dir_all(folder)?;
+            std::fs::write(&path, &text).with_context(|| format!("writing {}", path.display()))?;
+            let (scene, _) = SceneDescription::from_toml_str(&text, name)?.build(folder)?;
+            cases.push(EmbreeCase {
+                name: name.to_owned(),
+                argument: path.display().to_string(),
+                scene,
+            });
+        }
     } else {
         println!(
-            "SKIPPED engine-at-rest: {} is missing ({})",
+            "SKIPPED engine-at-rest and nine-engines: {} is missing ({})",
             model.display(),
             srt_scene::corpus::HOW_TO_GET_IT
         );

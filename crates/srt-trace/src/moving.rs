@@ -184,7 +184,7 @@ impl PreparedObject<'_> {
         to: f64,
         pieces: usize,
     ) -> Option<Crossing> {
-        let (bvh, triangles) = self.bvh.as_ref()?;
+        let (bvh, triangles) = self.bvh.as_deref()?;
         let at = |k: usize| from + (to - from) * (k as f64) / (pieces as f64);
         let mut previous: Option<Piece> = None;
         for k in 1..=pieces {

@@ -70,9 +70,10 @@ pub(crate) struct PreparedObject<'a> {
     /// The observation event in the object's rest frame S′ (the start of every backward ray).
     pub(crate) observer_rest: Event,
     pub(crate) parts: Vec<PreparedPart<'a>>,
-    /// The BVH over the triangles of all parts and its leaves' triangles; `None` for an object
-    /// without triangles.
-    pub(crate) bvh: Option<(FlatBvh, Vec<PartTriangle>)>,
+    /// The BVH over the triangles of all parts and its leaves' triangles (shared with the
+    /// objects whose triangles are the same, [`SharedBvhs`]); `None` for an object without
+    /// triangles.
+    pub(crate) bvh: Option<Arc<ObjectBvh>>,
     /// How the body moves in its rest coordinates (the BVH holds it at S′ time 0).
     pub(crate) motion: Motion,
     /// The rest coordinates' clock lead over the object's S′ time.
@@ -88,8 +89,90 @@ pub(crate) struct PreparedObject<'a> {
     pub(crate) wireframe: Option<f64>,
 }
 
+/// An object's BVH and its leaves' triangles, in leaf order.
+pub(crate) type ObjectBvh = (FlatBvh, Vec<PartTriangle>);
+
+/// The BVHs built for a scene's objects so far, each with the leaves it was built from:
+/// objects whose parts hold the same triangles at the same rest coordinates (bit for bit, with
+/// the same padding of their boxes) — instances of one model placed by their frames' `offset`s —
+/// share one BVH, built once (the BVH each would have built, so nothing traced changes).
+#[derive(Default)]
+pub(crate) struct SharedBvhs(Vec<SharedBvh>);
+
+/// A BVH of [`SharedBvhs`] and what it was built from.
+struct SharedBvh {
+    /// [`fingerprint`] of the leaves and the padding.
+    fingerprint: u64,
+    /// The leaves' triangles in the order given, and the padding's bits.
+    leaves: Vec<PartTriangle>,
+    pad: u64,
+    bvh: Arc<ObjectBvh>,
+}
+
+/// The bits of a triangle leaf: its part and triangle, then its corners' coordinates.
+fn leaf_bits(leaf: &PartTriangle) -> [u64; 10] {
+    let [a, b, c] = leaf
+        .corners
+        .map(|corner| corner.to_array().map(f64::to_bits));
+    [
+        u64::from(leaf.part) << 32 | u64::from(leaf.triangle),
+        a[0],
+        a[1],
+        a[2],
+        b[0],
+        b[1],
+        b[2],
+        c[0],
+        c[1],
+        c[2],
+    ]
+}
+
+/// A quick hash of leaves' bits (FxHash's multiply and rotate): equal leaves have equal
+/// fingerprints; equal fingerprints are checked bit by bit.
+fn fingerprint<'l>(leaves: impl Iterator<Item = &'l PartTriangle>, pad: u64) -> u64 {
+    leaves.fold(pad, |hash, leaf| {
+        (leaf_bits(leaf).iter()).fold(hash, |hash, &word| {
+            (hash.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
+        })
+    })
+}
+
+impl SharedBvhs {
+    /// The BVH over `leaves` (boxes padded by `pad`), built unless an earlier object's leaves
+    /// were the same.
+    fn of(&mut self, leaves: Vec<BoxLeaf<PartTriangle>>, pad: f64) -> Option<Arc<ObjectBvh>> {
+        let pad = pad.to_bits();
+        let fingerprint = fingerprint(leaves.iter().map(|leaf| &leaf.item), pad);
+        let same = |shared: &&SharedBvh| {
+            shared.fingerprint == fingerprint
+                && shared.pad == pad
+                && shared.leaves.len() == leaves.len()
+                && (shared.leaves.iter().zip(&leaves))
+                    .all(|(a, b)| leaf_bits(a) == leaf_bits(&b.item))
+        };
+        if let Some(shared) = self.0.iter().find(same) {
+            return Some(Arc::clone(&shared.bvh));
+        }
+        let items = leaves.iter().map(|leaf| leaf.item).collect();
+        let bvh = Arc::new(FlatBvh::build(leaves)?);
+        self.0.push(SharedBvh {
+            fingerprint,
+            leaves: items,
+            pad,
+            bvh: Arc::clone(&bvh),
+        });
+        Some(bvh)
+    }
+}
+
 impl<'a> PreparedObject<'a> {
-    pub(crate) fn new(object: &'a Object, observer: Event, chains: &mut MipChains) -> Self {
+    pub(crate) fn new(
+        object: &'a Object,
+        observer: Event,
+        chains: &mut MipChains,
+        bvhs: &mut SharedBvhs,
+    ) -> Self {
         let meshes = || object.parts.iter().map(|part| &part.mesh);
         let extent = object.body_extent();
         let (lo, hi) = extent.bounds;
@@ -116,7 +199,7 @@ impl<'a> PreparedObject<'a> {
                 })
             })
             .collect();
-        let bvh = FlatBvh::build(leaves);
+        let bvh = bvhs.of(leaves, pad);
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
@@ -143,7 +226,7 @@ impl<'a> PreparedObject<'a> {
         from: f64,
         limit: f64,
     ) -> Option<(u32, u32, TriangleHit)> {
-        let (bvh, triangles) = self.bvh.as_ref()?;
+        let (bvh, triangles) = &**self.bvh.as_ref()?;
         let sheared = ShearedRay::new(ray.origin, ray.direction);
         let mut best: Option<(u32, u32, TriangleHit)> = None;
         // Nothing beyond the best hit (or `limit`) is searched for.
@@ -178,7 +261,7 @@ impl<'a> PreparedObject<'a> {
     /// thrusting one as a backward ray is ([`PreparedObject::closest_hit_moving`]).
     pub(crate) fn blocks(&self, at: Event, source: Event) -> bool {
         let (from, to) = (at.position, source.position);
-        let (Some((bvh, triangles)), length) = (self.bvh.as_ref(), (to - from).length()) else {
+        let (Some((bvh, triangles)), length) = (self.bvh.as_deref(), (to - from).length()) else {
             return false;
         };
         let direction = (to - from) / length;

@@ -25,7 +25,7 @@ use crate::group::{RestDirection, VelocityGroup};
 use crate::intersect::plane_hit;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
-use crate::prepared::{MipChains, PreparedObject};
+use crate::prepared::{MipChains, PreparedObject, SharedBvhs};
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
 use crate::sky::{StarLayer, sky_image_light, star_layer};
@@ -110,8 +110,9 @@ impl<'a> Tracer<'a> {
     pub fn new(scene: &'a Scene) -> Self {
         let observer = scene.observer.event();
         let mut chains = MipChains::default();
+        let mut bvhs = SharedBvhs::default();
         let objects: Vec<PreparedObject<'a>> = (scene.objects.iter())
-            .map(|object| PreparedObject::new(object, observer, &mut chains))
+            .map(|object| PreparedObject::new(object, observer, &mut chains, &mut bvhs))
             .collect();
         let velocity_groups = VelocityGroup::of_objects(&objects);
         Self {
@@ -167,7 +168,12 @@ impl<'a> Tracer<'a> {
             }
         };
         for (index, group) in self.velocity_groups.iter().enumerate() {
-            group.search(&self.objects, direction_in(index, group), &origin_of, &mut best);
+            group.search(
+                &self.objects,
+                direction_in(index, group),
+                &origin_of,
+                &mut best,
+            );
         }
         best.map(|hit| Hit { eye, ..hit })
     }
@@ -980,6 +986,30 @@ mod tests {
             .build()
             .unwrap();
         assert!(scene.objects.len() > 40);
+        assert_trace_is_a_search_of_every_triangle(&scene);
+    }
+
+    /// Objects holding the same triangles (one model placed twice by its frame's offset, and
+    /// once more moving) share one BVH, an object with other triangles has its own, and the
+    /// shared BVH finds what a search of every triangle finds for each of them.
+    #[test]
+    fn instances_of_one_model_share_a_bvh_and_trace_exactly() {
+        let (mut scene, _) = srt_scene::builtin::find_builtin("teaser")
+            .unwrap()
+            .build()
+            .unwrap();
+        let mut copy = scene.objects[0].clone();
+        copy.frame =
+            srt_physics::Frame::new(scene.objects[0].frame.beta(), DVec3::new(0.5, 2.0, -0.3))
+                .unwrap();
+        let mut moving = scene.objects[0].clone();
+        moving.frame = srt_physics::Frame::new(DVec3::new(0.0, 0.3, 0.0), DVec3::ZERO).unwrap();
+        scene.objects.extend([copy, moving]);
+        let tracer = Tracer::new(&scene);
+        let bvh = |index: usize| tracer.objects[index].bvh.as_ref().unwrap();
+        let last = scene.objects.len() - 1;
+        assert!(Arc::ptr_eq(bvh(0), bvh(last - 1)) && Arc::ptr_eq(bvh(0), bvh(last)));
+        assert!(!Arc::ptr_eq(bvh(0), bvh(1)));
         assert_trace_is_a_search_of_every_triangle(&scene);
     }
 

@@ -12,7 +12,7 @@
 //! leaf keeps.
 
 use bvh::aabb::{Aabb, Bounded};
-use bvh::bounding_hierarchy::BHShape;
+use bvh::bounding_hierarchy::{BHShape, BoundingHierarchy as _};
 use bvh::bvh::{Bvh, BvhNode};
 use glam::DVec3;
 use nalgebra::Point3;
@@ -102,7 +102,12 @@ impl FlatNode {
     #[inline]
     fn entry(&self, k: usize, origin: DVec3, inverse_direction: DVec3) -> Option<f64> {
         let widen = |v: [f32; 3]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
-        box_entry(origin, inverse_direction, widen(self.lo[k]), widen(self.hi[k]))
+        box_entry(
+            origin,
+            inverse_direction,
+            widen(self.lo[k]),
+            widen(self.hi[k]),
+        )
     }
 
     /// Whether the box of child `k` meets the box [`lo`, `hi`].
@@ -116,13 +121,21 @@ impl FlatNode {
 /// The largest f32 no greater than `x` (`x` itself where it is one).
 fn f32_below(x: f64) -> f32 {
     let rounded = x as f32;
-    if f64::from(rounded) > x { rounded.next_down() } else { rounded }
+    if f64::from(rounded) > x {
+        rounded.next_down()
+    } else {
+        rounded
+    }
 }
 
 /// The smallest f32 no less than `x`.
 fn f32_above(x: f64) -> f32 {
     let rounded = x as f32;
-    if f64::from(rounded) < x { rounded.next_up() } else { rounded }
+    if f64::from(rounded) < x {
+        rounded.next_up()
+    } else {
+        rounded
+    }
 }
 
 /// A binary BVH as the walks read it: built by the `bvh` crate (binned SAH), then laid out as
@@ -142,11 +155,12 @@ pub(crate) struct FlatBvh {
 impl FlatBvh {
     /// Builds the BVH over `leaves` and returns it with their items in leaf order (leaf `i` of
     /// the walks is the `i`-th item); `None` for no leaves.
-    pub(crate) fn build<T>(mut leaves: Vec<BoxLeaf<T>>) -> Option<(Self, Vec<T>)> {
+    pub(crate) fn build<T: Send>(mut leaves: Vec<BoxLeaf<T>>) -> Option<(Self, Vec<T>)> {
         if leaves.is_empty() {
             return None;
         }
-        let bvh = Bvh::build(&mut leaves);
+        // On all threads (the crate's rayon executor): the same tree as one thread builds.
+        let bvh = Bvh::build_par(&mut leaves);
         let mut order: Vec<usize> = Vec::with_capacity(leaves.len());
         let mut nodes: Vec<FlatNode> = Vec::with_capacity(leaves.len().saturating_sub(1));
         let root = match bvh.nodes[0] {
@@ -352,7 +366,9 @@ mod tests {
             bound
         });
         all.sort_by(|a, b| a.x.total_cmp(&b.x));
-        let row: Vec<DVec3> = (0..20).map(|i| DVec3::new(f64::from(i) * 2.0, 0.0, 0.0)).collect();
+        let row: Vec<DVec3> = (0..20)
+            .map(|i| DVec3::new(f64::from(i) * 2.0, 0.0, 0.0))
+            .collect();
         assert_eq!(all, row);
     }
 
@@ -362,7 +378,10 @@ mod tests {
     #[test]
     fn the_f32_boxes_hold_their_f64_boxes_and_the_box_query_finds_every_overlap() {
         for x in [0.1, -0.1, 1.0 / 3.0, 1e-30, -7.123_456_789_012_345e12, 0.0] {
-            assert!(f64::from(f32_below(x)) <= x && f64::from(f32_above(x)) >= x, "{x}");
+            assert!(
+                f64::from(f32_below(x)) <= x && f64::from(f32_above(x)) >= x,
+                "{x}"
+            );
         }
         let cubes: Vec<BoxLeaf<usize>> = (0..64)
             .map(|i| {
@@ -401,6 +420,9 @@ mod tests {
             popped.push(i);
         }
         popped.sort_unstable();
-        assert_eq!(popped, (0..(INLINE_DEPTH + 10) as Child).collect::<Vec<_>>());
+        assert_eq!(
+            popped,
+            (0..(INLINE_DEPTH + 10) as Child).collect::<Vec<_>>()
+        );
     }
 }
