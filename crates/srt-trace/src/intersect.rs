@@ -65,6 +65,36 @@ fn edge_function(p: DVec2, q: DVec2) -> f64 {
     if swapped { -e } else { e }
 }
 
+/// Whether the ray at the origin of the sheared frame passes through the triangle of sheared
+/// corners `a`, `b`, `c`: the watertight test's decision from its exact edge functions.
+fn passes_through_sheared([a, b, c]: [DVec2; 3]) -> bool {
+    let (u, v, w) = (
+        edge_function(b, c),
+        edge_function(c, a),
+        edge_function(a, b),
+    );
+    let mixed = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
+    !mixed && u + v + w != 0.0
+}
+
+/// The sign of the edge function p.x·q.y − p.y·q.x (`true`: positive) from its plain value
+/// fl(fl(p.x·q.y) − fl(p.y·q.x)), `None` where that is 0 (or NaN). Rounding is monotone:
+/// p.x·q.y > p.y·q.x gives fl(p.x·q.y) ≥ fl(p.y·q.x), and a difference of floats rounds to a
+/// value of its own sign, so a plain value that is not 0 has the exact value's sign — the sign
+/// [`edge_function`] gives. Only where the two products round to one value is the exact
+/// difference needed.
+#[inline]
+fn plain_edge_sign(p: DVec2, q: DVec2) -> Option<bool> {
+    let value = p.x * q.y - p.y * q.x;
+    if value > 0.0 {
+        Some(true)
+    } else if value < 0.0 {
+        Some(false)
+    } else {
+        None
+    }
+}
+
 /// A ray set up for Woop, Benthin and Wald's watertight test (JCGT 2(1), 2013): its origin and
 /// direction, the axis its direction is largest along (kz) and the two others, and the shear
 /// that takes its direction to that axis. Made once per ray, used for every triangle it meets.
@@ -103,19 +133,27 @@ impl ShearedRay {
     /// GPU twin: shaders/triangle.wgsl.
     #[inline]
     fn passes_through(&self, corners: &[DVec3; 3]) -> bool {
+        let [a, b, c] = self.sheared(corners);
+        // Mostly the plain products decide: where no edge function's plain value is 0, their
+        // signs are the exact values' ([`plain_edge_sign`]), and so is the answer; only where
+        // a plain value is 0 (the ray through an edge or corner, to rounding, or a degenerate
+        // triangle) is the exact test needed.
+        let signs = [(b, c), (c, a), (a, b)].map(|(p, q)| plain_edge_sign(p, q));
+        if let [Some(u), Some(v), Some(w)] = signs {
+            return u == v && v == w;
+        }
+        passes_through_sheared([a, b, c])
+    }
+
+    /// The triangle's corners relative to the origin in the ray's sheared frame (the ray along
+    /// its kz axis): x and y.
+    #[inline]
+    fn sheared(&self, corners: &[DVec3; 3]) -> [DVec2; 3] {
         let [kx, ky, kz] = self.axes;
-        let sheared = |corner: DVec3| {
+        corners.map(|corner| {
             let a = corner - self.origin;
             DVec2::new(a[kx] - self.shear.x * a[kz], a[ky] - self.shear.y * a[kz])
-        };
-        let [a, b, c] = corners.map(sheared);
-        let (u, v, w) = (
-            edge_function(b, c),
-            edge_function(c, a),
-            edge_function(a, b),
-        );
-        let mixed = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
-        !mixed && u + v + w != 0.0
+        })
     }
 
     /// The hit of the ray at ψ > 0 with the triangle (edges included, both faces): where
@@ -156,6 +194,83 @@ mod tests {
         assert_relative_eq!(hit.xi, 0.5);
         // From behind, too.
         assert!(intersect_triangle(DVec3::new(0.25, 0.5, -2.0), DVec3::Z, TRI).is_some());
+    }
+
+    /// The plain products' quick decision is the exact test's: on rays through triangles'
+    /// corners, through points of their edges, just beside them and anywhere, of triangles
+    /// large, tiny, far and degenerate; and a quick sign, where given, is the exact one, also
+    /// on points nearly in line with the origin (where about one plain value in twelve is 0
+    /// though the exact one is not).
+    #[test]
+    fn the_quick_decision_is_the_exact_ones() {
+        // A small deterministic generator (xorshift), so that the test sees the same rays on
+        // every machine.
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1_u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut quick, mut near) = (0, 0);
+        for case in 0..20_000 {
+            let scale = [1.0, 1e-6, 1e6][case % 3];
+            let centre = DVec3::new(next(), next(), next()) * [0.0, 10.0, 1e5][case / 3 % 3];
+            let mut corners = [0; 3].map(|_| centre + scale * DVec3::new(next(), next(), next()));
+            if case % 7 == 0 {
+                corners[2] = corners[0] + 0.5 * (corners[1] - corners[0]);
+            }
+            let origin = centre + DVec3::new(next(), next(), next()) * scale * 5.0;
+            let (s, t) = (next().abs(), next().abs());
+            let target = match case % 4 {
+                0 => corners[case / 4 % 3],
+                1 => corners[0] + s * (corners[1] - corners[0]),
+                2 => corners[1] + s * (corners[2] - corners[1]) + 1e-15 * scale * DVec3::X,
+                _ => corners[0] + s * (corners[1] - corners[0]) + t * (corners[2] - corners[0]),
+            };
+            let ray = ShearedRay::new(origin, target - origin);
+            let exact = passes_through_sheared(ray.sheared(&corners));
+            assert_eq!(ray.passes_through(&corners), exact, "case {case}");
+            let [a, b, c] = ray.sheared(&corners);
+            let mut decided = true;
+            for (p, q) in [(b, c), (c, a), (a, b)] {
+                let exact = edge_function(p, q);
+                match plain_edge_sign(p, q) {
+                    Some(positive) => assert!(
+                        exact != 0.0 && positive == (exact > 0.0),
+                        "case {case}: quick sign {positive} of an edge function of {exact:e}"
+                    ),
+                    None => decided = false,
+                }
+            }
+            (quick, near) = if decided {
+                (quick + 1, near)
+            } else {
+                (quick, near + 1)
+            };
+        }
+        // Both ways are taken.
+        assert!(
+            quick > 5_000 && near > 2_000,
+            "{quick} quick, {near} near an edge"
+        );
+        // Points nearly in line with the origin, whose edge function is a few ulps of its
+        // products or less: where the quick sign is given, it is right.
+        let mut given = 0;
+        for _ in 0..100_000 {
+            let p = DVec2::new(next(), next()) * 10_f64.powf(6.0 * next());
+            let perpendicular = DVec2::new(-p.y, p.x) * 10_f64.powf(-14.0 - 3.0 * next().abs());
+            let q = p * (3.0 * next()) + perpendicular;
+            let exact = edge_function(p, q);
+            if let Some(positive) = plain_edge_sign(p, q) {
+                assert!(
+                    exact != 0.0 && positive == (exact > 0.0),
+                    "{p} {q}: {exact:e}"
+                );
+                given += 1;
+            }
+        }
+        assert!(given > 10_000, "the quick sign was given {given} times");
     }
 
     #[test]
