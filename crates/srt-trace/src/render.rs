@@ -508,6 +508,10 @@ impl<'a> Tracer<'a> {
             Output::Radiance => colour,
         };
         let stars = self.stars_of((width, height, output), &value);
+        // Without a sky image or stars, what a ray that meets nothing sees is one colour, the
+        // same whatever its direction (the sum below, made once).
+        let missed = (self.scene.sky.image.is_none() && stars.is_empty())
+            .then(|| finish(background + value(&Arriving::Dark) + DVec3::ZERO));
         let band_height = rows.len() as u32;
         let work = match how {
             Rows::Timed(work) => Some(work),
@@ -537,57 +541,49 @@ impl<'a> Tracer<'a> {
                     return;
                 }
                 let samples = offsets.len();
-                let groups = self.velocity_groups.len();
-                let sample_point = |slot: usize| {
-                    let (x, offset) = (slot / samples, offsets[slot % samples]);
-                    (f64::from(x as u32) + offset.x, f64::from(y) + offset.y)
-                };
-                let (mut rays, mut directions) = (Vec::new(), Vec::new());
                 let (mut sum, mut first_object) = (DVec3::ZERO, 0);
-                let slots = width as usize * samples;
-                for start in (0..slots).step_by(RAY_BATCH) {
-                    let batch = start..(start + RAY_BATCH).min(slots);
-                    rays.clear();
-                    rays.extend(batch.clone().map(|slot| {
-                        let (sx, sy) = sample_point(slot);
-                        image_rays.ray(sx, sy)
-                    }));
-                    self.rest_directions(&rays, &mut directions);
-                    for (i, (slot, ray)) in batch.zip(&rays).enumerate() {
-                        let directions = &directions[i * groups..][..groups];
-                        let (x, k) = (slot / samples, slot % samples);
-                        let (sx, sy) = sample_point(slot);
-                        sum += match *ray {
-                            // Outside a fisheye's circle the image sees nothing: the background.
-                            None => finish(background),
-                            Some((eye, direction)) => {
-                                let hit = self.trace_with(eye, |group, _| directions[group]);
-                                if k == 0 {
-                                    first_object = hit.map_or(0, |h| h.object as u32 + 1);
-                                }
-                                finish(hit.map_or_else(
-                                    || {
-                                        let sky = value(&sky_image_light(self.scene, direction));
-                                        background + sky + stars.at(y as usize * width as usize + x)
-                                    },
-                                    |h| {
-                                        // A neighbour beyond the fisheye's rim: no footprint
-                                        // that way.
-                                        let neighbours = [(1.0, 0.0), (0.0, 1.0)].map(|step| {
-                                            image_rays.neighbour(sx, sy, step).unwrap_or(direction)
-                                        });
-                                        value(&self.light(&h, neighbours))
-                                    },
-                                ))
+                self.trace_row(&image_rays, y, width, &offsets, |sample, traced| {
+                    let Sample {
+                        x,
+                        k,
+                        point: (sx, sy),
+                    } = sample;
+                    sum += match traced {
+                        // Outside a fisheye's circle the image sees nothing: the background.
+                        None => finish(background),
+                        Some((direction, hit)) => {
+                            if k == 0 {
+                                first_object = hit.map_or(0, |h| h.object as u32 + 1);
                             }
-                        };
-                        if k + 1 == samples {
-                            colours[x] = sum / samples as f64;
-                            coverage[x] = first_object;
-                            (sum, first_object) = (DVec3::ZERO, 0);
+                            match (hit, missed) {
+                                (None, Some(missed)) => missed,
+                                (None, None) => {
+                                    let sky = value(&sky_image_light(self.scene, direction));
+                                    let star = stars.at(y as usize * width as usize + x);
+                                    finish(background + sky + star)
+                                }
+                                (Some(hit), _) => {
+                                    // A neighbour beyond the fisheye's rim: no footprint that
+                                    // way.
+                                    let neighbours = [(1.0, 0.0), (0.0, 1.0)].map(|step| {
+                                        image_rays.neighbour(sx, sy, step).unwrap_or(direction)
+                                    });
+                                    finish(value(&self.light(&hit, neighbours)))
+                                }
+                            }
                         }
+                    };
+                    if k + 1 == samples {
+                        // A pixel of one sample is that sample (x / 1 = x, bit for bit).
+                        colours[x] = if samples == 1 {
+                            sum
+                        } else {
+                            sum / samples as f64
+                        };
+                        coverage[x] = first_object;
+                        (sum, first_object) = (DVec3::ZERO, 0);
                     }
-                }
+                });
             },
         );
         if !finished {
@@ -600,6 +596,95 @@ impl<'a> Tracer<'a> {
             coverage,
         })
     }
+}
+
+impl Tracer<'_> {
+    /// Traces every sample of row `y` of a `width`-pixel picture (`offsets` within each pixel,
+    /// the pixel's samples in turn, pixels from the left) and gives each to `each` with its
+    /// viewing direction and hit (`None` where the picture sees nothing, outside a fisheye's
+    /// circle). The samples' rest-frame directions are computed [`RAY_BATCH`] at a time
+    /// ([`Tracer::rest_directions`]).
+    fn trace_row(
+        &self,
+        image_rays: &ImageRays,
+        y: u32,
+        width: u32,
+        offsets: &[DVec2],
+        mut each: impl FnMut(Sample, Option<(DVec3, Option<Hit>)>),
+    ) {
+        let samples = offsets.len();
+        let groups = self.velocity_groups.len();
+        let sample_at = |slot: usize| {
+            let (x, k) = (slot / samples, slot % samples);
+            let offset = offsets[k];
+            let point = (f64::from(x as u32) + offset.x, f64::from(y) + offset.y);
+            Sample { x, k, point }
+        };
+        let (mut rays, mut directions) = (Vec::new(), Vec::new());
+        let slots = width as usize * samples;
+        for start in (0..slots).step_by(RAY_BATCH) {
+            let batch = start..(start + RAY_BATCH).min(slots);
+            rays.clear();
+            rays.extend(batch.clone().map(|slot| {
+                let (sx, sy) = sample_at(slot).point;
+                image_rays.ray(sx, sy)
+            }));
+            self.rest_directions(&rays, &mut directions);
+            for (i, (slot, ray)) in batch.zip(&rays).enumerate() {
+                let directions = &directions[i * groups..][..groups];
+                let traced = ray.map(|(eye, direction)| {
+                    (
+                        direction,
+                        self.trace_with(eye, |group, _| directions[group]),
+                    )
+                });
+                each(sample_at(slot), traced);
+            }
+        }
+    }
+
+    /// What [`Tracer::render`] covers each pixel with (1 + the index of the object the pixel's
+    /// first sample hits, 0 for the background, [`RenderedImage::coverage`]), found by tracing
+    /// alone, nothing shaded: what tracing costs of a picture.
+    #[must_use]
+    pub fn coverage(&self, settings: RenderSettings) -> Vec<u32> {
+        let RenderSettings {
+            width,
+            height,
+            samples,
+        } = settings;
+        let image_rays = ImageRays::new(self.scene, width, height);
+        let offsets = sample_offsets(samples.max(1));
+        let rows: Vec<u32> = (0..height).collect();
+        let count = width as usize * height as usize;
+        let (mut coverage, mut unused) = (vec![0_u32; count], vec![(); count]);
+        rows_in_parallel_into(
+            &rows,
+            (&mut coverage, &mut unused),
+            width as usize,
+            &|_| {},
+            None,
+            None,
+            |y, (coverage, _)| {
+                self.trace_row(&image_rays, y, width, &offsets, |sample, traced| {
+                    if sample.k == 0 {
+                        coverage[sample.x] = traced
+                            .and_then(|(_, hit)| hit)
+                            .map_or(0, |hit| hit.object as u32 + 1);
+                    }
+                });
+            },
+        );
+        coverage
+    }
+}
+
+/// A sample of a row ([`Tracer::trace_row`]): its pixel, its number within the pixel and its
+/// point in the picture, in pixels from the top-left corner.
+struct Sample {
+    x: usize,
+    k: usize,
+    point: (f64, f64),
 }
 
 impl Tracer<'_> {
@@ -934,6 +1019,16 @@ mod tests {
             }
         }
         assert!(hits > 0 && hits < width * height, "{hits} pixels hit");
+        // Tracing alone covers the picture as the render does, with any sampling.
+        for samples in [1, 3] {
+            let settings = RenderSettings {
+                width,
+                height,
+                samples,
+            };
+            let rendered = tracer.render(settings, &|_| {}).coverage;
+            assert_eq!(tracer.coverage(settings), rendered, "{samples} samples");
+        }
         assert!(tracer.hit_at_pixel(width, height, width, 0).is_none());
         assert!(tracer.hit_at_pixel(0, 0, 0, 0).is_none());
     }
