@@ -262,6 +262,47 @@ fn marginal(
     Ok(median(full) - median(small))
 }
 
+/// The tracer's own costs of a picture, measured inside this process (medians of [`RUNS`],
+/// wall time): what the whole process's marginal time splits into.
+struct InProcess {
+    /// Building the tracer (its BVHs): [`Tracer::new`].
+    build: f64,
+    /// Tracing every pixel, nothing shaded ([`Tracer::coverage`]), on all threads.
+    tracing: f64,
+    /// The same on one thread.
+    tracing_one_thread: f64,
+    /// The display picture ([`Tracer::render`]): tracing and shading, on all threads.
+    picture: f64,
+}
+
+/// [`InProcess`] of `scene` at `width` × `height`, one sample per pixel.
+fn in_process(scene: &Scene, (width, height): (u32, u32)) -> anyhow::Result<InProcess> {
+    let settings = srt_trace::RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    let timed = |f: &dyn Fn()| {
+        let times: Vec<f64> = (0..RUNS)
+            .map(|_| {
+                let start = Instant::now();
+                f();
+                start.elapsed().as_secs_f64()
+            })
+            .collect();
+        median(times)
+    };
+    let build = timed(&|| drop(Tracer::new(scene)));
+    let tracer = Tracer::new(scene);
+    let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    Ok(InProcess {
+        build,
+        tracing: timed(&|| drop(tracer.coverage(settings))),
+        tracing_one_thread: timed(&|| one_thread.install(|| drop(tracer.coverage(settings)))),
+        picture: timed(&|| drop(tracer.render(settings, &|_| {}))),
+    })
+}
+
 /// `cargo xtask embree`: every case (or those whose name contains `only`) at each of `sizes`,
 /// one line each; fails where a hit mask agrees on fewer than [`LEAST_AGREEMENT`] of the pixels.
 ///
@@ -291,18 +332,28 @@ pub fn run(root: &Path, sizes: &[(u32, u32)], only: Option<&str>) -> anyhow::Res
             let anchor = anchor(root, &here)?;
             let srt_seconds =
                 marginal(&srt, &case.argument, (width, height), &here.join("srt.png"))?;
+            let own = in_process(&case.scene, (width, height))?;
             let per_thread = anchor.seconds / threads as f64;
             let above_floor = (anchor.seconds - anchor.floor) / threads as f64;
             println!(
                 "case={} size={width}x{height} triangles={triangles} embree_one_thread_ms={:.2} \
                  embree_floor_ms={:.2} threads={threads} srt_marginal_ms={:.2} ratio={:.2} \
-                 ratio_above_floor={:.2} hit={:.4} agreement={:.5}",
+                 ratio_above_floor={:.2} tracing_ms={:.2} ratio_tracing={:.2} shading_ms={:.2} \
+                 rest_ms={:.2} thread_speedup={:.2} build_ms={:.2} build_per_picture={:.2} \
+                 hit={:.4} agreement={:.5}",
                 case.name,
                 1e3 * anchor.seconds,
                 1e3 * anchor.floor,
                 1e3 * srt_seconds,
                 srt_seconds / per_thread,
                 srt_seconds / above_floor,
+                1e3 * own.tracing,
+                own.tracing / per_thread,
+                1e3 * (own.picture - own.tracing),
+                1e3 * (srt_seconds - own.picture),
+                own.tracing_one_thread / own.tracing,
+                1e3 * own.build,
+                own.build / own.picture,
                 anchor.hits,
                 anchor.agreement
             );
