@@ -92,73 +92,75 @@ pub(crate) struct PreparedObject<'a> {
 /// An object's BVH and its leaves' triangles, in leaf order.
 pub(crate) type ObjectBvh = (FlatBvh, Vec<PartTriangle>);
 
-/// The BVHs built for a scene's objects so far, each with the leaves it was built from:
-/// objects whose parts hold the same triangles at the same rest coordinates (bit for bit, with
-/// the same padding of their boxes) — instances of one model placed by their frames' `offset`s —
-/// share one BVH, built once (the BVH each would have built, so nothing traced changes).
+/// The BVHs built for a scene's objects so far, each with the parts it was built from:
+/// objects whose parts hold the same meshes (vertex positions bit for bit, the same
+/// triangles) with the same padding of their boxes — instances of one model placed by their
+/// frames' `offset`s — share one BVH, built once (the BVH each would have built, so nothing
+/// traced changes).
 #[derive(Default)]
-pub(crate) struct SharedBvhs(Vec<SharedBvh>);
+pub(crate) struct SharedBvhs<'a>(Vec<SharedBvh<'a>>);
 
 /// A BVH of [`SharedBvhs`] and what it was built from.
-struct SharedBvh {
-    /// [`fingerprint`] of the leaves and the padding.
+struct SharedBvh<'a> {
+    /// [`fingerprint`] of the parts and the padding.
     fingerprint: u64,
-    /// The leaves' triangles in the order given, and the padding's bits.
-    leaves: Vec<PartTriangle>,
+    parts: &'a [Part],
+    /// The padding's bits.
     pad: u64,
     bvh: Arc<ObjectBvh>,
 }
 
-/// The bits of a triangle leaf: its part and triangle, then its corners' coordinates.
-fn leaf_bits(leaf: &PartTriangle) -> [u64; 10] {
-    let [a, b, c] = leaf
-        .corners
-        .map(|corner| corner.to_array().map(f64::to_bits));
-    [
-        u64::from(leaf.part) << 32 | u64::from(leaf.triangle),
-        a[0],
-        a[1],
-        a[2],
-        b[0],
-        b[1],
-        b[2],
-        c[0],
-        c[1],
-        c[2],
-    ]
+/// The words a part's mesh is told by: its vertex positions' bits and its triangles' indices.
+fn mesh_words(part: &Part) -> impl Iterator<Item = u64> + '_ {
+    let positions = (part.mesh.positions().iter()).flat_map(|p| p.to_array().map(f64::to_bits));
+    let triangles = (part.mesh.triangles().iter())
+        .map(|&[a, b, c]| u64::from(a) | u64::from(b) << 21 ^ u64::from(c) << 42);
+    positions.chain(triangles)
 }
 
-/// A quick hash of leaves' bits (FxHash's multiply and rotate): equal leaves have equal
-/// fingerprints; equal fingerprints are checked bit by bit.
-fn fingerprint<'l>(leaves: impl Iterator<Item = &'l PartTriangle>, pad: u64) -> u64 {
-    leaves.fold(pad, |hash, leaf| {
-        (leaf_bits(leaf).iter()).fold(hash, |hash, &word| {
-            (hash.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
-        })
+/// A quick hash of parts' meshes and a padding (FxHash's multiply and rotate): equal meshes
+/// have equal fingerprints; equal fingerprints are checked bit by bit ([`same_meshes`]).
+fn fingerprint(parts: &[Part], pad: u64) -> u64 {
+    (parts.iter().flat_map(mesh_words)).fold(pad, |hash, word| {
+        (hash.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
     })
 }
 
-impl SharedBvhs {
-    /// The BVH over `leaves` (boxes padded by `pad`), built unless an earlier object's leaves
-    /// were the same.
-    fn of(&mut self, leaves: Vec<BoxLeaf<PartTriangle>>, pad: f64) -> Option<Arc<ObjectBvh>> {
+/// Whether two lists of parts hold the same meshes: positions bit for bit, the same triangles.
+fn same_meshes(a: &[Part], b: &[Part]) -> bool {
+    let bits = |p: &DVec3| p.to_array().map(f64::to_bits);
+    a.len() == b.len()
+        && a.iter().zip(b).all(|(a, b)| {
+            a.mesh.triangles() == b.mesh.triangles()
+                && a.mesh.positions().len() == b.mesh.positions().len()
+                && (a.mesh.positions().iter().zip(b.mesh.positions()))
+                    .all(|(p, q)| bits(p) == bits(q))
+        })
+}
+
+impl<'a> SharedBvhs<'a> {
+    /// The BVH over the triangles of `parts` (their boxes padded by `pad`): an earlier
+    /// object's where its parts held the same meshes, else built from `leaves()`.
+    fn of(
+        &mut self,
+        parts: &'a [Part],
+        pad: f64,
+        leaves: impl FnOnce() -> Vec<BoxLeaf<PartTriangle>>,
+    ) -> Option<Arc<ObjectBvh>> {
         let pad = pad.to_bits();
-        let fingerprint = fingerprint(leaves.iter().map(|leaf| &leaf.item), pad);
-        let same = |shared: &&SharedBvh| {
+        let fingerprint = fingerprint(parts, pad);
+        let same = |shared: &&SharedBvh<'a>| {
             shared.fingerprint == fingerprint
                 && shared.pad == pad
-                && shared.leaves.len() == leaves.len()
-                && (shared.leaves.iter().zip(&leaves))
-                    .all(|(a, b)| leaf_bits(a) == leaf_bits(&b.item))
+                && same_meshes(shared.parts, parts)
         };
         if let Some(shared) = self.0.iter().find(same) {
             return Some(Arc::clone(&shared.bvh));
         }
-        let items = leaves.iter().map(|leaf| leaf.item).collect();
-        let bvh = Arc::new(FlatBvh::build(leaves)?);
+        let bvh = Arc::new(FlatBvh::build(leaves())?);
         self.0.push(SharedBvh {
             fingerprint,
-            leaves: items,
+            parts,
             pad,
             bvh: Arc::clone(&bvh),
         });
@@ -171,7 +173,7 @@ impl<'a> PreparedObject<'a> {
         object: &'a Object,
         observer: Event,
         chains: &mut MipChains,
-        bvhs: &mut SharedBvhs,
+        bvhs: &mut SharedBvhs<'a>,
     ) -> Self {
         let meshes = || object.parts.iter().map(|part| &part.mesh);
         let extent = object.body_extent();
@@ -179,27 +181,29 @@ impl<'a> PreparedObject<'a> {
         // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
         // boxes, which slab tests can miss.
         let pad = 1e-9 * (hi - lo).length().max(1.0);
-        let leaves: Vec<BoxLeaf<PartTriangle>> = meshes()
-            .enumerate()
-            .flat_map(|(part, mesh)| {
-                (0..mesh.triangles().len()).map(move |i| {
-                    let corners = mesh.triangle_positions(i);
-                    let [a, b, c] = corners;
-                    let min = a.min(b).min(c) - pad;
-                    let max = a.max(b).max(c) + pad;
-                    BoxLeaf::new(
-                        min,
-                        max,
-                        PartTriangle {
-                            corners,
-                            part: part as u32,
-                            triangle: i as u32,
-                        },
-                    )
+        let leaves = || -> Vec<BoxLeaf<PartTriangle>> {
+            meshes()
+                .enumerate()
+                .flat_map(|(part, mesh)| {
+                    (0..mesh.triangles().len()).map(move |i| {
+                        let corners = mesh.triangle_positions(i);
+                        let [a, b, c] = corners;
+                        let min = a.min(b).min(c) - pad;
+                        let max = a.max(b).max(c) + pad;
+                        BoxLeaf::new(
+                            min,
+                            max,
+                            PartTriangle {
+                                corners,
+                                part: part as u32,
+                                triangle: i as u32,
+                            },
+                        )
+                    })
                 })
-            })
-            .collect();
-        let bvh = bvhs.of(leaves, pad);
+                .collect()
+        };
+        let bvh = bvhs.of(&object.parts, pad, leaves);
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),
