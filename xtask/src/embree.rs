@@ -265,8 +265,11 @@ fn marginal(
 /// The tracer's own costs of a picture, measured inside this process (medians of [`RUNS`],
 /// wall time): what the whole process's marginal time splits into.
 struct InProcess {
-    /// Building the tracer (its BVHs): [`Tracer::new`].
+    /// Building the tracer (its BVHs): [`Tracer::new`], the first of a process (no BVH kept
+    /// from an earlier tracer).
     build: f64,
+    /// The same for a later frame of the same scene (its BVHs kept from the last tracer).
+    build_next: f64,
     /// Tracing every pixel, nothing shaded ([`Tracer::coverage`]), on all threads.
     tracing: f64,
     /// The same on one thread.
@@ -292,11 +295,16 @@ fn in_process(scene: &Scene, (width, height): (u32, u32)) -> anyhow::Result<InPr
             .collect();
         median(times)
     };
-    let build = timed(&|| drop(Tracer::new(scene)));
+    let build = timed(&|| {
+        srt_trace::forget_kept_bvhs();
+        drop(Tracer::new(scene));
+    });
     let tracer = Tracer::new(scene);
+    let build_next = timed(&|| drop(Tracer::new(scene)));
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     Ok(InProcess {
         build,
+        build_next,
         tracing: timed(&|| drop(tracer.coverage(settings))),
         tracing_one_thread: timed(&|| one_thread.install(|| drop(tracer.coverage(settings)))),
         picture: timed(&|| drop(tracer.render(settings, &|_| {}))),
@@ -340,6 +348,7 @@ pub fn run(root: &Path, sizes: &[(u32, u32)], only: Option<&str>) -> anyhow::Res
                  embree_floor_ms={:.2} threads={threads} srt_marginal_ms={:.2} ratio={:.2} \
                  ratio_above_floor={:.2} tracing_ms={:.2} ratio_tracing={:.2} shading_ms={:.2} \
                  rest_ms={:.2} thread_speedup={:.2} build_ms={:.2} build_per_picture={:.2} \
+                 next_build_ms={:.2} \
                  hit={:.4} agreement={:.5}",
                 case.name,
                 1e3 * anchor.seconds,
@@ -354,6 +363,7 @@ pub fn run(root: &Path, sizes: &[(u32, u32)], only: Option<&str>) -> anyhow::Res
                 own.tracing_one_thread / own.tracing,
                 1e3 * own.build,
                 own.build / own.picture,
+                1e3 * own.build_next,
                 anchor.hits,
                 anchor.agreement
             );

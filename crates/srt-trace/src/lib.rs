@@ -27,6 +27,7 @@ mod prepared;
 mod render;
 mod seen;
 mod shade;
+mod shared;
 mod sky;
 mod texture;
 mod walk;
@@ -44,6 +45,7 @@ pub use shade::{
     Arriving, GREY_WEIGHTS, Illumination, MAX_SOURCES, Sources, SurfacePoint, arriving,
     arriving_unless_shadowed, grey_value, shade,
 };
+pub use shared::forget_kept_bvhs;
 pub use sky::{
     StarImage, StarLayer, project, sky_image_colour, sky_image_light, star_colour, star_image,
     star_layer, star_light, tent_splat,

@@ -13,6 +13,7 @@ use srt_scene::mip::MipChain;
 use srt_scene::{Object, Part, Texture};
 
 use crate::intersect::{ShearedRay, TriangleHit};
+use crate::shared::SharedBvhs;
 use crate::walk::{BoxLeaf, FlatBvh, box_entry, nearest_first};
 
 /// A triangle of one of an object's parts, as a leaf of the object's BVH: its corners (the
@@ -92,82 +93,6 @@ pub(crate) struct PreparedObject<'a> {
 /// An object's BVH and its leaves' triangles, in leaf order.
 pub(crate) type ObjectBvh = (FlatBvh, Vec<PartTriangle>);
 
-/// The BVHs built for a scene's objects so far, each with the parts it was built from:
-/// objects whose parts hold the same meshes (vertex positions bit for bit, the same
-/// triangles) with the same padding of their boxes — instances of one model placed by their
-/// frames' `offset`s — share one BVH, built once (the BVH each would have built, so nothing
-/// traced changes).
-#[derive(Default)]
-pub(crate) struct SharedBvhs<'a>(Vec<SharedBvh<'a>>);
-
-/// A BVH of [`SharedBvhs`] and what it was built from.
-struct SharedBvh<'a> {
-    /// [`fingerprint`] of the parts and the padding.
-    fingerprint: u64,
-    parts: &'a [Part],
-    /// The padding's bits.
-    pad: u64,
-    bvh: Arc<ObjectBvh>,
-}
-
-/// The words a part's mesh is told by: its vertex positions' bits and its triangles' indices.
-fn mesh_words(part: &Part) -> impl Iterator<Item = u64> + '_ {
-    let positions = (part.mesh.positions().iter()).flat_map(|p| p.to_array().map(f64::to_bits));
-    let triangles = (part.mesh.triangles().iter())
-        .map(|&[a, b, c]| u64::from(a) | u64::from(b) << 21 ^ u64::from(c) << 42);
-    positions.chain(triangles)
-}
-
-/// A quick hash of parts' meshes and a padding (FxHash's multiply and rotate): equal meshes
-/// have equal fingerprints; equal fingerprints are checked bit by bit ([`same_meshes`]).
-fn fingerprint(parts: &[Part], pad: u64) -> u64 {
-    (parts.iter().flat_map(mesh_words)).fold(pad, |hash, word| {
-        (hash.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
-    })
-}
-
-/// Whether two lists of parts hold the same meshes: positions bit for bit, the same triangles.
-fn same_meshes(a: &[Part], b: &[Part]) -> bool {
-    let bits = |p: &DVec3| p.to_array().map(f64::to_bits);
-    a.len() == b.len()
-        && a.iter().zip(b).all(|(a, b)| {
-            a.mesh.triangles() == b.mesh.triangles()
-                && a.mesh.positions().len() == b.mesh.positions().len()
-                && (a.mesh.positions().iter().zip(b.mesh.positions()))
-                    .all(|(p, q)| bits(p) == bits(q))
-        })
-}
-
-impl<'a> SharedBvhs<'a> {
-    /// The BVH over the triangles of `parts` (their boxes padded by `pad`): an earlier
-    /// object's where its parts held the same meshes, else built from `leaves()`.
-    fn of(
-        &mut self,
-        parts: &'a [Part],
-        pad: f64,
-        leaves: impl FnOnce() -> Vec<BoxLeaf<PartTriangle>>,
-    ) -> Option<Arc<ObjectBvh>> {
-        let pad = pad.to_bits();
-        let fingerprint = fingerprint(parts, pad);
-        let same = |shared: &&SharedBvh<'a>| {
-            shared.fingerprint == fingerprint
-                && shared.pad == pad
-                && same_meshes(shared.parts, parts)
-        };
-        if let Some(shared) = self.0.iter().find(same) {
-            return Some(Arc::clone(&shared.bvh));
-        }
-        let bvh = Arc::new(FlatBvh::build(leaves())?);
-        self.0.push(SharedBvh {
-            fingerprint,
-            parts,
-            pad,
-            bvh: Arc::clone(&bvh),
-        });
-        Some(bvh)
-    }
-}
-
 impl<'a> PreparedObject<'a> {
     pub(crate) fn new(
         object: &'a Object,
@@ -181,29 +106,32 @@ impl<'a> PreparedObject<'a> {
         // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
         // boxes, which slab tests can miss.
         let pad = 1e-9 * (hi - lo).length().max(1.0);
-        let leaves = || -> Vec<BoxLeaf<PartTriangle>> {
-            meshes()
+        // Built over leaves of (part, triangle) only (small, for the builder's many passes),
+        // their corners copied in leaf order after.
+        let build = || -> Option<ObjectBvh> {
+            let leaves: Vec<BoxLeaf<(u32, u32)>> = meshes()
                 .enumerate()
                 .flat_map(|(part, mesh)| {
                     (0..mesh.triangles().len()).map(move |i| {
-                        let corners = mesh.triangle_positions(i);
-                        let [a, b, c] = corners;
-                        let min = a.min(b).min(c) - pad;
-                        let max = a.max(b).max(c) + pad;
-                        BoxLeaf::new(
-                            min,
-                            max,
-                            PartTriangle {
-                                corners,
-                                part: part as u32,
-                                triangle: i as u32,
-                            },
-                        )
+                        let [a, b, c] = mesh.triangle_positions(i);
+                        let (min, max) = (a.min(b).min(c) - pad, a.max(b).max(c) + pad);
+                        BoxLeaf::new(min, max, (part as u32, i as u32))
                     })
                 })
-                .collect()
+                .collect();
+            let (bvh, ids) = FlatBvh::build(leaves)?;
+            let triangles = (ids.into_iter())
+                .map(|(part, triangle)| PartTriangle {
+                    corners: object.parts[part as usize]
+                        .mesh
+                        .triangle_positions(triangle as usize),
+                    part,
+                    triangle,
+                })
+                .collect();
+            Some((bvh, triangles))
         };
-        let bvh = bvhs.of(&object.parts, pad, leaves);
+        let bvh = bvhs.of(&object.parts, pad, build);
         Self {
             frame: object.frame,
             observer_rest: object.frame.to_rest(observer),

@@ -25,9 +25,10 @@ use crate::group::{RestDirection, VelocityGroup};
 use crate::intersect::plane_hit;
 use crate::moving::{local_rest_frame, moving_normal};
 pub use crate::prepared::Hit;
-use crate::prepared::{MipChains, PreparedObject, SharedBvhs};
+use crate::prepared::{MipChains, PreparedObject};
 use crate::seen::SeenEvent;
 use crate::shade::{Arriving, Illumination, SurfacePoint, arriving_unless_shadowed};
+use crate::shared::SharedBvhs;
 use crate::sky::{StarLayer, sky_image_light, star_layer};
 use crate::texture::sample_trilinear;
 
@@ -110,10 +111,11 @@ impl<'a> Tracer<'a> {
     pub fn new(scene: &'a Scene) -> Self {
         let observer = scene.observer.event();
         let mut chains = MipChains::default();
-        let mut bvhs = SharedBvhs::default();
+        let mut bvhs = SharedBvhs::begin();
         let objects: Vec<PreparedObject<'a>> = (scene.objects.iter())
             .map(|object| PreparedObject::new(object, observer, &mut chains, &mut bvhs))
             .collect();
+        bvhs.finish();
         let velocity_groups = VelocityGroup::of_objects(&objects);
         Self {
             scene,
@@ -1106,6 +1108,36 @@ mod tests {
         assert!(Arc::ptr_eq(bvh(0), bvh(last - 1)) && Arc::ptr_eq(bvh(0), bvh(last)));
         assert!(!Arc::ptr_eq(bvh(0), bvh(1)));
         assert_trace_is_a_search_of_every_triangle(&scene);
+    }
+
+    /// A tracer made after another of the same scene (the next frame) takes its BVHs, not
+    /// new ones; a scene whose model is scaled (other triangles) gets its own, and traces
+    /// exactly.
+    #[test]
+    fn the_next_tracer_of_a_scene_takes_the_last_ones_bvhs() {
+        let (scene, _) = srt_scene::builtin::find_builtin("teaser")
+            .unwrap()
+            .build()
+            .unwrap();
+        let first = Tracer::new(&scene);
+        let next = Tracer::new(&scene);
+        for (a, b) in first.objects.iter().zip(&next.objects) {
+            assert!(Arc::ptr_eq(
+                a.bvh.as_ref().unwrap(),
+                b.bvh.as_ref().unwrap()
+            ));
+        }
+        let mut scaled = scene.clone();
+        for part in &mut scaled.objects[0].parts {
+            let mesh = part.mesh.clone();
+            part.mesh = mesh
+                .transformed(glam::DMat4::from_scale(DVec3::splat(1.25)))
+                .unwrap();
+        }
+        let other = Tracer::new(&scaled);
+        let (a, b) = (&first.objects[0].bvh, &other.objects[0].bvh);
+        assert!(!Arc::ptr_eq(a.as_ref().unwrap(), b.as_ref().unwrap()));
+        assert_trace_is_a_search_of_every_triangle(&scaled);
     }
 
     /// [`Tracer::trace`] of `scene` through a grid of pixel centres equals the closest hit of a
