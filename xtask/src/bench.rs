@@ -329,7 +329,27 @@ fn measure_case(
         traced_objects: renderer.auto_traced_objects(&case.scene),
         objects: object_load_records(renderer, &case.scene),
         measurement,
+        cpu_ms: None,
     })
+}
+
+/// The exact CPU reference's frame of `scene` at `width` × `height`, one sample per pixel:
+/// median of three renders by one tracer, made before (a sequence of frames keeps its BVHs), ms.
+fn cpu_frame_ms(scene: &Scene, (width, height): (u32, u32)) -> f64 {
+    let tracer = Tracer::new(scene);
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 1,
+    };
+    let times = (0..3)
+        .map(|_| {
+            let start = Instant::now();
+            drop(tracer.render(settings, &|_| {}));
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    median(times)
 }
 
 /// What `auto` weighs of each of `scene`'s objects with `renderer`, as the results keep it.
@@ -391,8 +411,14 @@ pub fn run_object_loads(input: &Path, output: &Path) -> anyhow::Result<()> {
 
 /// A static case's report line.
 fn case_text(case: &CaseResult) -> String {
+    let cpu = case.cpu_ms.map_or_else(String::new, |cpu_ms| {
+        format!(
+            " cpu_ms={cpu_ms:.2} cpu_over_polygon={:.2}",
+            cpu_ms / case.measurement.polygon_ms
+        )
+    });
     format!(
-        "scene={} size={}x{} tris={} {}",
+        "scene={} size={}x{} tris={} {}{cpu}",
         case.name,
         case.width,
         case.height,
@@ -641,7 +667,7 @@ fn full_sky_case() -> anyhow::Result<Case> {
 
 /// Times the full-sky line at [`FULL_SKY_SIZE`]: the ray tracer and `auto` (which traces every
 /// object there) taking turns, their fragments against the covered pixels, and the CPU
-/// reference's render of the same frame (median of three, its BVHs built once before).
+/// reference's frame ([`cpu_frame_ms`]).
 fn full_sky(ctx: &GpuContext, frames: u32) -> anyhow::Result<FullSkyResult> {
     let case = full_sky_case()?;
     let scene = &case.scene;
@@ -649,20 +675,14 @@ fn full_sky(ctx: &GpuContext, frames: u32) -> anyhow::Result<FullSkyResult> {
     let mut renderer = GpuRenderer::new(ctx, scene, width, height)?;
     let [(rt_ms, _), (auto_ms, _)] =
         frame_times(ctx, &renderer, scene, [Method::Rt, Method::Auto], frames)?;
-    let tracer = Tracer::new(scene);
+    let cpu_ms = cpu_frame_ms(scene, (width, height));
     let settings = RenderSettings {
         width,
         height,
         samples: 1,
     };
-    let mut cpu_times = Vec::new();
-    let mut covered = 0;
-    for _ in 0..3 {
-        let start = Instant::now();
-        let image = tracer.render(settings, &|_| {});
-        cpu_times.push(start.elapsed().as_secs_f64() * 1e3);
-        covered = image.coverage.iter().filter(|&&c| c != 0).count().max(1);
-    }
+    let coverage = Tracer::new(scene).coverage(settings);
+    let covered = coverage.iter().filter(|&&c| c != 0).count().max(1);
     renderer.set_fragment_counting(true);
     let counts = renderer
         .render(ctx, scene, Method::Rt, FootprintShape::Hull)?
@@ -677,7 +697,7 @@ fn full_sky(ctx: &GpuContext, frames: u32) -> anyhow::Result<FullSkyResult> {
         triangles: scene.triangle_count(),
         auto_ms,
         rt_ms,
-        cpu_ms: median(cpu_times),
+        cpu_ms,
         overdraw_rt: counts.run as f64 / covered as f64,
         shaded_per_pixel: counts.shaded as f64 / covered as f64,
     })
@@ -698,7 +718,8 @@ fn static_results(
     for case in static_cases.iter().filter(|c| selected(&c.name)) {
         for &size in sizes {
             let renderer = kept.for_scene(ctx, &case.scene, size)?;
-            let result = measure_case(ctx, renderer, case, frames)?;
+            let mut result = measure_case(ctx, renderer, case, frames)?;
+            result.cpu_ms = Some(cpu_frame_ms(&case.scene, size));
             let loads: Vec<String> = result
                 .objects
                 .iter()

@@ -67,8 +67,7 @@ pub fn compare(old: &Results, new: &Results) -> String {
 fn table(matched: &[(&CaseResult, CaseResult)]) -> String {
     let mut text = "\n| scene | size |".to_owned();
     let mut rule = "|---|---|".to_owned();
-    for method in METHODS {
-        let name = method_name(method);
+    for name in METHODS.map(method_name).into_iter().chain(["cpu"]) {
         let _ = write!(text, " {name} old ms | {name} new ms | {name} new / old |");
         rule += "---:|---:|---:|";
     }
@@ -78,6 +77,13 @@ fn table(matched: &[(&CaseResult, CaseResult)]) -> String {
         for method in METHODS {
             let (a, b) = (before.measurement.ms(method), after.measurement.ms(method));
             let _ = write!(text, " {a:.2} | {b:.2} | {:.2} |", b / a);
+        }
+        // The CPU reference's frame, where both runs timed it.
+        match (before.cpu_ms, after.cpu_ms) {
+            (Some(a), Some(b)) => {
+                let _ = write!(text, " {a:.2} | {b:.2} | {:.2} |", b / a);
+            }
+            _ => text += " — | — | — |",
         }
         text.push('\n');
     }

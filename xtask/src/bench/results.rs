@@ -123,6 +123,11 @@ pub struct CaseResult {
     /// The times and counts.
     #[serde(flatten)]
     pub measurement: Measurement,
+    /// The exact CPU reference's frame (srt-trace on all threads, its tracer made before, as
+    /// a sequence of frames keeps it), median of three, ms; `None` where it was not timed (a
+    /// sweep's frames, files written before it was).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_ms: Option<f64>,
 }
 
 /// An object's [`srt_gpu::auto::ObjectLoad`] as the results file keeps it.
@@ -471,6 +476,7 @@ pub mod tests {
             traced_objects: 0,
             objects: Vec::new(),
             measurement,
+            cpu_ms: None,
         }
     }
 
