@@ -169,7 +169,7 @@ impl ShearedRay {
 }
 
 /// The hit of the ray `origin + ψ·direction`, ψ > 0, with the triangle (edges included, both
-/// faces): [`ShearedRay::intersect`] of the ray made for this one triangle.
+/// faces): the watertight test of the ray set up for this one triangle, then [`plane_hit`].
 #[must_use]
 pub fn intersect_triangle(
     origin: DVec3,
