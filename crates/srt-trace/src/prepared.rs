@@ -13,21 +13,8 @@ use srt_scene::mip::MipChain;
 use srt_scene::{Object, Part, Texture};
 
 use crate::intersect::{ShearedRay, TriangleHit};
-use crate::shared::SharedBvhs;
+use crate::shared::{ObjectBvh, PartTriangle, SharedBvhs};
 use crate::walk::{BoxLeaf, FlatBvh, box_entry, nearest_first};
-
-/// A triangle of one of an object's parts, as a leaf of the object's BVH: its corners (the
-/// mesh's, copied in the order the BVH's leaves are laid out, so that a walk reads them side by
-/// side and without the mesh's index) and where it comes from.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PartTriangle {
-    /// The corners in the object's rest coordinates ([`srt_scene::Mesh::triangle_positions`]).
-    pub(crate) corners: [DVec3; 3],
-    /// The part.
-    pub(crate) part: u32,
-    /// The triangle in the part's mesh.
-    pub(crate) triangle: u32,
-}
 
 /// The mip chains of a scene's textures, each made once however many parts share its texture
 /// (the scene's builder shares one texture among the parts that describe the same one).
@@ -89,9 +76,6 @@ pub(crate) struct PreparedObject<'a> {
     pub(crate) bounds: (DVec3, DVec3),
     pub(crate) wireframe: Option<f64>,
 }
-
-/// An object's BVH and its leaves' triangles, in leaf order.
-pub(crate) type ObjectBvh = (FlatBvh, Vec<PartTriangle>);
 
 impl<'a> PreparedObject<'a> {
     pub(crate) fn new(

@@ -1,4 +1,4 @@
-//! BVHs shared: by the objects of one scene whose parts hold the same meshes (instances of
+//! Objects' BVHs ([`ObjectBvh`]: the tree and its leaves' triangles), shared: by the objects of one scene whose parts hold the same meshes (instances of
 //! one model placed by their frames' `offset`s), and kept from one tracer to the next, so that
 //! a sequence of frames (an animation, the viewer's loop, `srt.Renderer`, the web page's
 //! worker) builds each object's BVH once. A BVH is reused only where it is the one the object
@@ -10,7 +10,23 @@ use std::sync::{Arc, Mutex, PoisonError};
 use glam::DVec3;
 use srt_scene::Part;
 
-use crate::prepared::{ObjectBvh, PartTriangle};
+use crate::walk::FlatBvh;
+
+/// A triangle of one of an object's parts, as a leaf of the object's BVH: its corners (the
+/// mesh's, copied in the order the BVH's leaves are laid out, so that a walk reads them side by
+/// side and without the mesh's index) and where it comes from.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PartTriangle {
+    /// The corners in the object's rest coordinates ([`srt_scene::Mesh::triangle_positions`]).
+    pub(crate) corners: [DVec3; 3],
+    /// The part.
+    pub(crate) part: u32,
+    /// The triangle in the part's mesh.
+    pub(crate) triangle: u32,
+}
+
+/// An object's BVH and its leaves' triangles, in leaf order.
+pub(crate) type ObjectBvh = (FlatBvh, Vec<PartTriangle>);
 
 /// The BVHs of a scene's objects as its tracer is made: those built or found so far for this
 /// scene, by the parts they were made for, and the generation of tracers this one is.
