@@ -15,7 +15,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use glam::{DVec2, DVec3, DVec4};
 use rayon::prelude::*;
-use srt_color::{RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
+use srt_color::{RadianceScale, RadianceTable, TemperatureLut, quantize_8bit, srgb_decode};
 use srt_physics::{Event, FourVelocity, RetardedLight};
 use srt_scene::{Scene, ViewRays};
 use web_time::Instant;
@@ -491,29 +491,7 @@ impl<'a> Tracer<'a> {
         );
         let image_rays = ImageRays::new(self.scene, width, height);
         let offsets = sample_offsets(samples.max(1));
-        // The radiance table (built once per process, as long as the colour table) only for
-        // radiance: a display picture need not wait for it.
-        let radiance = (output == Output::Radiance).then(|| {
-            let table = RadianceTable::shared();
-            (table, self.scene.radiance_scale(table))
-        });
-        let value = |light: &Arriving| match &radiance {
-            None => light.display(self.lut, self.scene.exposure),
-            Some((table, scale)) => light.radiance(table, scale),
-        };
-        let background = match output {
-            Output::Display => self.scene.background,
-            Output::Radiance => self.scene.background.map(srgb_decode),
-        };
-        let finish = |colour: DVec3| match output {
-            Output::Display => colour.clamp(DVec3::ZERO, DVec3::ONE),
-            Output::Radiance => colour,
-        };
-        let stars = self.stars_of((width, height, output), &value);
-        // Without a sky image or stars, what a ray that meets nothing sees is one colour, the
-        // same whatever its direction (the sum below, made once).
-        let missed = (self.scene.sky.image.is_none() && stars.is_empty())
-            .then(|| finish(background + value(&Arriving::Dark) + DVec3::ZERO));
+        let colouring = Colouring::new(self, (width, height), output);
         let band_height = rows.len() as u32;
         let work = match how {
             Rows::Timed(work) => Some(work),
@@ -550,31 +528,12 @@ impl<'a> Tracer<'a> {
                         k,
                         point: (sx, sy),
                     } = sample;
-                    sum += match traced {
-                        // Outside a fisheye's circle the image sees nothing: the background.
-                        None => finish(background),
-                        Some((direction, hit)) => {
-                            if k == 0 {
-                                first_object = hit.map_or(0, |h| h.object as u32 + 1);
-                            }
-                            match (hit, missed) {
-                                (None, Some(missed)) => missed,
-                                (None, None) => {
-                                    let sky = value(&sky_image_light(self.scene, direction));
-                                    let star = stars.at(y as usize * width as usize + x);
-                                    finish(background + sky + star)
-                                }
-                                (Some(hit), _) => {
-                                    // A neighbour beyond the fisheye's rim: no footprint that
-                                    // way.
-                                    let neighbours = [(1.0, 0.0), (0.0, 1.0)].map(|step| {
-                                        image_rays.neighbour(sx, sy, step).unwrap_or(direction)
-                                    });
-                                    finish(value(&self.light(&hit, neighbours)))
-                                }
-                            }
-                        }
-                    };
+                    if k == 0 {
+                        first_object =
+                            (traced.and_then(|(_, hit)| hit)).map_or(0, |h| h.object as u32 + 1);
+                    }
+                    let pixel = y as usize * width as usize + x;
+                    sum += colouring.sample(traced, &image_rays, (sx, sy), pixel);
                     if k + 1 == samples {
                         // A pixel of one sample is that sample (x / 1 = x, bit for bit).
                         colours[x] = if samples == 1 {
@@ -597,6 +556,94 @@ impl<'a> Tracer<'a> {
             pixels,
             coverage,
         })
+    }
+}
+
+/// How a picture's traced samples become its values: the output's map from light to value,
+/// its background, the stars' light on its pixels, and the one colour a ray that meets nothing
+/// shows where there is one (no sky image, no stars).
+struct Colouring<'t, 'a> {
+    tracer: &'t Tracer<'a>,
+    output: Output,
+    /// The radiance table and the scene's scale on it, for radiance output.
+    radiance: Option<(&'static RadianceTable, RadianceScale)>,
+    background: DVec3,
+    stars: Arc<StarLayer>,
+    missed: Option<DVec3>,
+}
+
+impl<'t, 'a> Colouring<'t, 'a> {
+    /// The colouring of `tracer`'s pictures of `size` for `output`.
+    fn new(tracer: &'t Tracer<'a>, size: (u32, u32), output: Output) -> Self {
+        let scene = tracer.scene;
+        // The radiance table (built once per process, as long as the colour table) only for
+        // radiance: a display picture need not wait for it.
+        let radiance = (output == Output::Radiance).then(|| {
+            let table = RadianceTable::shared();
+            (table, scene.radiance_scale(table))
+        });
+        let background = match output {
+            Output::Display => scene.background,
+            Output::Radiance => scene.background.map(srgb_decode),
+        };
+        let mut colouring = Self {
+            tracer,
+            output,
+            radiance,
+            background,
+            stars: Arc::default(),
+            missed: None,
+        };
+        colouring.stars = tracer.stars_of((size.0, size.1, output), &|l| colouring.value(l));
+        // Without a sky image or stars, what a ray that meets nothing sees is one colour, the
+        // same whatever its direction (the sum `sample` makes, made once).
+        colouring.missed = (scene.sky.image.is_none() && colouring.stars.is_empty())
+            .then(|| colouring.finish(background + colouring.value(&Arriving::Dark) + DVec3::ZERO));
+        colouring
+    }
+
+    /// The value of `light` in the output: display colour or radiance.
+    fn value(&self, light: &Arriving) -> DVec3 {
+        match &self.radiance {
+            None => light.display(self.tracer.lut, self.tracer.scene.exposure),
+            Some((table, scale)) => light.radiance(table, scale),
+        }
+    }
+
+    /// A sample's value as it is summed into its pixel: clamped to [0, 1] for display.
+    fn finish(&self, colour: DVec3) -> DVec3 {
+        match self.output {
+            Output::Display => colour.clamp(DVec3::ZERO, DVec3::ONE),
+            Output::Radiance => colour,
+        }
+    }
+
+    /// The value of a sample at `point` of pixel number `pixel` (row-major), traced as
+    /// [`Tracer::trace_row`] gives it (`None`: the picture sees nothing there).
+    fn sample(
+        &self,
+        traced: Option<(DVec3, Option<Hit>)>,
+        image_rays: &ImageRays,
+        (sx, sy): (f64, f64),
+        pixel: usize,
+    ) -> DVec3 {
+        let Some((direction, hit)) = traced else {
+            // Outside a fisheye's circle the image sees nothing: the background.
+            return self.finish(self.background);
+        };
+        match (hit, self.missed) {
+            (None, Some(missed)) => missed,
+            (None, None) => {
+                let sky = self.value(&sky_image_light(self.tracer.scene, direction));
+                self.finish(self.background + sky + self.stars.at(pixel))
+            }
+            (Some(hit), _) => {
+                // A neighbour beyond the fisheye's rim: no footprint that way.
+                let neighbours = [(1.0, 0.0), (0.0, 1.0)]
+                    .map(|step| image_rays.neighbour(sx, sy, step).unwrap_or(direction));
+                self.finish(self.value(&self.tracer.light(&hit, neighbours)))
+            }
+        }
     }
 }
 
