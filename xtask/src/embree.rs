@@ -42,33 +42,40 @@ struct EmbreeCase {
     scene: Scene,
 }
 
+/// A scene file's observer at `position`, looking at the origin, z up, with a 45° field.
+fn observer_toml(name: &str, position: [f64; 3]) -> String {
+    let [x, y, z] = position;
+    format!(
+        "name = \"{name}\"\n[observer]\nposition = [{x:?}, {y:?}, {z:?}]\n\
+         look_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, 1.0]\nfov_y_deg = 45.0\n"
+    )
+}
+
+/// A scene file's object: the model at `model`, `fit`, at rest with its rest frame's origin at
+/// `offset`.
+fn engine_toml_object(name: &str, model: &Path, offset: [f64; 3]) -> String {
+    let [x, y, z] = offset;
+    format!(
+        "[[object]]\nname = \"{name}\"\nfit = true\noffset = [{x:?}, {y:?}, {z:?}]\n\
+         [object.shape]\ntype = \"model\"\npath = \"{}\"\n",
+        model.display()
+    )
+}
+
 /// The 2CylinderEngine of the assimp corpus, `fit`, at rest, seen from (0, −2.6, 0) along +y
 /// with a 45° field: the issue's setting.
 fn engine_toml(model: &Path) -> String {
-    format!(
-        "name = \"engine-at-rest\"\n\
-         [observer]\nposition = [0.0, -2.6, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, 1.0]\n\
-         fov_y_deg = 45.0\n\
-         [[object]]\nname = \"engine\"\nshape = {{ type = \"model\", path = \"{}\" }}\nfit = true\n",
-        model.display()
-    )
+    observer_toml("engine-at-rest", [0.0, -2.6, 0.0])
+        + &engine_toml_object("engine", model, [0.0; 3])
 }
 
 /// Nine engines at rest, `fit`, on a 3 × 3 grid facing the observer at (0, −9, 0) (1.09 M
 /// triangles, one BVH shared by all nine): the issue's large scene.
 fn nine_engines_toml(model: &Path) -> String {
-    let mut text = String::from(
-        "name = \"nine-engines\"\n\
-         [observer]\nposition = [0.0, -9.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, 1.0]\n\
-         fov_y_deg = 45.0\n",
-    );
+    let mut text = observer_toml("nine-engines", [0.0, -9.0, 0.0]);
     for (row, z) in [2.2, 0.0, -2.2].into_iter().enumerate() {
         for (column, x) in [-3.0, 0.0, 3.0].into_iter().enumerate() {
-            text += &format!(
-                "[[object]]\nname = \"engine {row}{column}\"\n\
-                 shape = {{ type = \"model\", path = \"{}\" }}\nfit = true\noffset = [{x}, 0.0, {z}]\n",
-                model.display()
-            );
+            text += &engine_toml_object(&format!("engine {row}{column}"), model, [x, 0.0, z]);
         }
     }
     text
