@@ -289,6 +289,9 @@ fn write_png(
     let mut encoder = png::Encoder::new(writer, width, height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
+    // fdeflate's PNG-tuned compressor: a 1920 × 1080 picture in a few milliseconds, where the
+    // default zlib-style level spent up to 60 ms on one thread after the picture was drawn.
+    encoder.set_compression(png::Compression::Fast);
     encoder.add_itxt_chunk(provenance::KEY.to_owned(), record.to_text())?;
     let mut png = encoder.write_header()?;
     let mut rows = png.stream_writer()?;
