@@ -13,7 +13,7 @@ use glam::DVec3;
 use srt_physics::{Event, RestRay};
 
 use crate::prepared::{Hit, PreparedObject};
-use crate::walk::{BoxLeaf, FlatBvh, nearest_first};
+use crate::walk::{FlatBvh, nearest_first};
 
 /// A backward ray's unit direction in a velocity group's rest frames and its reciprocal per
 /// component (for slab tests).
@@ -61,7 +61,7 @@ impl VelocityGroup {
         let origin = objects[first].observer_rest.position;
         let (resting, moving): (Vec<usize>, Vec<usize>) =
             (members.iter()).partition(|&&index| objects[index].motion.is_rest());
-        let boxes: Vec<BoxLeaf<usize>> = (resting.iter())
+        let boxes: Vec<(DVec3, DVec3)> = (resting.iter())
             .map(|&index| {
                 let object = &objects[index];
                 // The same event has coordinates shifted by `shift` in the group's rest frame
@@ -71,11 +71,14 @@ impl VelocityGroup {
                 let (lo, hi) = object.bounds;
                 let scale = 1.0 + origin.abs().max_element() + lo.abs().max(hi.abs()).max_element();
                 let pad = DVec3::splat(1e-9 * scale);
-                BoxLeaf::new(lo + shift - pad, hi + shift + pad, index)
+                (lo + shift - pad, hi + shift + pad)
             })
             .collect();
-        let (bvh, resting) = match FlatBvh::build(boxes) {
-            Some((bvh, resting)) if resting.len() > 1 => (Some(bvh), resting),
+        let (bvh, resting) = match FlatBvh::build(&boxes) {
+            Some((bvh, order)) if order.len() > 1 => (
+                Some(bvh),
+                order.iter().map(|&leaf| resting[leaf as usize]).collect(),
+            ),
             _ => (None, resting),
         };
         Self {

@@ -25,6 +25,7 @@ mod measure;
 mod moving;
 mod prepared;
 mod render;
+mod sah;
 mod seen;
 mod shade;
 mod shared;

@@ -7,6 +7,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::{DVec3, DVec4};
+use rayon::prelude::*;
 use srt_physics::motion::Motion;
 use srt_physics::{Event, Frame, RestRay};
 use srt_scene::mip::MipChain;
@@ -14,7 +15,7 @@ use srt_scene::{Object, Part, Texture};
 
 use crate::intersect::{ShearedRay, TriangleHit};
 use crate::shared::{ObjectBvh, PartTriangle, SharedBvhs};
-use crate::walk::{BoxLeaf, FlatBvh, box_entry, nearest_first};
+use crate::walk::{FlatBvh, box_entry, nearest_first};
 
 /// The mip chains of a scene's textures, each made once however many parts share its texture
 /// (the scene's builder shares one texture among the parts that describe the same one).
@@ -90,27 +91,33 @@ impl<'a> PreparedObject<'a> {
         // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
         // boxes, which slab tests can miss.
         let pad = 1e-9 * (hi - lo).length().max(1.0);
-        // Built over leaves of (part, triangle) only (small, for the builder's many passes),
-        // their corners copied in leaf order after.
+        // Built over the triangles' boxes, their corners copied in leaf order after.
         let build = || -> Option<ObjectBvh> {
-            let leaves: Vec<BoxLeaf<(u32, u32)>> = meshes()
-                .enumerate()
+            let ids: Vec<(u32, u32)> = (meshes().enumerate())
                 .flat_map(|(part, mesh)| {
-                    (0..mesh.triangles().len()).map(move |i| {
-                        let [a, b, c] = mesh.triangle_positions(i);
-                        let (min, max) = (a.min(b).min(c) - pad, a.max(b).max(c) + pad);
-                        BoxLeaf::new(min, max, (part as u32, i as u32))
-                    })
+                    (0..mesh.triangles().len()).map(move |i| (part as u32, i as u32))
                 })
                 .collect();
-            let (bvh, ids) = FlatBvh::build(leaves)?;
-            let triangles = (ids.into_iter())
-                .map(|(part, triangle)| PartTriangle {
-                    corners: object.parts[part as usize]
-                        .mesh
-                        .triangle_positions(triangle as usize),
-                    part,
-                    triangle,
+            let corners = |(part, triangle): (u32, u32)| {
+                object.parts[part as usize]
+                    .mesh
+                    .triangle_positions(triangle as usize)
+            };
+            let boxes: Vec<(DVec3, DVec3)> = (ids.par_iter())
+                .map(|&id| {
+                    let [a, b, c] = corners(id);
+                    (a.min(b).min(c) - pad, a.max(b).max(c) + pad)
+                })
+                .collect();
+            let (bvh, order) = FlatBvh::build(&boxes)?;
+            let triangles = (order.par_iter())
+                .map(|&leaf| {
+                    let (part, triangle) = ids[leaf as usize];
+                    PartTriangle {
+                        corners: corners((part, triangle)),
+                        part,
+                        triangle,
+                    }
                 })
                 .collect();
             Some((bvh, triangles))

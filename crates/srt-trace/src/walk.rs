@@ -1,66 +1,18 @@
-//! The CPU tracer's BVH ([`FlatBvh`]: built by the `bvh` crate, laid out flat with f32 boxes
+//! The CPU tracer's BVH ([`FlatBvh`]: built by [`crate::sah`], laid out flat with f32 boxes
 //! rounded outwards) and its walk along a ray: nearer subtree first, on a stack that lives on
 //! the call's own stack frame, pruned by a bound the visitor lowers as it finds hits. An
 //! object's triangles and a velocity group's objects are both found through it
 //! ([`crate::prepared`], [`crate::group`]); a spinning body's pieces query it by box.
 //!
-//! It replaces the crate's `nearest_traverse_iterator`, which keeps a binary heap (allocated
-//! for every walk) and tests boxes through nalgebra's generic slab test, and the crate's node
-//! enum of f64 boxes (two cache lines a node, against one here). A walk visits every leaf whose
-//! box the ray enters no farther than the bound at the time, so whatever a visitor keeps of the
-//! leaves it is given — the nearest hit, ties to the lowest index — is what a search of every
-//! leaf keeps.
+//! A walk visits every leaf whose box the ray enters no farther than the bound at the time, so
+//! whatever a visitor keeps of the leaves it is given — the nearest hit, ties to the lowest
+//! index — is what a search of every leaf keeps, whatever tree the builder made.
 
-use bvh::aabb::{Aabb, Bounded};
-use bvh::bounding_hierarchy::{BHShape, BoundingHierarchy as _};
-use bvh::bvh::{Bvh, BvhNode};
+use crate::sah::{self, FlatNode, LEAF};
 use glam::DVec3;
-use nalgebra::Point3;
-
-/// A leaf of a BVH the walk searches: `item` in the box [`lo`, `hi`] it was made with (the
-/// `bvh` crate's leaf traits, for its builder).
-#[derive(Debug, Clone)]
-pub(crate) struct BoxLeaf<T> {
-    aabb: Aabb<f64, 3>,
-    /// What the leaf stands for.
-    pub(crate) item: T,
-    node: usize,
-}
-
-impl<T> BoxLeaf<T> {
-    /// The leaf of `item` in the box [`lo`, `hi`].
-    pub(crate) fn new(lo: DVec3, hi: DVec3, item: T) -> Self {
-        Self {
-            aabb: aabb(lo, hi),
-            item,
-            node: 0,
-        }
-    }
-}
-
-/// The `bvh` crate's box [`lo`, `hi`].
-pub(crate) fn aabb(lo: DVec3, hi: DVec3) -> Aabb<f64, 3> {
-    Aabb::with_bounds(Point3::new(lo.x, lo.y, lo.z), Point3::new(hi.x, hi.y, hi.z))
-}
-
-impl<T> Bounded<f64, 3> for BoxLeaf<T> {
-    fn aabb(&self) -> Aabb<f64, 3> {
-        self.aabb
-    }
-}
-
-impl<T> BHShape<f64, 3> for BoxLeaf<T> {
-    fn set_bh_node_index(&mut self, index: usize) {
-        self.node = index;
-    }
-
-    fn bh_node_index(&self) -> usize {
-        self.node
-    }
-}
 
 /// Subtrees a walk keeps on its own stack frame before it spills to the heap: a BVH of
-/// 1.92 M triangles built by the crate is about 40 levels deep.
+/// 1.92 M triangles is about 40 levels deep.
 const INLINE_DEPTH: usize = 64;
 
 /// Where the ray `origin` + s · direction (s ≥ 0; `inverse_direction` = 1 / direction per
@@ -84,19 +36,6 @@ pub(crate) fn box_entry(
 /// A child of a [`FlatBvh`] node: a node's index, or a leaf's with [`LEAF`] set.
 type Child = u32;
 
-/// The flag of a [`Child`] that is a leaf.
-const LEAF: Child = 1 << 31;
-
-/// An inner node of a [`FlatBvh`]: its two children and their boxes, in f32 rounded outwards
-/// (each f32 box holds the f64 box it was made from), one cache line.
-#[derive(Debug, Clone, Copy)]
-#[repr(C, align(64))]
-struct FlatNode {
-    lo: [[f32; 3]; 2],
-    hi: [[f32; 3]; 2],
-    child: [Child; 2],
-}
-
 impl FlatNode {
     /// Where the ray enters the box of child `k` ([`box_entry`], in f64 on the f32 box).
     #[inline]
@@ -118,34 +57,13 @@ impl FlatNode {
     }
 }
 
-/// The largest f32 no greater than `x` (`x` itself where it is one).
-fn f32_below(x: f64) -> f32 {
-    let rounded = x as f32;
-    if f64::from(rounded) > x {
-        rounded.next_down()
-    } else {
-        rounded
-    }
-}
-
-/// The smallest f32 no less than `x`.
-fn f32_above(x: f64) -> f32 {
-    let rounded = x as f32;
-    if f64::from(rounded) < x {
-        rounded.next_up()
-    } else {
-        rounded
-    }
-}
-
-/// A binary BVH as the walks read it: built by the `bvh` crate (binned SAH), then laid out as
-/// one array of [`FlatNode`]s, depth first, the leaves numbered in the order the layout meets
-/// them (so that neighbouring leaves lie side by side in what their items index).
+/// A binary BVH as the walks read it: built by [`sah::build`], then laid out as one array of
+/// [`FlatNode`]s, depth first, the leaves numbered in the order the layout meets them (so that
+/// neighbouring leaves lie side by side in what their items index).
 ///
-/// Its boxes are the crate's, rounded outwards to f32: every box holds the f64 box of the
-/// crate's tree, so a walk enters every leaf the crate's boxes would have let it enter (and,
-/// rarely, a few more at their rims), and a visitor that keeps the nearest hit of what it is
-/// given keeps the same as over the crate's tree.
+/// Its boxes are the builder's, rounded outwards to f32: every box holds the f64 boxes of the
+/// leaves below it, so a walk enters every leaf the f64 boxes would have let it enter (and,
+/// rarely, a few more at their rims).
 pub(crate) struct FlatBvh {
     nodes: Vec<FlatNode>,
     /// The root: node 0, or the only leaf.
@@ -153,62 +71,15 @@ pub(crate) struct FlatBvh {
 }
 
 impl FlatBvh {
-    /// Builds the BVH over `leaves` and returns it with their items in leaf order (leaf `i` of
-    /// the walks is the `i`-th item); `None` for no leaves.
-    pub(crate) fn build<T: Send>(mut leaves: Vec<BoxLeaf<T>>) -> Option<(Self, Vec<T>)> {
-        if leaves.is_empty() {
-            return None;
-        }
-        // On all threads (the crate's rayon executor): the same tree as one thread builds.
-        let bvh = Bvh::build_par(&mut leaves);
-        let mut order: Vec<usize> = Vec::with_capacity(leaves.len());
-        let mut nodes: Vec<FlatNode> = Vec::with_capacity(leaves.len().saturating_sub(1));
-        let root = match bvh.nodes[0] {
-            BvhNode::Leaf { shape_index, .. } => {
-                order.push(shape_index);
-                LEAF
-            }
-            BvhNode::Node { .. } => {
-                // (crate node, the flat node and side it hangs from), depth first.
-                let mut pending: Vec<(usize, Option<(usize, usize)>)> = vec![(0, None)];
-                while let Some((index, parent)) = pending.pop() {
-                    let child = match bvh.nodes[index] {
-                        BvhNode::Leaf { shape_index, .. } => {
-                            order.push(shape_index);
-                            LEAF | (order.len() - 1) as Child
-                        }
-                        BvhNode::Node {
-                            child_l_index,
-                            child_l_aabb,
-                            child_r_index,
-                            child_r_aabb,
-                            ..
-                        } => {
-                            let flat = nodes.len();
-                            let [l, r] = [child_l_aabb, child_r_aabb];
-                            nodes.push(FlatNode {
-                                lo: [l, r].map(|b| [0, 1, 2].map(|a| f32_below(b.min[a]))),
-                                hi: [l, r].map(|b| [0, 1, 2].map(|a| f32_above(b.max[a]))),
-                                child: [0; 2],
-                            });
-                            // The right pushed first: the left is laid out next.
-                            pending.push((child_r_index, Some((flat, 1))));
-                            pending.push((child_l_index, Some((flat, 0))));
-                            flat as Child
-                        }
-                    };
-                    if let Some((node, side)) = parent {
-                        nodes[node].child[side] = child;
-                    }
-                }
-                0
-            }
+    /// Builds the BVH over `boxes` (each as its lower and upper corner) and returns it with
+    /// its leaf order: leaf `i` of the walks is box `order[i]`; `None` for no boxes.
+    pub(crate) fn build(boxes: &[(DVec3, DVec3)]) -> Option<(Self, Vec<u32>)> {
+        let tree = sah::build(boxes)?;
+        let bvh = Self {
+            nodes: tree.nodes,
+            root: tree.root,
         };
-        let mut items: Vec<Option<T>> = leaves.into_iter().map(|leaf| Some(leaf.item)).collect();
-        let items = (order.iter())
-            .map(|&shape| items[shape].take().expect("each shape is one leaf"))
-            .collect();
-        Some((Self { nodes, root }, items))
+        Some((bvh, tree.order))
     }
 
     /// Calls `visit(leaf)` for every leaf whose box meets the box [`lo`, `hi`] (and perhaps a
@@ -322,6 +193,7 @@ pub(crate) fn nearest_first(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sah::{f32_above, f32_below};
 
     /// On a row of cubes along the ray (and some beside it), the walk finds the nearest cube
     /// the ray meets as a search of all does, visits no cube it misses, and, once its visitor
@@ -329,13 +201,12 @@ mod tests {
     #[test]
     fn the_walk_finds_the_nearest_and_prunes_beyond_its_bound() {
         // Unit cubes, each leaf holding its centre.
-        let cubes: Vec<BoxLeaf<DVec3>> = (0..200)
-            .map(|i| {
-                let centre = DVec3::new(f64::from(i % 20) * 2.0, f64::from(i / 20) * 3.0, 0.0);
-                BoxLeaf::new(centre - 0.5, centre + 0.5, centre)
-            })
+        let given: Vec<DVec3> = (0..200)
+            .map(|i| DVec3::new(f64::from(i % 20) * 2.0, f64::from(i / 20) * 3.0, 0.0))
             .collect();
-        let (bvh, centres) = FlatBvh::build(cubes).unwrap();
+        let cubes: Vec<(DVec3, DVec3)> = given.iter().map(|&c| (c - 0.5, c + 0.5)).collect();
+        let (bvh, order) = FlatBvh::build(&cubes).unwrap();
+        let centres: Vec<DVec3> = order.iter().map(|&i| given[i as usize]).collect();
         let origin = DVec3::new(-5.0, 0.0, 0.0);
         let direction = DVec3::X;
         let inverse = direction.recip();
@@ -383,20 +254,14 @@ mod tests {
                 "{x}"
             );
         }
-        let cubes: Vec<BoxLeaf<usize>> = (0..64)
+        let boxes: Vec<(DVec3, DVec3)> = (0..64)
             .map(|i| {
                 let centre = DVec3::new(f64::from(i % 8) * 1.1, f64::from(i / 8) * 0.7, 0.1);
-                BoxLeaf::new(centre - 0.3, centre + 0.3, i as usize)
+                (centre - 0.3, centre + 0.3)
             })
             .collect();
-        let boxes: Vec<(DVec3, DVec3)> = (cubes.iter())
-            .map(|c| {
-                let b = c.aabb();
-                let v = |p: nalgebra::Point3<f64>| DVec3::new(p.x, p.y, p.z);
-                (v(b.min), v(b.max))
-            })
-            .collect();
-        let (bvh, items) = FlatBvh::build(cubes).unwrap();
+        let (bvh, order) = FlatBvh::build(&boxes).unwrap();
+        let items: Vec<usize> = order.iter().map(|&i| i as usize).collect();
         let (lo, hi) = (DVec3::new(1.0, 0.5, 0.0), DVec3::new(2.9, 2.0, 0.2));
         let mut found = Vec::new();
         bvh.overlapping(lo, hi, |leaf| found.push(items[leaf]));
