@@ -141,6 +141,15 @@ enum Command {
         /// The address's query for --screenshot, e.g. "scene=fig7&split=1".
         #[arg(long, default_value = "", requires = "screenshot")]
         query: String,
+        /// Time the CPU worker's frames in headless Chromium on the flythrough and the teaser at
+        /// 1280×720: the first frame (the scene and tracer built) and the median of five more
+        /// as the time control moves.
+        #[arg(long, conflicts_with_all = ["serve", "test", "screenshot"])]
+        time: bool,
+        /// With --time: time the page built in DIR too (another commit's), beside this one
+        /// (repeatable).
+        #[arg(long, value_name = "DIR", requires = "time")]
+        page: Vec<PathBuf>,
         /// Use the page already in target/web.
         #[arg(long)]
         no_build: bool,
@@ -244,6 +253,8 @@ fn main() -> anyhow::Result<()> {
             test,
             screenshot,
             query,
+            time,
+            page: other_pages,
             no_build,
         } => {
             let root = workspace_root();
@@ -258,6 +269,11 @@ fn main() -> anyhow::Result<()> {
                 web::test(&root, &page)?;
             } else if let Some(path) = screenshot {
                 web::screenshot(&root, &page, &query, &path)?;
+            } else if time {
+                // This build's page last; with --no-build, only if one was built before.
+                let this = Some(page).filter(|page| page.join("index.html").is_file());
+                let pages: Vec<PathBuf> = other_pages.into_iter().chain(this).collect();
+                web::time_cpu_frames(&root, &pages)?;
             }
         }
     }

@@ -2,7 +2,8 @@
 //! `crates/srt-web/web/`, the wasm module and its JavaScript glue, nothing from elsewhere),
 //! serves it on localhost (`--serve`), and tests it in headless Chromium (`--test`): the embed
 //! page of several scenes, on WebGPU and on the CPU path, screenshot and compared with the exact
-//! CPU reference at the same size, with `cargo xtask validate`'s tolerance.
+//! CPU reference at the same size, with `cargo xtask validate`'s tolerance; `--time` times the
+//! page's CPU worker (this build's, and others' given with `--page`).
 //!
 //! The wasm is built with Debian's wasm toolchain (`rustc-web`, `cargo-web`, `rust-web-src`,
 //! `lld-16`: its standard library is built from source with `-Zbuild-std`), so the project's own
@@ -604,6 +605,75 @@ pub fn screenshot(workspace: &Path, root: &Path, query: &str, path: &Path) -> an
     std::fs::write(path, browser.screenshot((0.0, 0.0), 1280, 800)?)
         .with_context(|| format!("cannot write {}", path.display()))?;
     println!("wrote {} ({title})", path.display());
+    Ok(())
+}
+
+/// The scenes whose CPU frames `--time` times (issue 69: the web worker before and after).
+const TIMED_SCENES: [&str; 2] = ["flythrough", "teaser"];
+
+/// Frames timed after each scene's first.
+const TIMED_FRAMES: usize = 5;
+
+/// Times the CPU worker of each page in `pages` (built page directories) on [`TIMED_SCENES`]
+/// in headless Chromium: the first frame of a fresh page load (scene and tracer built) and the
+/// median of [`TIMED_FRAMES`] more, each drawn as the time control moves (the tracer's BVHs
+/// kept); the times are the page's own (`data-frame-ms`: the worker's render, the transfer and
+/// the canvas's update). Prints one line per page and scene.
+///
+/// # Errors
+/// When a page cannot be served, loaded, or says it failed.
+pub fn time_cpu_frames(workspace: &Path, pages: &[PathBuf]) -> anyhow::Result<()> {
+    let out = workspace.join("target/web-test");
+    std::fs::create_dir_all(&out)?;
+    let executable = devtools::find_browser()?;
+    for page in pages {
+        let address = serve(page, 0)?;
+        let profile = out.join("profile-time");
+        let _ = std::fs::remove_dir_all(&profile);
+        let mut browser = Browser::start(&executable, &profile, &out.join("chromium-time.log"))?;
+        browser.set_viewport(1280, 800)?;
+        for scene in TIMED_SCENES {
+            browser.open(&format!(
+                "{address}index.html?scene={scene}&width=1280&height=720&backend=cpu"
+            ))?;
+            let title = browser.wait_for_title(
+                |title| title.starts_with("srt ready") || title.starts_with("srt error"),
+                FIRST_FRAME_TIMEOUT,
+            )?;
+            if title != "srt ready (cpu)" {
+                bail!("{}: {scene}: {title}", page.display());
+            }
+            let frame = "[Number(document.body.dataset.frames), \
+                         Number(document.body.dataset.frameMs), \
+                         document.getElementById('canvas').width, \
+                         document.getElementById('canvas').height]";
+            let first = browser.evaluate(frame)?;
+            let mut later = Vec::with_capacity(TIMED_FRAMES);
+            for step in 1..=TIMED_FRAMES {
+                let frames = browser.evaluate("Number(document.body.dataset.frames)")?;
+                browser.evaluate(&format!(
+                    "(() => {{ const time = document.getElementById('time'); \
+                     time.value = '{}'; time.dispatchEvent(new Event('input')); return true; }})()",
+                    0.1 * step as f64
+                ))?;
+                let drawn = browser.wait_for(
+                    frame,
+                    |value| value[0].as_u64() > frames.as_u64(),
+                    FIRST_FRAME_TIMEOUT,
+                )?;
+                later.push(drawn[1].as_f64().unwrap_or(f64::NAN));
+            }
+            later.sort_by(f64::total_cmp);
+            println!(
+                "web-time page={} scene={scene} canvas={}x{} first_ms={:.1} frame_ms={:.1} frames_ms={later:.1?}",
+                page.display(),
+                first[2],
+                first[3],
+                first[1].as_f64().unwrap_or(f64::NAN),
+                later[later.len() / 2],
+            );
+        }
+    }
     Ok(())
 }
 
