@@ -34,6 +34,7 @@ mod light;
 mod lorentz;
 pub mod motion;
 mod observer;
+pub mod optics;
 mod retarded;
 mod velocity;
 
