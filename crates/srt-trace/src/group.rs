@@ -74,7 +74,7 @@ impl VelocityGroup {
                 (lo + shift - pad, hi + shift + pad)
             })
             .collect();
-        let (bvh, resting) = match FlatBvh::build(&boxes) {
+        let (bvh, resting) = match FlatBvh::build(boxes.len(), |i| boxes[i]) {
             Some((bvh, order)) if order.len() > 1 => (
                 Some(bvh),
                 order.iter().map(|&leaf| resting[leaf as usize]).collect(),

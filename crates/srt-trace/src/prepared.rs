@@ -91,28 +91,34 @@ impl<'a> PreparedObject<'a> {
         // Pad boxes a little so that flat (axis-aligned) triangles never have zero-thickness
         // boxes, which slab tests can miss.
         let pad = 1e-9 * (hi - lo).length().max(1.0);
-        // Built over the triangles' boxes, their corners copied in leaf order after.
+        // Built over the triangles' boxes (triangle `i` of the object counted through its parts
+        // in turn), their corners copied in leaf order after.
         let build = || -> Option<ObjectBvh> {
-            let ids: Vec<(u32, u32)> = (meshes().enumerate())
-                .flat_map(|(part, mesh)| {
-                    (0..mesh.triangles().len()).map(move |i| (part as u32, i as u32))
+            let starts: Vec<usize> = (meshes())
+                .scan(0, |start, mesh| {
+                    let first = *start;
+                    *start += mesh.triangles().len();
+                    Some(first)
                 })
                 .collect();
+            let count = meshes().map(|mesh| mesh.triangles().len()).sum();
+            // The part and the triangle within it of the object's triangle `i`.
+            let id = |i: usize| {
+                let part = starts.partition_point(|&start| start <= i) - 1;
+                (part as u32, (i - starts[part]) as u32)
+            };
             let corners = |(part, triangle): (u32, u32)| {
                 object.parts[part as usize]
                     .mesh
                     .triangle_positions(triangle as usize)
             };
-            let boxes: Vec<(DVec3, DVec3)> = (ids.par_iter())
-                .map(|&id| {
-                    let [a, b, c] = corners(id);
-                    (a.min(b).min(c) - pad, a.max(b).max(c) + pad)
-                })
-                .collect();
-            let (bvh, order) = FlatBvh::build(&boxes)?;
+            let (bvh, order) = FlatBvh::build(count, |i| {
+                let [a, b, c] = corners(id(i));
+                (a.min(b).min(c) - pad, a.max(b).max(c) + pad)
+            })?;
             let triangles = (order.par_iter())
                 .map(|&leaf| {
-                    let (part, triangle) = ids[leaf as usize];
+                    let (part, triangle) = id(leaf as usize);
                     PartTriangle {
                         corners: corners((part, triangle)),
                         part,

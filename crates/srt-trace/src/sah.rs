@@ -100,8 +100,8 @@ impl Bounds {
     #[inline]
     fn add(&mut self, leaf: &Leaf) {
         self.count += 1;
-        self.lo = self.lo.min(leaf.lo);
-        self.hi = self.hi.max(leaf.hi);
+        self.lo = self.lo.min(leaf.lo());
+        self.hi = self.hi.max(leaf.hi());
         let centre = leaf.centre();
         self.centre_lo = self.centre_lo.min(centre);
         self.centre_hi = self.centre_hi.max(centre);
@@ -126,20 +126,32 @@ impl Bounds {
 }
 
 /// A leaf as the builder reads it: its box, rounded outwards to f32, and its index in what
-/// [`build`] was given. The builder reorders the leaves themselves, so that a subtree's are
-/// side by side in memory.
+/// [`build`] was given (28 bytes). The builder reorders the leaves themselves, so that a
+/// subtree's are side by side in memory.
 #[derive(Debug, Clone, Copy)]
 struct Leaf {
-    lo: Vec3A,
-    hi: Vec3A,
+    lo: [f32; 3],
     index: u32,
+    hi: [f32; 3],
 }
 
 impl Leaf {
+    /// The box's lower corner.
+    #[inline]
+    fn lo(&self) -> Vec3A {
+        Vec3A::from_array(self.lo)
+    }
+
+    /// The box's upper corner.
+    #[inline]
+    fn hi(&self) -> Vec3A {
+        Vec3A::from_array(self.hi)
+    }
+
     /// The centre of the leaf's box (twice it: only order and spread matter to the builder).
     #[inline]
     fn centre(&self) -> Vec3A {
-        self.lo + self.hi
+        self.lo() + self.hi()
     }
 }
 
@@ -152,27 +164,31 @@ fn bounds_of(leaves: &[Leaf]) -> Bounds {
     bounds
 }
 
-/// Builds the BVH over `boxes` (each given as its lower and upper corner); `None` for none.
-/// Deterministic: the same tree on any number of threads.
-pub(crate) fn build(boxes: &[(DVec3, DVec3)]) -> Option<Tree> {
-    if boxes.is_empty() {
+/// Builds the BVH over `count` boxes, box `i` being `box_of(i)` (its lower and upper corner);
+/// `None` for none. Deterministic: the same tree on any number of threads.
+pub(crate) fn build(count: usize, box_of: impl Fn(usize) -> (DVec3, DVec3) + Sync) -> Option<Tree> {
+    if count == 0 {
         return None;
     }
-    u32::try_from(boxes.len())
+    u32::try_from(count)
         .ok()
         .filter(|&n| n < LEAF)
         .expect("fewer than 2³¹ leaves");
     // On all threads: the pages these first touch are cleared by the kernel, which costs as
     // much as the work here.
-    let mut leaves: Vec<Leaf> = (boxes.par_iter().enumerate())
-        .map(|(index, &(lo, hi))| Leaf {
-            lo: Vec3A::from_array(lo.to_array().map(f32_below)),
-            hi: Vec3A::from_array(hi.to_array().map(f32_above)),
-            index: index as u32,
+    let mut leaves: Vec<Leaf> = (0..count)
+        .into_par_iter()
+        .map(|index| {
+            let (lo, hi) = box_of(index);
+            Leaf {
+                lo: lo.to_array().map(f32_below),
+                index: index as u32,
+                hi: hi.to_array().map(f32_above),
+            }
         })
         .collect();
-    let mut nodes = Vec::with_capacity(boxes.len() - 1);
-    nodes.par_extend(rayon::iter::repeat_n(FlatNode::default(), boxes.len() - 1));
+    let mut nodes = Vec::with_capacity(count - 1);
+    nodes.par_extend(rayon::iter::repeat_n(FlatNode::default(), count - 1));
     let bounds = bounds_of(&leaves);
     let root = subtree(&mut leaves, &mut nodes, (0, 0), bounds);
     let order = leaves.par_iter().map(|leaf| leaf.index).collect();
@@ -399,7 +415,7 @@ mod tests {
                     (lo, lo + DVec3::from_array(size.map(f64::from)))
                 })
                 .collect();
-            let tree = build(&boxes).expect("a tree");
+            let tree = build(boxes.len(), |i| boxes[i]).expect("a tree");
             assert_well_formed(&boxes, &tree);
         }
     }
@@ -414,12 +430,12 @@ mod tests {
                 (at, at + 0.001)
             })
             .collect();
-        let many = build(&boxes).expect("a tree");
+        let many = build(boxes.len(), |i| boxes[i]).expect("a tree");
         let one = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
             .expect("a pool")
-            .install(|| build(&boxes).expect("a tree"));
+            .install(|| build(boxes.len(), |i| boxes[i]).expect("a tree"));
         assert_well_formed(&boxes, &many);
         assert_eq!(many.order, one.order);
         assert_eq!(many.root, one.root);
@@ -436,7 +452,7 @@ mod tests {
                 (lo, lo + 0.005)
             })
             .collect();
-        let tree = build(&boxes).expect("a tree");
+        let tree = build(boxes.len(), |i| boxes[i]).expect("a tree");
         let root = &tree.nodes[0];
         assert!(root.hi[0][0] < 1.0 && root.lo[1][0] > 99.0, "{root:?}");
     }

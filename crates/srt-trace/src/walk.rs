@@ -71,10 +71,14 @@ pub(crate) struct FlatBvh {
 }
 
 impl FlatBvh {
-    /// Builds the BVH over `boxes` (each as its lower and upper corner) and returns it with
-    /// its leaf order: leaf `i` of the walks is box `order[i]`; `None` for no boxes.
-    pub(crate) fn build(boxes: &[(DVec3, DVec3)]) -> Option<(Self, Vec<u32>)> {
-        let tree = sah::build(boxes)?;
+    /// Builds the BVH over `count` boxes, box `i` being `box_of(i)` (its lower and upper
+    /// corner), and returns it with its leaf order: leaf `k` of the walks is box `order[k]`;
+    /// `None` for no boxes.
+    pub(crate) fn build(
+        count: usize,
+        box_of: impl Fn(usize) -> (DVec3, DVec3) + Sync,
+    ) -> Option<(Self, Vec<u32>)> {
+        let tree = sah::build(count, box_of)?;
         let bvh = Self {
             nodes: tree.nodes,
             root: tree.root,
@@ -205,7 +209,7 @@ mod tests {
             .map(|i| DVec3::new(f64::from(i % 20) * 2.0, f64::from(i / 20) * 3.0, 0.0))
             .collect();
         let cubes: Vec<(DVec3, DVec3)> = given.iter().map(|&c| (c - 0.5, c + 0.5)).collect();
-        let (bvh, order) = FlatBvh::build(&cubes).unwrap();
+        let (bvh, order) = FlatBvh::build(cubes.len(), |i| cubes[i]).unwrap();
         let centres: Vec<DVec3> = order.iter().map(|&i| given[i as usize]).collect();
         let origin = DVec3::new(-5.0, 0.0, 0.0);
         let direction = DVec3::X;
@@ -260,7 +264,7 @@ mod tests {
                 (centre - 0.3, centre + 0.3)
             })
             .collect();
-        let (bvh, order) = FlatBvh::build(&boxes).unwrap();
+        let (bvh, order) = FlatBvh::build(boxes.len(), |i| boxes[i]).unwrap();
         let items: Vec<usize> = order.iter().map(|&i| i as usize).collect();
         let (lo, hi) = (DVec3::new(1.0, 0.5, 0.0), DVec3::new(2.9, 2.0, 0.2));
         let mut found = Vec::new();
