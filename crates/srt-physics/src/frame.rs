@@ -220,12 +220,77 @@ impl Frame {
         let propagation = -view_direction.normalize();
         -self.to_rest_aberration.apply(propagation).normalize()
     }
+
+    /// [`Frame::rest_direction`] of each of `view_directions`, written over `rest` (as long):
+    /// the same bits as one by one, computed [`DIRECTION_LANES`] at a time side by side, so
+    /// that the square roots and divisions of two directions share a vector instruction.
+    ///
+    /// # Panics
+    /// If `rest` is not as long as `view_directions`.
+    pub fn rest_directions(&self, view_directions: &[DVec3], rest: &mut [DVec3]) {
+        assert_eq!(
+            view_directions.len(),
+            rest.len(),
+            "a rest direction per view"
+        );
+        for (views, rest) in
+            (view_directions.chunks(DIRECTION_LANES)).zip(rest.chunks_mut(DIRECTION_LANES))
+        {
+            // Unused lanes stay 0 (their NaNs are never read).
+            let mut lanes = [[0.0; DIRECTION_LANES]; 3];
+            for (i, view) in views.iter().enumerate() {
+                [lanes[0][i], lanes[1][i], lanes[2][i]] = view.to_array();
+            }
+            negate_normalised(&mut lanes);
+            self.to_rest_aberration.apply_lanes(&mut lanes);
+            negate_normalised(&mut lanes);
+            for (i, direction) in rest.iter_mut().enumerate() {
+                *direction = DVec3::new(lanes[0][i], lanes[1][i], lanes[2][i]);
+            }
+        }
+    }
+}
+
+/// How many directions [`Frame::rest_directions`] computes side by side.
+pub const DIRECTION_LANES: usize = 64;
+
+/// Each direction of `lanes` replaced by `-direction.normalize()`, glam's operations in glam's
+/// order (v · (1 / √(v·v)), then negated), so the bits are the same.
+fn negate_normalised<const N: usize>([x, y, z]: &mut [[f64; N]; 3]) {
+    for i in 0..N {
+        let length_recip = 1.0 / ((x[i] * x[i]) + (y[i] * y[i]) + (z[i] * z[i])).sqrt();
+        x[i] = -(x[i] * length_recip);
+        y[i] = -(y[i] * length_recip);
+        z[i] = -(z[i] * length_recip);
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The directions computed side by side are those computed one by one, bit for bit,
+        /// for any velocity and any number of directions (partial batches included).
+        #[test]
+        fn rest_directions_side_by_side_are_the_same_bits(
+            beta in prop::array::uniform3(-0.57_f64..0.57),
+            views in prop::collection::vec(prop::array::uniform3(-3.0_f64..3.0), 0..150),
+        ) {
+            let frame = Frame::new(DVec3::from_array(beta), DVec3::ZERO).expect("|β| < 1");
+            let views: Vec<DVec3> = (views.into_iter().map(DVec3::from_array))
+                .filter(|view| view.length() > 1e-3)
+                .collect();
+            let mut rest = vec![DVec3::ZERO; views.len()];
+            frame.rest_directions(&views, &mut rest);
+            for (view, rest) in views.iter().zip(&rest) {
+                let one = frame.rest_direction(*view);
+                prop_assert_eq!(one.to_array().map(f64::to_bits), rest.to_array().map(f64::to_bits));
+            }
+        }
+    }
 
     #[test]
     fn rejects_superluminal_and_non_finite() {

@@ -39,7 +39,7 @@ mod retarded;
 mod velocity;
 
 pub use event::{Event, minkowski_interval};
-pub use frame::{Frame, FrameError, RestRay};
+pub use frame::{DIRECTION_LANES, Frame, FrameError, RestRay};
 pub use light::{
     Aberration, LightVector, aberrate, distant_source_image, doppler_factor, receiver_doppler,
     reflection_doppler,

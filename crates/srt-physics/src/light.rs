@@ -101,6 +101,22 @@ impl Aberration {
         let spatial = gamma * beta + direction_rest + self.along * b_dot_n * beta;
         spatial / (gamma * (1.0 + b_dot_n))
     }
+
+    /// [`Aberration::apply`] to each direction of `lanes` (x, y and z of many directions side by
+    /// side), the same bits as one by one: each lane's operations are [`Aberration::apply`]'s in
+    /// its order, so the compiler may compute two lanes per vector instruction.
+    pub fn apply_lanes<const N: usize>(&self, [x, y, z]: &mut [[f64; N]; 3]) {
+        let (beta, gamma, along) = (self.beta, self.gamma, self.along);
+        let gamma_beta = gamma * beta;
+        for i in 0..N {
+            let b_dot_n = (beta.x * x[i]) + (beta.y * y[i]) + (beta.z * z[i]);
+            let scale = along * b_dot_n;
+            let denominator = gamma * (1.0 + b_dot_n);
+            x[i] = (gamma_beta.x + x[i] + scale * beta.x) / denominator;
+            y[i] = (gamma_beta.y + y[i] + scale * beta.y) / denominator;
+            z[i] = (gamma_beta.z + z[i] + scale * beta.z) / denominator;
+        }
+    }
 }
 
 /// Doppler factor D = ω_R / ω_S = γ (1 − β·n) with which a receiver moving with `beta` through

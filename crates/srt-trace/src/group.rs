@@ -10,7 +10,7 @@
 //! found does not depend on the grouping.
 
 use glam::DVec3;
-use srt_physics::{Event, RestRay};
+use srt_physics::{Event, Frame, RestRay};
 
 use crate::prepared::{Hit, PreparedObject};
 use crate::walk::{FlatBvh, nearest_first};
@@ -23,6 +23,16 @@ pub(crate) struct RestDirection {
     pub(crate) direction: DVec3,
     /// 1 / `direction`, per component.
     pub(crate) inverse: DVec3,
+}
+
+impl RestDirection {
+    /// The unit `direction` and its reciprocal.
+    pub(crate) fn new(direction: DVec3) -> Self {
+        Self {
+            direction,
+            inverse: direction.recip(),
+        }
+    }
 }
 
 /// A velocity group of a scene's objects.
@@ -97,11 +107,13 @@ impl VelocityGroup {
         objects: &[PreparedObject<'_>],
         view_direction: DVec3,
     ) -> RestDirection {
-        let direction = objects[self.first].frame.rest_direction(view_direction);
-        RestDirection {
-            direction,
-            inverse: direction.recip(),
-        }
+        RestDirection::new(self.frame(objects).rest_direction(view_direction))
+    }
+
+    /// The frame whose [`srt_physics::Frame::rest_direction`] gives the group's backward rays
+    /// (its first member's: every member's gives the same).
+    pub(crate) fn frame<'o>(&self, objects: &'o [PreparedObject<'_>]) -> &'o Frame {
+        &objects[self.first].frame
     }
 
     /// Searches the group's members along the backward ray whose direction in their rest

@@ -180,22 +180,36 @@ impl<'a> Tracer<'a> {
         best.map(|hit| Hit { eye, ..hit })
     }
 
-    /// The rest-frame directions of the viewing directions of `rays` (`None`: no ray) in every
-    /// velocity group, ray by ray, `groups` entries each (a missing ray's are left at their
-    /// default), written over `directions`. Computed for many rays in one loop, their square
-    /// roots and divisions (a chain within a ray) overlap from ray to ray, where ray by ray in
-    /// the search each would wait for the last.
+    /// The rest-frame directions of the viewing directions of `rays` (`None`: no ray; at most
+    /// [`RAY_BATCH`]) in every velocity group, ray by ray, `groups` entries each (a missing
+    /// ray's are left at their default), written over `directions`. Computed side by side
+    /// ([`srt_physics::Frame::rest_directions`]): the square roots and divisions of two rays
+    /// share a vector instruction, and a ray's chain of them overlaps the next ray's, where ray
+    /// by ray in the search each would wait for the last.
     fn rest_directions(
         &self,
         rays: &[Option<(DVec3, DVec3)>],
         directions: &mut Vec<RestDirection>,
     ) {
+        let groups = self.velocity_groups.len();
         directions.clear();
-        for ray in rays {
-            for group in &self.velocity_groups {
-                directions.push(ray.map_or_else(RestDirection::default, |(_, direction)| {
-                    group.rest_direction(&self.objects, direction)
-                }));
+        directions.resize(rays.len() * groups, RestDirection::default());
+        // A ray the picture does not cast (outside a fisheye's circle) stands in as +x; its
+        // directions are then the default.
+        let count = rays.len();
+        let mut views = [DVec3::X; RAY_BATCH];
+        for (view, ray) in views.iter_mut().zip(rays) {
+            if let Some((_, direction)) = ray {
+                *view = *direction;
+            }
+        }
+        let mut rest = [DVec3::ZERO; RAY_BATCH];
+        for (g, group) in self.velocity_groups.iter().enumerate() {
+            (group.frame(&self.objects)).rest_directions(&views[..count], &mut rest[..count]);
+            for (i, (ray, &direction)) in rays.iter().zip(&rest).enumerate() {
+                if ray.is_some() {
+                    directions[i * groups + g] = RestDirection::new(direction);
+                }
             }
         }
     }
